@@ -1,0 +1,61 @@
+# xregulator — one command each: `make run`, `make test`.
+# deps installs every Debian 12 package the build, tests, benchmarks and
+# packaging need; it is idempotent and only calls apt-get when something is
+# missing.
+
+BUILD   ?= build
+JOBS    ?= $(shell nproc)
+CONFIG  ?= config/xregulator.toml
+STATE   ?= var/xregulator.db
+HTTP    ?= 127.0.0.1:8080
+
+DEB_PACKAGES := build-essential cmake pkg-config ninja-build \
+  libboost1.81-dev libboost-json1.81-dev \
+  libgpiod-dev gpiod libsqlite3-dev sqlite3 \
+  libspdlog-dev libfmt-dev libtomlplusplus-dev \
+  libgtest-dev libgmock-dev googletest libbenchmark-dev \
+  libsystemd-dev systemd \
+  chromium wrk clang libclang-rt-14-dev valgrind clang-format \
+  debhelper devscripts lintian fakeroot dpkg-dev
+
+.PHONY: all deps build run test bench deb clean format
+
+all: build
+
+deps:
+	@missing=""; \
+	for p in $(DEB_PACKAGES); do \
+	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "ok installed" || missing="$$missing $$p"; \
+	done; \
+	if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then missing="$$missing nodejs npm"; fi; \
+	if [ -n "$$missing" ]; then \
+	  echo "deps: installing$$missing"; \
+	  SUDO=""; [ "$$(id -u)" = 0 ] || SUDO=sudo; \
+	  $$SUDO apt-get update && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y --no-install-recommends $$missing; \
+	else echo "deps: all present"; fi
+	@if [ -f web/package.json ]; then $(MAKE) --no-print-directory -C web deps; fi
+
+$(BUILD)/CMakeCache.txt:
+	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo
+
+build: deps $(BUILD)/CMakeCache.txt
+	cmake --build $(BUILD) -j $(JOBS)
+
+run: build
+	@mkdir -p $(dir $(STATE))
+	$(BUILD)/daemon/app/xregulatord --sim --speed 1 --config $(CONFIG) --state-db $(STATE) --http $(HTTP)
+
+test: build
+	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS) --timeout 900
+
+bench: build
+	@if [ -x tests/bench/run.sh ]; then tests/bench/run.sh $(BUILD); else echo "no benchmarks yet"; fi
+
+deb: deps
+	dpkg-buildpackage -us -uc -b
+
+format:
+	find daemon drivers web/server tests tools -name '*.cpp' -o -name '*.h' | xargs clang-format -i
+
+clean:
+	rm -rf $(BUILD)

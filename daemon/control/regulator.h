@@ -1,0 +1,48 @@
+#pragma once
+// Regulator: the pure core. One call per control tick:
+//
+//   Inputs (sensor samples + freshness + now) -> step() -> Outputs
+//
+// Owns every loop, protection and battery state as plain members. No device,
+// clock, file, socket, global or heap allocation after construction.
+// setParams() and command() are called between ticks only (by the same
+// thread that calls step(), which drains the command queue first).
+#include <memory>
+
+#include "battery/ledger.h"
+#include "core/commands.h"
+#include "core/inputs.h"
+#include "core/outputs.h"
+#include "params/params.h"
+
+namespace xr {
+
+class Regulator {
+ public:
+  explicit Regulator(const Params& params);
+  ~Regulator();
+  Regulator(const Regulator&) = delete;
+  Regulator& operator=(const Regulator&) = delete;
+
+  // Replace the whole parameter set (between ticks).
+  void setParams(const Params& params);
+  const Params& params() const;
+
+  // Apply an operator command (between ticks). Returns false, and emits a
+  // CommandRejected event on the next step, when the command is not legal now.
+  bool command(const Command& cmd);
+
+  // One control tick.
+  const Outputs& step(const Inputs& in);
+  const Outputs& outputs() const;
+
+  // Persistent battery state, for the store.
+  BatteryLedger ledger() const;
+  void restoreLedger(const BatteryLedger& ledger);
+
+ private:
+  struct State;
+  std::unique_ptr<State> s_;
+};
+
+}  // namespace xr

@@ -1,0 +1,76 @@
+#pragma once
+// Events the core emits (trips, clears, lockouts, cuts, stage changes...).
+// The RT thread only copies these plain structs into a ring; a non-RT thread
+// formats them with the seeds' console wording (describe()) for the journal,
+// the store and the dashboard.
+#include <array>
+#include <cstddef>
+#include <string>
+
+#include "core/modes.h"
+#include "core/time.h"
+
+namespace xr {
+
+enum class EventLevel { Debug, Info, Warning, Error, Critical };
+
+enum class EventCode {
+  ModeChanged,          // "Entering normal mode" / "Exiting normal mode: <reason>"
+  ProtectionTrip,       // a protection fired (reason)
+  ProtectionClear,      // a protection cleared (reason)
+  ImmediateCut,         // "GPIO4 immediate cut: <reason>"
+  CutAfterSettle,       // "GPIO4 cut after settle: <reason>"
+  LockoutStarted,       // "Field lockout started: Xs cooldown before restart allowed"
+  LockoutExpired,       // "Field lockout expired - normal operation resumed"
+  StageChanged,         // "CHARGING: ..." (a = from stage, b = to stage)
+  FieldOn,              // field enable rising edge
+  FieldOff,             // field enable falling edge (store checkpoint + 5 s)
+  InaLatchSet,
+  InaLatchCleared,
+  VoltageDisagreement,  // "Battery Voltage disagreement! BatteryV=X V, IBV=Y V. Field shut off for safety!"
+  TempSensorStale,      // "OneWire sensor stale, sensor dead or disconnected"
+  TempTaskHung,
+  AlarmOn,
+  AlarmOff,
+  LimpHomeActive,       // one per 30 s
+  FullChargeDetected,
+  ShuntGainCorrected,
+  AutoZeroStarted,
+  AutoZeroDone,
+  SystemIdDone,
+  TuningCommitted,
+  CommandApplied,
+  CommandRejected,
+  Message,              // generic; text chosen by detail code
+};
+
+struct Event {
+  TimeNs t = 0;
+  EventLevel level = EventLevel::Info;
+  EventCode code = EventCode::Message;
+  Reason reason = Reason::NONE;
+  FieldControlMode mode = FieldControlMode::MODE_NORMAL_AUTO_PID;
+  double a = 0.0;  // values; meaning depends on code (documented in describe())
+  double b = 0.0;
+  int detail = 0;
+};
+
+// Fixed-capacity per-tick batch: no allocation on the RT path.
+struct EventBatch {
+  static constexpr std::size_t kCapacity = 16;
+  std::array<Event, kCapacity> items{};
+  std::size_t count = 0;
+  std::size_t dropped = 0;
+  void clear() { count = 0; dropped = 0; }
+  void push(const Event& e) {
+    if (count < kCapacity) items[count++] = e;
+    else ++dropped;
+  }
+};
+
+std::string_view toString(EventLevel l);
+std::string_view toString(EventCode c);
+// Human text with the seeds' console wording. Allocates: never call on the RT thread.
+std::string describe(const Event& e);
+
+}  // namespace xr

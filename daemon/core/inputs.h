@@ -1,0 +1,54 @@
+#pragma once
+// Inputs of one control tick: every sensor sample with its freshness, plus
+// `now`. Built by the runtime from the drivers (the same code on the board
+// and in simulation); the core never touches a device.
+#include <limits>
+
+#include "core/time.h"
+
+namespace xr {
+
+inline constexpr double kNoValue = std::numeric_limits<double>::quiet_NaN();
+
+// One sensor channel. `stamp` is when the latest valid sample was taken
+// (0 = never); `fresh` is true when that sample is new since the previous
+// tick. `value` holds the latest sample (NaN when none was ever valid).
+struct Reading {
+  double value = kNoValue;
+  TimeNs stamp = 0;
+  bool fresh = false;
+};
+
+struct Inputs {
+  TimeNs now = 0;
+
+  // INA228 (sign convention: Bcur positive = charging into the battery).
+  bool inaPresent = false;       // detected and answering
+  Reading IBV;                   // bus voltage, V
+  Reading Bcur;                  // shunt current, A, before DynamicShuntGainFactor
+  bool inaBusOvervoltage = false;  // DIAG_ALRT.BUSOL seen by the driver (hardware ALERT asserted)
+  TimeNs inaDiagStamp = 0;       // when DIAG_ALRT was last read
+  bool inaFastModeActive = false;  // the driver's conversion mode (fast while field on)
+  double inaDieTempC = kNoValue;
+
+  // ADS1115 channels, already scaled by the analog front end.
+  Reading BatteryV;        // CH0, V
+  Reading altCurrentRaw;   // CH1, A, before DynamicAltCurrentZero is subtracted
+  Reading rpm;             // CH2, RPM
+  Reading thermistorF;     // CH3, degF
+
+  // DS18B20 over 1-Wire (slow thread).
+  Reading AlternatorTemperatureF;
+  TimeNs tempTaskHeartbeat = 0;  // last time the temperature thread completed a cycle (T4)
+
+  // VE.Direct (slow thread).
+  Reading VictronCurrent;  // A, + = charging
+  Reading VictronVoltage;  // V
+  Reading solarPowerW;     // PPV, W
+
+  // Discrete inputs (already polarity-corrected).
+  bool ignitionOn = true;
+  bool bmsChargeEnabled = true;
+};
+
+}  // namespace xr

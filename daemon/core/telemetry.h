@@ -1,0 +1,74 @@
+#pragma once
+// Telemetry of one tick: the DESIGN.md CSV columns at the top level, then the
+// per-module detail. Plain data: copied out of the RT thread whole.
+#include <string_view>
+#include <variant>
+
+#include "battery/battery_telemetry.h"
+#include "control/control_telemetry.h"
+#include "core/modes.h"
+#include "core/time.h"
+#include "protection/protection_telemetry.h"
+
+namespace xr {
+
+struct Telemetry {
+  TimeNs now = 0;
+  FieldControlMode mode = FieldControlMode::MODE_DISABLED_RAMP;
+  ChargeStage stage = ChargeStage::BULK;
+  Reason reason = Reason::NONE;
+  double ibv_v = 0.0;
+  double battery_v = 0.0;
+  double bcur_a = 0.0;
+  double alt_a = 0.0;
+  double rpm = 0.0;
+  double temp_f = 0.0;
+  double duty_pct = 0.0;
+  bool field_enable = false;
+  double setpoint_a = 0.0;         // setpointLimited
+  double target_a = 0.0;           // uTargetAmps
+  double target_v = 0.0;           // ChargingVoltageTarget
+  double thermal_penalty_a = 0.0;  // thermalPenaltyAmps
+  bool fast_ov_active = false;     // fastOvClampActive
+  double soc_pct = 0.0;
+  bool alarm = false;              // buzzer
+  double charged_wh_lifetime = 0.0;
+  double alt_charged_wh_lifetime = 0.0;
+
+  ControlTelemetry control;
+  ProtectionTelemetry protection;
+  BatteryTelemetry battery;
+};
+
+// A column value: a number, a flag (0/1) or a name (mode, stage, reason).
+using ColumnValue = std::variant<double, bool, std::string_view>;
+
+// Visits the DESIGN.md telemetry columns in a fixed order: f(name, ColumnValue).
+// t_s is seconds since `start`. The CSV writer and /api/status both use this,
+// so the names are spelled once.
+template <typename F>
+void visitTelemetryColumns(const Telemetry& t, TimeNs start, F&& f) {
+  f("t_s", ColumnValue{toSec(t.now - start)});
+  f("mode", ColumnValue{toString(t.mode)});
+  f("stage", ColumnValue{toString(t.stage)});
+  f("reason", ColumnValue{toString(t.reason)});
+  f("ibv_v", ColumnValue{t.ibv_v});
+  f("battery_v", ColumnValue{t.battery_v});
+  f("bcur_a", ColumnValue{t.bcur_a});
+  f("alt_a", ColumnValue{t.alt_a});
+  f("rpm", ColumnValue{t.rpm});
+  f("temp_f", ColumnValue{t.temp_f});
+  f("duty_pct", ColumnValue{t.duty_pct});
+  f("field_enable", ColumnValue{t.field_enable});
+  f("setpoint_a", ColumnValue{t.setpoint_a});
+  f("target_a", ColumnValue{t.target_a});
+  f("target_v", ColumnValue{t.target_v});
+  f("thermal_penalty_a", ColumnValue{t.thermal_penalty_a});
+  f("fast_ov_active", ColumnValue{t.fast_ov_active});
+  f("soc_pct", ColumnValue{t.soc_pct});
+  f("alarm", ColumnValue{t.alarm});
+  f("charged_wh_lifetime", ColumnValue{t.charged_wh_lifetime});
+  f("alt_charged_wh_lifetime", ColumnValue{t.alt_charged_wh_lifetime});
+}
+
+}  // namespace xr

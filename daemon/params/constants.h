@@ -1,0 +1,88 @@
+#pragma once
+// The seeds' hard-coded constants, each named as in the seed that defines it.
+// Not user-settable by design: changing one changes the safety case.
+#include <cstdint>
+
+namespace xr::k {
+
+// safeties-and-protections.md "Group 1 — Prediction-Based Cap": arming dead-band.
+inline constexpr double PRED_GUARD = 0.06;  // V
+// "Group 1": dv/dt accepted only when INA samples are 1–100 ms apart.
+inline constexpr double DVDT_MIN_SAMPLE_S = 0.001;
+inline constexpr double DVDT_MAX_SAMPLE_S = 0.100;
+// "Group 3 — iExcess": release hysteresis and cap slope.
+inline constexpr double IEXCESS_HYST = 2.0;  // A
+inline constexpr double K_IE = 1.0;          // A/A
+// "Alternator Hard Shutdown": slew-bypass accelerator offset.
+inline constexpr double HARD_SHUTDOWN_BYPASS_OFFSET_V = 0.5;
+// "INA228 Hardware ALERT": VoltageHardwareLimit = BulkVoltage + this.
+inline constexpr double INA_OV_OFFSET_V = 0.3;
+// First-boot default of AlternatorHardShutdownV = BulkVoltage + this.
+inline constexpr double HARD_SHUTDOWN_DEFAULT_OFFSET_V = 0.3;
+inline constexpr std::int64_t INA_OV_DISAGREE_SUPPRESS_MS = 10000;
+// INA228 software latch cadences: release check, definitive recheck, new-event poll.
+inline constexpr std::int64_t INA_LATCH_RELEASE_CHECK_MS = 3000;
+inline constexpr std::int64_t INA_LATCH_RECHECK_MS = 10000;
+inline constexpr std::int64_t INA_LATCH_POLL_MS = 5000;
+// "Disagreement Critical".
+inline constexpr std::int64_t VoltageDisagreeCriticalTimeoutMs = 3000;
+inline constexpr double DISAGREE_CRITICAL_12V = 1.0;
+inline constexpr double DISAGREE_CRITICAL_24V = 2.0;
+inline constexpr double DISAGREE_CRITICAL_48V = 4.0;
+inline constexpr double SENSOR_DEAD_V = 0.1;  // either sensor below this = critical at once
+// "Implausibility": buffer around the system class range.
+inline constexpr double PLAUSIBLE_BUFFER_V = 0.5;
+// "T4 — TempTask Hang" and "T5 — Temperature Data Stale".
+inline constexpr std::int64_t TEMP_TASK_TIMEOUT = 20000;  // ms
+inline constexpr std::int64_t TEMP_STALE_MS = 20000;
+inline constexpr std::int64_t TEMP_BOOT_GRACE_MS = 60000;
+inline constexpr double TEMP_VALID_MIN_F = -50.0;
+inline constexpr double TEMP_VALID_MAX_F = 400.0;
+// "Hard Overcurrent": HardOCTripAmps = MaxTableValue + this.
+inline constexpr double HARD_OC_OFFSET_A = 10.0;
+// field-control.md "BULK (CC)": two-sided band below BulkVoltage.
+inline constexpr double BULK_V_BAND_ENTER = 0.05;
+inline constexpr double BULK_V_BAND_EXIT = 0.10;
+// "FLOAT": unconditional re-bulk after 12 h in float.
+inline constexpr std::int64_t FLOAT_DURATION_S = 43200;
+// "Voltage CV Loop": asymmetric integration, tracker gain, minimum e_needed.
+inline constexpr double KI_DOWN_MULTIPLIER = 7.0;
+inline constexpr double CV_TRACKER_KT = 2.0;  // 1/s
+inline constexpr double CV_E_NEEDED_MIN_V = 0.02;
+inline constexpr double CV_OVERSHOOT_RELEASE_V = 0.02;  // GOV bypass latch release
+// "Absorption": tail exit suppressed while thermally constrained.
+inline constexpr double TAIL_THERMAL_PENALTY_A = 2.0;
+// "Temperature PID": slope ring buffer.
+inline constexpr int THERMAL_SLOPE_BUF = 13;
+// "CVTuningMode".
+inline constexpr double CV_HIGH_DEADBAND_V = 0.025;
+inline constexpr double CV_LOW_GRACE_SEC = 1.0;
+inline constexpr double CV_LOW_RAMP_SEC = 10.0;
+inline constexpr double CV_SETTLE_V_THRESH = 0.05;
+inline constexpr int TUNING_LOG_SIZE = 50;
+// "TuningMode": base of the square wave.
+inline constexpr double TUNING_BASE_A = 5.0;
+inline constexpr double TUNING_SCORE_SLEW_A_PER_S = 1.0;
+// "Limp Home".
+inline constexpr double LIMP_HOME_DUTY = 30.0;  // %
+inline constexpr std::int64_t LIMP_HOME_LOG_MS = 30000;
+// "Alarm Buzzer".
+inline constexpr std::int64_t ALARM_CHECK_MS = 250;
+inline constexpr std::int64_t ALARM_MESSAGE_THROTTLE_MS = 30000;
+inline constexpr double VOLTAGE_ALARM_LOW_FLOOR_V = 8.0;
+// battery-management.md.
+inline constexpr std::int64_t AUTO_ZERO_INTERVAL = 3600000;  // ms
+inline constexpr double AUTO_ZERO_TEMP_DELTA = 20.0;         // degF
+inline constexpr double AUTO_ZERO_MIN_RPM = 200.0;
+inline constexpr std::int64_t AUTO_ZERO_SETTLE_MS = 2000;
+inline constexpr std::int64_t VICTRON_STALE_MS = 10000;
+inline constexpr std::int64_t INA_SLOW_INTERVAL_MS = 1100;
+inline constexpr double PREDICTION_NA = -999.0;  // "not applicable" sentinel
+inline constexpr double FUEL_ENGINE_EFFICIENCY = 0.30;
+inline constexpr double FUEL_ALTERNATOR_EFFICIENCY = 0.50;
+inline constexpr double DIESEL_J_PER_ML = 36000.0;
+inline constexpr double PEUKERT_FACTOR_MIN = 0.5;
+inline constexpr double PEUKERT_FACTOR_MAX = 2.0;
+inline constexpr std::int64_t CRITICAL_ZONE_MS = 5000;  // field-off edge + 5 s checkpoint
+
+}  // namespace xr::k

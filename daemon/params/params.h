@@ -1,0 +1,75 @@
+#pragma once
+// Params: one immutable value holding every user-settable parameter, generated
+// from catalogue.def. The regulator receives a whole Params between ticks and
+// never sees one mutated mid-tick (DESIGN.md "The core is pure").
+#include <array>
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <string_view>
+
+namespace xr {
+
+inline constexpr std::size_t RPM_TABLE_SIZE = 10;  // field-control.md "RPM Tables"
+using RpmTable = std::array<double, RPM_TABLE_SIZE>;
+
+enum class ParamKind { Float, Int, Bool, Table };
+
+enum class ParamGroup {
+  Voltage,
+  Overvoltage,
+  SensorHealth,
+  Shutdown,
+  Current,
+  Tuning,
+  Charging,
+  Battery,
+  Temperature,
+  Alarms,
+  Modes,
+  RpmTables,
+};
+
+namespace detail {
+using Float_t = double;
+using Int_t = int;
+using Bool_t = bool;
+}  // namespace detail
+
+struct Params {
+#define XR_PARAM(name, kind, group, unit, def, lo, hi, help) detail::kind##_t name = def;
+#define XR_TABLE(name, group, unit, lo, hi, help, ...) RpmTable name{__VA_ARGS__};
+#include "params/catalogue.def"
+#undef XR_PARAM
+#undef XR_TABLE
+  bool operator==(const Params&) const = default;
+};
+
+// One catalogue entry. Values are exchanged as double (ints and bools are
+// whole numbers); tables are exchanged element by element.
+struct ParamSpec {
+  std::string_view name;
+  ParamKind kind;
+  ParamGroup group;
+  std::string_view unit;
+  double defaultValue;  // tables: NaN (see tableDefault)
+  double min;
+  double max;
+  std::string_view help;
+  // Scalars: index ignored. Tables: index 0..RPM_TABLE_SIZE-1.
+  double (*get)(const Params&, std::size_t index);
+  void (*set)(Params&, std::size_t index, double value);
+  RpmTable tableDefault;
+};
+
+std::span<const ParamSpec> catalogue();
+const ParamSpec* findParam(std::string_view name);
+std::string_view toString(ParamGroup g);      // "Voltage"
+std::string_view tomlTableName(ParamGroup g);  // "voltage"
+std::string_view toString(ParamKind k);
+
+// True when v is acceptable for spec: finite, within [min, max], whole for
+// Int/Bool (Bool: 0 or 1).
+bool valueFits(const ParamSpec& spec, double v);
+
+}  // namespace xr
