@@ -1,0 +1,176 @@
+#pragma once
+// DaemonApi: everything the web server needs from the daemon, and nothing else.
+//
+// Implemented by daemon/runtime (engineer "runtime"); a fake lives in
+// tests/web/fake_daemon_api.h. The web server calls these methods from its
+// Asio threads only (never from the control thread). Every method must be
+// NON-BLOCKING for the control thread: read the latest telemetry from the
+// seqlock/triple buffer, push commands and parameter sets into the SPSC
+// queues the control thread drains between ticks, and query the store from
+// the calling (Asio) thread. Methods may be called concurrently from the
+// server's threads, so implementations must be thread-safe among themselves.
+//
+// The server does all JSON formatting; the daemon hands out plain structs.
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/commands.h"
+#include "core/events.h"
+#include "core/telemetry.h"
+#include "core/time.h"
+#include "params/params.h"
+
+namespace xr::web {
+
+// Control-loop timing measured by the runtime (DESIGN.md thread model).
+struct LoopStats {
+  std::uint64_t ticks = 0;         // ticks since start
+  std::uint64_t overruns = 0;      // ticks whose period exceeded the target by > 50 %
+  double target_period_us = 0.0;   // [runtime] control_period_us
+  double period_mean_us = 0.0;     // measured tick-to-tick period
+  double period_p99_us = 0.0;
+  double period_max_us = 0.0;
+  double exec_mean_us = 0.0;       // time spent inside one tick (read, step, write)
+  double exec_p99_us = 0.0;
+  double exec_max_us = 0.0;
+  std::uint64_t sensor_errors = 0;  // failed I2C reads since start
+};
+
+// The simulator plant's truth (DESIGN.md CSV columns sim_*). Absent on hardware.
+struct SimTruth {
+  double battery_v = 0.0;
+  double alt_a = 0.0;
+  double alt_temp_f = 0.0;
+  double soc_pct = 0.0;
+  bool bms_connected = true;
+  bool field_on = false;
+};
+
+// One extra number the runtime wants on the dashboard that has no home in the
+// core telemetry structs yet, e.g. {"tuning", "score", 0.82},
+// {"tuning", "cvScore", ...}, {"system_id", "gain", ...}. Serialised in
+// /api/status as status[section][name] = value.
+struct ExtraValue {
+  std::string section;
+  std::string name;
+  double value = 0.0;
+};
+
+// One status snapshot: the latest published tick plus what surrounds it.
+struct StatusSnapshot {
+  std::uint64_t seq = 0;      // increments with every published telemetry; 0 = none yet
+  TimeNs start = 0;           // t_s = telemetry.now - start (simulated time in sim)
+  double wall_time_s = 0.0;   // Unix epoch seconds when this tick was published
+  Telemetry telemetry;
+  LoopStats loop;
+  std::optional<SimTruth> sim;  // present in simulation
+  std::vector<ExtraValue> extras;
+};
+
+// Hardware probe result (xregulatord --probe and the start-up probe).
+struct ProbeResult {
+  std::string device;  // "INA228 @0x40 on /dev/i2c-1"
+  bool ok = false;
+  std::string detail;  // "manufacturer 0x5449 device 0x228" or the error
+};
+
+// Versions and identity for the System page, e.g. {"xregulatord", "0.1.0"},
+// {"git", "792c09a"}, {"boost", "1.81"}, {"mode", "sim"}.
+using VersionMap = std::map<std::string, std::string>;
+
+// One parameter change requested by PATCH /api/params. Scalars: index = -1.
+// Tables: the server expands a JSON array into one change per element
+// (index 0..RPM_TABLE_SIZE-1). `spec` points into catalogue().
+struct ParamChange {
+  const ParamSpec* spec = nullptr;
+  int index = -1;
+  double value = 0.0;
+};
+
+// A per-field rejection: name = parameter name, message = why.
+struct FieldError {
+  std::string name;
+  std::string message;
+};
+
+// Result of patchParams: empty errors = every change applied (and persisted as
+// overrides); otherwise NOTHING was applied.
+struct PatchResult {
+  std::vector<FieldError> errors;
+};
+
+// Result of command(): accepted = queued for the control thread.
+struct CommandResult {
+  bool accepted = false;
+  std::string message;  // why it was refused, or a short confirmation
+};
+
+// One stored event (from the store, newest first).
+struct EventRecord {
+  std::int64_t id = 0;        // store row id, increasing; `before` pages on it
+  double wall_time_s = 0.0;   // Unix epoch seconds
+  Event event;                // core/events.h
+  std::string text;           // describe(event), formatted off the RT thread
+};
+
+struct EventQuery {
+  std::size_t limit = 100;               // server clamps to [1, 1000]
+  std::optional<std::int64_t> before;    // only ids < before
+};
+
+// History: numeric telemetry columns (DESIGN.md CSV names) averaged over
+// buckets of `step_s` seconds. Times are Unix epoch seconds.
+struct HistoryQuery {
+  std::vector<std::string> series;  // e.g. {"battery_v", "alt_a"}; validated by the daemon
+  double from_s = 0.0;
+  double to_s = 0.0;
+  double step_s = 10.0;
+};
+
+struct HistoryResult {
+  std::string error;                 // non-empty: 400 with this message (unknown series...)
+  std::vector<double> t;             // bucket start times
+  std::vector<std::pair<std::string, std::vector<double>>> series;  // same length as t; NaN = no data
+};
+
+// Health for /healthz: ok = the control loop ticks and the outputs are driven.
+struct Health {
+  bool ok = false;
+  std::string detail;
+};
+
+class DaemonApi {
+ public:
+  virtual ~DaemonApi() = default;
+
+  // Latest status. Returns false (and leaves `out` alone) before the first tick.
+  // Called by the server's broadcast timer at the WebSocket rate and by
+  // GET /api/status; must be a cheap copy out of the lock-free hand-off.
+  virtual bool latestStatus(StatusSnapshot& out) = 0;
+
+  // Parameters: the set in force now, and the set read from the config file
+  // (before runtime overrides). Defaults are Params{} (catalogue defaults).
+  virtual Params currentParams() = 0;
+  virtual Params fileParams() = 0;
+
+  // Apply a set of changes atomically: validate them TOGETHER against the
+  // current set (cross-field rules), then hand the whole new Params to the
+  // control thread between ticks and persist the overrides; or reject them
+  // all. The server has already checked names, kinds and catalogue ranges.
+  virtual PatchResult patchParams(const std::vector<ParamChange>& changes) = 0;
+
+  // Queue an operator command for the control thread (core/commands.h).
+  virtual CommandResult command(const Command& cmd) = 0;
+
+  virtual std::vector<EventRecord> events(const EventQuery& q) = 0;
+  virtual HistoryResult history(const HistoryQuery& q) = 0;
+
+  virtual std::vector<ProbeResult> probeResults() = 0;
+  virtual VersionMap versions() = 0;
+  virtual Health health() = 0;
+};
+
+}  // namespace xr::web

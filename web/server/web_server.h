@@ -1,0 +1,84 @@
+#pragma once
+// WebServer: Boost.Beast HTTP + WebSocket server on its own Asio threads.
+//
+// Usage (daemon/app or daemon/runtime):
+//
+//   auto opts = xr::web::WebServerOptions::fromSettings(config.settings.web, token);
+//   // --http ADDR:PORT overrides: xr::web::parseListenAddress("127.0.0.1:8080", opts);
+//   xr::web::WebServer server(api, opts);   // api: your DaemonApi implementation
+//   server.start();                         // binds (throws std::runtime_error on failure)
+//   ...                                     // server.port() = the bound port
+//   server.stop();                          // also done by the destructor
+//
+// The server never calls into the control thread: it only calls DaemonApi,
+// whose methods are non-blocking hand-offs (see daemon_api.h).
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "config/settings.h"
+#include "web/server/daemon_api.h"
+
+namespace xr::web {
+
+struct WebServerOptions {
+  std::string listen = "127.0.0.1";  // address to bind
+  std::uint16_t port = 8080;         // 0 = ephemeral (tests); see WebServer::port()
+  std::string token;                 // Bearer token for writes; must not be empty
+  double telemetry_rate_hz = 10.0;   // WebSocket rate, clamped to [0.2, 20]
+  bool reads_require_token = false;  // true: GETs and /ws need the token too
+  int max_connections = 64;          // HTTP + WebSocket, over it: 503 and close
+  std::string www_root;              // static dashboard files; empty = no static files
+  int threads = 2;                   // Asio threads
+  std::size_t body_limit = 64 * 1024;
+  std::size_t header_limit = 8 * 1024;
+  std::chrono::milliseconds request_timeout{10000};  // whole request read / response write
+  std::chrono::milliseconds keepalive_timeout{30000};
+  std::chrono::milliseconds ws_idle_timeout{30000};  // no pong within this: close
+  std::vector<std::string> allowed_origins;  // extra Origins allowed on /ws (same host always ok)
+
+  static WebServerOptions fromSettings(const WebSettings& s, std::string token);
+};
+
+// Parses "ADDR:PORT" (IPv4, "[v6]:port" or ":PORT") into opts.listen/opts.port.
+// Returns false (opts untouched) when malformed.
+bool parseListenAddress(const std::string& text, WebServerOptions& opts);
+
+// 32 random bytes from /dev/urandom as 64 hex characters: the token generated
+// at first start when [web] token is empty (the caller stores it with the state
+// and logs it once).
+std::string generateToken();
+
+// Counters exported on /metrics (and readable by tests).
+struct WebServerStats {
+  std::uint64_t http_requests = 0;
+  std::uint64_t http_errors = 0;        // 4xx + 5xx responses
+  std::uint64_t ws_clients = 0;         // connected now
+  std::uint64_t ws_frames_sent = 0;
+  std::uint64_t ws_frames_dropped = 0;  // replaced by a newer snapshot before sending
+  std::uint64_t connections = 0;        // open now
+  std::uint64_t connections_refused = 0;
+};
+
+class WebServer {
+ public:
+  WebServer(DaemonApi& api, WebServerOptions opts);
+  ~WebServer();
+  WebServer(const WebServer&) = delete;
+  WebServer& operator=(const WebServer&) = delete;
+
+  void start();
+  void stop();
+  std::uint16_t port() const;
+  WebServerStats stats() const;
+
+  struct Impl;
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace xr::web
