@@ -17,6 +17,13 @@ struct BatteryTelemetry {
   double DynamicShuntGainFactor = 1.0;
   double DynamicAltCurrentZero = 0.0;
   bool autoZeroActive = false;
+  // Lifetime figures (whole + retained fraction) and the detected system class.
+  double ChargedEnergy_AllTime_Wh = 0.0, DischargedEnergy_AllTime_Wh = 0.0,
+         AlternatorChargedEnergy_AllTime_Wh = 0.0, SolarChargedEnergy_AllTime_Wh = 0.0;
+  double AlternatorFuelUsed_AllTime_L = 0.0;
+  double AlternatorOnTime_AllTime_s = 0.0;
+  int nominalVoltage = 12;  // 12 / 24 / 48 from the battery voltage (cycle counter)
+  bool usingVictronCurrent = false;  // BatteryCurrentSource = 3 and VE.Direct fresh
 };
 
 }  // namespace xr
