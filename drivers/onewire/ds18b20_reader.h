@@ -1,0 +1,59 @@
+#pragma once
+// DS18B20 reader (issue 7, Drivers): a non-RT thread reads
+// <root>/<id>/w1_slave at 1 Hz and publishes {tempF, stamp} plus a
+// heartbeat through a LatestValue (lock-free) for the control thread:
+// Inputs::AlternatorTemperatureF (T5 needs the stamps) and
+// Inputs::tempTaskHeartbeat (T4: the temperature task is alive).
+#include <atomic>
+#include <functional>
+#include <string>
+#include <thread>
+
+#include "core/time.h"
+#include "drivers/onewire/latest_value.h"
+#include "drivers/onewire/w1_therm.h"
+
+namespace xr {
+
+struct Ds18b20Sample {
+  double tempF = 0.0;
+  TimeNs stamp = 0;        // monotonic time of the last accepted reading (0 = never)
+  TimeNs heartbeat = 0;    // monotonic time the thread last completed a cycle
+  std::uint32_t good = 0;  // accepted readings
+  std::uint32_t bad = 0;   // rejected (CRC NO, 85000, malformed, missing)
+  w1::ParseError lastError = w1::ParseError::None;
+  bool sensorFound = false;
+};
+
+class Ds18b20Reader {
+ public:
+  using NowFn = std::function<TimeNs()>;
+  // `sensorId` "28-..." or empty for the first one found under `root`.
+  // `now` defaults to CLOCK_MONOTONIC.
+  Ds18b20Reader(std::string root, std::string sensorId, TimeNs period = 1'000'000'000, NowFn now = {});
+  ~Ds18b20Reader();
+  Ds18b20Reader(const Ds18b20Reader&) = delete;
+  Ds18b20Reader& operator=(const Ds18b20Reader&) = delete;
+
+  void start();
+  void stop() noexcept;
+  // One read cycle (what the thread does each period); public for tests.
+  void readOnce();
+  // RT-safe: the newest published sample.
+  Ds18b20Sample latest() const noexcept { return out_.read(); }
+  const std::string& sensorPath() const noexcept { return path_; }
+
+ private:
+  void run();
+  std::string root_;
+  std::string id_;
+  std::string path_;
+  TimeNs period_;
+  NowFn now_;
+  Ds18b20Sample state_;
+  LatestValue<Ds18b20Sample> out_;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+}  // namespace xr

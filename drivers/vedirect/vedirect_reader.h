@@ -1,0 +1,61 @@
+#pragma once
+// VE.Direct reader (issue 7, Drivers): a non-RT thread opens the serial port
+// (termios 19200 8N1, raw), parses blocks and publishes {current A, voltage V,
+// ppv W, stamp} through a LatestValue for the control thread
+// (Inputs::VictronCurrent/VictronVoltage/solarPowerW; BatteryCurrentSource = 3
+// and solar energy). Unplug (read error/EOF/hang-up) closes the port and
+// re-opens it every `reopenPeriod`.
+#include <atomic>
+#include <functional>
+#include <string>
+#include <thread>
+
+#include "core/time.h"
+#include "drivers/onewire/latest_value.h"
+#include "drivers/vedirect/vedirect_parser.h"
+
+namespace xr {
+
+struct VeDirectSample {
+  double currentA = 0.0;  // + = charging
+  double voltageV = 0.0;
+  double ppvW = 0.0;
+  bool hasCurrent = false, hasVoltage = false, hasPpv = false;
+  TimeNs stamp = 0;         // monotonic time of the last valid block (0 = never)
+  std::uint32_t frames = 0;
+  std::uint32_t badChecksums = 0;
+  bool portOpen = false;
+};
+
+// Configures an open tty fd: 19200 baud, 8N1, raw, no flow control. 0 or errno.
+int configureVeDirectTty(int fd) noexcept;
+
+class VeDirectReader {
+ public:
+  using NowFn = std::function<TimeNs()>;
+  explicit VeDirectReader(std::string port, NowFn now = {}, TimeNs reopenPeriod = 2'000'000'000);
+  ~VeDirectReader();
+  VeDirectReader(const VeDirectReader&) = delete;
+  VeDirectReader& operator=(const VeDirectReader&) = delete;
+
+  void start();
+  void stop() noexcept;
+  // RT-safe: the newest published sample.
+  VeDirectSample latest() const noexcept { return out_.read(); }
+  std::uint64_t version() const noexcept { return out_.version(); }
+
+ private:
+  void run();
+  static void onFrame(void* ctx, const vedirect::Frame& f);
+  std::string port_;
+  NowFn now_;
+  TimeNs reopenPeriod_;
+  vedirect::Parser parser_;
+  VeDirectSample state_;
+  LatestValue<VeDirectSample> out_;
+  std::atomic<bool> stop_{false};
+  int wakeFd_[2] = {-1, -1};
+  std::thread thread_;
+};
+
+}  // namespace xr
