@@ -13,9 +13,9 @@
 
 namespace xr {
 
-// Applies every valid key of table to p; returns one error per bad key
-// (unknown name + suggestion, wrong type, out of range), and leaves p
-// untouched for those keys. Cross-parameter consistency is checked too.
+// Applies table to p as a whole: on any error (unknown name + suggestion,
+// wrong type, out of range, cross-parameter inconsistency) p is left
+// unchanged and every error is returned.
 std::vector<ConfigError> applyFlatOverrides(Params& p, const toml::table& table,
                                             std::string_view file = "scenario");
 

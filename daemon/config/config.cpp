@@ -1,0 +1,320 @@
+#include "config/config.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <ostream>
+#include <sstream>
+
+#include <toml++/toml.h>
+
+#include "config/format.h"
+#include "config/param_values.h"
+#include "config/settings_schema.h"
+#include "config/toml_values.h"
+#include "params/derived.h"
+
+namespace xr {
+
+std::string ConfigError::toString() const {
+  std::string s = file;
+  if (line > 0) {
+    s += ":" + std::to_string(line);
+    if (column > 0) s += ":" + std::to_string(column);
+  }
+  s += ": ";
+  if (!key.empty()) s += key + ": ";
+  return s + message;
+}
+
+namespace {
+
+struct Location {
+  int line = 0;
+  int column = 0;
+};
+
+Location where(const toml::source_region& r) {
+  return {static_cast<int>(r.begin.line), static_cast<int>(r.begin.column)};
+}
+
+// Closest of candidates to word, or empty when none is a plausible typo.
+template <class Range>
+std::string closest(std::string_view word, const Range& candidates) {
+  std::string best;
+  std::size_t bestD = std::string::npos;
+  for (std::string_view c : candidates) {
+    const auto d = editDistance(word, c);
+    if (d < bestD) {
+      bestD = d;
+      best = std::string(c);
+    }
+  }
+  return bestD <= std::max<std::size_t>(2, word.size() / 3) ? best : std::string{};
+}
+
+const ParamGroup kGroups[] = {ParamGroup::Voltage,  ParamGroup::Overvoltage, ParamGroup::SensorHealth,
+                              ParamGroup::Shutdown, ParamGroup::Current,     ParamGroup::Tuning,
+                              ParamGroup::Charging, ParamGroup::Battery,     ParamGroup::Temperature,
+                              ParamGroup::Alarms,   ParamGroup::Modes,       ParamGroup::RpmTables};
+
+std::optional<ParamGroup> groupForTable(std::string_view table) {
+  for (auto g : kGroups)
+    if (tomlTableName(g) == table) return g;
+  return std::nullopt;
+}
+
+std::vector<std::string> allTableNames() {
+  std::vector<std::string> t;
+  for (auto g : kGroups) t.emplace_back(tomlTableName(g));
+  for (auto s : settingsTables()) t.emplace_back(s);
+  return t;
+}
+
+class Loader {
+ public:
+  explicit Loader(std::string_view file) : file_(file) {}
+
+  LoadResult run(std::string_view text) {
+    toml::table root;
+    try {
+      root = toml::parse(text, file_);
+    } catch (const toml::parse_error& e) {
+      const auto loc = where(e.source());
+      result_.errors.push_back({file_, loc.line, loc.column, "", "TOML syntax error: " + std::string(e.description())});
+      return std::move(result_);
+    }
+    for (auto&& [k, node] : root) topLevel(k, node);
+
+    for (auto& e : checkConsistency(config_.params, file_)) {
+      // Point consistency errors at the key in the file when it was written there.
+      if (auto it = paramLoc_.find(e.key); it != paramLoc_.end()) {
+        e.line = it->second.line;
+        e.column = it->second.column;
+      }
+      result_.errors.push_back(std::move(e));
+    }
+    settingsConsistency();
+
+    std::stable_sort(result_.errors.begin(), result_.errors.end(), [](const ConfigError& a, const ConfigError& b) {
+      const int la = a.line == 0 ? INT32_MAX : a.line;
+      const int lb = b.line == 0 ? INT32_MAX : b.line;
+      return la != lb ? la < lb : a.column < b.column;
+    });
+    if (result_.errors.empty()) result_.config = config_;
+    return std::move(result_);
+  }
+
+ private:
+  void error(const toml::key& k, std::string key, std::string message) {
+    const auto loc = where(k.source());
+    result_.errors.push_back({file_, loc.line, loc.column, std::move(key), std::move(message)});
+  }
+
+  void topLevel(const toml::key& k, const toml::node& node) {
+    const std::string name(k.str());
+    if (auto g = groupForTable(name)) {
+      if (const auto* t = node.as_table()) return paramTable(*g, name, *t);
+      return error(k, name, "must be a table: write [" + name + "] and put its parameters below it");
+    }
+    if (name == "hardware" || std::find(settingsTables().begin(), settingsTables().end(), name) != settingsTables().end()) {
+      if (const auto* t = node.as_table()) return settingsTable(name, *t);
+      return error(k, name, "must be a table: write [" + name + "]");
+    }
+    if (const auto* spec = findParam(name))
+      return error(k, name,
+                   "parameters live in their group table: put " + name + " under [" +
+                       std::string(tomlTableName(spec->group)) + "]");
+    std::string msg = "unknown table or key";
+    const auto tables = allTableNames();
+    std::string near = closest(name, tables);
+    if (near.empty()) near = closestParamName(name);
+    if (!near.empty()) msg += " (did you mean " + near + "?)";
+    error(k, name, msg);
+  }
+
+  void paramTable(ParamGroup group, const std::string& table, const toml::table& t) {
+    for (auto&& [k, node] : t) {
+      const std::string name(k.str());
+      const std::string dotted = table + "." + name;
+      const ParamSpec* spec = findParam(name);
+      if (!spec) {
+        std::string msg = "unknown parameter";
+        if (auto near = closestParamName(name); !near.empty()) {
+          msg += " (did you mean " + near;
+          if (const auto* s = findParam(near); s->group != group)
+            msg += ", in [" + std::string(tomlTableName(s->group)) + "]";
+          msg += "?)";
+        }
+        error(k, dotted, msg);
+        continue;
+      }
+      if (spec->group != group) {
+        error(k, dotted, name + " belongs in [" + std::string(tomlTableName(spec->group)) + "], not [" + table + "]");
+        continue;
+      }
+      paramLoc_[dotted] = where(k.source());
+      auto v = detail::paramValueFromNode(*spec, node);
+      if (auto* why = std::get_if<std::string>(&v)) {
+        error(k, dotted, *why);
+        continue;
+      }
+      setParamValue(config_.params, *spec, std::get<ParamValue>(v));
+    }
+  }
+
+  void settingsTable(const std::string& table, const toml::table& t) {
+    for (auto&& [k, node] : t) {
+      const std::string name(k.str());
+      const std::string dotted = table + "." + name;
+      if (table == "hardware" && name == "frontend") {
+        if (const auto* sub = node.as_table()) {
+          settingsTable("hardware.frontend", *sub);
+        } else {
+          error(k, dotted, "must be a table: write [hardware.frontend]");
+        }
+        continue;
+      }
+      const SettingSpec* spec = findSetting(table, name);
+      if (!spec) {
+        std::vector<std::string_view> keys;
+        for (const auto& s : settingsSchema())
+          if (s.table == table) keys.push_back(s.key);
+        std::string msg = "unknown setting";
+        if (auto near = closest(name, keys); !near.empty()) msg += " (did you mean " + near + "?)";
+        else if (const auto* p = findParam(name))
+          msg += " (" + name + " is a parameter: put it under [" + std::string(tomlTableName(p->group)) + "])";
+        error(k, dotted, msg);
+        continue;
+      }
+      settingLoc_[dotted] = where(k.source());
+      auto v = detail::settingValueFromNode(*spec, node);
+      if (auto* why = std::get_if<std::string>(&v)) {
+        error(k, dotted, *why);
+        continue;
+      }
+      spec->set(config_.settings, std::get<SettingValue>(v));
+    }
+  }
+
+  // The field enable must be a real line of its own: sharing it with the
+  // buzzer or an input would make "field LOW" impossible to guarantee.
+  void settingsConsistency() {
+    const auto& h = config_.settings.hardware;
+    const std::pair<const char*, int> others[] = {
+        {"buzzer_line", h.buzzer_line}, {"bms_line", h.bms_line}, {"ignition_line", h.ignition_line},
+        {"ads_alert_rdy_line", h.ads_alert_rdy_line}};
+    for (const auto& [name, line] : others) {
+      if (line >= 0 && line == h.field_enable_line) {
+        ConfigError e{file_, 0, 0, "hardware." + std::string(name),
+                      "uses GPIO line " + std::to_string(line) + ", which is already the field_enable_line"};
+        if (auto it = settingLoc_.find(e.key); it != settingLoc_.end()) {
+          e.line = it->second.line;
+          e.column = it->second.column;
+        }
+        result_.errors.push_back(std::move(e));
+      }
+    }
+  }
+
+  std::string file_;
+  Config config_;
+  LoadResult result_;
+  std::map<std::string, Location> paramLoc_;
+  std::map<std::string, Location> settingLoc_;
+};
+
+std::string dotted(const char* name) {
+  const ParamSpec* s = findParam(name);
+  return std::string(tomlTableName(s->group)) + "." + name;
+}
+
+}  // namespace
+
+LoadResult loadConfigString(std::string_view text, std::string_view name) { return Loader(name).run(text); }
+
+LoadResult loadConfigFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    LoadResult r;
+    r.errors.push_back({path, 0, 0, "", std::string("cannot read the file: ") + std::strerror(errno)});
+    return r;
+  }
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return loadConfigString(ss.str(), path);
+}
+
+std::vector<ConfigError> checkConsistency(const Params& p, std::string_view file) {
+  std::vector<ConfigError> errs;
+  const std::string f(file.empty() ? std::string_view("params") : file);
+  auto err = [&](const char* key, std::string msg) { errs.push_back({f, 0, 0, dotted(key), std::move(msg)}); };
+  auto v = [](double x, const char* unit) { return formatNumber(x) + " " + unit; };
+
+  if (p.AbsorptionVoltage > p.BulkVoltage)
+    err("AbsorptionVoltage", v(p.AbsorptionVoltage, "V") + " is above BulkVoltage " + v(p.BulkVoltage, "V") +
+                                 "; it must not exceed it");
+  if (p.FloatVoltage > p.AbsorptionVoltage)
+    err("FloatVoltage", v(p.FloatVoltage, "V") + " is above AbsorptionVoltage " + v(p.AbsorptionVoltage, "V") +
+                            "; it must not exceed it");
+  if (p.RebulkVoltage >= p.FloatVoltage)
+    err("RebulkVoltage", v(p.RebulkVoltage, "V") + " must be below FloatVoltage " + v(p.FloatVoltage, "V"));
+  // A software trip at or below the charging target would trip in normal
+  // bulk charging (safeties-and-protections.md "Alternator Hard Shutdown").
+  if (p.AlternatorHardShutdownV != 0.0 && p.AlternatorHardShutdownV <= p.BulkVoltage)
+    err("AlternatorHardShutdownV", v(p.AlternatorHardShutdownV, "V") + " must be above BulkVoltage " +
+                                       v(p.BulkVoltage, "V") + " (or 0 for the first-boot default BulkVoltage + 0.3 V)");
+  // The INA228 hardware limit is BulkVoltage + 0.3 V: a higher target would
+  // trip the hardware ALERT in normal operation.
+  if (p.TargetVoltageSetpoint > voltageHardwareLimit(p))
+    err("TargetVoltageSetpoint", v(p.TargetVoltageSetpoint, "V") + " is above the INA228 hardware limit " +
+                                     v(voltageHardwareLimit(p), "V") + " (BulkVoltage + 0.3 V)");
+  {
+    const auto range = plausibleVoltageRange(p);
+    if (p.FloatVoltage < range.min || p.RebulkVoltage < range.min)
+      err("FloatVoltage", "FloatVoltage/RebulkVoltage must lie in the plausible range of the system class set by "
+                          "BulkVoltage (" + v(range.min, "V") + " to " + v(range.max, "V") + ")");
+  }
+  if (p.MinDuty > p.MaxDuty)
+    err("MinDuty", v(p.MinDuty, "%") + " is above MaxDuty " + v(p.MaxDuty, "%"));
+  if (p.VoltageAlarmLow >= p.VoltageAlarmHigh)
+    err("VoltageAlarmLow", v(p.VoltageAlarmLow, "V") + " must be below VoltageAlarmHigh " + v(p.VoltageAlarmHigh, "V"));
+  if (p.TempAlarmLow != 0.0 && p.TempAlarmLow >= p.TempAlarm)
+    err("TempAlarmLow", v(p.TempAlarmLow, "degF") + " must be below TempAlarm " + v(p.TempAlarm, "degF"));
+  if (p.TempWarnExcess >= p.TempCritExcess)
+    err("TempWarnExcess", v(p.TempWarnExcess, "degF") + " must be below TempCritExcess " +
+                              v(p.TempCritExcess, "degF") + " (T1 warning fires before T3 cut)");
+  if (p.SOC_AllowRebulk_percent > p.SOC_BlockRebulk_percent)
+    err("SOC_AllowRebulk_percent", v(p.SOC_AllowRebulk_percent, "%") + " is above SOC_BlockRebulk_percent " +
+                                       v(p.SOC_BlockRebulk_percent, "%"));
+  if (!(p.LoadDumpDtThresh1 >= p.LoadDumpDtThresh && p.LoadDumpDtThresh >= p.LoadDumpDtThresh3))
+    err("LoadDumpDtThresh", "load dump tiers must satisfy LoadDumpDtThresh1 >= LoadDumpDtThresh >= LoadDumpDtThresh3 (" +
+                                formatNumber(p.LoadDumpDtThresh1) + ", " + formatNumber(p.LoadDumpDtThresh) + ", " +
+                                formatNumber(p.LoadDumpDtThresh3) + " A/s)");
+  for (std::size_t i = 1; i < RPM_TABLE_SIZE; ++i) {
+    if (p.rpmTableRPMPoints[i] <= p.rpmTableRPMPoints[i - 1]) {
+      err("rpmTableRPMPoints", "breakpoints must be strictly ascending (element " + std::to_string(i) + " = " +
+                                   formatNumber(p.rpmTableRPMPoints[i]) + " RPM is not above element " +
+                                   std::to_string(i - 1) + " = " + formatNumber(p.rpmTableRPMPoints[i - 1]) + " RPM)");
+      break;
+    }
+  }
+  return errs;
+}
+
+int checkConfigMain(const std::string& path, std::ostream& out, std::ostream& err) {
+  const LoadResult r = loadConfigFile(path);
+  if (r.ok()) {
+    const auto changed = overridesFromDefaults(r.config->params).size();
+    out << path << ": OK (" << catalogue().size() << " parameters, " << changed << " differ from the defaults)\n";
+    return 0;
+  }
+  for (const auto& e : r.errors) err << e.toString() << "\n";
+  err << path << ": " << r.errors.size() << (r.errors.size() == 1 ? " error" : " errors")
+      << "; xregulatord will not start with this configuration\n";
+  return kExitConfig;
+}
+
+}  // namespace xr
