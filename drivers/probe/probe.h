@@ -12,4 +12,9 @@ namespace xr {
 
 int runProbe(const Settings& settings, std::ostream& out);
 
+class I2cBus;
+// For tests and simulation: probe the chips over `bus` instead of opening
+// settings.hardware.i2c_bus.
+int runProbe(const Settings& settings, std::ostream& out, I2cBus* busOverride);
+
 }  // namespace xr

@@ -17,6 +17,7 @@ namespace xr {
 struct PwmSafeStateWriter {
   int dutyFd = -1;
   int enableFd = -1;
+  bool truncate = false;  // regular files (a fake tree): cut stale trailing bytes
   // Writes duty_cycle 0 then enable 0. Returns true when both writes succeeded.
   bool driveSafe() const noexcept;
 };
@@ -40,7 +41,7 @@ class PwmSysfs final : public PwmOutput {
   long periodNs() const noexcept { return periodNs_; }
   long lastDutyNs() const noexcept { return lastDutyNs_; }
 
-  PwmSafeStateWriter safeStateWriter() const noexcept { return {dutyFd_, enableFd_}; }
+  PwmSafeStateWriter safeStateWriter() const noexcept { return {dutyFd_, enableFd_, truncate_}; }
   void close() noexcept;
 
   // Duty in ns for a percentage of a period (pure; clamps and maps NaN to 0).
@@ -51,12 +52,15 @@ class PwmSysfs final : public PwmOutput {
   int enableFd_ = -1;
   long periodNs_ = 0;
   long lastDutyNs_ = -1;
+  bool truncate_ = false;
   std::string dir_;
   std::string error_;
 };
 
-// Writes a small decimal/text value with pwrite at offset 0 (async-signal-safe).
-bool pwriteText(int fd, const char* text) noexcept;
-bool pwriteLong(int fd, long v) noexcept;
+// Writes a small decimal/text value with pwrite at offset 0
+// (async-signal-safe). `truncate` also cuts the file to that length, for
+// regular files standing in for sysfs attributes in tests.
+bool pwriteText(int fd, const char* text, bool truncate = false) noexcept;
+bool pwriteLong(int fd, long v, bool truncate = false) noexcept;
 
 }  // namespace xr

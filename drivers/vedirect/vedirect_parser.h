@@ -42,6 +42,8 @@ class Parser {
   enum class State { Idle, Label, Value, ChecksumByte, Hex };
   void field() noexcept;
   State state_ = State::Idle;
+  State beforeHex_ = State::Idle;
+  bool synced_ = false;  // a checksum byte has been seen: block boundaries are known
   std::uint8_t sum_ = 0;
   bool inBlock_ = false;
   char label_[kMaxLabel + 1] = {};

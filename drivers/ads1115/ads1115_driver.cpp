@@ -1,0 +1,196 @@
+#include "drivers/ads1115/ads1115_driver.h"
+
+#include <cerrno>
+
+#include "drivers/ads1115/ads1115_registers.h"
+#include "drivers/frontend/analog_frontend.h"
+#include "drivers/i2c/i2c_registers.h"
+
+namespace xr {
+
+namespace {
+constexpr int kDefaultSequence[] = {1, 0, 1, 2, 1, 3};
+// Shortest data period with the oscillator 10 % fast, minus a margin for the
+// edge-to-ioctl path: all I2C work for one edge must finish inside it, or the
+// result/MUX attribution becomes ambiguous.
+constexpr TimeNs kEdgeBudget = Ads1115Driver::kPeriod * 9 / 10 - 100'000;
+// An edge gap above this means at least one edge was missed (nominal period
+// at most 1.1 T; a missed edge gives >= 1.8 T).
+constexpr TimeNs kMissedEdgeGap = Ads1115Driver::kPeriod * 3 / 2;
+// Same channel twice in a row: no MUX write, one period + 10 % for a new result.
+constexpr TimeNs kSameChannelWait = Ads1115Driver::kPeriod * 11 / 10 + 20'000;
+}  // namespace
+
+Ads1115Driver::Ads1115Driver(I2cBus& bus, std::uint16_t address, std::span<const int> channelSequence,
+                             const AnalogFrontEndSettings& frontend, const Clock& clock, AdsPacing pacing) noexcept
+    : bus_(bus), addr_(address), fe_(frontend), clock_(clock), pacing_(pacing) {
+  bool ok = !channelSequence.empty() && channelSequence.size() <= kMaxSequence;
+  for (int c : channelSequence) ok = ok && c >= 0 && c <= 3;
+  std::span<const int> use = ok ? channelSequence : std::span<const int>(kDefaultSequence);
+  configError_ = !ok;
+  seqLen_ = use.size();
+  for (std::size_t i = 0; i < seqLen_; ++i) seq_[i] = use[i];
+}
+
+void Ads1115Driver::setPga(int channel, unsigned pga) noexcept {
+  if (channel >= 0 && channel <= 3) pga_[static_cast<std::size_t>(channel)] = pga & 7;
+}
+
+int Ads1115Driver::nextChannel() noexcept {
+  seqPos_ = (seqPos_ + 1) % seqLen_;
+  return seq_[seqPos_];
+}
+
+int Ads1115Driver::writeMux(int channel) noexcept {
+  const std::uint16_t cfg = ads1115::configContinuous(channel, pga_[static_cast<std::size_t>(channel)],
+                                                      ads1115::DR_860, pacing_ == AdsPacing::ReadyEdge);
+  return i2creg::writeReg16(bus_, addr_, ads1115::CONFIG, cfg);
+}
+
+int Ads1115Driver::readConversion(std::uint16_t* raw) noexcept {
+  return i2creg::readReg16(bus_, addr_, ads1115::CONVERSION, raw);
+}
+
+int Ads1115Driver::start(TimeNs now) noexcept {
+  seqPos_ = 0;
+  const int first = seq_[0];
+  int rc = 0;
+  if (pacing_ == AdsPacing::ReadyEdge) {
+    rc = i2creg::writeReg16(bus_, addr_, ads1115::HI_THRESH, ads1115::kReadyHiThresh);
+    if (rc == 0) rc = i2creg::writeReg16(bus_, addr_, ads1115::LO_THRESH, ads1115::kReadyLoThresh);
+  }
+  if (rc == 0) rc = writeMux(first);
+  // The ADS1115 has no ID register: read the Config back and compare every
+  // field but OS (a busy flag) as the presence check.
+  std::uint16_t back = 0;
+  if (rc == 0) rc = i2creg::readReg16(bus_, addr_, ads1115::CONFIG, &back);
+  const std::uint16_t want = ads1115::configContinuous(first, pga_[static_cast<std::size_t>(first)],
+                                                       ads1115::DR_860, pacing_ == AdsPacing::ReadyEdge);
+  if (rc == 0 && (back & 0x7FFF) != (want & 0x7FFF)) rc = ENODEV;
+  if (rc != 0) {
+    present_ = false;
+    stats_.lastError = rc;
+    nextRedetect_ = now + kRedetectInterval;
+    return rc;
+  }
+  present_ = true;
+  stats_.consecutiveFailures = 0;
+  timedChannel_ = first;
+  muxWrittenAt_ = clock_.now();
+  // Continuous conversions start at the write with this config: the one in
+  // progress and the next both use it.
+  inProgress_ = first;
+  nextUp_ = first;
+  lastEdge_ = 0;
+  return 0;
+}
+
+void Ads1115Driver::noteFailure(int err, TimeNs now) noexcept {
+  ++stats_.failedReads;
+  ++stats_.consecutiveFailures;
+  stats_.lastError = err;
+  if (stats_.consecutiveFailures >= kFailRunForRedetect) {
+    present_ = false;
+    nextRedetect_ = now + kRedetectInterval;
+  }
+}
+
+void Ads1115Driver::accept(int channel, std::uint16_t raw, TimeNs stamp) noexcept {
+  auto& s = samples_.ch[static_cast<std::size_t>(channel)];
+  const double v = ads1115::codeToVolts(raw, pga_[static_cast<std::size_t>(channel)]);
+  s.adcVolts = v;
+  switch (channel) {
+    case 0: s.value = frontend::batteryVoltsFromAdc(fe_, v); break;
+    case 1: s.value = frontend::altAmpsFromAdc(fe_, v); break;
+    case 2: s.value = frontend::rpmFromAdc(fe_, v); break;
+    default: s.value = frontend::tempFFromAdc(fe_, v); break;
+  }
+  s.stamp = stamp;
+  s.fresh = true;
+  ++s.count;
+}
+
+void Ads1115Driver::flushPipeline() noexcept {
+  ++stats_.pipelineFlushes;
+  inProgress_ = -1;
+  nextUp_ = -1;
+}
+
+Ads1115Samples Ads1115Driver::poll(TimeNs now) noexcept {
+  if (!present_ && now >= nextRedetect_) {
+    nextRedetect_ = now + kRedetectInterval;
+    if (start(now) == 0) ++stats_.redetects;
+  }
+  if (present_ && pacing_ == AdsPacing::Timed && now - muxWrittenAt_ >= kSettle) {
+    bool advance = true;
+    if (timedChannel_ >= 0) {
+      std::uint16_t raw = 0;
+      const int rc = readConversion(&raw);
+      if (rc != 0) {
+        noteFailure(rc, now);
+        advance = false;  // keep the channel; read again next poll
+      } else {
+        stats_.consecutiveFailures = 0;
+        accept(timedChannel_, raw, now);
+      }
+    }
+    if (advance && present_) {
+      const int next = nextChannel();
+      if (next == timedChannel_) {
+        // No MUX change: a new result after one period (+10 %).
+        muxWrittenAt_ = now - (kSettle - kSameChannelWait);
+      } else {
+        const int rc = writeMux(next);
+        // On a failed write the chip may hold either MUX: label nothing
+        // until a write succeeds and a full settle time has passed.
+        timedChannel_ = rc == 0 ? next : -1;
+        muxWrittenAt_ = clock_.now();
+        if (rc != 0) noteFailure(rc, now);
+      }
+    }
+  }
+  Ads1115Samples out = samples_;
+  out.present = present_;
+  for (auto& s : samples_.ch) s.fresh = false;
+  return out;
+}
+
+void Ads1115Driver::onReadyEdge(TimeNs edge) noexcept {
+  if (!present_ || pacing_ != AdsPacing::ReadyEdge) return;
+  const bool missed = lastEdge_ != 0 && edge - lastEdge_ > kMissedEdgeGap;
+  lastEdge_ = edge;
+  const bool late = clock_.now() - edge > kEdgeBudget;
+  if (missed || late) {
+    // Which conversion the register holds is no longer certain.
+    stats_.discarded += 1;
+    flushPipeline();
+  } else {
+    std::uint16_t raw = 0;
+    const int rc = readConversion(&raw);
+    if (rc != 0) {
+      noteFailure(rc, edge);
+      flushPipeline();
+      return;
+    }
+    stats_.consecutiveFailures = 0;
+    if (inProgress_ >= 0) {
+      accept(inProgress_, raw, edge);
+    } else {
+      ++stats_.discarded;
+    }
+  }
+  // The conversion that started at this edge uses the last config written
+  // before it.
+  inProgress_ = nextUp_;
+  const int c = nextChannel();
+  const int rc = writeMux(c);
+  if (rc != 0) {
+    noteFailure(rc, edge);
+    nextUp_ = -1;
+    return;
+  }
+  // The write must land before the next edge to label the next conversion.
+  nextUp_ = (clock_.now() - edge <= kEdgeBudget) ? c : -1;
+}
+
+}  // namespace xr

@@ -1,0 +1,172 @@
+#include "drivers/ina228/ina228_driver.h"
+
+#include <cerrno>
+#include <cmath>
+
+#include "drivers/i2c/i2c_registers.h"
+#include "drivers/ina228/ina228_registers.h"
+
+namespace xr {
+
+using namespace ina228;
+
+Ina228Driver::Ina228Driver(I2cBus& bus, std::uint16_t address, double shuntOhm, double maxCurrentA,
+                           bool invertCurrent) noexcept
+    : bus_(bus),
+      addr_(address),
+      shuntOhm_(shuntOhm),
+      maxCurrentA_(maxCurrentA),
+      invert_(invertCurrent),
+      currentLsb_(ina228::currentLsb(maxCurrentA)),
+      lowRange_(useLowAdcRange(shuntOhm, maxCurrentA)) {}
+
+int Ina228Driver::readReg(std::uint8_t reg, std::size_t bytes, std::uint64_t* v) noexcept {
+  return i2creg::readReg(bus_, addr_, reg, bytes, v);
+}
+int Ina228Driver::writeReg(std::uint8_t reg, std::uint16_t v) noexcept { return i2creg::writeReg16(bus_, addr_, reg, v); }
+
+int Ina228Driver::detect() noexcept {
+  std::uint64_t mfr = 0, dev = 0;
+  int rc = readReg(MANUFACTURER_ID, 2, &mfr);
+  if (rc == 0) rc = readReg(DEVICE_ID, 2, &dev);
+  if (rc != 0) return rc;
+  // Match the die ID only (bits 15:4): the revision nibble varies (facts §1.8).
+  if (mfr != kManufacturerTI || ((dev >> 4) & 0xFFF) != kDieId) return ENODEV;
+  return 0;
+}
+
+int Ina228Driver::configure() noexcept {
+  const long cal = shuntCal(shuntOhm_, maxCurrentA_, lowRange_);
+  if (cal < 0) return EINVAL;
+  const std::uint16_t diag = kDiagAlrtConfig;
+  const std::uint16_t bovl = bovlVolts_ > 0.0 ? bovlCode(bovlVolts_) : 0x7FFF;
+  int rc = writeReg(CONFIG, lowRange_ ? CONFIG_ADCRANGE : 0);
+  if (rc == 0) rc = writeReg(SHUNT_CAL, static_cast<std::uint16_t>(cal));
+  // BOVL before DIAG_ALRT/ADC_CONFIG so the first compared result already
+  // sees the limit.
+  if (rc == 0) rc = writeReg(BOVL, bovl);
+  if (rc == 0) rc = writeReg(DIAG_ALRT, diag);
+  if (rc == 0) rc = writeReg(ADC_CONFIG, fast_ ? kAdcConfigFast : kAdcConfigSlow);
+  return rc;
+}
+
+int Ina228Driver::start(TimeNs now) noexcept {
+  int rc = detect();
+  if (rc == 0) rc = configure();
+  if (rc != 0) {
+    present_ = false;
+    stats_.lastError = rc;
+    nextRedetect_ = now + kRedetectInterval;
+    return rc;
+  }
+  present_ = true;
+  stats_.consecutiveFailures = 0;
+  nextRead_ = now;
+  nextHousekeeping_ = now;
+  return 0;
+}
+
+TimeNs Ina228Driver::conversionCycle() const noexcept {
+  return static_cast<TimeNs>(adcCycleUs(fast_ ? kAdcConfigFast : kAdcConfigSlow)) * 1000;
+}
+
+int Ina228Driver::setFastMode(bool fast) noexcept {
+  if (fast == fast_) return 0;
+  fast_ = fast;
+  // The new mode is remembered even when absent: configure() applies it.
+  if (!present_) return 0;
+  const int rc = writeReg(ADC_CONFIG, fast ? kAdcConfigFast : kAdcConfigSlow);
+  if (rc != 0) stats_.lastError = rc;
+  // A new cycle starts at the write; read as soon as the first result is due.
+  nextRead_ = 0;
+  return rc;
+}
+
+int Ina228Driver::setBusOvervoltageLimit(double volts) noexcept {
+  if (!(volts > 0.0) || !std::isfinite(volts)) return EINVAL;
+  bovlVolts_ = volts;
+  if (!present_) return 0;
+  const int rc = writeReg(BOVL, bovlCode(volts));
+  if (rc != 0) stats_.lastError = rc;
+  return rc;
+}
+
+void Ina228Driver::noteFailure(int err, TimeNs now) noexcept {
+  ++stats_.failedReads;
+  ++stats_.consecutiveFailures;
+  stats_.lastError = err;
+  if (stats_.consecutiveFailures >= kFailRunForRedetect) {
+    present_ = false;
+    nextRedetect_ = now + kRedetectInterval;
+  }
+}
+
+bool Ina228Driver::verifyConfiguration() noexcept {
+  // A brown-out resets the chip to defaults (BOVL 0x7FFF = no hardware OV
+  // protection, SHUNT_CAL 0x1000) while reads keep succeeding: compare.
+  std::uint64_t adc = 0, bovl = 0, cal = 0;
+  if (readReg(ADC_CONFIG, 2, &adc) != 0 || readReg(BOVL, 2, &bovl) != 0 || readReg(SHUNT_CAL, 2, &cal) != 0)
+    return true;  // a read failure is counted by the regular reads
+  const std::uint16_t wantBovl = bovlVolts_ > 0.0 ? bovlCode(bovlVolts_) : 0x7FFF;
+  const long wantCal = shuntCal(shuntOhm_, maxCurrentA_, lowRange_);
+  return adc == (fast_ ? kAdcConfigFast : kAdcConfigSlow) && bovl == wantBovl &&
+         static_cast<long>(cal & 0x7FFF) == wantCal;
+}
+
+const Ina228Sample& Ina228Driver::poll(TimeNs now) noexcept {
+  sample_.fresh = false;
+  if (!present_) {
+    if (now >= nextRedetect_) {
+      nextRedetect_ = now + kRedetectInterval;
+      if (start(now) == 0) ++stats_.redetects;
+    }
+    if (!present_) return sample_;
+  }
+
+  std::uint64_t diag = 0;
+  int rc = readReg(DIAG_ALRT, 2, &diag);
+  if (rc != 0) {
+    noteFailure(rc, now);
+    return sample_;
+  }
+  noteSuccess();
+  sample_.diagAlrt = static_cast<std::uint16_t>(diag);
+  sample_.busOvervoltage = (diag & DIAG_BUSOL) != 0;
+  sample_.diagStamp = now;
+
+  if (now >= nextRead_) {
+    std::uint64_t vbus = 0, cur = 0;
+    rc = readReg(VBUS, 3, &vbus);
+    if (rc == 0) rc = readReg(CURRENT, 3, &cur);
+    if (rc != 0) {
+      noteFailure(rc, now);
+      return sample_;
+    }
+    noteSuccess();
+    sample_.busVolts = vbusVolts(static_cast<std::uint32_t>(vbus));
+    const double amps = currentAmps(static_cast<std::uint32_t>(cur), currentLsb_);
+    sample_.currentA = invert_ ? -amps : amps;
+    sample_.fresh = true;
+    sample_.stamp = now;
+    nextRead_ = now + conversionCycle();
+  }
+
+  if (now >= nextHousekeeping_) {
+    nextHousekeeping_ = now + kHousekeepingInterval;
+    std::uint64_t t = 0;
+    rc = readReg(DIETEMP, 2, &t);
+    if (rc != 0) {
+      noteFailure(rc, now);
+      return sample_;
+    }
+    sample_.dieTempC = dieTempC(static_cast<std::uint16_t>(t));
+    if (!verifyConfiguration()) {
+      ++stats_.reconfigures;
+      rc = configure();
+      if (rc != 0) noteFailure(rc, now);
+    }
+  }
+  return sample_;
+}
+
+}  // namespace xr
