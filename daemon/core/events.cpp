@@ -44,18 +44,78 @@ std::string_view toString(EventCode c) {
     case EventCode::CommandApplied: return "CommandApplied";
     case EventCode::CommandRejected: return "CommandRejected";
     case EventCode::Message: return "Message";
+    case EventCode::AlarmCondition: return "AlarmCondition";
   }
   return "?";
 }
 
+namespace {
+
+// Reason as the seeds' console lines print it: "TEMP_CRITICAL", not "REASON_TEMP_CRITICAL".
+std::string shortReason(Reason r) {
+  std::string s{toString(r)};
+  constexpr std::string_view prefix = "REASON_";
+  if (s.rfind(prefix, 0) == 0) s.erase(0, prefix.size());
+  return s;
+}
+
+std::string tripText(const Event& e, char* buf, std::size_t n) {
+  switch (e.reason) {
+    case Reason::REASON_HARD_OVERCURRENT:
+      std::snprintf(buf, n, "Hard overcurrent: %.1f A > %.1f A trip. Field shut off!", e.a, e.b);
+      return buf;
+    case Reason::REASON_TEMP_CRITICAL:
+      std::snprintf(buf, n, "Temperature critical: %.1f F > %.1f F. Field shut off!", e.a, e.b);
+      return buf;
+    case Reason::REASON_TEMP_WARNING:
+      std::snprintf(buf, n, "Temperature warning: %.1f F > %.1f F. Ramping field down", e.a, e.b);
+      return buf;
+    case Reason::REASON_TEMP_SUSTAINED:
+      std::snprintf(buf, n, "Temperature warning sustained: %.1f F > %.1f F. Field off until re-enabled", e.a, e.b);
+      return buf;
+    case Reason::REASON_ALT_HARD_SHUTDOWN:
+      std::snprintf(buf, n, "Alternator hard shutdown: IBV=%.2f V > %.2f V. Ramping field down", e.a, e.b);
+      return buf;
+    case Reason::REASON_RPM_LOW:
+      std::snprintf(buf, n, "RPM below minimum: %.0f < %.0f RPM. Field off", e.a, e.b);
+      return buf;
+    case Reason::REASON_VOLTAGE_IMPLAUSIBLE:
+      std::snprintf(buf, n, "Battery voltage implausible: IBV=%.2f V, BatteryV=%.2f V. Field shut off for safety!",
+                    e.a, e.b);
+      return buf;
+    case Reason::REASON_CURRENT_STALE:
+      std::snprintf(buf, n, "Current data stale (CH1 %s, INA228 %s). Field shut off for safety!",
+                    e.a != 0.0 ? "stale" : "ok", e.b != 0.0 ? "stale" : "ok");
+      return buf;
+    default: return "Protection tripped: " + shortReason(e.reason);
+  }
+}
+
+const char* alarmRowText(int row) {
+  // Order of protection/alarm_rows.h (the seed's buzzer table).
+  static constexpr const char* kRows[] = {
+      "High alternator temperature", "Low alternator temperature", "High battery voltage",
+      "Low battery voltage",         "High alternator current",    "High battery current",
+      "INA228 hardware overvoltage", "Temp sensor not responding", "Efficiency anomaly",
+      "Field protection active",     "TempTask hung"};
+  if (row < 0 || row >= static_cast<int>(sizeof kRows / sizeof kRows[0])) return "Alarm";
+  return kRows[row];
+}
+
+}  // namespace
+
 std::string describe(const Event& e) {
   char buf[256];
-  const std::string reason{toString(e.reason)};
+  const std::string reason = shortReason(e.reason);
   switch (e.code) {
     case EventCode::ModeChanged:
-      if (e.mode == FieldControlMode::MODE_NORMAL_AUTO_PID || e.mode == FieldControlMode::MODE_NORMAL_MANUAL)
+      if (e.mode == FieldControlMode::MODE_NORMAL_AUTO_PID || e.mode == FieldControlMode::MODE_NORMAL_MANUAL ||
+          e.mode == FieldControlMode::MODE_LIMP_HOME)
         return "Entering normal mode";
+      if (e.detail == 1) return "Mode changed: " + std::string(toString(e.mode)) + " (" + reason + ")";
       return "Exiting normal mode: " + reason;
+    case EventCode::ProtectionTrip: return tripText(e, buf, sizeof buf);
+    case EventCode::ProtectionClear: return "Protection cleared: " + reason;
     case EventCode::ImmediateCut: return "GPIO4 immediate cut: " + reason;
     case EventCode::CutAfterSettle: return "GPIO4 cut after settle: " + reason;
     case EventCode::LockoutStarted:
@@ -68,12 +128,27 @@ std::string describe(const Event& e) {
                     std::string(toString(static_cast<ChargeStage>(static_cast<int>(e.a)))).c_str(),
                     std::string(toString(static_cast<ChargeStage>(static_cast<int>(e.b)))).c_str());
       return buf;
+    case EventCode::InaLatchSet:
+      std::snprintf(buf, sizeof buf, "INA228 hardware overvoltage alert: IBV=%.2f V (limit %.2f V). Field cut, latched",
+                    e.a, e.b);
+      return buf;
+    case EventCode::InaLatchCleared:
+      std::snprintf(buf, sizeof buf, "INA228 overvoltage latch cleared after %.0f s", e.b);
+      return buf;
     case EventCode::VoltageDisagreement:
       std::snprintf(buf, sizeof buf,
                     "Battery Voltage disagreement! BatteryV=%.2f V, IBV=%.2f V. Field shut off for safety!", e.a,
                     e.b);
       return buf;
     case EventCode::TempSensorStale: return "OneWire sensor stale, sensor dead or disconnected";
+    case EventCode::TempTaskHung:
+      std::snprintf(buf, sizeof buf, "TempTask hung: no heartbeat for %.0f s. Alarm on", e.a);
+      return buf;
+    case EventCode::AlarmOn: return "Alarm ON";
+    case EventCode::AlarmOff: return "Alarm OFF";
+    case EventCode::AlarmCondition:
+      std::snprintf(buf, sizeof buf, "ALARM: %s (%.2f, limit %.2f)", alarmRowText(e.detail), e.a, e.b);
+      return buf;
     default:
       std::snprintf(buf, sizeof buf, "%s %s a=%.3f b=%.3f", std::string(toString(e.code)).c_str(), reason.c_str(),
                     e.a, e.b);

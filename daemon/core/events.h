@@ -42,6 +42,7 @@ enum class EventCode {
   CommandApplied,
   CommandRejected,
   Message,              // generic; text chosen by detail code
+  AlarmCondition,       // one buzzer-table row holds (detail = AlarmRow, a = value, b = threshold); 30 s throttled
 };
 
 struct Event {
@@ -49,7 +50,7 @@ struct Event {
   EventLevel level = EventLevel::Info;
   EventCode code = EventCode::Message;
   Reason reason = Reason::NONE;
-  FieldControlMode mode = FieldControlMode::MODE_NORMAL_AUTO_PID;
+  FieldControlMode mode = FieldControlMode::MODE_NORMAL_AUTO_PID;  // ModeChanged: the mode entered
   double a = 0.0;  // values; meaning depends on code (documented in describe())
   double b = 0.0;
   int detail = 0;

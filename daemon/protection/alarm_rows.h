@@ -1,0 +1,24 @@
+#pragma once
+// Rows of the seed's buzzer table (safeties-and-protections.md "Alarm Buzzer
+// (GPIO21)"), in order; Event::detail of an AlarmCondition event.
+#include <cstddef>
+#include <string_view>
+
+namespace xr {
+
+enum class AlarmRow {
+  TempHigh,            // TempAlarm
+  TempLow,             // TempAlarmLow (0 = off)
+  VoltageHigh,         // VoltageAlarmHigh
+  VoltageLow,          // VoltageAlarmLow (> 8 V floor)
+  AltCurrentHigh,      // CurrentAlarmHigh
+  BatteryCurrentHigh,  // MaximumAllowedBatteryAmps
+  InaOvervoltage,      // INA228 hardware OV latch
+  TempSensorDead,      // no valid read for > 20 s
+  EfficiencyAnomaly,   // effAnomalyAlarmActive
+  FaultMode,           // critical / warning / lockout mode (architecture-legacy.md GPIO21)
+  TempTaskHung,        // NOT gated by AlarmActivate
+};
+inline constexpr std::size_t kAlarmRowCount = 11;
+
+}  // namespace xr

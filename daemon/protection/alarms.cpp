@@ -1,0 +1,67 @@
+// CheckAlarms(): the GPIO21 buzzer of safeties-and-protections.md "Alarm
+// Buzzer (GPIO21)". Evaluated every ALARM_CHECK_MS (250 ms); holds between.
+#include <cmath>
+
+#include "params/constants.h"
+#include "protection/alarm_rows.h"
+#include "protection/protection_supervisor.h"
+
+namespace xr {
+
+bool ProtectionSupervisor::checkAlarms(bool effAnomalyAlarmActive, EventBatch& ev) {
+  if (now_ < nextAlarmCheck_) return buzzer_;
+  nextAlarmCheck_ = now_ + fromMs(k::ALARM_CHECK_MS);
+
+  const bool tempOk = std::isfinite(TempToUse_) && !tempStaleRaw_;
+  std::array<bool, kAlarmRowCount> row{};
+  std::array<double, kAlarmRowCount> val{};
+  std::array<double, kAlarmRowCount> lim{};
+  auto set = [&](AlarmRow r, bool on, double v, double l) {
+    row[static_cast<std::size_t>(r)] = on;
+    val[static_cast<std::size_t>(r)] = v;
+    lim[static_cast<std::size_t>(r)] = l;
+  };
+  set(AlarmRow::TempHigh, tempOk && TempToUse_ > p_.TempAlarm, TempToUse_, p_.TempAlarm);
+  set(AlarmRow::TempLow, p_.TempAlarmLow != 0.0 && tempOk && TempToUse_ < p_.TempAlarmLow, TempToUse_,
+      p_.TempAlarmLow);
+  set(AlarmRow::VoltageHigh, std::isfinite(IBV_) && IBV_ > p_.VoltageAlarmHigh, IBV_, p_.VoltageAlarmHigh);
+  // "VoltageAlarmLow (11 V, > 8 V floor)": a threshold at or under the floor disables the row.
+  set(AlarmRow::VoltageLow,
+      p_.VoltageAlarmLow > k::VOLTAGE_ALARM_LOW_FLOOR_V && std::isfinite(IBV_) && IBV_ < p_.VoltageAlarmLow, IBV_,
+      p_.VoltageAlarmLow);
+  set(AlarmRow::AltCurrentHigh, std::isfinite(MeasuredAmps_) && MeasuredAmps_ > p_.CurrentAlarmHigh, MeasuredAmps_,
+      p_.CurrentAlarmHigh);
+  set(AlarmRow::BatteryCurrentHigh, std::isfinite(Bcur_) && std::fabs(Bcur_) > p_.MaximumAllowedBatteryAmps, Bcur_,
+      p_.MaximumAllowedBatteryAmps);
+  set(AlarmRow::InaOvervoltage, flags_.inaOvervoltageLatched, IBV_, 0.0);
+  set(AlarmRow::TempSensorDead, tempStaleRaw_, TempToUse_, k::TEMP_STALE_MS / 1000.0);
+  set(AlarmRow::EfficiencyAnomaly, effAnomalyAlarmActive, 0.0, 0.0);
+  set(AlarmRow::FaultMode, faultAlarm_, 0.0, 0.0);
+  set(AlarmRow::TempTaskHung, flags_.tempTaskAlarm, 0.0, k::TEMP_TASK_TIMEOUT / 1000.0);
+
+  bool gated = false;
+  for (std::size_t i = 0; i < kAlarmRowCount; ++i) {
+    const auto r = static_cast<AlarmRow>(i);
+    const bool counts = row[i] && (r == AlarmRow::TempTaskHung || p_.AlarmActivate);
+    if (counts && r != AlarmRow::TempTaskHung) gated = true;
+    // One console message per row per 30 s while it holds.
+    if (counts && (alarmMsgAt_[i] < 0 || now_ - alarmMsgAt_[i] >= fromMs(k::ALARM_MESSAGE_THROTTLE_MS))) {
+      alarmMsgAt_[i] = now_;
+      push(ev, EventCode::AlarmCondition, EventLevel::Warning, Reason::NONE, val[i], lim[i], static_cast<int>(i));
+    }
+    alarmRowOn_[i] = counts;
+  }
+  // TempTask hang sounds regardless of AlarmActivate.
+  const bool cond = gated || row[static_cast<std::size_t>(AlarmRow::TempTaskHung)];
+  if (p_.AlarmLatchEnabled && cond) alarmLatched_ = true;
+  if (!p_.AlarmLatchEnabled) alarmLatched_ = false;
+  buzzer_ = cond || alarmLatched_;
+  if (buzzer_ != lastBuzzerEvent_) {
+    lastBuzzerEvent_ = buzzer_;
+    push(ev, buzzer_ ? EventCode::AlarmOn : EventCode::AlarmOff, buzzer_ ? EventLevel::Warning : EventLevel::Info,
+         Reason::NONE);
+  }
+  return buzzer_;
+}
+
+}  // namespace xr

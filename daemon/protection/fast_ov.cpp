@@ -1,0 +1,155 @@
+// runFastOvSupervisors(): the voltage OV throttling protections of
+// safeties-and-protections.md — Group 1 (prediction), Group 2 (measured),
+// Group 3 (iExcess) and load dump — all armed by the nearBulk gate and
+// voltageControlActive, all acting through fastOvCurrentCap /
+// fastOvClampActive and GOV_BYPASS_SLEW.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "params/constants.h"
+#include "protection/protection_supervisor.h"
+
+namespace xr {
+namespace {
+// A gap longer than this between calls (another mode ran) starts the
+// supervisors clean: their counters describe consecutive control ticks.
+constexpr TimeNs kFastOvGap = fromMs(100);
+}  // namespace
+
+void ProtectionSupervisor::resetFastOv() {
+  iexCount_ = 0;
+  iexActive_ = false;
+  preEventCvI_ = 0.0;
+  postFastOvGate_ = false;
+  fastOvWasActive_ = false;
+  govBypassLatched_ = false;
+  maCount_ = 0;
+  maHead_ = 0;
+}
+
+FastOvAction ProtectionSupervisor::runFastOvSupervisors(const FastOvInputs& x) {
+  if (lastFastOvCall_ < 0 || now_ - lastFastOvCall_ > kFastOvGap || now_ < lastFastOvCall_) resetFastOv();
+  const double dt = lastFastOvCall_ >= 0 ? std::clamp(toSec(now_ - lastFastOvCall_), 0.0, 0.1) : 0.0;
+  lastFastOvCall_ = now_;
+
+  FastOvAction a;
+  const double target = x.ChargingVoltageTarget;
+  // nearBulk = (ProtectionProxGateV <= 0) OR (target >= BulkVoltage - ProtectionProxGateV)
+  a.nearBulk = p_.ProtectionProxGateV <= 0.0 || target >= p_.BulkVoltage - p_.ProtectionProxGateV;
+  const double base = std::max(0.0, x.uTargetAmps);  // fastOvBaseCap
+  a.fastOvCurrentCap = base;
+  a.cv_I = x.cv_I;
+
+  // Group 3 signal window is kept up to date whatever the gate says.
+  const int maN = std::clamp(p_.IExcessMA_N, 1, static_cast<int>(maBuf_.size()));
+  if (x.altCurrentFresh && std::isfinite(x.MeasuredAmps)) {
+    maBuf_[static_cast<std::size_t>(maHead_)] = x.MeasuredAmps;
+    maHead_ = (maHead_ + 1) % static_cast<int>(maBuf_.size());
+    maCount_ = std::min(maCount_ + 1, static_cast<int>(maBuf_.size()));
+  }
+
+  const bool armed = x.voltageControlActive && a.nearBulk && std::isfinite(IBV_);
+  if (!armed) {
+    // CV inactive or far from bulk: nothing throttles; the CV tracker owns cv_I.
+    resetFastOv();
+    Vpred_ = std::isfinite(IBV_) ? IBV_ + p_.TdPred * std::max(0.0, dvdt_) : 0.0;
+    lastFastOv_ = a;
+    return a;
+  }
+
+  double cap = fastOvWasActive_ ? std::min(fastOvCap_, base) : base;
+
+  // Group 1 — prediction: Vpred = IBV + TdPred * max(0, dvdt).
+  Vpred_ = IBV_ + p_.TdPred * std::max(0.0, dvdt_);
+  const double vHard = target + p_.OvPredMarginV;
+  if (p_.OvGroup1Enable && IBV_ > target - k::PRED_GUARD && Vpred_ > vHard) {
+    cap = std::min(cap, x.setpointLimited - p_.KHard * (Vpred_ - vHard));
+    a.group1 = true;
+  }
+  // Group 2 — measured: IBV > target + OvMeasMarginV.
+  if (p_.OvGroup2Enable && IBV_ > target + p_.OvMeasMarginV) {
+    cap = std::min(cap, x.setpointLimited - p_.KHard * (IBV_ - target - p_.OvMeasMarginV));
+    a.group2 = true;
+  }
+  const bool loadDump = loadDumpFiredThisSample_ && inaFastModeActive_;
+  if (a.group1 || a.group2 || loadDump) postFastOvGate_ = true;
+
+  // Group 3 — iExcess.
+  double sig = std::numeric_limits<double>::quiet_NaN();
+  if (p_.IExcessSigSrc == 0) {
+    const int n = std::min(maN, maCount_);
+    if (n > 0) {
+      double sum = 0.0;
+      for (int i = 1; i <= n; ++i)
+        sum += maBuf_[static_cast<std::size_t>((maHead_ - i + static_cast<int>(maBuf_.size())) %
+                                               static_cast<int>(maBuf_.size()))];
+      sig = sum / n;
+    }
+  } else if (p_.IExcessSigSrc == 1) {
+    sig = x.MeasuredAmps_filtered;
+  } else {
+    sig = x.MeasuredAmps;
+  }
+  const double thr = x.setpointLimited + p_.IExcessK;
+  // Post-fastOV mismatch gate: Group 3 waits until current is back within IExcessK.
+  if (postFastOvGate_ && !(a.group1 || a.group2 || loadDump) && std::isfinite(sig) && sig <= thr)
+    postFastOvGate_ = false;
+  const bool vGate = IBV_ > target - p_.OvMeasMarginV;
+  if (!iexActive_) {
+    if (vGate && !postFastOvGate_ && std::isfinite(sig) && sig > thr) {
+      if (++iexCount_ >= p_.IExcessN) {
+        iexActive_ = true;
+        preEventCvI_ = x.cv_I;
+        if (p_.IExcessKBleed <= 0.0) {
+          a.cvIAction = CvIAction::Snap;
+          a.cv_I = 0.0;
+        }
+      }
+    } else {
+      iexCount_ = 0;
+    }
+  } else if (!std::isfinite(sig) || sig < thr - k::IEXCESS_HYST) {
+    // Release with hysteresis, reseed so the loop does not bounce back.
+    iexActive_ = false;
+    iexCount_ = 0;
+    a.cvIAction = CvIAction::Reseed;
+    a.cv_I = preEventCvI_ * p_.IExcessReseedFrac;
+  }
+  if (iexActive_) {
+    const double excess = std::max(0.0, sig - x.setpointLimited);
+    if (p_.IExcessKBleed > 0.0) {
+      a.cvIAction = CvIAction::Bleed;
+      a.cv_I = std::max(0.0, x.cv_I - p_.IExcessKBleed * excess * dt);
+    }
+    cap = std::min(cap, std::max(0.0, base - k::K_IE * excess));
+    a.group3 = true;
+  }
+
+  // Load dump (gated on INA fast mode): everything to zero, AW bleed recovers.
+  if (loadDump) {
+    a.loadDump = true;
+    cap = 0.0;
+    a.zeroSetpointLimited = true;
+    a.cvIAction = CvIAction::Snap;
+    a.cv_I = 0.0;
+  }
+
+  const bool any = a.group1 || a.group2 || a.group3 || a.loadDump;
+  if (any) {
+    fastOvCap_ = std::clamp(cap, 0.0, base);
+    a.fastOvCurrentCap = fastOvCap_;
+    a.fastOvClampActive = true;
+    govBypassLatched_ = true;
+  } else {
+    fastOvCap_ = base;
+    // CV overshoot bypass latch releases below target + 0.02 V (field-control.md "Governor").
+    if (IBV_ < target + k::CV_OVERSHOOT_RELEASE_V) govBypassLatched_ = false;
+  }
+  fastOvWasActive_ = any;
+  a.forceBypassSlew = any || govBypassLatched_;
+  lastFastOv_ = a;
+  return a;
+}
+
+}  // namespace xr

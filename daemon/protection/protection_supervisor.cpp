@@ -1,0 +1,88 @@
+// ProtectionSupervisor: construction, parameters, commands, telemetry and the
+// small shared helpers. The detectors, the shutdown sequencer, the fast-OV
+// supervisors and CheckAlarms live in their own files.
+#include "protection/protection_supervisor.h"
+
+#include <algorithm>
+
+namespace xr {
+
+ProtectionSupervisor::ProtectionSupervisor(const Params& p) : p_(p) { alarmMsgAt_.fill(-1); }
+
+void ProtectionSupervisor::setParams(const Params& p) { p_ = p; }
+
+void ProtectionSupervisor::push(EventBatch& ev, EventCode c, EventLevel l, Reason r, double a, double b,
+                                int detail) const {
+  Event e;
+  e.t = now_;
+  e.level = l;
+  e.code = c;
+  e.reason = r;
+  e.mode = lastMode_;
+  e.a = a;
+  e.b = b;
+  e.detail = detail;
+  ev.push(e);
+}
+
+// Trip / clear events of one detector, on its edges only.
+void ProtectionSupervisor::edge(bool& prev, bool now, Reason r, double a, double b, EventBatch& ev,
+                                EventLevel level, bool logTrip) {
+  if (now == prev) return;
+  prev = now;
+  if (now) {
+    lastTripReason_ = r;
+    lastTripTime_ = now_;
+    if (logTrip) push(ev, EventCode::ProtectionTrip, level, r, a, b);
+  } else {
+    push(ev, EventCode::ProtectionClear, EventLevel::Info, r, a, b);
+  }
+}
+
+// "T2 ... No auto-restart — field stays off until manual re-enable or reboot."
+void ProtectionSupervisor::reenableField() {
+  flags_.tempSustained = false;
+  t1T_.since = -1;  // the sustained timer restarts from the re-enable
+  if (flags_.rampLatched && flags_.rampLatchedReason == Reason::REASON_TEMP_SUSTAINED) flags_.rampLatched = false;
+}
+
+void ProtectionSupervisor::resetAlarmLatch() { alarmLatched_ = false; }
+
+ProtectionTelemetry ProtectionSupervisor::telemetry() const {
+  ProtectionTelemetry t;
+  t.shutdownPhase = phase_;
+  t.nearBulk = lastFastOv_.nearBulk;
+  t.fastOvCurrentCap = lastFastOv_.fastOvCurrentCap;
+  t.fastOvClampActive = lastFastOv_.fastOvClampActive;
+  t.inaOvervoltageLatched = flags_.inaOvervoltageLatched;
+  t.lockoutActive = flags_.lockoutActive;
+  t.lockoutRemainingS = flags_.lockoutActive ? std::max(0.0, toSec(lockoutUntil_ - now_)) : 0.0;
+  t.tempTaskAlarm = flags_.tempTaskAlarm;
+  t.buzzer = buzzer_;
+  t.lastTripReason = lastTripReason_;
+  t.lastTripTimeS = boot_ >= 0 ? toSec(lastTripTime_ - boot_) : 0.0;
+  t.group1Active = lastFastOv_.group1;
+  t.group2Active = lastFastOv_.group2;
+  t.group3Active = lastFastOv_.group3;
+  t.loadDumpActive = lastFastOv_.loadDump;
+  t.Vpred = Vpred_;
+  t.dvdt = dvdt_;
+  t.dBcurDt = dBcurDt_;
+  t.govBypassLatched = govBypassLatched_;
+  t.hardOvercurrent = flags_.hardOvercurrent;
+  t.tempCritical = flags_.tempCritical;
+  t.rpmBelowMin = flags_.rpmBelowMin;
+  t.altHardShutdown = flags_.altHardShutdown;
+  t.voltageDisagreeWarning = flags_.voltageDisagreeWarning;
+  t.voltageDisagreeCritical = flags_.voltageDisagreeCritical;
+  t.voltageImplausible = flags_.voltageImplausible;
+  t.tempWarning = flags_.tempWarning;
+  t.tempSustained = flags_.tempSustained;
+  t.tempStale = flags_.tempStale;
+  t.currentStale = flags_.currentStale;
+  t.fieldCut = fieldCut_;
+  t.alarmLatched = alarmLatched_;
+  return t;
+}
+
+}  // namespace xr

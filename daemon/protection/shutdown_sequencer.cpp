@@ -1,0 +1,182 @@
+// runShutdownPath(): the three shutdown paths of safeties-and-protections.md
+// ("Three shutdown paths", "Cooldown lockout") plus MODE_DISABLED_RAMP.
+//
+//   immediate cut  -> duty 0 and GPIO4 LOW this tick, phase jumps to PHASE_4,
+//                     no cooldown (INA OV, hard OC, T3, RPM gate)
+//   warning ramp   -> P1 slew to rpmMinDuty at DutyRampRate (instant above
+//                     AlternatorHardShutdownV + 0.5 V), P2 hold
+//                     ShutdownPhase2HoldMs, P3 slew to 0 at DutySlowRampRate,
+//                     P4 hold SettleTimeBeforeCut then GPIO4 LOW, then the
+//                     FIELD_COLLAPSE_DELAY lockout (T2: no lockout, no restart)
+//   critical ramp  -> straight to P4 (duty 0 at once, slew off), then lockout
+//   disabled ramp  -> the warning ramp's shape, no alarm, no lockout
+#include <algorithm>
+#include <cmath>
+
+#include "params/constants.h"
+#include "params/derived.h"
+#include "protection/protection_supervisor.h"
+
+namespace xr {
+namespace {
+using M = FieldControlMode;
+}
+
+void ProtectionSupervisor::startLockout(EventBatch& ev) {
+  lockoutUntil_ = now_ + fromMs(p_.FIELD_COLLAPSE_DELAY);
+  flags_.lockoutActive = true;
+  flags_.rampLatched = false;
+  push(ev, EventCode::LockoutStarted, EventLevel::Warning, lastReason_, p_.FIELD_COLLAPSE_DELAY / 1000.0);
+}
+
+ShutdownCommand ProtectionSupervisor::runShutdownPath(const ModeDecision& d, double lastAppliedDuty,
+                                                      double rpmMinDuty, EventBatch& ev) {
+  const bool normal = isNormalMode(d.mode);
+  const bool changed = firstSequencerTick_ || d.mode != lastMode_ || d.reason != lastReason_;
+  const bool wasNormal = !firstSequencerTick_ && isNormalMode(lastMode_);
+  lastMode_ = d.mode;
+  lastReason_ = d.reason;
+  if (changed) {
+    // "Entering normal mode" / "Exiting normal mode: <reason>"; detail 1 =
+    // a change between two non-normal modes.
+    const int detail = (!normal && !wasNormal && !firstSequencerTick_) ? 1 : 0;
+    if (firstSequencerTick_ || normal != wasNormal || !normal)
+      push(ev, EventCode::ModeChanged, normal ? EventLevel::Info : EventLevel::Warning, d.reason, 0.0, 0.0, detail);
+  }
+  firstSequencerTick_ = false;
+
+  ShutdownCommand c;
+  if (normal) {
+    phase_ = ShutdownPhase::PHASE_NONE;
+    fieldCut_ = false;
+    flags_.rampLatched = false;
+    faultAlarm_ = false;
+    duty_ = lastAppliedDuty;
+    c.active = false;
+    c.fieldEnable = true;
+    c.dutyPct = lastAppliedDuty;
+    c.phase = phase_;
+    return c;
+  }
+
+  c.active = true;
+  c.effectiveMin = 0.0;
+  const bool lockoutHold = d.mode == M::MODE_LOCKOUT_RAMP && d.reason == Reason::REASON_LOCKOUT;
+  const bool faultRamp = d.mode == M::MODE_CRITICAL_RAMP || d.mode == M::MODE_WARNING_RAMP_AND_LOCKOUT;
+  // GPIO21 in non-normal modes except DISABLED (architecture-legacy.md
+  // "Hardware Interface"); an auto-zero measurement is not a fault either.
+  faultAlarm_ = faultRamp || lockoutHold;
+
+  // --- Immediate cut --------------------------------------------------------
+  if (isImmediateCutReason(d.reason)) {
+    // Duplicate logging suppressed when already cut; the INA228 alert has
+    // already pulled GPIO4 LOW in hardware, its InaLatchSet line is the log.
+    if (!fieldCut_ && d.reason != Reason::REASON_INA_OVERVOLTAGE)
+      push(ev, EventCode::ImmediateCut, d.reason == Reason::REASON_RPM_LOW ? EventLevel::Info : EventLevel::Critical,
+           d.reason, lastAppliedDuty);
+    fieldCut_ = true;
+    duty_ = 0.0;
+    phase_ = ShutdownPhase::PHASE_4;  // a later re-entry never re-runs the ramp
+    c.applyImmediateCut = true;
+    c.dutyPct = 0.0;
+    c.fieldEnable = false;
+    c.govMode = GovMode::GOV_BYPASS_SLEW;
+    c.phase = phase_;
+    return c;
+  }
+
+  // --- Lockout hold -----------------------------------------------------------
+  if (lockoutHold && fieldCut_) {
+    duty_ = 0.0;
+    phase_ = ShutdownPhase::PHASE_DONE;
+    c.dutyPct = 0.0;
+    c.fieldEnable = false;
+    c.phase = phase_;
+    return c;
+  }
+
+  // A warning/critical ramp runs to its cut even if its trigger clears.
+  if (faultRamp && !fieldCut_ && !flags_.rampLatched) {
+    flags_.rampLatched = true;
+    flags_.rampLatchedMode = d.mode;
+    flags_.rampLatchedReason = d.reason;
+  } else if (faultRamp && flags_.rampLatched && d.mode == M::MODE_CRITICAL_RAMP) {
+    flags_.rampLatchedMode = d.mode;  // escalation: a warning ramp became critical
+    flags_.rampLatchedReason = d.reason;
+  }
+
+  // --- Field already off: nothing to ramp ------------------------------------
+  if (fieldCut_) {
+    duty_ = 0.0;
+    phase_ = ShutdownPhase::PHASE_DONE;
+    // The fault persists (e.g. after the lockout expired): a new lockout.
+    if (faultRamp && d.reason != Reason::REASON_TEMP_SUSTAINED) startLockout(ev);
+    c.dutyPct = 0.0;
+    c.fieldEnable = false;
+    c.phase = phase_;
+    return c;
+  }
+
+  // --- Ramp phases (GPIO4 still HIGH) ----------------------------------------
+  if (phase_ == ShutdownPhase::PHASE_NONE || phase_ == ShutdownPhase::PHASE_DONE) {
+    phase_ = ShutdownPhase::PHASE_1;
+    phaseStart_ = now_;
+    duty_ = std::max(0.0, lastAppliedDuty);
+  }
+  const bool critical = d.mode == M::MODE_CRITICAL_RAMP;
+  if (critical && phase_ != ShutdownPhase::PHASE_4) {
+    phase_ = ShutdownPhase::PHASE_4;  // skip phases 1-3, slew limiter off
+    phaseStart_ = now_;
+  }
+  // Slew-bypass accelerator: far above the hard-shutdown threshold phase 1 is instant.
+  const bool accel = d.reason == Reason::REASON_ALT_HARD_SHUTDOWN && std::isfinite(IBV_) &&
+                     IBV_ > alternatorHardShutdownV(p_) + k::HARD_SHUTDOWN_BYPASS_OFFSET_V;
+  c.govMode = (critical || accel) ? GovMode::GOV_BYPASS_SLEW : GovMode::GOV_NORMAL_SLEW;
+  const double floorDuty = std::max(0.0, rpmMinDuty);
+
+  bool rampedThisTick = false;
+  for (int guard = 0; guard < 5; ++guard) {
+    if (phase_ == ShutdownPhase::PHASE_1) {
+      if (duty_ > floorDuty) {
+        if (rampedThisTick) break;
+        duty_ = accel ? floorDuty : std::max(floorDuty, duty_ - p_.DutyRampRate * dtSec_);
+        rampedThisTick = true;
+      }
+      if (duty_ > floorDuty) break;
+      phase_ = ShutdownPhase::PHASE_2;
+      phaseStart_ = now_;
+    }
+    if (phase_ == ShutdownPhase::PHASE_2) {
+      if (now_ - phaseStart_ < fromMs(p_.ShutdownPhase2HoldMs)) break;
+      phase_ = ShutdownPhase::PHASE_3;
+      phaseStart_ = now_;
+    }
+    if (phase_ == ShutdownPhase::PHASE_3) {
+      if (duty_ > 0.0) {
+        if (rampedThisTick) break;
+        duty_ = std::max(0.0, duty_ - p_.DutySlowRampRate * dtSec_);
+        rampedThisTick = true;
+      }
+      if (duty_ > 0.0) break;
+      phase_ = ShutdownPhase::PHASE_4;
+      phaseStart_ = now_;
+    }
+    if (phase_ == ShutdownPhase::PHASE_4) {
+      duty_ = 0.0;
+      if (now_ - phaseStart_ >= fromMs(p_.SettleTimeBeforeCut)) {
+        fieldCut_ = true;
+        phase_ = ShutdownPhase::PHASE_DONE;
+        push(ev, EventCode::CutAfterSettle, faultRamp ? EventLevel::Warning : EventLevel::Info, d.reason);
+        if (faultRamp && d.reason != Reason::REASON_TEMP_SUSTAINED) startLockout(ev);
+      }
+      break;
+    }
+    break;
+  }
+  c.dutyPct = duty_;
+  c.fieldEnable = !fieldCut_;
+  c.phase = phase_;
+  return c;
+}
+
+}  // namespace xr
