@@ -1,0 +1,171 @@
+#pragma once
+// FakeDaemonApi: a thread-safe stand-in for the runtime's DaemonApi, used by
+// the API tests, the fuzz target and the browser-test server. Telemetry is a
+// deterministic function of the sequence number; publish() advances it.
+#include <cmath>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "core/commands.h"
+#include "web/server/daemon_api.h"
+
+namespace xr::web::test {
+
+class FakeDaemonApi : public DaemonApi {
+ public:
+  FakeDaemonApi() {
+    for (int i = 1; i <= 250; ++i) {
+      EventRecord r;
+      r.id = i;
+      r.wall_time_s = 1.7e9 + i;
+      r.event.t = static_cast<TimeNs>(i) * 1'000'000'000;
+      r.event.code = i % 2 ? EventCode::StageChanged : EventCode::ProtectionTrip;
+      r.event.level = i % 2 ? EventLevel::Info : EventLevel::Warning;
+      r.event.reason = i % 2 ? Reason::NONE : Reason::REASON_TEMP_WARNING;
+      r.text = "event " + std::to_string(i);
+      events_.push_back(r);
+    }
+  }
+
+  // Publishes the next tick; values are a function of seq.
+  void publish() {
+    std::lock_guard lock(m_);
+    ++seq_;
+    const double k = static_cast<double>(seq_);
+    StatusSnapshot& s = snap_;
+    s.seq = seq_;
+    s.start = 0;
+    s.wall_time_s = 1.7e9 + k * 0.1;
+    auto& t = s.telemetry;
+    t.now = static_cast<TimeNs>(seq_) * 100'000'000;  // 0.1 s per tick
+    t.mode = FieldControlMode::MODE_NORMAL_AUTO_PID;
+    t.stage = ChargeStage::BULK;
+    t.reason = Reason::NONE;
+    t.battery_v = 13.2 + 0.4 * std::sin(k / 10.0);
+    t.ibv_v = t.battery_v + 0.01;
+    t.bcur_a = 40.0 + 10.0 * std::sin(k / 7.0);
+    t.alt_a = 55.0 + 15.0 * std::sin(k / 9.0);
+    t.rpm = 1800.0;
+    t.temp_f = 150.0 + k * 0.01;
+    t.duty_pct = 42.5;
+    t.field_enable = true;
+    t.setpoint_a = 60.0;
+    t.target_a = 60.0;
+    t.target_v = 14.5;
+    t.soc_pct = 55.0 + k * 0.001;
+    t.charged_wh_lifetime = 1234.5;
+    t.battery.SOC_percent = t.soc_pct;
+    t.battery.ChargeCycles = 12.3;
+    t.battery.timeToFullChargeMin = 95.0;
+    t.protection.lastTripReason = Reason::REASON_TEMP_WARNING;
+    t.control.sysMode = SysMode::SYS_MODE_AUTO;
+    s.loop.ticks = seq_ * 40;
+    s.loop.target_period_us = 2500;
+    s.loop.period_p99_us = 2510;
+    s.sim = SimTruth{t.battery_v, t.alt_a, t.temp_f, t.soc_pct, true, true};
+    s.extras = {{"tuning", "score", 0.8}, {"tuning", "cvScore", 0.6}};
+  }
+
+  bool latestStatus(StatusSnapshot& out) override {
+    std::lock_guard lock(m_);
+    if (seq_ == 0) return false;
+    out = snap_;
+    return true;
+  }
+  Params currentParams() override {
+    std::lock_guard lock(m_);
+    return current_;
+  }
+  Params fileParams() override {
+    std::lock_guard lock(m_);
+    return file_;
+  }
+  // Cross-field rule (like the real validation): FloatVoltage <= BulkVoltage.
+  PatchResult patchParams(const std::vector<ParamChange>& changes) override {
+    std::lock_guard lock(m_);
+    ++patchCalls_;
+    Params next = current_;
+    for (const auto& c : changes) c.spec->set(next, c.index < 0 ? 0 : static_cast<std::size_t>(c.index), c.value);
+    PatchResult r;
+    if (next.FloatVoltage > next.BulkVoltage) r.errors.push_back({"FloatVoltage", "must not exceed BulkVoltage"});
+    if (r.errors.empty()) current_ = next;
+    return r;
+  }
+  CommandResult command(const Command& cmd) override {
+    std::lock_guard lock(m_);
+    commands_.push_back(cmd);
+    if (refuseCommands_) return {false, "not legal now"};
+    return {true, "queued"};
+  }
+  std::vector<EventRecord> events(const EventQuery& q) override {
+    std::lock_guard lock(m_);
+    std::vector<EventRecord> out;
+    for (auto it = events_.rbegin(); it != events_.rend() && out.size() < q.limit; ++it)
+      if (!q.before || it->id < *q.before) out.push_back(*it);
+    return out;
+  }
+  HistoryResult history(const HistoryQuery& q) override {
+    HistoryResult r;
+    for (const auto& s : q.series)
+      if (s != "battery_v" && s != "alt_a" && s != "bcur_a" && s != "temp_f") {
+        r.error = "unknown series '" + s + "'";
+        return r;
+      }
+    for (double t = q.from_s; t < q.to_s; t += q.step_s) r.t.push_back(t);
+    for (const auto& s : q.series) {
+      std::vector<double> v;
+      for (double t : r.t) v.push_back(s == "battery_v" ? 13.0 + 0.5 * std::sin(t / 300.0) : 50.0 + 20.0 * std::sin(t / 200.0));
+      r.series.emplace_back(s, std::move(v));
+    }
+    std::lock_guard lock(m_);
+    lastHistory_ = q;
+    return r;
+  }
+  std::vector<ProbeResult> probeResults() override {
+    return {{"INA228 @0x40 on sim", true, "manufacturer 0x5449 device 0x228"},
+            {"ADS1115 @0x48 on sim", false, "no ACK"}};
+  }
+  VersionMap versions() override { return {{"xregulatord", "test"}, {"mode", "fake"}}; }
+  Health health() override {
+    std::lock_guard lock(m_);
+    return healthy_ ? Health{true, "control loop ticking"} : Health{false, "no tick for 5 s"};
+  }
+
+  // Test controls.
+  void setHealthy(bool h) {
+    std::lock_guard lock(m_);
+    healthy_ = h;
+  }
+  void setRefuseCommands(bool r) {
+    std::lock_guard lock(m_);
+    refuseCommands_ = r;
+  }
+  std::vector<Command> commands() {
+    std::lock_guard lock(m_);
+    return commands_;
+  }
+  int patchCalls() {
+    std::lock_guard lock(m_);
+    return patchCalls_;
+  }
+  HistoryQuery lastHistory() {
+    std::lock_guard lock(m_);
+    return lastHistory_;
+  }
+
+ private:
+  std::mutex m_;
+  std::uint64_t seq_ = 0;
+  StatusSnapshot snap_;
+  Params current_{};
+  Params file_{};
+  std::vector<Command> commands_;
+  std::vector<EventRecord> events_;
+  HistoryQuery lastHistory_;
+  int patchCalls_ = 0;
+  bool healthy_ = true;
+  bool refuseCommands_ = false;
+};
+
+}  // namespace xr::web::test

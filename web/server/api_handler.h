@@ -1,0 +1,65 @@
+#pragma once
+// ApiHandler: one HTTP request in, one response out. No sockets here, so the
+// API tests, the fuzz target and the Beast sessions share exactly this code.
+// Thread-safe: the server's Asio threads call handle() concurrently.
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include <boost/beast/http.hpp>
+
+#include "web/server/daemon_api.h"
+#include "web/server/web_server.h"
+
+namespace xr::web {
+
+namespace http = boost::beast::http;
+using Request = http::request<http::string_body>;
+using Response = http::response<http::string_body>;
+
+class ApiHandler {
+ public:
+  ApiHandler(DaemonApi& api, const WebServerOptions& opts, std::function<WebServerStats()> stats = {});
+
+  Response handle(const Request& req);
+
+  // The latest status serialised once per telemetry sequence number, shared by
+  // GET /api/status and every WebSocket client. nullptr before the first tick.
+  std::shared_ptr<const std::string> statusText(std::uint64_t* seqOut = nullptr);
+
+  // Authorisation for a read (GET, /ws): Ok when reads are open.
+  // Returns 0 when allowed, else 401/403.
+  unsigned checkRead(std::string_view authorization, std::string_view queryToken) const;
+
+ private:
+  Response route(const Request& req);
+  Response getStatus(const Request& req);
+  Response getParams(const Request& req);
+  Response patchParams(const Request& req);
+  Response postCommand(const Request& req);
+  Response getEvents(const Request& req, std::string_view query);
+  Response getHistory(const Request& req, std::string_view query);
+  Response getSystem(const Request& req);
+  Response getCommands(const Request& req);
+  Response getMetrics(const Request& req);
+  Response getHealth(const Request& req);
+  Response getStatic(const Request& req, std::string_view path);
+
+  DaemonApi& api_;
+  const WebServerOptions& opts_;
+  std::function<WebServerStats()> stats_;
+
+  std::mutex cacheMutex_;
+  std::uint64_t cachedSeq_ = 0;
+  std::shared_ptr<const std::string> cached_;
+};
+
+// Helpers shared with the server and the tests.
+std::string percentDecode(std::string_view s, bool* ok = nullptr);
+// Value of `key` in a query string "a=1&b=2" (decoded); nullopt when absent.
+std::optional<std::string> queryParam(std::string_view query, std::string_view key);
+
+}  // namespace xr::web

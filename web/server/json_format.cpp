@@ -1,0 +1,326 @@
+// Serialisation of the daemon's structs for the web API (see json_format.h).
+#include "web/server/json_format.h"
+
+#include <cmath>
+#include <cstdio>
+#include <type_traits>
+
+#include "core/modes.h"
+
+namespace xr::web {
+namespace json = boost::json;
+
+json::value number(double v) {
+  if (!std::isfinite(v)) return nullptr;
+  return v;
+}
+
+namespace {
+
+json::object controlToJson(const ControlTelemetry& c) {
+  json::object o;
+  o["sysMode"] = toString(c.sysMode);
+  o["govMode"] = toString(c.govMode);
+  o["I_cap"] = number(c.I_cap);
+  o["uTargetAmps"] = number(c.uTargetAmps);
+  o["setpointCommand"] = number(c.setpointCommand);
+  o["setpointLimited"] = number(c.setpointLimited);
+  o["pidInput"] = number(c.pidInput);
+  o["pidOutput"] = number(c.pidOutput);
+  o["innerTermP"] = number(c.innerTermP);
+  o["innerTermI"] = number(c.innerTermI);
+  o["innerTermD"] = number(c.innerTermD);
+  o["dutyRequest"] = number(c.dutyRequest);
+  o["lastAppliedDuty"] = number(c.lastAppliedDuty);
+  o["rpmMinDuty"] = number(c.rpmMinDuty);
+  o["voltageControlActive"] = c.voltageControlActive;
+  o["ChargingVoltageTarget"] = number(c.ChargingVoltageTarget);
+  o["voltageTargetSlewed"] = number(c.voltageTargetSlewed);
+  o["cv_I"] = number(c.cv_I);
+  o["Icv"] = number(c.Icv);
+  o["cv_I_track"] = number(c.cv_I_track);
+  o["cv_I_aw_cap"] = number(c.cv_I_aw_cap);
+  o["g_awState"] = c.g_awState;
+  o["cvDSlope"] = number(c.cvDSlope);
+  o["g_voltLoopActualIntervalMs"] = number(c.g_voltLoopActualIntervalMs);
+  o["tempFiltered"] = number(c.tempFiltered);
+  o["projectedTempF"] = number(c.projectedTempF);
+  o["thermalSlopeFPerSec"] = number(c.thermalSlopeFPerSec);
+  o["thermalPenaltyAmps"] = number(c.thermalPenaltyAmps);
+  o["MeasuredAmps"] = number(c.MeasuredAmps);
+  o["MeasuredAmps_filtered"] = number(c.MeasuredAmps_filtered);
+  o["g_pidI_filtered"] = number(c.g_pidI_filtered);
+  o["g_pidMA_N"] = number(c.g_pidMA_N);
+  o["IBV_filtered"] = number(c.IBV_filtered);
+  o["inStartupRamp"] = c.inStartupRamp;
+  return o;
+}
+
+json::object protectionToJson(const ProtectionTelemetry& p) {
+  json::object o;
+  o["shutdownPhase"] = toString(p.shutdownPhase);
+  o["nearBulk"] = p.nearBulk;
+  o["fastOvCurrentCap"] = number(p.fastOvCurrentCap);
+  o["fastOvClampActive"] = p.fastOvClampActive;
+  o["inaOvervoltageLatched"] = p.inaOvervoltageLatched;
+  o["lockoutActive"] = p.lockoutActive;
+  o["lockoutRemainingS"] = number(p.lockoutRemainingS);
+  o["tempTaskAlarm"] = p.tempTaskAlarm;
+  o["buzzer"] = p.buzzer;
+  o["lastTripReason"] = toString(p.lastTripReason);
+  o["lastTripTimeS"] = number(p.lastTripTimeS);
+  return o;
+}
+
+json::object batteryToJson(const BatteryTelemetry& b) {
+  json::object o;
+  o["SOC_percent"] = number(b.SOC_percent);
+  o["CoulombCount_Ah"] = number(b.CoulombCount_Ah);
+  o["batteryCurrentForSoC"] = number(b.batteryCurrentForSoC);
+  o["FullChargeDetected"] = b.FullChargeDetected;
+  o["ChargedEnergy_Wh"] = number(b.ChargedEnergy_Wh);
+  o["DischargedEnergy_Wh"] = number(b.DischargedEnergy_Wh);
+  o["AlternatorChargedEnergy_Wh"] = number(b.AlternatorChargedEnergy_Wh);
+  o["SolarChargedEnergy_Wh"] = number(b.SolarChargedEnergy_Wh);
+  o["AlternatorOnTime_s"] = number(b.AlternatorOnTime_s);
+  o["AlternatorFuelUsed_L"] = number(b.AlternatorFuelUsed_L);
+  o["ChargeCycles"] = number(b.ChargeCycles);
+  o["ChargeCycles_AllTime"] = number(b.ChargeCycles_AllTime);
+  o["AvgSOC"] = number(b.AvgSOC);
+  o["AvgSOC_AllTime"] = number(b.AvgSOC_AllTime);
+  o["AvgVoltage_AllTime"] = number(b.AvgVoltage_AllTime);
+  o["timeToFullChargeMin"] = number(b.timeToFullChargeMin);
+  o["timeToFullDischargeMin"] = number(b.timeToFullDischargeMin);
+  o["DynamicShuntGainFactor"] = number(b.DynamicShuntGainFactor);
+  o["DynamicAltCurrentZero"] = number(b.DynamicAltCurrentZero);
+  o["autoZeroActive"] = b.autoZeroActive;
+  return o;
+}
+
+json::object loopToJson(const LoopStats& l) {
+  json::object o;
+  o["ticks"] = l.ticks;
+  o["overruns"] = l.overruns;
+  o["target_period_us"] = number(l.target_period_us);
+  o["period_mean_us"] = number(l.period_mean_us);
+  o["period_p99_us"] = number(l.period_p99_us);
+  o["period_max_us"] = number(l.period_max_us);
+  o["exec_mean_us"] = number(l.exec_mean_us);
+  o["exec_p99_us"] = number(l.exec_p99_us);
+  o["exec_max_us"] = number(l.exec_max_us);
+  o["sensor_errors"] = l.sensor_errors;
+  return o;
+}
+
+// Flags are 0/1 as in the CSV (DESIGN.md: "Flags are 0/1").
+json::value columnToJson(const ColumnValue& v) {
+  if (const auto* d = std::get_if<double>(&v)) return number(*d);
+  if (const auto* b = std::get_if<bool>(&v)) return *b ? 1 : 0;
+  return json::string(std::get<std::string_view>(v));
+}
+
+std::string_view kindName(ParamKind k) { return toString(k); }
+
+json::value paramValue(const ParamSpec& spec, const Params& p) {
+  if (spec.kind == ParamKind::Table) {
+    json::array a;
+    for (std::size_t i = 0; i < RPM_TABLE_SIZE; ++i) a.push_back(number(spec.get(p, i)));
+    return a;
+  }
+  const double v = spec.get(p, 0);
+  if (spec.kind == ParamKind::Bool) return v != 0.0;
+  if (spec.kind == ParamKind::Int) return static_cast<std::int64_t>(std::llround(v));
+  return number(v);
+}
+
+json::value paramDefault(const ParamSpec& spec) {
+  if (spec.kind == ParamKind::Table) {
+    json::array a;
+    for (double v : spec.tableDefault) a.push_back(number(v));
+    return a;
+  }
+  if (spec.kind == ParamKind::Bool) return spec.defaultValue != 0.0;
+  if (spec.kind == ParamKind::Int) return static_cast<std::int64_t>(std::llround(spec.defaultValue));
+  return number(spec.defaultValue);
+}
+
+bool sameValue(const ParamSpec& spec, const Params& a, const Params& b) {
+  const std::size_t n = spec.kind == ParamKind::Table ? RPM_TABLE_SIZE : 1;
+  for (std::size_t i = 0; i < n; ++i)
+    if (spec.get(a, i) != spec.get(b, i)) return false;
+  return true;
+}
+
+std::string promName(std::string_view col) { return "xregulator_" + std::string(col); }
+
+void promLine(std::string& out, std::string_view name, std::string_view type, std::string_view help,
+              double v) {
+  char buf[64];
+  out += "# HELP ";
+  out += name;
+  out += ' ';
+  out += help;
+  out += "\n# TYPE ";
+  out += name;
+  out += ' ';
+  out += type;
+  out += '\n';
+  out += name;
+  out += ' ';
+  if (std::isnan(v))
+    out += "NaN";
+  else if (std::isinf(v))
+    out += v > 0 ? "+Inf" : "-Inf";
+  else {
+    std::snprintf(buf, sizeof buf, "%.17g", v);
+    out += buf;
+  }
+  out += '\n';
+}
+
+}  // namespace
+
+json::object statusToJson(const StatusSnapshot& s) {
+  json::object o;
+  visitTelemetryColumns(s.telemetry, s.start,
+                        [&](std::string_view name, const ColumnValue& v) { o[name] = columnToJson(v); });
+  if (s.sim) {
+    o["sim_battery_v"] = number(s.sim->battery_v);
+    o["sim_alt_a"] = number(s.sim->alt_a);
+    o["sim_alt_temp_f"] = number(s.sim->alt_temp_f);
+    o["sim_soc_pct"] = number(s.sim->soc_pct);
+    o["sim_bms_connected"] = s.sim->bms_connected ? 1 : 0;
+    o["sim_field_on"] = s.sim->field_on ? 1 : 0;
+  }
+  o["seq"] = s.seq;
+  o["wall_time_s"] = number(s.wall_time_s);
+  o["simulated"] = s.sim.has_value();
+  o["control"] = controlToJson(s.telemetry.control);
+  o["protection"] = protectionToJson(s.telemetry.protection);
+  o["battery"] = batteryToJson(s.telemetry.battery);
+  o["loop"] = loopToJson(s.loop);
+  for (const auto& e : s.extras) {
+    // Never let an extra replace a column or a core section.
+    if (o.contains(e.section) && !o.at(e.section).is_object()) continue;
+    auto& sec = o[e.section];
+    if (!sec.is_object()) sec = json::object();
+    sec.as_object()[e.name] = number(e.value);
+  }
+  return o;
+}
+
+std::string serializeStatus(const StatusSnapshot& s) { return json::serialize(statusToJson(s)); }
+
+json::object paramsToJson(const Params& current, const Params& file) {
+  const Params defaults{};
+  json::array list;
+  for (const auto& spec : catalogue()) {
+    json::object p;
+    p["name"] = spec.name;
+    p["group"] = toString(spec.group);
+    p["kind"] = kindName(spec.kind);
+    p["unit"] = spec.unit;
+    p["min"] = number(spec.min);
+    p["max"] = number(spec.max);
+    p["help"] = spec.help;
+    p["value"] = paramValue(spec, current);
+    p["default"] = paramDefault(spec);
+    p["file"] = paramValue(spec, file);
+    p["changed"] = !sameValue(spec, current, defaults);  // differs from the catalogue default
+    p["overridden"] = !sameValue(spec, current, file);   // differs from the config file (runtime override)
+    list.push_back(std::move(p));
+  }
+  json::array groups;
+  for (int g = 0; g <= static_cast<int>(ParamGroup::RpmTables); ++g)
+    groups.push_back(json::string(toString(static_cast<ParamGroup>(g))));
+  json::object o;
+  o["params"] = std::move(list);
+  o["groups"] = std::move(groups);
+  return o;
+}
+
+json::object eventToJson(const EventRecord& r) {
+  json::object o;
+  o["id"] = r.id;
+  o["wall_time_s"] = number(r.wall_time_s);
+  o["t_s"] = number(toSec(r.event.t));
+  o["level"] = toString(r.event.level);
+  o["code"] = toString(r.event.code);
+  o["reason"] = toString(r.event.reason);
+  o["mode"] = toString(r.event.mode);
+  o["a"] = number(r.event.a);
+  o["b"] = number(r.event.b);
+  o["detail"] = r.event.detail;
+  o["text"] = r.text;
+  return o;
+}
+
+json::object historyToJson(const HistoryResult& h) {
+  json::object o;
+  json::array t;
+  for (double v : h.t) t.push_back(number(v));
+  o["t"] = std::move(t);
+  json::object series;
+  for (const auto& [name, values] : h.series) {
+    json::array a;
+    for (double v : values) a.push_back(number(v));
+    series[name] = std::move(a);
+  }
+  o["series"] = std::move(series);
+  return o;
+}
+
+std::string metricsText(const StatusSnapshot* s, const WebServerStats& st) {
+  std::string out;
+  out.reserve(8192);
+  if (s) {
+    visitTelemetryColumns(s->telemetry, s->start, [&](std::string_view name, const ColumnValue& v) {
+      if (const auto* d = std::get_if<double>(&v))
+        promLine(out, promName(name), "gauge", "DESIGN.md telemetry column " + std::string(name), *d);
+      else if (const auto* b = std::get_if<bool>(&v))
+        promLine(out, promName(name), "gauge", "DESIGN.md telemetry flag " + std::string(name),
+                 *b ? 1.0 : 0.0);
+    });
+    // Names (mode, stage, reason) as info-style label sets.
+    for (auto [metric, label] : {std::pair{"xregulator_mode_info", toString(s->telemetry.mode)},
+                                 std::pair{"xregulator_stage_info", toString(s->telemetry.stage)},
+                                 std::pair{"xregulator_reason_info", toString(s->telemetry.reason)}}) {
+      out += "# TYPE ";
+      out += metric;
+      out += " gauge\n";
+      out += metric;
+      out += "{value=\"";
+      out += label;
+      out += "\"} 1\n";
+    }
+    const auto& l = s->loop;
+    promLine(out, "xregulator_loop_ticks_total", "counter", "Control ticks since start",
+             static_cast<double>(l.ticks));
+    promLine(out, "xregulator_loop_overruns_total", "counter", "Control ticks that overran their period",
+             static_cast<double>(l.overruns));
+    promLine(out, "xregulator_loop_period_p99_us", "gauge", "Control period p99 (us)", l.period_p99_us);
+    promLine(out, "xregulator_loop_period_max_us", "gauge", "Control period max (us)", l.period_max_us);
+    promLine(out, "xregulator_loop_exec_p99_us", "gauge", "Control tick execution p99 (us)", l.exec_p99_us);
+    promLine(out, "xregulator_sensor_errors_total", "counter", "Failed sensor reads",
+             static_cast<double>(l.sensor_errors));
+    promLine(out, "xregulator_telemetry_seq", "counter", "Telemetry sequence number",
+             static_cast<double>(s->seq));
+  }
+  promLine(out, "xregulator_http_requests_total", "counter", "HTTP requests served",
+           static_cast<double>(st.http_requests));
+  promLine(out, "xregulator_http_errors_total", "counter", "HTTP 4xx/5xx responses",
+           static_cast<double>(st.http_errors));
+  promLine(out, "xregulator_ws_clients", "gauge", "WebSocket clients connected",
+           static_cast<double>(st.ws_clients));
+  promLine(out, "xregulator_ws_frames_sent_total", "counter", "WebSocket telemetry frames sent",
+           static_cast<double>(st.ws_frames_sent));
+  promLine(out, "xregulator_ws_frames_dropped_total", "counter",
+           "WebSocket frames replaced by a newer one for a slow client",
+           static_cast<double>(st.ws_frames_dropped));
+  promLine(out, "xregulator_connections", "gauge", "Open connections", static_cast<double>(st.connections));
+  promLine(out, "xregulator_connections_refused_total", "counter", "Connections refused over the cap",
+           static_cast<double>(st.connections_refused));
+  return out;
+}
+
+}  // namespace xr::web

@@ -1,0 +1,34 @@
+#pragma once
+// JSON (Boost.JSON) and Prometheus text for the web API. Pure functions of the
+// daemon's plain structs: the same status text goes to GET /api/status and to
+// every WebSocket client (serialised once per tick).
+#include <string>
+#include <vector>
+
+#include <boost/json.hpp>
+
+#include "web/server/daemon_api.h"
+#include "web/server/web_server.h"
+
+namespace xr::web {
+
+// /api/status and the /ws frames: every DESIGN.md CSV column at the top level
+// (visitTelemetryColumns, plus sim_* in simulation), then "control",
+// "protection", "battery", "loop", "seq", "wall_time_s" and the extras' sections.
+boost::json::object statusToJson(const StatusSnapshot& s);
+std::string serializeStatus(const StatusSnapshot& s);
+
+// /api/params: {"params":[{name, group, kind, unit, min, max, help, value,
+// default, file, changed, overridden}...], "groups":[...]}.
+boost::json::object paramsToJson(const Params& current, const Params& file);
+
+boost::json::object eventToJson(const EventRecord& e);
+boost::json::object historyToJson(const HistoryResult& h);
+
+// Prometheus text exposition format 0.0.4.
+std::string metricsText(const StatusSnapshot* s, const WebServerStats& stats);
+
+// A finite number, or null (JSON has no NaN/Inf).
+boost::json::value number(double v);
+
+}  // namespace xr::web
