@@ -1,0 +1,65 @@
+#pragma once
+// TI ADS1115 register-level model from datasheet-facts.md §2 (TI SBAS444):
+// Config register (OS, MUX, PGA, MODE, DR, COMP_MODE/POL/LAT/QUE), one data
+// period per conversion at the chosen data rate (scaled by the internal
+// oscillator's tolerance, `clockScale`), single-shot and continuous modes,
+// "a config change takes effect after the conversion in progress", results
+// clipped at the ±FS codes 0x7FFF/0x8000, the digital comparator (traditional
+// and window, queue, latch) and ALERT/RDY as a conversion-ready pin when
+// Hi_thresh MSB = 1 and Lo_thresh MSB = 0.
+// Refused (NACK + protocolErrors): pointer bits 7:2 set, a write to the
+// Conversion register, a write of the wrong length, a read longer than 2.
+#include <array>
+#include <cstdint>
+
+#include "drivers/sim/sim_i2c_device.h"
+
+namespace xr::sim {
+
+namespace ads1115 {
+inline constexpr int kDataRateSps[8] = {8, 16, 32, 64, 128, 250, 475, 860};
+inline constexpr double kFsrVolts[8] = {6.144, 4.096, 2.048, 1.024, 0.512, 0.256, 0.256, 0.256};
+}  // namespace ads1115
+
+class Ads1115Model final : public SimI2cDevice {
+ public:
+  explicit Ads1115Model(double clockScale = 1.0);
+
+  // Input pin voltages AIN0..AIN3 (to GND), set by the plant before update().
+  void setInputs(const std::array<double, 4>& ain) noexcept { ain_ = ain; }
+  void update(TimeNs t) noexcept override;
+  int write(const std::uint8_t* buf, std::size_t len) noexcept override;
+  int read(std::uint8_t* buf, std::size_t len) noexcept override;
+
+  // ALERT/RDY pin: true while driven active (low with COMP_POL = 0).
+  bool alertActive() const noexcept { return alert_; }
+  std::uint16_t peekConfig() const noexcept;
+  std::int16_t peekConversion() const noexcept { return conversion_; }
+  std::uint64_t conversions() const noexcept { return conversions_; }
+  std::uint64_t readyPulses() const noexcept { return readyPulses_; }
+  bool converting() const noexcept { return converting_; }
+  // Data period of a data-rate code under this chip's oscillator.
+  TimeNs period(int dr) const noexcept;
+
+ private:
+  void startConversion(TimeNs at) noexcept;
+  void finishConversion() noexcept;
+  bool readyMode() const noexcept { return (hiThresh_ & 0x8000) && !(loThresh_ & 0x8000); }
+  std::int16_t sample(std::uint16_t cfg) const noexcept;
+
+  std::array<double, 4> ain_{};
+  double clockScale_;
+  TimeNs now_ = 0;
+  std::uint8_t ptr_ = 0;
+  std::uint16_t config_ = 0x8583;  // reset value (OS bit read back as "idle")
+  std::int16_t conversion_ = 0;
+  std::uint16_t loThresh_ = 0x8000, hiThresh_ = 0x7FFF;
+  bool converting_ = false;
+  std::uint16_t convConfig_ = 0;  // settings latched when the conversion started
+  TimeNs convEnd_ = 0;
+  bool alert_ = false;
+  int queueCount_ = 0;
+  std::uint64_t conversions_ = 0, readyPulses_ = 0;
+};
+
+}  // namespace xr::sim

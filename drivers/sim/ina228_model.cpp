@@ -1,0 +1,326 @@
+#include "drivers/sim/ina228_model.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+
+namespace xr::sim {
+namespace ina228 {
+int regSize(std::uint8_t reg) noexcept {
+  switch (reg) {
+    case CONFIG: case ADC_CONFIG: case SHUNT_CAL: case SHUNT_TEMPCO: case DIETEMP: case DIAG_ALRT:
+    case SOVL: case SUVL: case BOVL: case BUVL: case TEMP_LIMIT: case PWR_LIMIT: case MANUFACTURER_ID:
+    case DEVICE_ID:
+      return 2;
+    case VSHUNT: case VBUS: case CURRENT: case POWER:
+      return 3;
+    case ENERGY: case CHARGE:
+      return 5;
+    default:
+      return 0;
+  }
+}
+}  // namespace ina228
+
+using namespace ina228;
+
+namespace {
+constexpr std::int32_t kMax20 = (1 << 19) - 1;
+constexpr std::int32_t kMin20 = -(1 << 19);
+constexpr double kVbusLsb = 195.3125e-6;      // V
+constexpr double kTempLsb = 7.8125e-3;        // °C
+constexpr std::uint64_t kMask40 = (std::uint64_t{1} << 40) - 1;
+
+std::int32_t quantise20(double v, double lsb) {
+  const double c = std::nearbyint(v / lsb);
+  if (!(c == c)) return 0;  // NaN input: the ADC reads 0
+  return static_cast<std::int32_t>(std::clamp(c, double(kMin20), double(kMax20)));
+}
+bool isReadOnly(std::uint8_t reg) {
+  return (reg >= VSHUNT && reg <= CHARGE) || reg == MANUFACTURER_ID || reg == DEVICE_ID;
+}
+}  // namespace
+
+Ina228Model::Ina228Model() { reset(); }
+
+void Ina228Model::reset() noexcept {
+  config_ = 0x0000;
+  adcConfig_ = 0xFB68;
+  shuntCal_ = 0x1000;
+  tempco_ = 0;
+  vshunt_ = vbus_ = current_ = 0;
+  dietemp_ = 0;
+  power_ = 0;
+  energy_ = 0;
+  charge_ = 0;
+  energyFrac_ = chargeFrac_ = 0.0;
+  diag_ = MEMSTAT;
+  sovl_ = 0x7FFF;
+  suvl_ = 0x8000;
+  bovl_ = 0x7FFF;
+  buvl_ = 0x0000;
+  tempLimit_ = 0x7FFF;
+  pwrLimit_ = 0xFFFF;
+  limitActive_ = false;
+  ptr_ = 0;
+  restartConversions();  // power-on default is continuous bus + shunt + temperature
+}
+
+TimeNs Ina228Model::sampleTime() const noexcept {
+  TimeNs us = 0;
+  if (busActive()) us += kConvTimeUs[(adcConfig_ >> 9) & 7];
+  if (shuntActive()) us += kConvTimeUs[(adcConfig_ >> 6) & 7];
+  if (tempActive()) us += kConvTimeUs[(adcConfig_ >> 3) & 7];
+  return fromUs(us);
+}
+
+TimeNs Ina228Model::updatePeriod() const noexcept {
+  const int m = mode();
+  if (m == 0 || m == 8) return 0;
+  return sampleTime() * kAvgSamples[adcConfig_ & 7];
+}
+
+void Ina228Model::restartConversions() noexcept {
+  // Writing ADC_CONFIG restarts the conversion (E2E228); CONVDLY delays the
+  // first one in 2 ms steps.
+  const int m = mode();
+  samplesInWindow_ = 0;
+  sumVsh_ = sumVbus_ = sumTemp_ = 0.0;
+  if (m == 0 || m == 8) {
+    running_ = false;
+    return;
+  }
+  if (!continuous()) diag_ &= ~CNVRF;  // a new triggered conversion clears CNVRF
+  running_ = true;
+  const TimeNs delay = fromMs(2 * ((config_ >> 6) & 0xFF));
+  nextSample_ = now_ + delay + sampleTime();
+}
+
+void Ina228Model::update(TimeNs t) noexcept {
+  if (t <= now_) return;
+  // The analog inputs are constant between two updates (the plant changes
+  // them only between steps), so every raw sample in [now_, t] sees the same
+  // values: batch them instead of looping per sample.
+  while (running_ && nextSample_ <= t) {
+    const TimeNs st = sampleTime();
+    const int avg = kAvgSamples[adcConfig_ & 7];
+    const std::int64_t due = (t - nextSample_) / st + 1;
+    const std::int64_t k = std::min<std::int64_t>(due, avg - samplesInWindow_);
+    now_ = nextSample_ + (k - 1) * st;
+    const double vshLsb = (config_ & 0x10) ? 78.125e-9 : 312.5e-9;
+    const std::int32_t vsh = quantise20(analog_.vshunt_v, vshLsb);
+    const std::int32_t vb = quantise20(analog_.vbus_v, kVbusLsb);
+    const double tc = std::nearbyint(analog_.dietemp_c / kTempLsb);
+    const std::int32_t tcode = static_cast<std::int32_t>(std::clamp(tc == tc ? tc : 0.0, -32768.0, 32767.0));
+    sumVsh_ += double(vsh) * k;
+    sumVbus_ += double(vb) * k;
+    sumTemp_ += double(tcode) * k;
+    samplesInWindow_ += int(k);
+    nextSample_ += k * st;
+    if (!(diag_ & SLOWALERT)) {
+      // Limits against each raw result (SLOWALERT = 0).
+      const double curCode = shuntCal_ ? double(vsh) * 4096.0 / shuntCal_ : 0.0;
+      const double pw = std::fabs(curCode) * double(vb) / 16384.0;
+      compareLimits(vsh, vb, tcode, static_cast<std::uint32_t>(std::min(pw, double(0xFFFFFF))));
+    }
+    if (samplesInWindow_ >= avg) {
+      publish(toSec(st * avg));
+      if (!continuous()) running_ = false;  // triggered: one conversion, then shutdown
+    }
+  }
+  now_ = t;
+}
+
+void Ina228Model::publish(double dt) noexcept {
+  const int n = samplesInWindow_;
+  samplesInWindow_ = 0;
+  diag_ &= ~MATHOF;
+  if (shuntActive()) vshunt_ = static_cast<std::int32_t>(std::nearbyint(sumVsh_ / n));
+  if (busActive()) vbus_ = static_cast<std::int32_t>(std::nearbyint(sumVbus_ / n));
+  if (tempActive()) dietemp_ = static_cast<std::int16_t>(std::nearbyint(sumTemp_ / n));
+  sumVsh_ = sumVbus_ = sumTemp_ = 0.0;
+  ++conversions_;
+
+  // CURRENT = VSHUNT x SHUNT_CAL arithmetic: with SHUNT_CAL = 13107.2e6 x
+  // CURRENT_LSB x R (x4 at ADCRANGE=1) the code is VSHUNT_code x 4096 / SHUNT_CAL
+  // in both ranges. SHUNT_CAL = 0 reads CURRENT/POWER/ENERGY/CHARGE as 0.
+  double cur = 0.0;
+  if (shuntCal_ != 0) {
+    cur = double(vshunt_) * 4096.0 / shuntCal_;
+    if (config_ & 0x20) {
+      // TEMPCOMP: R_adj = R (1 + (DIETEMP - 25) x TEMPCO / 1e6).
+      const double dieC = dietemp_ * kTempLsb;
+      cur /= 1.0 + (dieC - 25.0) * double(tempco_) * 1e-6;
+    }
+  }
+  double curQ = std::nearbyint(cur);
+  if (curQ > kMax20 || curQ < kMin20) {
+    diag_ |= MATHOF;
+    curQ = std::clamp(curQ, double(kMin20), double(kMax20));
+  }
+  current_ = static_cast<std::int32_t>(curQ);
+  // POWER = |I| x VBUS / 3.2 in power LSBs = CURRENT_code x VBUS_code / 16384.
+  double pw = std::fabs(double(current_)) * double(vbus_) / 16384.0;
+  if (pw > double(0xFFFFFF)) {
+    diag_ |= MATHOF;
+    pw = double(0xFFFFFF);
+  }
+  power_ = shuntCal_ ? static_cast<std::uint32_t>(std::max(0.0, std::nearbyint(pw))) : 0;
+  // ENERGY LSB = 16 x power LSB; CHARGE LSB = CURRENT_LSB (per second).
+  if (shuntCal_) {
+    energyFrac_ += double(power_) * dt / 16.0;
+    const double eInc = std::floor(energyFrac_);
+    energyFrac_ -= eInc;
+    energy_ += static_cast<std::uint64_t>(eInc);
+    if (energy_ > kMask40) {
+      energy_ &= kMask40;
+      diag_ |= ENERGYOF;
+    }
+    chargeFrac_ += double(current_) * dt;
+    const double qInc = std::trunc(chargeFrac_);
+    chargeFrac_ -= qInc;
+    charge_ += static_cast<std::int64_t>(qInc);
+    const std::int64_t lim = std::int64_t{1} << 39;
+    if (charge_ >= lim || charge_ < -lim) {
+      charge_ = 0;  // rolls over to 0 and flags it (datasheet-facts 1.4)
+      diag_ |= CHARGEOF;
+    }
+  }
+  diag_ |= CNVRF;
+  if (diag_ & SLOWALERT) compareLimits(vshunt_, vbus_, dietemp_, power_);
+}
+
+void Ina228Model::compareLimits(std::int32_t vsh, std::int32_t vb, std::int32_t tcode,
+                                std::uint32_t pw) noexcept {
+  std::uint16_t cond = 0;
+  if (tempActive() && tcode > std::int16_t(tempLimit_)) cond |= TMPOL;
+  if (shuntActive() && vsh > std::int32_t(std::int16_t(sovl_)) * 16) cond |= SHNTOL;
+  if (shuntActive() && vsh < std::int32_t(std::int16_t(suvl_)) * 16) cond |= SHNTUL;
+  if (busActive() && vb > std::int32_t(bovl_ & 0x7FFF) * 16) cond |= BUSOL;
+  if (busActive() && vb < std::int32_t(buvl_ & 0x7FFF) * 16) cond |= BUSUL;
+  if (shuntActive() && busActive() && shuntCal_ && (pw >> 8) > pwrLimit_) cond |= POL;
+  if (diag_ & ALATCH) {
+    diag_ |= cond;
+  } else {
+    // Transparent: the flags follow the comparison of the channels measured.
+    std::uint16_t measured = 0;
+    if (tempActive()) measured |= TMPOL;
+    if (shuntActive()) measured |= SHNTOL | SHNTUL;
+    if (busActive()) measured |= BUSOL | BUSUL;
+    if (shuntActive() && busActive()) measured |= POL;
+    diag_ = static_cast<std::uint16_t>((diag_ & ~measured) | cond);
+  }
+  limitActive_ = (diag_ & kLimitFlags) != 0;
+}
+
+bool Ina228Model::alertActive() const noexcept {
+  if (diag_ & kLimitFlags) return true;
+  return (diag_ & CNVR) && (diag_ & CNVRF);
+}
+
+std::uint64_t Ina228Model::peek(std::uint8_t reg) const noexcept {
+  auto r20 = [](std::int32_t c) { return std::uint64_t(std::uint32_t(c) & 0xFFFFF) << 4; };
+  switch (reg) {
+    case CONFIG: return config_;
+    case ADC_CONFIG: return adcConfig_;
+    case SHUNT_CAL: return shuntCal_;
+    case SHUNT_TEMPCO: return tempco_;
+    case VSHUNT: return r20(vshunt_);
+    case VBUS: return r20(vbus_);
+    case DIETEMP: return std::uint16_t(dietemp_);
+    case CURRENT: return r20(current_);
+    case POWER: return power_;
+    case ENERGY: return energy_ & kMask40;
+    case CHARGE: return std::uint64_t(charge_) & kMask40;
+    case DIAG_ALRT: return diag_;
+    case SOVL: return sovl_;
+    case SUVL: return suvl_;
+    case BOVL: return bovl_;
+    case BUVL: return buvl_;
+    case TEMP_LIMIT: return tempLimit_;
+    case PWR_LIMIT: return pwrLimit_;
+    case MANUFACTURER_ID: return 0x5449;
+    case DEVICE_ID: return 0x2281;
+    default: return 0;
+  }
+}
+
+int Ina228Model::read(std::uint8_t* buf, std::size_t len) noexcept {
+  const int size = regSize(ptr_);
+  if (len == 0 || size == 0 || len > std::size_t(size)) {
+    ++protocolErrors_;
+    return EREMOTEIO;
+  }
+  const std::uint64_t v = peek(ptr_);
+  for (std::size_t i = 0; i < len; ++i) buf[i] = std::uint8_t(v >> (8 * (size - 1 - int(i))));
+  // Read side effects.
+  if (ptr_ == DIAG_ALRT) {
+    // Latched flags and CNVRF clear on a read of DIAG_ALRT.
+    if (diag_ & ALATCH) diag_ &= ~kLimitFlags;
+    diag_ &= ~CNVRF;
+  } else if (ptr_ == ENERGY) {
+    diag_ &= ~ENERGYOF;
+  } else if (ptr_ == CHARGE) {
+    diag_ &= ~CHARGEOF;
+  }
+  return 0;
+}
+
+int Ina228Model::write(const std::uint8_t* buf, std::size_t len) noexcept {
+  if (len == 0) {
+    ++protocolErrors_;
+    return EREMOTEIO;
+  }
+  const std::uint8_t reg = buf[0];
+  const int size = regSize(reg);
+  if (size == 0) {  // reserved pointer: not acknowledged
+    ++protocolErrors_;
+    return EREMOTEIO;
+  }
+  if (len == 1) {  // pointer only (a read follows)
+    ptr_ = reg;
+    return 0;
+  }
+  if (isReadOnly(reg) || len != std::size_t(1 + size)) {
+    ++protocolErrors_;
+    return EREMOTEIO;
+  }
+  ptr_ = reg;
+  const std::uint16_t v = static_cast<std::uint16_t>((buf[1] << 8) | buf[2]);
+  switch (reg) {
+    case CONFIG:
+      if (v & 0x8000) {  // RST: same as power-on, bit clears itself
+        reset();
+        return 0;
+      }
+      if (v & 0x4000) {  // RSTACC
+        energy_ = 0;
+        charge_ = 0;
+        energyFrac_ = chargeFrac_ = 0.0;
+        diag_ &= ~(ENERGYOF | CHARGEOF | MATHOF);
+      }
+      config_ = v & 0x3FF0;  // RST/RSTACC self-clear; bits 3:0 reserved
+      break;
+    case ADC_CONFIG:
+      adcConfig_ = v;
+      restartConversions();
+      break;
+    case SHUNT_CAL: shuntCal_ = v & 0x7FFF; break;
+    case SHUNT_TEMPCO: tempco_ = v & 0x3FFF; break;
+    case DIAG_ALRT:
+      // Only the four control bits are writable; the rest are status.
+      diag_ = static_cast<std::uint16_t>((diag_ & 0x0FFF) | (v & 0xF000));
+      limitActive_ = (diag_ & kLimitFlags) != 0;
+      break;
+    case SOVL: sovl_ = v; break;
+    case SUVL: suvl_ = v; break;
+    case BOVL: bovl_ = v & 0x7FFF; break;
+    case BUVL: buvl_ = v & 0x7FFF; break;
+    case TEMP_LIMIT: tempLimit_ = v; break;
+    case PWR_LIMIT: pwrLimit_ = v; break;
+    default: break;
+  }
+  return 0;
+}
+
+}  // namespace xr::sim

@@ -1,0 +1,48 @@
+#pragma once
+// Battery by chemistry: OCV(SoC) curve, series resistance, one RC
+// polarisation branch, capacity, coulombic efficiency, a charge-acceptance
+// overpotential near full for lead chemistries, and LiFePO4's flat plateau
+// with its steep knee at both ends. Curves are for a 12 V bank and scale
+// linearly with nominal_v (24/48 V banks).
+#include <optional>
+#include <string_view>
+
+namespace xr::sim {
+
+enum class Chemistry { lifepo4, agm, flooded, gel };
+std::string_view toString(Chemistry c);
+std::optional<Chemistry> parseChemistry(std::string_view name);
+
+struct BatteryConfig {
+  Chemistry chemistry = Chemistry::lifepo4;
+  double capacity_ah = 400.0;
+  double soc_pct = 50.0;
+  double nominal_v = 12.0;
+  double r_ohm = 0.0;  // series resistance; 0 = typical for chemistry and capacity
+};
+
+class BatteryModel {
+ public:
+  explicit BatteryModel(const BatteryConfig& c);
+  // Terminal voltage while `amps` flow into the battery (+ = charging).
+  double terminalVolts(double amps) const noexcept;
+  // Advance by dt with `amps` into the battery.
+  void step(double amps, double dt) noexcept;
+  double socPct() const noexcept { return soc_ * 100.0; }
+  void setSocPct(double p) noexcept;
+  double ocv() const noexcept;
+  double seriesR() const noexcept { return r_; }
+  const BatteryConfig& config() const noexcept { return cfg_; }
+
+ private:
+  double chargeOverpotential(double amps) const noexcept;
+  BatteryConfig cfg_;
+  double soc_;      // 0..1
+  double r_;        // series resistance, ohm
+  double r1_;       // polarisation resistance, ohm
+  double tau1_;     // polarisation time constant, s
+  double vrc_ = 0;  // polarisation voltage, V
+  double eff_;      // coulombic efficiency when charging
+};
+
+}  // namespace xr::sim

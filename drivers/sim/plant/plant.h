@@ -1,0 +1,71 @@
+#pragma once
+// The physical system on the DC bus: alternator (current source through its
+// cable), battery (behind a BMS contactor), house loads (resistive at the
+// nominal voltage), bus capacitance and a TVS clamp. When the BMS opens, only
+// the bus capacitance and the house load remain, so the alternator current
+// drives a fast rise that the TVS clamps; the peak is recorded.
+#include "drivers/sim/plant/alternator.h"
+#include "drivers/sim/plant/battery.h"
+
+namespace xr::sim {
+
+struct PlantConfig {
+  BatteryConfig battery;
+  AlternatorConfig alternator;
+  double rpm = 1800.0;           // engine RPM
+  double house_a = 15.0;         // house load at the nominal voltage
+  double bus_capacitance_f = 0.01;
+  double tvs_clamp_v = 0.0;      // 0 = 2.5 x nominal (30 V on a 12 V bus)
+};
+
+struct PlantTruth {
+  double battery_v = 0.0;     // bus voltage at the battery terminals
+  double battery_a = 0.0;     // into the battery (+ = charging)
+  double alt_a = 0.0;
+  double alt_terminal_v = 0.0;
+  double alt_temp_f = 0.0;
+  double house_a = 0.0;
+  double soc_pct = 0.0;
+  double field = 0.0;         // field current fraction 0..1
+  bool bms_connected = true;
+  double peak_bus_v = 0.0;    // highest bus voltage so far
+  double peak_disconnected_v = 0.0;  // highest bus voltage while the BMS was open
+};
+
+class Plant {
+ public:
+  explicit Plant(const PlantConfig& c);
+  // Advance by dt with the field command (duty 0..1 x effective enable).
+  // Sub-steps itself while the battery is off the bus (fast dynamics).
+  void step(double fieldCmd, double dt) noexcept;
+  const PlantTruth& truth() const noexcept { return truth_; }
+
+  void setRpm(double rpm) noexcept { rpm_ = rpm; }
+  double rpm() const noexcept { return rpm_; }
+  void setHouseAmps(double a) noexcept;
+  void setAmbientF(double f) noexcept { ambientF_ = f; }
+  double ambientF() const noexcept { return ambientF_; }
+  void setBmsConnected(bool c) noexcept;
+  void setFieldOpen(bool open) noexcept { alt_.setOpen(open); }
+  void setSocPct(double p) noexcept { bat_.setSocPct(p); }
+  double tvsClampV() const noexcept { return tvs_; }
+  const BatteryModel& battery() const noexcept { return bat_; }
+  const AlternatorModel& alternator() const noexcept { return alt_; }
+
+ private:
+  void subStep(double fieldCmd, double dt) noexcept;
+  void refreshTruth() noexcept;
+  PlantConfig cfg_;
+  BatteryModel bat_;
+  AlternatorModel alt_;
+  double rpm_;
+  double ambientF_;
+  double houseR_;  // ohm; infinity when no load
+  double tvs_;
+  bool bmsConnected_ = true;
+  double busV_;
+  double batA_ = 0.0;
+  PlantTruth truth_;
+};
+
+}  // namespace xr::sim

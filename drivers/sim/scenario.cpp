@@ -1,0 +1,375 @@
+#include "drivers/sim/scenario.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <toml++/toml.h>
+
+namespace xr::sim {
+namespace {
+
+struct Ctx {
+  std::string src;
+  [[noreturn]] void fail(int line, const std::string& msg) const {
+    throw ScenarioError(src + ":" + std::to_string(line) + ": " + msg);
+  }
+};
+
+int lineOf(const toml::node& n) { return int(n.source().begin.line); }
+int lineOf(const toml::key& k) { return int(k.source().begin.line); }
+
+double number(const Ctx& c, const toml::key& k, const toml::node& v, double lo, double hi) {
+  std::optional<double> d;
+  if (v.is_integer() || v.is_floating_point()) d = v.value<double>();
+  if (!d) c.fail(lineOf(v), "'" + std::string(k.str()) + "' must be a number");
+  if (!std::isfinite(*d) || *d < lo || *d > hi) {
+    std::ostringstream m;
+    m << "'" << k.str() << "' = " << *d << " is out of range [" << lo << ", " << hi << "]";
+    c.fail(lineOf(v), m.str());
+  }
+  return *d;
+}
+
+std::string text(const Ctx& c, const toml::key& k, const toml::node& v) {
+  if (!v.is_string()) c.fail(lineOf(v), "'" + std::string(k.str()) + "' must be a string");
+  return *v.value<std::string>();
+}
+
+const toml::table& tableOf(const Ctx& c, const toml::key& k, const toml::node& v) {
+  if (!v.is_table()) c.fail(lineOf(v), "'" + std::string(k.str()) + "' must be a table");
+  return *v.as_table();
+}
+
+[[noreturn]] void unknownKey(const Ctx& c, const toml::key& k, std::string_view where) {
+  c.fail(lineOf(k), "unknown key '" + std::string(k.str()) + "'" + (where.empty() ? "" : " in " + std::string(where)));
+}
+
+// Parameter overrides: [config] and set = { ... }.
+ParamOverride paramOverride(const Ctx& c, const toml::key& k, const toml::node& v) {
+  ParamOverride o;
+  o.name = std::string(k.str());
+  o.line = lineOf(k);
+  const ParamSpec* spec = findParam(o.name);
+  if (!spec) c.fail(o.line, "unknown parameter '" + o.name + "'");
+  auto one = [&](const toml::node& n) {
+    double d;
+    if (n.is_boolean())
+      d = *n.value<bool>() ? 1.0 : 0.0;
+    else if (n.is_integer() || n.is_floating_point())
+      d = *n.value<double>();
+    else
+      c.fail(lineOf(n), "parameter '" + o.name + "' needs a number");
+    if (!valueFits(*spec, d)) {
+      std::ostringstream m;
+      m << "parameter '" << o.name << "' = " << d << " is out of range [" << spec->min << ", " << spec->max << "]";
+      if (spec->kind == ParamKind::Int || spec->kind == ParamKind::Bool) m << " or not a whole number";
+      c.fail(lineOf(n), m.str());
+    }
+    o.values.push_back(d);
+  };
+  if (spec->kind == ParamKind::Table) {
+    const toml::array* a = v.as_array();
+    if (!a || a->size() != RPM_TABLE_SIZE)
+      c.fail(lineOf(v), "parameter '" + o.name + "' needs an array of " + std::to_string(RPM_TABLE_SIZE) + " numbers");
+    for (const auto& n : *a) one(n);
+  } else {
+    one(v);
+  }
+  return o;
+}
+
+void parseBattery(const Ctx& c, const toml::table& t, BatteryConfig& b) {
+  for (auto&& [k, v] : t) {
+    const auto n = k.str();
+    if (n == "chemistry") {
+      const auto s = text(c, k, v);
+      const auto ch = parseChemistry(s);
+      if (!ch) c.fail(lineOf(v), "unknown chemistry '" + s + "' (lifepo4 | agm | flooded | gel)");
+      b.chemistry = *ch;
+    } else if (n == "capacity_ah") {
+      b.capacity_ah = number(c, k, v, 1.0, 100000.0);
+    } else if (n == "soc_pct") {
+      b.soc_pct = number(c, k, v, 0.0, 100.0);
+    } else if (n == "nominal_v") {
+      b.nominal_v = number(c, k, v, 6.0, 64.0);
+    } else if (n == "r_ohm") {
+      b.r_ohm = number(c, k, v, 0.0, 1.0);
+    } else {
+      unknownKey(c, k, "[battery]");
+    }
+  }
+}
+
+void parseAlternator(const Ctx& c, const toml::table& t, AlternatorConfig& a) {
+  struct F {
+    std::string_view name;
+    double AlternatorConfig::*field;
+    double lo, hi;
+  };
+  static const F fields[] = {
+      {"rated_a", &AlternatorConfig::rated_a, 1.0, 1000.0},
+      {"field_tau_s", &AlternatorConfig::field_tau_s, 0.001, 10.0},
+      {"temp_f", &AlternatorConfig::temp_f, -40.0, 400.0},
+      {"ambient_f", &AlternatorConfig::ambient_f, -40.0, 200.0},
+      {"pulley_ratio", &AlternatorConfig::pulley_ratio, 0.5, 10.0},
+      {"cut_in_rpm", &AlternatorConfig::cut_in_rpm, 0.0, 5000.0},
+      {"full_rpm", &AlternatorConfig::full_rpm, 100.0, 10000.0},
+      {"cruise_rpm", &AlternatorConfig::cruise_rpm, 100.0, 10000.0},
+      {"thermal_rise_f", &AlternatorConfig::thermal_rise_f, 1.0, 500.0},
+      {"thermal_tau_s", &AlternatorConfig::thermal_tau_s, 1.0, 100000.0},
+      {"wiring_ohm", &AlternatorConfig::wiring_ohm, 0.0, 1.0},
+  };
+  for (auto&& [k, v] : t) {
+    bool found = false;
+    for (const auto& f : fields) {
+      if (k.str() == f.name) {
+        a.*(f.field) = number(c, k, v, f.lo, f.hi);
+        found = true;
+      }
+    }
+    if (!found) unknownKey(c, k, "[alternator]");
+  }
+  if (a.full_rpm <= a.cut_in_rpm) c.fail(lineOf(t), "[alternator] full_rpm must be above cut_in_rpm");
+}
+
+void parseNoise(const Ctx& c, const toml::table& t, NoiseConfig& n) {
+  struct F {
+    std::string_view name;
+    double NoiseConfig::*field;
+    double hi;
+  };
+  static const F fields[] = {{"ibv_v", &NoiseConfig::ibv_v, 5.0},         {"bcur_a", &NoiseConfig::bcur_a, 100.0},
+                             {"battery_v", &NoiseConfig::battery_v, 5.0}, {"alt_a", &NoiseConfig::alt_a, 100.0},
+                             {"rpm", &NoiseConfig::rpm, 1000.0},          {"temp_f", &NoiseConfig::temp_f, 50.0}};
+  for (auto&& [k, v] : t) {
+    bool found = false;
+    for (const auto& f : fields) {
+      if (k.str() == f.name) {
+        n.*(f.field) = number(c, k, v, 0.0, f.hi);
+        found = true;
+      }
+    }
+    if (!found) unknownKey(c, k, "[noise]");
+  }
+}
+
+ScenarioEvent parseEvent(const Ctx& c, const toml::table& t, double duration) {
+  ScenarioEvent e;
+  e.line = lineOf(t);
+  bool haveAt = false, haveValue = false;
+  std::optional<CommandType> cmd;
+  const toml::node* cmdArg = nullptr;
+  int cmdLine = e.line;
+  std::string cmdArgName;
+  // The command's argument key is only known after reading `command`.
+  if (auto* cn = t.get("command")) {
+    const auto s = cn->value<std::string>();
+    if (!s) c.fail(lineOf(*cn), "'command' must be a string");
+    cmd = parseCommandType(*s);
+    if (!cmd) c.fail(lineOf(*cn), "unknown command '" + *s + "'");
+    cmdLine = lineOf(*cn);
+    cmdArgName = std::string(commandArgument(*cmd));
+  }
+  for (auto&& [k, v] : t) {
+    const auto n = k.str();
+    if (n == "at_s") {
+      e.at_s = number(c, k, v, 0.0, duration);
+      haveAt = true;
+    } else if (n == "rpm") {
+      e.rpm = number(c, k, v, 0.0, 10000.0);
+    } else if (n == "house_a") {
+      e.house_a = number(c, k, v, 0.0, 2000.0);
+    } else if (n == "ambient_f") {
+      e.ambient_f = number(c, k, v, -40.0, 200.0);
+    } else if (n == "ignition") {
+      const auto s = text(c, k, v);
+      if (s != "on" && s != "off") c.fail(lineOf(v), "ignition must be \"on\" or \"off\"");
+      e.ignition = s == "on";
+    } else if (n == "bms") {
+      const auto s = text(c, k, v);
+      if (s != "connect" && s != "disconnect") c.fail(lineOf(v), "bms must be \"connect\" or \"disconnect\"");
+      e.bms_connected = s == "connect";
+    } else if (n == "bms_input") {
+      const auto s = text(c, k, v);
+      if (s != "charge_enabled" && s != "charge_disabled")
+        c.fail(lineOf(v), "bms_input must be \"charge_enabled\" or \"charge_disabled\"");
+      e.bms_charge_enabled = s == "charge_enabled";
+    } else if (n == "command") {
+      // handled above
+    } else if (!cmdArgName.empty() && n == cmdArgName) {
+      cmdArg = &v;
+    } else if (n == "set") {
+      const toml::table& st = tableOf(c, k, v);
+      if (st.empty()) c.fail(lineOf(v), "'set' is empty");
+      for (auto&& [pk, pv] : st) e.set.push_back(paramOverride(c, pk, pv));
+    } else if (n == "fault" || n == "clear") {
+      const auto s = text(c, k, v);
+      const auto f = parseFault(s);
+      if (!f) c.fail(lineOf(v), "unknown fault '" + s + "'");
+      (n == "fault" ? e.fault : e.clear) = *f;
+    } else if (n == "value") {
+      e.value = number(c, k, v, -1000.0, 1000.0);
+      haveValue = true;
+    } else {
+      unknownKey(c, k, "[[events]]");
+    }
+  }
+  if (!haveAt) c.fail(e.line, "event without at_s");
+  if (e.fault && e.clear) c.fail(e.line, "an event cannot both inject and clear a fault");
+  if (e.fault && faultTakesValue(*e.fault) && !haveValue)
+    c.fail(e.line, "fault '" + std::string(toString(*e.fault)) + "' needs value = ...");
+  if (haveValue && !(e.fault && faultTakesValue(*e.fault)))
+    c.fail(e.line, "'value' only goes with a fault that takes one");
+  if (e.fault && *e.fault == Fault::temp_value && (e.value < -60.0 || e.value > 400.0))
+    c.fail(e.line, "temp_value must be within [-60, 400] degF");
+  if (cmd) {
+    Command command;
+    command.type = *cmd;
+    if (!cmdArgName.empty()) {
+      if (!cmdArg) c.fail(cmdLine, "command '" + std::string(toString(*cmd)) + "' needs " + cmdArgName + " = ...");
+      if (cmdArgName == "active") {
+        if (!cmdArg->is_boolean()) c.fail(lineOf(*cmdArg), "'active' must be true or false");
+        command.flag = *cmdArg->value<bool>();
+      } else {
+        const double hi = 100.0;
+        std::optional<double> d;
+        if (cmdArg->is_integer() || cmdArg->is_floating_point()) d = cmdArg->value<double>();
+        if (!d || !(*d >= 0.0 && *d <= hi))
+          c.fail(lineOf(*cmdArg), "'" + cmdArgName + "' must be a number in [0, 100]");
+        command.value = *d;
+      }
+    }
+    e.command = command;
+  }
+  const bool any = e.rpm || e.house_a || e.ambient_f || e.ignition || e.bms_connected || e.bms_charge_enabled ||
+                   e.command || !e.set.empty() || e.fault || e.clear;
+  if (!any) c.fail(e.line, "event does nothing");
+  return e;
+}
+
+Scenario parseTable(const Ctx& c, const toml::table& root) {
+  Scenario s;
+  s.source = c.src;
+  // duration first: events are checked against it.
+  if (auto* d = root.get("duration_s")) {
+    toml::key k("duration_s");
+    s.duration_s = number(c, k, *d, 0.001, 1.0e7);
+  }
+  for (auto&& [k, v] : root) {
+    const auto n = k.str();
+    if (n == "name") {
+      s.name = text(c, k, v);
+    } else if (n == "duration_s") {
+    } else if (n == "seed") {
+      if (!v.is_integer() || *v.value<std::int64_t>() < 0) c.fail(lineOf(v), "'seed' must be a non-negative integer");
+      s.seed = std::uint64_t(*v.value<std::int64_t>());
+    } else if (n == "config") {
+      for (auto&& [pk, pv] : tableOf(c, k, v)) s.config.push_back(paramOverride(c, pk, pv));
+    } else if (n == "battery") {
+      parseBattery(c, tableOf(c, k, v), s.plant.battery);
+    } else if (n == "alternator") {
+      parseAlternator(c, tableOf(c, k, v), s.plant.alternator);
+    } else if (n == "engine") {
+      for (auto&& [ek, ev] : tableOf(c, k, v)) {
+        if (ek.str() == "rpm")
+          s.plant.rpm = number(c, ek, ev, 0.0, 10000.0);
+        else
+          unknownKey(c, ek, "[engine]");
+      }
+    } else if (n == "loads") {
+      for (auto&& [lk, lv] : tableOf(c, k, v)) {
+        if (lk.str() == "house_a")
+          s.plant.house_a = number(c, lk, lv, 0.0, 2000.0);
+        else
+          unknownKey(c, lk, "[loads]");
+      }
+    } else if (n == "bus") {
+      for (auto&& [bk, bv] : tableOf(c, k, v)) {
+        if (bk.str() == "capacitance_f")
+          s.plant.bus_capacitance_f = number(c, bk, bv, 1e-5, 10.0);
+        else if (bk.str() == "tvs_clamp_v")
+          s.plant.tvs_clamp_v = number(c, bk, bv, 0.0, 200.0);
+        else
+          unknownKey(c, bk, "[bus]");
+      }
+    } else if (n == "noise") {
+      parseNoise(c, tableOf(c, k, v), s.noise);
+    } else if (n == "events") {
+      const toml::array* a = v.as_array();
+      if (!a) c.fail(lineOf(v), "'events' must be an array of tables ([[events]])");
+      double last = 0.0;
+      for (const auto& en : *a) {
+        if (!en.is_table()) c.fail(lineOf(en), "each event must be a table");
+        ScenarioEvent e = parseEvent(c, *en.as_table(), s.duration_s);
+        if (e.at_s < last) {
+          std::ostringstream m;
+          m << "events out of order: at_s = " << e.at_s << " comes after at_s = " << last;
+          c.fail(e.line, m.str());
+        }
+        last = e.at_s;
+        s.events.push_back(std::move(e));
+      }
+    } else {
+      unknownKey(c, k, "");
+    }
+  }
+  if (s.name.empty()) s.name = c.src;
+  return s;
+}
+
+}  // namespace
+
+Scenario parseScenario(std::string_view text, std::string_view sourceName) {
+  Ctx c{std::string(sourceName)};
+  toml::table root;
+  try {
+    root = toml::parse(text, sourceName);
+  } catch (const toml::parse_error& e) {
+    c.fail(int(e.source().begin.line), "syntax error: " + std::string(e.description()));
+  }
+  return parseTable(c, root);
+}
+
+Scenario loadScenario(const std::filesystem::path& file) {
+  std::ifstream f(file, std::ios::binary);
+  if (!f) throw ScenarioError(file.string() + ":0: cannot open scenario file");
+  std::ostringstream ss;
+  ss << f.rdbuf();
+  return parseScenario(ss.str(), file.string());
+}
+
+Scenario defaultScenario() {
+  Scenario s;
+  s.name = "default: LiFePO4 400 Ah from 35 %, cruise 1800 rpm";
+  s.source = "<built-in>";
+  s.duration_s = 8 * 3600.0;
+  s.plant.battery.chemistry = Chemistry::lifepo4;
+  s.plant.battery.capacity_ah = 400.0;
+  s.plant.battery.soc_pct = 35.0;
+  return s;
+}
+
+void applyOverrides(Params& p, const std::vector<ParamOverride>& o, std::string_view source) {
+  for (const auto& x : o) {
+    const ParamSpec* spec = findParam(x.name);
+    if (!spec) throw ScenarioError(std::string(source) + ":" + std::to_string(x.line) + ": unknown parameter '" + x.name + "'");
+    for (std::size_t i = 0; i < x.values.size(); ++i) {
+      if (!valueFits(*spec, x.values[i]))
+        throw ScenarioError(std::string(source) + ":" + std::to_string(x.line) + ": bad value for '" + x.name + "'");
+      spec->set(p, i, x.values[i]);
+    }
+  }
+}
+
+void ScenarioPlayer::applyToWorld(const ScenarioEvent& e, SimWorld& w) {
+  if (e.rpm) w.plant().setRpm(*e.rpm);
+  if (e.house_a) w.plant().setHouseAmps(*e.house_a);
+  if (e.ambient_f) w.plant().setAmbientF(*e.ambient_f);
+  if (e.ignition) w.setIgnition(*e.ignition);
+  if (e.bms_connected) w.plant().setBmsConnected(*e.bms_connected);
+  if (e.bms_charge_enabled) w.setBmsChargeEnabled(*e.bms_charge_enabled);
+  if (e.fault) w.setFault(*e.fault, true, e.value);
+  if (e.clear) w.setFault(*e.clear, false);
+}
+
+}  // namespace xr::sim

@@ -1,0 +1,45 @@
+#include "drivers/sim/sim_i2c_bus.h"
+
+#include <cerrno>
+
+namespace xr::sim {
+
+void SimI2cBus::attach(std::uint16_t addr, SimI2cDevice* dev) noexcept {
+  if (addr < devs_.size()) devs_[addr] = dev;
+}
+void SimI2cBus::detach(std::uint16_t addr) noexcept {
+  if (addr < devs_.size()) devs_[addr] = nullptr;
+}
+void SimI2cBus::setNack(std::uint16_t addr, bool n) noexcept {
+  if (addr < nack_.size()) nack_[addr] = n;
+}
+bool SimI2cBus::nack(std::uint16_t addr) const noexcept { return addr < nack_.size() && nack_[addr]; }
+
+int SimI2cBus::transfer(std::span<I2cMsg> msgs) noexcept {
+  ++transfers_;
+  if (msgs.empty()) {
+    ++failed_;
+    return EINVAL;
+  }
+  for (auto& m : msgs) {
+    // i2c-dev rejects 10-bit addresses unless I2C_TEN is set; we have none.
+    if (m.addr >= devs_.size() || devs_[m.addr] == nullptr || nack_[m.addr]) {
+      ++failed_;
+      return EREMOTEIO;
+    }
+    if (m.len > 0 && m.buf == nullptr) {
+      ++failed_;
+      return EFAULT;
+    }
+    SimI2cDevice* d = devs_[m.addr];
+    d->update(now_ ? *now_ : 0);
+    const int rc = m.read ? d->read(m.buf, m.len) : d->write(m.buf, m.len);
+    if (rc != 0) {
+      ++failed_;
+      return rc;
+    }
+  }
+  return 0;
+}
+
+}  // namespace xr::sim

@@ -1,0 +1,95 @@
+#include "drivers/sim/sim_onewire.h"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <system_error>
+
+namespace xr::sim {
+namespace fs = std::filesystem;
+
+namespace {
+constexpr TimeNs kConversion = fromMs(750);  // 12-bit conversion time
+}
+
+SimOneWire::SimOneWire(fs::path root, std::string id) : root_(std::move(root)), id_(std::move(id)) {
+  std::error_code ec;
+  fs::create_directories(root_ / id_, ec);
+}
+
+SimOneWire::~SimOneWire() = default;
+
+std::uint8_t SimOneWire::crc8(const std::uint8_t* p, std::size_t n) {
+  // Dallas/Maxim CRC8: x^8 + x^5 + x^4 + 1, LSB first (reflected 0x8C).
+  std::uint8_t crc = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    std::uint8_t b = p[i];
+    for (int k = 0; k < 8; ++k) {
+      const bool mix = (crc ^ b) & 1;
+      crc >>= 1;
+      if (mix) crc ^= 0x8C;
+      b >>= 1;
+    }
+  }
+  return crc;
+}
+
+std::string SimOneWire::formatW1Slave(std::int16_t raw, bool corrupt) {
+  std::uint8_t sp[9] = {std::uint8_t(raw & 0xFF), std::uint8_t((raw >> 8) & 0xFF), 0x4B, 0x46, 0x7F, 0xFF,
+                        0x0C, 0x10, 0};
+  const std::uint8_t crc = crc8(sp, 8);
+  sp[8] = corrupt ? std::uint8_t(crc ^ 0x5A) : crc;
+  std::string bytes;
+  char b[4];
+  for (auto x : sp) {
+    std::snprintf(b, sizeof b, "%02x ", x);
+    bytes += b;
+  }
+  char tail[48];
+  std::snprintf(tail, sizeof tail, ": crc=%02x %s\n", crc, sp[8] == crc ? "YES" : "NO");
+  // The kernel computes t= from the 16-bit reading: raw * 1000 / 16 (C division).
+  const int milli = int(raw) * 1000 / 16;
+  char line2[32];
+  std::snprintf(line2, sizeof line2, "t=%d\n", milli);
+  return bytes + tail + bytes + line2;
+}
+
+void SimOneWire::writeFile(const std::string& content) {
+  std::error_code ec;
+  fs::create_directories(root_ / id_, ec);
+  const fs::path tmp = root_ / id_ / ".w1_slave.tmp";
+  {
+    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+    f << content;
+  }
+  fs::rename(tmp, slavePath(), ec);
+  ++writes_;
+}
+
+void SimOneWire::setPresent(bool present) {
+  if (present == present_) return;
+  present_ = present;
+  std::error_code ec;
+  if (!present) {
+    fs::remove_all(root_ / id_, ec);
+    written_ = false;
+  } else {
+    nextConversion_ = 0;  // a fresh file at the next update
+  }
+}
+
+void SimOneWire::update(TimeNs t, double tempC) {
+  if (!present_ || t < nextConversion_) return;
+  nextConversion_ = t + kConversion;
+  double r = std::nearbyint(tempC * 16.0);
+  if (!(r == r)) r = 85.0 * 16.0;  // power-on value when nothing sensible converted
+  r = std::fmax(-55.0 * 16.0, std::fmin(125.0 * 16.0, r));
+  const auto raw = static_cast<std::int16_t>(r);
+  if (written_ && raw == lastRaw_ && corrupt_ == lastCorrupt_) return;
+  writeFile(formatW1Slave(raw, corrupt_));
+  written_ = true;
+  lastRaw_ = raw;
+  lastCorrupt_ = corrupt_;
+}
+
+}  // namespace xr::sim

@@ -1,0 +1,124 @@
+#include "drivers/sim/sim_world.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "drivers/frontend/analog_frontend.h"
+
+namespace xr::sim {
+namespace {
+constexpr double kAdsVdd = 5.0;  // ADS1115 supply on the board (inputs clamp at VDD + 0.3)
+double fToC(double f) { return (f - 32.0) * 5.0 / 9.0; }
+}  // namespace
+
+SimWorld::SimWorld(const WorldConfig& cfg, const HardwareSettings& hw)
+    : cfg_(cfg),
+      hw_(hw),
+      rng_(cfg.seed),
+      plant_(cfg.plant),
+      bus_(&now_),
+      ads_(cfg.adsClockScale),
+      pwm_(&now_),
+      fieldEnable_(&now_),
+      buzzer_(&now_),
+      ignition_(true),
+      watchdog_(&now_, fromSec(hw.watchdog_timeout_s)) {
+  bus_.attach(hw.ina228_address, &ina_);
+  bus_.attach(hw.ads1115_address, &ads_);
+  if (!cfg.w1Root.empty()) w1_ = std::make_unique<SimOneWire>(cfg.w1Root);
+  lm2907V_ = frontend::adcFromRpm(hw_.frontend, plant_.rpm());
+  refreshAnalog(0.0);
+  if (w1_) w1_->update(0, fToC(plant_.truth().alt_temp_f));
+}
+
+SimWorld::~SimWorld() = default;
+
+void SimWorld::setBmsChargeEnabled(bool en) noexcept { bmsLine_.setLevel(!en); }
+
+void SimWorld::setFault(Fault f, bool active, double value) {
+  faults_[int(f)] = active;
+  faultValues_[int(f)] = active ? value : 0.0;
+  switch (f) {
+    case Fault::ina228_nack: bus_.setNack(hw_.ina228_address, active); break;
+    case Fault::ads1115_nack: bus_.setNack(hw_.ads1115_address, active); break;
+    case Fault::field_open: plant_.setFieldOpen(active); break;
+    case Fault::temp_sensor_disconnect:
+      if (w1_) w1_->setPresent(!active);
+      break;
+    default: break;
+  }
+  refreshAnalog(0.0);
+}
+
+bool SimWorld::fieldGateEnabled() const noexcept {
+  // GPIO4 drives the gate-driver enable; the INA228 ALERT (open drain) pulls
+  // that same node low while active.
+  const bool gpio = fieldEnable_.level() == hw_.field_enable_active_high;
+  return gpio && !ina_.alertActive();
+}
+
+double SimWorld::fieldCommand() const noexcept { return fieldGateEnabled() ? pwm_.drive() : 0.0; }
+
+SimTruth SimWorld::truth() const noexcept {
+  SimTruth t;
+  t.plant = plant_.truth();
+  t.ina_alert = ina_.alertActive();
+  t.field_on = fieldCommand() > 0.0 && !faults_[int(Fault::field_open)];
+  return t;
+}
+
+void SimWorld::refreshAnalog(double dt) noexcept {
+  const PlantTruth& p = plant_.truth();
+  const NoiseConfig& n = cfg_.noise;
+  const auto& fe = hw_.frontend;
+
+  // INA228: low-side shunt carries the battery current; VBUS on battery +.
+  Ina228Analog a;
+  a.vshunt_v = (p.battery_a + rng_.gauss(n.bcur_a)) * hw_.shunt_resistance_ohm;
+  a.vbus_v = std::max(0.0, p.battery_v + faultValues_[int(Fault::ibv_offset)] + rng_.gauss(n.ibv_v));
+  a.dietemp_c = cfg_.inaDieTempC;
+  ina_.setAnalog(a);
+
+  // ADS1115 channels through the analog front end.
+  std::array<double, 4> ain{};
+  ain[0] = faults_[int(Fault::battery_v_zero)]
+               ? 0.0
+               : frontend::adcFromBatteryVolts(
+                     fe, p.battery_v + faultValues_[int(Fault::battery_v_offset)] + rng_.gauss(n.battery_v));
+  ain[1] = frontend::adcFromAltAmps(fe, p.alt_a + faultValues_[int(Fault::alt_current_offset)] + rng_.gauss(n.alt_a));
+  // LM2907: tracks the tach frequency with a short ripple filter; when the
+  // signal is lost its output decays through the 2 s coupling time constant.
+  const bool lost = faults_[int(Fault::rpm_signal_loss)];
+  const double target = lost ? 0.0 : frontend::adcFromRpm(fe, std::max(0.0, plant_.rpm() + rng_.gauss(n.rpm)));
+  const double tau = lost ? 2.0 : 0.05;
+  if (dt > 0.0)
+    lm2907V_ += (target - lm2907V_) * (1.0 - std::exp(-dt / tau));
+  else if (!lost)
+    lm2907V_ = target;
+  ain[2] = lm2907V_;
+  double tempF = p.alt_temp_f + rng_.gauss(n.temp_f);
+  if (faults_[int(Fault::temp_value)]) tempF = faultValues_[int(Fault::temp_value)];
+  // Open thermistor: the divider node sits at the supply.
+  ain[3] = faults_[int(Fault::temp_sensor_disconnect)] ? fe.thermistor_supply_v : frontend::adcFromTempF(fe, tempF);
+  for (auto& v : ain) v = std::clamp(std::isfinite(v) ? v : 0.0, 0.0, kAdsVdd + 0.3);
+  ads_.setInputs(ain);
+
+  if (w1_) w1_->update(now_, fToC(tempF));
+}
+
+void SimWorld::advanceTo(TimeNs t) noexcept {
+  while (now_ < t) {
+    // Finer steps while the battery is off the bus, so the INA228 ALERT
+    // (BOVL) can act on the fast rise.
+    const TimeNs maxStep = plant_.truth().bms_connected ? cfg_.maxStep : std::min<TimeNs>(cfg_.maxStep, fromUs(250));
+    const TimeNs step = std::min(maxStep, t - now_);
+    const double dt = toSec(step);
+    plant_.step(fieldCommand(), dt);
+    now_ += step;
+    refreshAnalog(dt);
+    ina_.update(now_);  // the ALERT pin acts on the enable without any software
+    ads_.update(now_);
+  }
+}
+
+}  // namespace xr::sim

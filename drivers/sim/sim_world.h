@@ -1,0 +1,127 @@
+#pragma once
+// SimWorld: the whole simulated board and boat. Owns the plant, the chip
+// models on a simulated I2C bus, the simulated 1-Wire tree, the simulated
+// PWM/GPIO/watchdog and the virtual time. advanceTo(t) steps the plant and
+// lets the chips convert on the simulated clock; the drivers above see only
+// the hal seams (I2cBus, PwmOutput, DigitalOutput, DigitalInput, Watchdog)
+// and the w1 sysfs directory.
+//
+// Board wiring modelled here (issue 6 / DESIGN.md):
+//   INA228 on a low-side shunt, VBUS on battery positive; its ALERT pin pulls
+//   the gate-driver enable low (so BOVL cuts the field in hardware).
+//   ADS1115 CH0 battery voltage divider, CH1 Hall sensor, CH2 LM2907 (2 s
+//   coupling on signal loss), CH3 thermistor; scaling via drivers/frontend.
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+
+#include "config/settings.h"
+#include "drivers/sim/ads1115_model.h"
+#include "drivers/sim/faults.h"
+#include "drivers/sim/ina228_model.h"
+#include "drivers/sim/plant/plant.h"
+#include "drivers/sim/prng.h"
+#include "drivers/sim/sim_i2c_bus.h"
+#include "drivers/sim/sim_onewire.h"
+#include "drivers/sim/sim_outputs.h"
+
+namespace xr::sim {
+
+// Sensor noise, one sigma per measured quantity (0 = none).
+struct NoiseConfig {
+  double ibv_v = 0.002;      // INA228 VBUS
+  double bcur_a = 0.05;      // shunt current
+  double battery_v = 0.005;  // CH0
+  double alt_a = 0.2;        // CH1 Hall
+  double rpm = 3.0;          // CH2
+  double temp_f = 0.1;       // DS18B20 and thermistor
+};
+
+struct WorldConfig {
+  PlantConfig plant;
+  NoiseConfig noise;
+  std::uint64_t seed = 1;
+  // Where the simulated w1 sysfs tree lives (a temp directory); empty = no
+  // 1-Wire sensor simulated.
+  std::filesystem::path w1Root;
+  double inaDieTempC = 35.0;
+  double adsClockScale = 1.0;  // ADS1115 oscillator: 1.1 = 10 % slow
+  TimeNs maxStep = fromUs(2500);
+};
+
+// Plant truth plus the board-level facts, for the CSV sim_* columns.
+struct SimTruth {
+  PlantTruth plant;
+  bool field_on = false;        // field drive reaching the winding
+  bool ina_alert = false;       // INA228 ALERT active (enable pulled low)
+};
+
+class SimWorld {
+ public:
+  SimWorld(const WorldConfig& cfg, const HardwareSettings& hw);
+  ~SimWorld();
+  SimWorld(const SimWorld&) = delete;
+  SimWorld& operator=(const SimWorld&) = delete;
+
+  TimeNs now() const noexcept { return now_; }
+  // Advance virtual time to t (no-op if t <= now).
+  void advanceTo(TimeNs t) noexcept;
+
+  // The hal seams the drivers and runtime use.
+  I2cBus& i2c() noexcept { return bus_; }
+  PwmOutput& pwm() noexcept { return pwm_; }
+  DigitalOutput& fieldEnable() noexcept { return fieldEnable_; }
+  DigitalOutput& buzzer() noexcept { return buzzer_; }
+  DigitalInput& ignition() noexcept { return ignition_; }
+  // BMS signal line, logical level: 1 = the BMS asserts "charge disabled".
+  DigitalInput& bmsLine() noexcept { return bmsLine_; }
+  Watchdog& watchdog() noexcept { return watchdog_; }
+  const std::filesystem::path& w1Root() const noexcept { return cfg_.w1Root; }
+
+  // Models, for tests and the runner.
+  SimI2cBus& bus() noexcept { return bus_; }
+  Ina228Model& ina() noexcept { return ina_; }
+  Ads1115Model& ads() noexcept { return ads_; }
+  SimOneWire* onewire() noexcept { return w1_.get(); }
+  Plant& plant() noexcept { return plant_; }
+  SimPwm& simPwm() noexcept { return pwm_; }
+  SimDigitalOutput& simFieldEnable() noexcept { return fieldEnable_; }
+  SimDigitalOutput& simBuzzer() noexcept { return buzzer_; }
+  SimWatchdog& simWatchdog() noexcept { return watchdog_; }
+
+  // Scenario controls.
+  void setIgnition(bool on) noexcept { ignition_.setLevel(on); }
+  void setBmsChargeEnabled(bool en) noexcept;
+  void setFault(Fault f, bool active, double value = 0.0);
+  bool faultActive(Fault f) const noexcept { return faults_[int(f)]; }
+  double faultValue(Fault f) const noexcept { return faultValues_[int(f)]; }
+
+  SimTruth truth() const noexcept;
+  bool fieldGateEnabled() const noexcept;
+
+ private:
+  void refreshAnalog(double dt) noexcept;
+  double fieldCommand() const noexcept;
+
+  WorldConfig cfg_;
+  HardwareSettings hw_;
+  TimeNs now_ = 0;
+  Rng rng_;
+  Plant plant_;
+  SimI2cBus bus_;
+  Ina228Model ina_;
+  Ads1115Model ads_;
+  std::unique_ptr<SimOneWire> w1_;
+  SimPwm pwm_;
+  SimDigitalOutput fieldEnable_;
+  SimDigitalOutput buzzer_;
+  SimDigitalInput ignition_;
+  SimDigitalInput bmsLine_{false};
+  SimWatchdog watchdog_;
+  std::array<bool, kFaultCount> faults_{};
+  std::array<double, kFaultCount> faultValues_{};
+  double lm2907V_ = 0.0;
+};
+
+}  // namespace xr::sim

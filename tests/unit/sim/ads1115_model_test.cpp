@@ -1,0 +1,180 @@
+// ADS1115 model against datasheet-facts §2.
+#include <gtest/gtest.h>
+
+#include <cerrno>
+
+#include "drivers/sim/ads1115_model.h"
+#include "drivers/sim/sim_i2c_bus.h"
+
+namespace xr::sim {
+namespace {
+
+struct Rig {
+  TimeNs now = 0;
+  SimI2cBus bus{&now};
+  Ads1115Model chip;
+  explicit Rig(double clock = 1.0) : chip(clock) { bus.attach(0x48, &chip); }
+  int writeReg(std::uint8_t reg, std::uint16_t v) {
+    std::uint8_t b[3] = {reg, std::uint8_t(v >> 8), std::uint8_t(v)};
+    I2cMsg m{0x48, false, b, 3};
+    return bus.transfer({&m, 1});
+  }
+  std::uint16_t readReg(std::uint8_t reg, int* rc = nullptr) {
+    std::uint8_t p = reg, buf[2] = {};
+    I2cMsg m[2] = {{0x48, false, &p, 1}, {0x48, true, buf, 2}};
+    const int r = bus.transfer(m);
+    if (rc) *rc = r;
+    return std::uint16_t((buf[0] << 8) | buf[1]);
+  }
+  void advance(TimeNs dt) {
+    now += dt;
+    chip.update(now);
+  }
+};
+
+// Config: OS | MUX | PGA | MODE | DR | COMP_QUE=11
+std::uint16_t cfg(int os, int mux, int pga, int single, int dr, int que = 3) {
+  return std::uint16_t((os << 15) | (mux << 12) | (pga << 9) | (single << 8) | (dr << 5) | que);
+}
+
+TEST(Ads1115Model, ResetValues) {
+  Rig r;
+  EXPECT_EQ(r.readReg(1), 0x8583);
+  EXPECT_EQ(r.readReg(0), 0x0000);
+  EXPECT_EQ(r.readReg(2), 0x8000);
+  EXPECT_EQ(r.readReg(3), 0x7FFF);
+}
+
+TEST(Ads1115Model, SingleShotTakesOneDataPeriodAndOsReportsBusy) {
+  Rig r;
+  r.chip.setInputs({1.0, 0, 0, 0});
+  ASSERT_EQ(r.writeReg(1, cfg(1, 4, 1, 1, 4)), 0);  // AIN0-GND, ±4.096 V, 128 SPS
+  EXPECT_EQ(r.readReg(1) & 0x8000, 0);             // converting
+  r.advance(fromSec(1.0 / 128) - 1000);
+  EXPECT_EQ(r.readReg(1) & 0x8000, 0);
+  EXPECT_EQ(r.readReg(0), 0);
+  r.advance(1000);
+  EXPECT_EQ(r.readReg(1) & 0x8000, 0x8000);
+  EXPECT_EQ(r.readReg(0), 8000);  // 1 V / 125 uV
+  // Powered down: no further conversions.
+  r.chip.setInputs({2.0, 0, 0, 0});
+  r.advance(fromMs(100));
+  EXPECT_EQ(r.readReg(0), 8000);
+  EXPECT_EQ(r.chip.conversions(), 1u);
+}
+
+TEST(Ads1115Model, ConversionTimePerDataRate) {
+  for (int dr = 0; dr < 8; ++dr) {
+    Rig r;
+    r.writeReg(1, cfg(1, 4, 1, 1, dr));
+    const TimeNs p = TimeNs(1e9 / ads1115::kDataRateSps[dr]);
+    r.advance(p - 2);
+    EXPECT_EQ(r.chip.conversions(), 0u) << dr;
+    r.advance(2);
+    EXPECT_EQ(r.chip.conversions(), 1u) << dr;
+  }
+}
+
+TEST(Ads1115Model, SlowOscillatorStretchesConversions) {
+  Rig r(1.1);
+  r.writeReg(1, cfg(1, 4, 1, 1, 7));
+  r.advance(TimeNs(1e9 / 860));
+  EXPECT_EQ(r.chip.conversions(), 0u);
+  r.advance(TimeNs(0.1e9 / 860) + 10);
+  EXPECT_EQ(r.chip.conversions(), 1u);
+}
+
+TEST(Ads1115Model, OsWriteIgnoredWhileBusy) {
+  Rig r;
+  r.writeReg(1, cfg(1, 4, 1, 1, 0));  // 8 SPS: 125 ms
+  r.advance(fromMs(100));
+  r.writeReg(1, cfg(1, 4, 1, 1, 0));
+  r.advance(fromMs(30));
+  EXPECT_EQ(r.chip.conversions(), 1u);  // the first finished at 125 ms, no restart
+  EXPECT_FALSE(r.chip.converting());
+}
+
+TEST(Ads1115Model, ContinuousConfigChangeAppliesAfterConversionInProgress) {
+  Rig r;
+  r.chip.setInputs({1.0, 2.0, 0, 0});
+  r.writeReg(1, cfg(0, 4, 1, 0, 4));  // continuous AIN0
+  const TimeNs p = TimeNs(1e9 / 128);
+  r.advance(p / 2);
+  r.writeReg(1, cfg(0, 5, 1, 0, 4));  // switch to AIN1 mid-conversion
+  r.advance(p / 2 + 1);
+  EXPECT_EQ(std::int16_t(r.readReg(0)), 8000);  // still the old channel
+  r.advance(p);
+  EXPECT_EQ(std::int16_t(r.readReg(0)), 16000);  // the new one
+  EXPECT_TRUE(r.chip.converting());
+}
+
+TEST(Ads1115Model, ClipsAtFullScaleCodes) {
+  Rig r;
+  r.chip.setInputs({3.0, 0, 0, 0});
+  r.writeReg(1, cfg(1, 4, 2, 1, 7));  // ±2.048 V
+  r.advance(fromMs(2));
+  EXPECT_EQ(r.readReg(0), 0x7FFF);
+  r.chip.setInputs({0.0, 3.0, 0, 0});
+  r.writeReg(1, cfg(1, 0, 2, 1, 7));  // AIN0-AIN1 = -3 V
+  r.advance(fromMs(2));
+  EXPECT_EQ(r.readReg(0), 0x8000);
+}
+
+TEST(Ads1115Model, DifferentialAndPgaScaling) {
+  Rig r;
+  r.chip.setInputs({0.3, 0.1, 0, 0});
+  r.writeReg(1, cfg(1, 0, 5, 1, 7));  // ±0.256 V: 7.8125 uV/LSB
+  r.advance(fromMs(2));
+  EXPECT_EQ(std::int16_t(r.readReg(0)), 25600);
+}
+
+TEST(Ads1115Model, RejectsBadPointerAndConversionWrite) {
+  Rig r;
+  std::uint8_t b[1] = {0x04};
+  I2cMsg m{0x48, false, b, 1};
+  EXPECT_EQ(r.bus.transfer({&m, 1}), EREMOTEIO);
+  EXPECT_EQ(r.writeReg(0, 0x1234), EREMOTEIO);
+  EXPECT_EQ(r.chip.protocolErrors(), 2u);
+}
+
+TEST(Ads1115Model, AlertRdyAsConversionReadySingleShot) {
+  Rig r;
+  r.writeReg(3, 0x8000);  // Hi MSB = 1
+  r.writeReg(2, 0x0000);  // Lo MSB = 0
+  r.writeReg(1, cfg(1, 4, 1, 1, 7, 0));
+  EXPECT_FALSE(r.chip.alertActive());
+  r.advance(fromMs(2));
+  EXPECT_TRUE(r.chip.alertActive());
+  r.writeReg(1, cfg(1, 4, 1, 1, 7, 0));  // next start: pin follows OS (busy)
+  EXPECT_FALSE(r.chip.alertActive());
+}
+
+TEST(Ads1115Model, AlertRdyPulsesInContinuous) {
+  Rig r;
+  r.writeReg(3, 0x8000);
+  r.writeReg(2, 0x0000);
+  r.writeReg(1, cfg(0, 4, 1, 0, 4, 0));
+  r.advance(fromMs(100));
+  EXPECT_EQ(r.chip.readyPulses(), 12u);  // 100 ms / 7.8125 ms
+}
+
+TEST(Ads1115Model, TraditionalComparatorWithQueue) {
+  Rig r;
+  r.writeReg(3, 8000);  // hi
+  r.writeReg(2, 4000);  // lo
+  r.chip.setInputs({1.5, 0, 0, 0});           // 12000 codes at ±4.096
+  r.writeReg(1, cfg(0, 4, 1, 0, 7, 1));      // continuous, assert after 2
+  r.advance(TimeNs(1e9 / 860) + 10);
+  EXPECT_FALSE(r.chip.alertActive());
+  r.advance(TimeNs(1e9 / 860));
+  EXPECT_TRUE(r.chip.alertActive());
+  r.chip.setInputs({0.75, 0, 0, 0});  // 6000: between lo and hi, stays (hysteresis)
+  r.advance(fromMs(5));
+  EXPECT_TRUE(r.chip.alertActive());
+  r.chip.setInputs({0.25, 0, 0, 0});  // below lo: releases
+  r.advance(fromMs(5));
+  EXPECT_FALSE(r.chip.alertActive());
+}
+
+}  // namespace
+}  // namespace xr::sim

@@ -1,0 +1,293 @@
+// INA228 model against datasheet-facts §1 (register map, encodings, alerts).
+#include <gtest/gtest.h>
+
+#include <cerrno>
+#include <cstdint>
+#include <vector>
+
+#include "drivers/sim/ina228_model.h"
+#include "drivers/sim/sim_i2c_bus.h"
+
+namespace xr::sim {
+namespace {
+using namespace ina228;
+
+struct Rig {
+  TimeNs now = 0;
+  SimI2cBus bus{&now};
+  Ina228Model chip;
+  Rig() { bus.attach(0x40, &chip); }
+  int writeReg(std::uint8_t reg, std::uint16_t v) {
+    std::uint8_t b[3] = {reg, std::uint8_t(v >> 8), std::uint8_t(v)};
+    I2cMsg m{0x40, false, b, 3};
+    return bus.transfer({&m, 1});
+  }
+  // Pointer write + read of n bytes in one combined transaction.
+  std::uint64_t readReg(std::uint8_t reg, int n, int* rc = nullptr) {
+    std::uint8_t p = reg;
+    std::uint8_t buf[8] = {};
+    I2cMsg m[2] = {{0x40, false, &p, 1}, {0x40, true, buf, std::size_t(n)}};
+    const int r = bus.transfer(m);
+    if (rc) *rc = r;
+    std::uint64_t v = 0;
+    for (int i = 0; i < n; ++i) v = (v << 8) | buf[i];
+    return v;
+  }
+  void advance(TimeNs dt) {
+    now += dt;
+    chip.update(now);
+  }
+};
+
+TEST(Ina228Model, ResetValuesMatchDatasheet) {
+  Rig r;
+  EXPECT_EQ(r.readReg(CONFIG, 2), 0x0000u);
+  EXPECT_EQ(r.readReg(ADC_CONFIG, 2), 0xFB68u);
+  EXPECT_EQ(r.readReg(SHUNT_CAL, 2), 0x1000u);
+  EXPECT_EQ(r.readReg(DIAG_ALRT, 2), 0x0001u);
+  EXPECT_EQ(r.readReg(SOVL, 2), 0x7FFFu);
+  EXPECT_EQ(r.readReg(SUVL, 2), 0x8000u);
+  EXPECT_EQ(r.readReg(BOVL, 2), 0x7FFFu);
+  EXPECT_EQ(r.readReg(BUVL, 2), 0x0000u);
+  EXPECT_EQ(r.readReg(TEMP_LIMIT, 2), 0x7FFFu);
+  EXPECT_EQ(r.readReg(PWR_LIMIT, 2), 0xFFFFu);
+  EXPECT_EQ(r.readReg(MANUFACTURER_ID, 2), 0x5449u);
+  EXPECT_EQ(r.readReg(DEVICE_ID, 2), 0x2281u);
+  EXPECT_EQ(r.readReg(ENERGY, 5), 0u);
+}
+
+TEST(Ina228Model, RejectsWritesToReadOnlyAndReservedRegisters) {
+  Rig r;
+  EXPECT_EQ(r.writeReg(VBUS, 0x1234), EREMOTEIO);
+  EXPECT_EQ(r.writeReg(MANUFACTURER_ID, 0), EREMOTEIO);
+  EXPECT_EQ(r.writeReg(0x20, 0), EREMOTEIO);  // reserved address
+  int rc = 0;
+  r.readReg(0x12, 2, &rc);  // bad pointer
+  EXPECT_EQ(rc, EREMOTEIO);
+  r.readReg(VBUS, 4, &rc);  // longer than the register
+  EXPECT_EQ(rc, EREMOTEIO);
+  // Wrong data length for a 16-bit register.
+  std::uint8_t b[2] = {SHUNT_CAL, 0x10};
+  I2cMsg m{0x40, false, b, 2};
+  EXPECT_EQ(r.bus.transfer({&m, 1}), EREMOTEIO);
+  EXPECT_EQ(r.chip.protocolErrors(), 6u);
+  EXPECT_EQ(r.writeReg(SHUNT_CAL, 0x0FA0), 0);
+  EXPECT_EQ(r.chip.protocolErrors(), 6u);
+}
+
+TEST(Ina228Model, ReservedBitsReadZero) {
+  Rig r;
+  r.writeReg(SHUNT_CAL, 0xFFFF);
+  EXPECT_EQ(r.readReg(SHUNT_CAL, 2), 0x7FFFu);
+  r.writeReg(SHUNT_TEMPCO, 0xFFFF);
+  EXPECT_EQ(r.readReg(SHUNT_TEMPCO, 2), 0x3FFFu);
+  r.writeReg(BOVL, 0xFFFF);
+  EXPECT_EQ(r.readReg(BOVL, 2), 0x7FFFu);
+  r.writeReg(CONFIG, 0x000F | 0x0010);
+  EXPECT_EQ(r.readReg(CONFIG, 2), 0x0010u);
+}
+
+TEST(Ina228Model, DatasheetWorkedExampleScaling) {
+  // TI229W example: CURRENT_LSB = 10 A / 2^19, shunt 16.2 mΩ -> SHUNT_CAL 4050;
+  // 97.2 mV shunt, 48 V bus.
+  Rig r;
+  r.writeReg(SHUNT_CAL, 4050);
+  r.chip.setAnalog({0.0972, 48.0, 25.0});
+  r.writeReg(ADC_CONFIG, 0xFB68);  // restart
+  r.advance(r.chip.updatePeriod());
+  EXPECT_EQ(r.readReg(VSHUNT, 3) >> 4, 311040u);
+  EXPECT_EQ(r.readReg(VBUS, 3) >> 4, 245760u);
+  EXPECT_EQ(r.readReg(DIETEMP, 2), 3200u);
+  EXPECT_NEAR(double(r.readReg(CURRENT, 3) >> 4), 314572.0, 1.0);
+  EXPECT_NEAR(double(r.readReg(POWER, 3)), 4718604.0, 40.0);
+}
+
+TEST(Ina228Model, EnergyAndChargeAccumulate) {
+  Rig r;
+  r.writeReg(SHUNT_CAL, 4050);
+  r.chip.setAnalog({0.0972, 48.0, 25.0});
+  r.writeReg(ADC_CONFIG, 0xFB68);
+  r.advance(fromSec(3600.0));
+  // 6 A x 1 h = 21600 C = 1132462080 codes; 288 W h = 1036800 J.
+  EXPECT_NEAR(double(r.readReg(CHARGE, 5)), 1132462080.0, 1132462080.0 * 1e-3);
+  EXPECT_NEAR(double(r.readReg(ENERGY, 5)), 1061683200.0, 1061683200.0 * 1e-3);
+  r.writeReg(CONFIG, 0x4000);  // RSTACC
+  EXPECT_EQ(r.readReg(CHARGE, 5), 0u);
+  EXPECT_EQ(r.readReg(CONFIG, 2), 0u);  // self-clearing
+}
+
+TEST(Ina228Model, NegativeCurrentIsTwosComplement) {
+  Rig r;
+  r.writeReg(SHUNT_CAL, 4096);
+  r.chip.setAnalog({-0.001, 12.0, 25.0});
+  r.writeReg(ADC_CONFIG, 0xFB68);
+  r.advance(r.chip.updatePeriod());
+  const std::uint32_t raw = std::uint32_t(r.readReg(VSHUNT, 3) >> 4);
+  const std::int32_t code = (raw & 0x80000) ? std::int32_t(raw) - (1 << 20) : std::int32_t(raw);
+  EXPECT_EQ(code, -3200);  // -1 mV / 312.5 nV
+  const std::uint32_t cur = std::uint32_t(r.readReg(CURRENT, 3) >> 4);
+  EXPECT_TRUE(cur & 0x80000);
+}
+
+TEST(Ina228Model, AdcRangeOneQuadruplesResolution) {
+  Rig r;
+  r.writeReg(CONFIG, 0x0010);
+  r.chip.setAnalog({0.001, 12.0, 25.0});
+  r.writeReg(ADC_CONFIG, 0xFB68);
+  r.advance(r.chip.updatePeriod());
+  EXPECT_EQ(r.readReg(VSHUNT, 3) >> 4, 12800u);  // 1 mV / 78.125 nV
+}
+
+TEST(Ina228Model, ConversionTimeTimesAveragingSetsCadence) {
+  Rig r;
+  // Continuous bus+shunt (0xB), VBUSCT=VSHCT=4 (540 us), AVG=2 (16).
+  const std::uint16_t cfg = (0xB << 12) | (4 << 9) | (4 << 6) | (0 << 3) | 2;
+  r.writeReg(ADC_CONFIG, cfg);
+  EXPECT_EQ(r.chip.updatePeriod(), fromUs((540 + 540) * 16));
+  r.chip.setAnalog({0.0, 13.0, 25.0});
+  const auto before = r.chip.conversions();
+  r.advance(fromUs(1080 * 16) - 1);
+  EXPECT_EQ(r.chip.conversions(), before);
+  EXPECT_EQ(r.readReg(VBUS, 3), 0u);  // nothing published yet
+  r.advance(1);
+  EXPECT_EQ(r.chip.conversions(), before + 1);
+  EXPECT_EQ(r.readReg(VBUS, 3) >> 4, 66560u);  // 13 V / 195.3125 uV
+  // Conversion-time code 7 is 4120 us.
+  r.writeReg(ADC_CONFIG, (0x9 << 12) | (7 << 9));
+  EXPECT_EQ(r.chip.updatePeriod(), fromUs(4120));
+}
+
+TEST(Ina228Model, TriggeredModeConvertsOnceThenStops) {
+  Rig r;
+  r.chip.setAnalog({0.0, 12.5, 25.0});
+  r.writeReg(ADC_CONFIG, (0x1 << 12) | (5 << 9));  // triggered bus, 1052 us
+  r.advance(fromMs(10));
+  EXPECT_EQ(r.readReg(VBUS, 3) >> 4, 64000u);
+  r.chip.setAnalog({0.0, 13.0, 25.0});
+  r.advance(fromMs(10));
+  EXPECT_EQ(r.readReg(VBUS, 3) >> 4, 64000u);  // no new conversion
+}
+
+TEST(Ina228Model, ShutdownModeHoldsRegisters) {
+  Rig r;
+  r.writeReg(ADC_CONFIG, 0x0000);
+  EXPECT_EQ(r.chip.updatePeriod(), 0);
+  r.chip.setAnalog({0.0, 12.0, 25.0});
+  r.advance(fromMs(100));
+  EXPECT_EQ(r.readReg(VBUS, 3), 0u);
+  EXPECT_EQ(r.writeReg(BOVL, 100), 0);  // registers stay writable
+}
+
+TEST(Ina228Model, BusOvervoltageAssertsAlertTransparent) {
+  Rig r;
+  r.writeReg(ADC_CONFIG, (0x9 << 12) | (0 << 9));  // continuous bus, 50 us, 1 avg
+  r.writeReg(BOVL, std::uint16_t(14.8 / 3.125e-3));
+  r.chip.setAnalog({0.0, 14.0, 25.0});
+  r.advance(fromMs(1));
+  EXPECT_FALSE(r.chip.alertActive());
+  EXPECT_TRUE(r.chip.alertPinHigh());
+  r.chip.setAnalog({0.0, 15.0, 25.0});
+  r.advance(fromMs(1));
+  EXPECT_TRUE(r.chip.alertActive());
+  EXPECT_FALSE(r.chip.alertPinHigh());  // active low by default
+  EXPECT_TRUE(r.readReg(DIAG_ALRT, 2) & BUSOL);
+  // Transparent: clears when the condition clears.
+  r.chip.setAnalog({0.0, 14.0, 25.0});
+  r.advance(fromMs(1));
+  EXPECT_FALSE(r.chip.alertActive());
+  EXPECT_FALSE(r.readReg(DIAG_ALRT, 2) & BUSOL);
+}
+
+TEST(Ina228Model, LatchedAlertHoldsUntilDiagRead) {
+  Rig r;
+  r.writeReg(ADC_CONFIG, (0x9 << 12));
+  r.writeReg(DIAG_ALRT, ALATCH);
+  r.writeReg(BOVL, std::uint16_t(14.8 / 3.125e-3));
+  r.chip.setAnalog({0.0, 15.0, 25.0});
+  r.advance(fromMs(1));
+  r.chip.setAnalog({0.0, 14.0, 25.0});
+  r.advance(fromMs(1));
+  EXPECT_TRUE(r.chip.alertActive());
+  const auto d = r.readReg(DIAG_ALRT, 2);
+  EXPECT_TRUE(d & BUSOL);
+  EXPECT_TRUE(d & ALATCH);
+  EXPECT_FALSE(r.chip.alertActive());
+}
+
+TEST(Ina228Model, SlowAlertComparesTheAveragedValue) {
+  // 64 averages x 1052 us: with SLOWALERT the alert waits for the average;
+  // without it the first raw sample over the limit asserts.
+  for (bool slow : {false, true}) {
+    Rig r;
+    r.writeReg(DIAG_ALRT, slow ? SLOWALERT : 0);
+    r.writeReg(BOVL, std::uint16_t(14.8 / 3.125e-3));
+    r.chip.setAnalog({0.0, 15.0, 25.0});
+    r.writeReg(ADC_CONFIG, (0x9 << 12) | (5 << 9) | 3);
+    r.advance(fromUs(1052 * 2));
+    EXPECT_EQ(r.chip.alertActive(), !slow) << "slow=" << slow;
+    r.advance(fromUs(1052 * 64));
+    EXPECT_TRUE(r.chip.alertActive());
+  }
+}
+
+TEST(Ina228Model, ApolInvertsThePin) {
+  Rig r;
+  r.writeReg(DIAG_ALRT, APOL);
+  EXPECT_FALSE(r.chip.alertPinHigh());  // inactive, inverted = low
+  r.writeReg(ADC_CONFIG, (0x9 << 12));
+  r.writeReg(BOVL, 100);
+  r.chip.setAnalog({0.0, 12.0, 25.0});
+  r.advance(fromMs(1));
+  EXPECT_TRUE(r.chip.alertPinHigh());
+}
+
+TEST(Ina228Model, ResetBitRestoresDefaults) {
+  Rig r;
+  r.writeReg(SHUNT_CAL, 1234);
+  r.writeReg(BOVL, 10);
+  r.writeReg(CONFIG, 0x8000);
+  EXPECT_EQ(r.readReg(SHUNT_CAL, 2), 0x1000u);
+  EXPECT_EQ(r.readReg(BOVL, 2), 0x7FFFu);
+  EXPECT_EQ(r.readReg(CONFIG, 2), 0u);
+}
+
+TEST(Ina228Model, ConvdlyDelaysFirstConversion) {
+  Rig r;
+  r.writeReg(CONFIG, 5 << 6);  // 10 ms
+  r.chip.setAnalog({0.0, 12.0, 25.0});
+  r.writeReg(ADC_CONFIG, (0x9 << 12));  // 50 us
+  r.advance(fromMs(9));
+  EXPECT_EQ(r.chip.conversions(), 0u);
+  r.advance(fromMs(2));
+  EXPECT_GT(r.chip.conversions(), 0u);
+}
+
+TEST(SimI2cBus, AbsentOrNackedChipFailsLikeI2cDev) {
+  Rig r;
+  std::uint8_t p = 0;
+  I2cMsg m{0x41, false, &p, 1};
+  EXPECT_EQ(r.bus.transfer({&m, 1}), EREMOTEIO);
+  r.bus.setNack(0x40, true);
+  int rc = 0;
+  r.readReg(MANUFACTURER_ID, 2, &rc);
+  EXPECT_EQ(rc, EREMOTEIO);
+  r.bus.setNack(0x40, false);
+  EXPECT_EQ(r.readReg(MANUFACTURER_ID, 2, &rc), 0x5449u);
+  EXPECT_EQ(rc, 0);
+  EXPECT_EQ(r.bus.failedTransfers(), 2u);
+}
+
+TEST(Ina228Model, PointerIsRetainedBetweenReads) {
+  Rig r;
+  std::uint8_t p = MANUFACTURER_ID;
+  I2cMsg w{0x40, false, &p, 1};
+  ASSERT_EQ(r.bus.transfer({&w, 1}), 0);
+  std::uint8_t buf[2] = {};
+  I2cMsg rd{0x40, true, buf, 2};
+  ASSERT_EQ(r.bus.transfer({&rd, 1}), 0);
+  EXPECT_EQ(buf[0], 0x54);
+  EXPECT_EQ(buf[1], 0x49);
+}
+
+}  // namespace
+}  // namespace xr::sim

@@ -1,0 +1,82 @@
+// Simulated w1 sysfs tree in the kernel's w1_slave format.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+#include "drivers/sim/sim_onewire.h"
+
+namespace xr::sim {
+namespace {
+namespace fs = std::filesystem;
+
+std::string slurp(const fs::path& p) {
+  std::ifstream f(p);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+struct TempDir {
+  fs::path p;
+  TempDir() {
+    p = fs::temp_directory_path() / ("xr-w1-test-" + std::to_string(::getpid()) + "-" +
+                                     ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(p);
+  }
+  ~TempDir() { fs::remove_all(p); }
+};
+
+TEST(SimOneWire, Crc8MatchesAKnownScratchpad) {
+  // A real DS18B20 line from the kernel: "72 01 4b 46 7f ff 0e 10 57 : crc=57 YES".
+  const std::uint8_t sp[8] = {0x72, 0x01, 0x4b, 0x46, 0x7f, 0xff, 0x0e, 0x10};
+  EXPECT_EQ(SimOneWire::crc8(sp, 8), 0x57);
+}
+
+TEST(SimOneWire, FormatIsTwoLinesWithCrcAndMillidegrees) {
+  const std::string s = SimOneWire::formatW1Slave(0x0191, false);  // 25.0625 C
+  std::istringstream in(s);
+  std::string l1, l2;
+  std::getline(in, l1);
+  std::getline(in, l2);
+  EXPECT_EQ(l1.substr(0, 24), "91 01 4b 46 7f ff 0c 10 ");
+  EXPECT_NE(l1.find(": crc="), std::string::npos);
+  EXPECT_EQ(l1.substr(l1.size() - 3), "YES");
+  EXPECT_EQ(l2.substr(l2.size() - 7), "t=25062");
+  const std::string bad = SimOneWire::formatW1Slave(0x0191, true);
+  EXPECT_NE(bad.find(" NO\n"), std::string::npos);
+  EXPECT_NE(SimOneWire::formatW1Slave(std::int16_t(-160), false).find("t=-10000"), std::string::npos);
+}
+
+TEST(SimOneWire, WritesOncePerConversionAndOnlyOnChange) {
+  TempDir d;
+  SimOneWire w(d.p);
+  w.update(0, 30.0);
+  ASSERT_TRUE(fs::exists(w.slavePath()));
+  EXPECT_NE(slurp(w.slavePath()).find("t=30000"), std::string::npos);
+  w.update(fromMs(100), 40.0);  // still converting
+  EXPECT_NE(slurp(w.slavePath()).find("t=30000"), std::string::npos);
+  w.update(fromMs(800), 30.0);  // same value: no rewrite
+  EXPECT_EQ(w.writes(), 1u);
+  w.update(fromMs(1600), 40.0);
+  EXPECT_NE(slurp(w.slavePath()).find("t=40000"), std::string::npos);
+  EXPECT_EQ(w.writes(), 2u);
+}
+
+TEST(SimOneWire, DisconnectRemovesTheDevice) {
+  TempDir d;
+  SimOneWire w(d.p);
+  w.update(0, 30.0);
+  w.setPresent(false);
+  EXPECT_FALSE(fs::exists(w.slavePath()));
+  w.update(fromSec(5), 30.0);
+  EXPECT_FALSE(fs::exists(w.slavePath()));
+  w.setPresent(true);
+  w.update(fromSec(6), 31.0);
+  EXPECT_TRUE(fs::exists(w.slavePath()));
+}
+
+}  // namespace
+}  // namespace xr::sim

@@ -1,0 +1,178 @@
+// Scenario files: DESIGN.md format, file:line errors.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "drivers/sim/scenario.h"
+
+namespace xr::sim {
+namespace {
+
+std::string errorOf(std::string_view text) {
+  try {
+    parseScenario(text, "t.toml");
+  } catch (const ScenarioError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Scenario, ParsesTheDesignExample) {
+  const char* text = R"(name = "load dump in absorption"
+duration_s = 1800
+seed = 7
+[config]
+BulkVoltage = 14.4
+[battery]
+chemistry = "lifepo4"
+capacity_ah = 400
+soc_pct = 35
+[alternator]
+rated_a = 120
+field_tau_s = 0.15
+temp_f = 80
+ambient_f = 95
+[engine]
+rpm = 1800
+[loads]
+house_a = 15
+[[events]]
+at_s = 600
+house_a = 90
+[[events]]
+at_s = 900
+fault = "ina228_nack"
+[[events]]
+at_s = 905
+clear = "ina228_nack"
+[[events]]
+at_s = 1000
+bms = "disconnect"
+[[events]]
+at_s = 1200
+command = "limp_home"
+[[events]]
+at_s = 1300
+set = { TargetVoltageMode = 1, TargetVoltageSetpoint = 13.6 }
+[[events]]
+at_s = 1400
+command = "set_soc"
+soc_pct = 50
+[[events]]
+at_s = 1500
+fault = "alt_current_offset"
+value = 3.5
+)";
+  const Scenario s = parseScenario(text, "x.toml");
+  EXPECT_EQ(s.name, "load dump in absorption");
+  EXPECT_EQ(s.duration_s, 1800);
+  EXPECT_EQ(s.seed, 7u);
+  ASSERT_EQ(s.config.size(), 1u);
+  EXPECT_EQ(s.config[0].name, "BulkVoltage");
+  EXPECT_EQ(s.plant.battery.chemistry, Chemistry::lifepo4);
+  EXPECT_EQ(s.plant.battery.capacity_ah, 400);
+  EXPECT_EQ(s.plant.alternator.ambient_f, 95);
+  EXPECT_EQ(s.plant.rpm, 1800);
+  EXPECT_EQ(s.plant.house_a, 15);
+  ASSERT_EQ(s.events.size(), 8u);
+  EXPECT_EQ(*s.events[0].house_a, 90);
+  EXPECT_EQ(*s.events[1].fault, Fault::ina228_nack);
+  EXPECT_EQ(*s.events[2].clear, Fault::ina228_nack);
+  EXPECT_EQ(*s.events[3].bms_connected, false);
+  EXPECT_EQ(s.events[4].command->type, CommandType::LimpHome);
+  ASSERT_EQ(s.events[5].set.size(), 2u);
+  EXPECT_EQ(s.events[6].command->type, CommandType::SetSoc);
+  EXPECT_EQ(s.events[6].command->value, 50);
+  EXPECT_EQ(s.events[7].value, 3.5);
+  Params p;
+  applyOverrides(p, s.config);
+  EXPECT_EQ(p.BulkVoltage, 14.4);
+}
+
+TEST(Scenario, SyntaxErrorHasFileAndLine) {
+  EXPECT_EQ(errorOf("name = \"x\"\nduration_s = = 3\n").rfind("t.toml:2:", 0), 0u);
+}
+
+TEST(Scenario, UnknownKeyHasLine) {
+  const auto e = errorOf("name = \"x\"\n[battery]\nchemistry = \"agm\"\ncapacity = 100\n");
+  EXPECT_EQ(e.rfind("t.toml:4:", 0), 0u) << e;
+  EXPECT_NE(e.find("capacity"), std::string::npos);
+  EXPECT_EQ(errorOf("bogus = 1\n").rfind("t.toml:1:", 0), 0u);
+}
+
+TEST(Scenario, UnknownFaultChemistryCommandParameter) {
+  EXPECT_NE(errorOf("[[events]]\nat_s = 1\nfault = \"gremlins\"\n").find("t.toml:3: unknown fault"), std::string::npos);
+  EXPECT_NE(errorOf("[battery]\nchemistry = \"nicd\"\n").find("t.toml:2:"), std::string::npos);
+  EXPECT_NE(errorOf("[[events]]\nat_s = 1\ncommand = \"fly\"\n").find("t.toml:3:"), std::string::npos);
+  EXPECT_NE(errorOf("[config]\nBulkVoltag = 14.0\n").find("t.toml:2: unknown parameter"), std::string::npos);
+}
+
+TEST(Scenario, ValueOutOfRange) {
+  EXPECT_NE(errorOf("[battery]\nsoc_pct = 140\n").find("t.toml:2:"), std::string::npos);
+  EXPECT_NE(errorOf("[config]\nBulkVoltage = 99\n").find("t.toml:2:"), std::string::npos);
+  EXPECT_NE(errorOf("duration_s = 10\n[[events]]\nat_s = 20\nrpm = 1000\n").find("t.toml:3:"), std::string::npos);
+  EXPECT_NE(errorOf("[[events]]\nat_s = 1\nset = { TempSource = 0.5 }\n").find("t.toml:3:"), std::string::npos);
+}
+
+TEST(Scenario, EventsOutOfOrder) {
+  const auto e = errorOf("[[events]]\nat_s = 10\nrpm = 1\n[[events]]\nat_s = 5\nrpm = 2\n");
+  EXPECT_NE(e.find("t.toml:4: events out of order"), std::string::npos) << e;
+}
+
+TEST(Scenario, FaultValueRules) {
+  EXPECT_NE(errorOf("[[events]]\nat_s = 1\nfault = \"battery_v_offset\"\n").find("needs value"), std::string::npos);
+  EXPECT_NE(errorOf("[[events]]\nat_s = 1\nfault = \"ina228_nack\"\nvalue = 3\n").find("value"), std::string::npos);
+  EXPECT_NE(errorOf("[[events]]\nat_s = 1\ncommand = \"manual\"\n").find("needs duty"), std::string::npos);
+  EXPECT_EQ(errorOf("[[events]]\nat_s = 1\ncommand = \"manual\"\nduty = 20\n"), "");
+}
+
+TEST(Scenario, MissingFileIsAClearError) {
+  try {
+    loadScenario("/nonexistent/x.toml");
+    FAIL();
+  } catch (const ScenarioError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/x.toml"), std::string::npos);
+  }
+}
+
+TEST(Scenario, ShippedExamplesLoad) {
+  const std::filesystem::path dir = XR_SOURCE_DIR "/scenarios";
+  int n = 0;
+  for (const auto& f : std::filesystem::directory_iterator(dir)) {
+    if (f.path().extension() != ".toml") continue;
+    EXPECT_NO_THROW(loadScenario(f.path())) << f.path();
+    Params p;
+    EXPECT_NO_THROW(applyOverrides(p, loadScenario(f.path()).config)) << f.path();
+    ++n;
+  }
+  EXPECT_GE(n, 3);
+}
+
+TEST(ScenarioPlayer, AppliesEventsInOrderAndHandsCommandsBack) {
+  const Scenario s = parseScenario(
+      "[[events]]\nat_s = 1\nrpm = 900\n[[events]]\nat_s = 2\nfault = \"field_open\"\n[[events]]\nat_s = 3\n"
+      "command = \"off\"\n",
+      "p.toml");
+  HardwareSettings hw;
+  WorldConfig wc;
+  wc.plant = s.plant;
+  SimWorld w(wc, hw);
+  ScenarioPlayer pl(s);
+  int controls = 0;
+  auto on = [&](const ScenarioEvent& e) {
+    ++controls;
+    EXPECT_EQ(e.command->type, CommandType::Off);
+  };
+  pl.applyDue(0.5, w, on);
+  EXPECT_EQ(w.plant().rpm(), 1800);
+  pl.applyDue(1.0, w, on);
+  EXPECT_EQ(w.plant().rpm(), 900);
+  EXPECT_FALSE(w.faultActive(Fault::field_open));
+  pl.applyDue(3.0, w, on);
+  EXPECT_TRUE(w.faultActive(Fault::field_open));
+  EXPECT_EQ(controls, 1);
+  EXPECT_TRUE(pl.done());
+}
+
+}  // namespace
+}  // namespace xr::sim
