@@ -1,0 +1,169 @@
+#include "runtime/control_cycle.h"
+
+#include <algorithm>
+#include <cmath>
+#include <thread>
+
+namespace xr::rt {
+
+ControlCycle::ControlCycle(ControlCore& core, const CycleDevices& devices, Handoffs& handoffs, LoopStats& stats,
+                           const Clock& timing, CycleConfig config)
+    : core_(core), dev_(devices), h_(handoffs), stats_(stats), timing_(timing), cfg_(config) {}
+
+void ControlCycle::applyBetweenTicks() noexcept {
+  // DESIGN.md: Params are swapped whole between ticks, never mid-tick.
+  if (h_.params.update()) {
+    core_.setParams(h_.params.current());
+    ++health_.paramSwaps;
+  }
+  Command c;
+  for (int i = 0; i < cfg_.maxCommandsPerTick && h_.commands.pop(c); ++i) {
+    if (core_.command(c)) ++health_.commandsApplied;
+    else ++health_.commandsRejected;
+  }
+}
+
+void ControlCycle::mergeSlowInputs() noexcept {
+  const TemperatureHandoff t = h_.temperature.load();
+  in_.AlternatorTemperatureF.fresh = t.stamp != 0 && t.stamp != lastTempStamp_;
+  if (t.stamp != 0) {
+    in_.AlternatorTemperatureF.value = t.tempF;
+    in_.AlternatorTemperatureF.stamp = t.stamp;
+  }
+  lastTempStamp_ = t.stamp;
+  in_.tempTaskHeartbeat = t.heartbeat;
+
+  const VictronHandoff v = h_.victron.load();
+  const bool fresh = v.stamp != 0 && v.stamp != lastVictronStamp_;
+  if (v.stamp != 0) {
+    in_.VictronCurrent = Reading{v.currentA, v.stamp, fresh};
+    in_.VictronVoltage = Reading{v.voltageV, v.stamp, fresh};
+    in_.solarPowerW = Reading{v.solarW, v.stamp, fresh};
+  }
+  lastVictronStamp_ = v.stamp;
+}
+
+void ControlCycle::readDiscreteInputs() noexcept {
+  // A read error counts as the safe level: charging disabled / ignition off.
+  if (dev_.bms) in_.bmsChargeEnabled = dev_.bms->get() == 1;
+  else in_.bmsChargeEnabled = true;
+  if (dev_.ignition) in_.ignitionOn = dev_.ignition->get() == 1;
+  else in_.ignitionOn = true;
+}
+
+bool ControlCycle::writeOutputs(const Outputs& out) noexcept {
+  const bool enable = out.fieldEnable;
+  double duty = out.dutyPct;
+  if (!std::isfinite(duty)) duty = 0.0;
+  duty = std::clamp(duty, 0.0, 100.0);
+  bool ok = true;
+  // Turning off: enable LOW before the duty. Turning on: duty before enable.
+  if (!enable && (!outputsKnown_ || lastEnable_)) {
+    if (dev_.fieldEnable->set(false)) lastEnable_ = false;
+    else ok = false;
+  }
+  if (!outputsKnown_ || duty != lastDuty_) {
+    if (dev_.pwm->setDutyPercent(duty)) lastDuty_ = duty;
+    else ok = false;
+  }
+  if (enable && ok && (!outputsKnown_ || !lastEnable_)) {
+    if (dev_.fieldEnable->set(true)) lastEnable_ = true;
+    else ok = false;
+  }
+  if (dev_.buzzer && (!outputsKnown_ || out.buzzer != lastBuzzer_)) {
+    if (dev_.buzzer->set(out.buzzer)) lastBuzzer_ = out.buzzer;
+    // A buzzer failure does not endanger the alternator: not a fault.
+  }
+  outputsKnown_ = ok;
+  if (!ok) {
+    ++health_.outputWriteErrors;
+    driveSafeState();
+  }
+  return ok;
+}
+
+bool ControlCycle::tick(TimeNs now) noexcept {
+  applyBetweenTicks();
+
+  const TimeNs t0 = timing_.now();
+  in_.now = now;
+  const bool sensorsOk = dev_.sensors->read(now, in_);
+  if (!sensorsOk) ++health_.sensorReadErrors;
+  mergeSlowInputs();
+  readDiscreteInputs();
+  const TimeNs t1 = timing_.now();
+
+  const Outputs& out = core_.step(in_);
+  const TimeNs t2 = timing_.now();
+
+  bool healthy = writeOutputs(out);
+  dev_.sensors->apply(out);
+  const TimeNs t3 = timing_.now();
+
+  stats_.onIo((t1 - t0) + (t3 - t2));
+  stats_.onCompute(t2 - t1);
+  stats_.onTick();
+  stats_.onSamples(now,
+                   {in_.BatteryV.fresh, in_.altCurrentRaw.fresh, in_.rpm.fresh, in_.thermistorF.fresh},
+                   in_.IBV.fresh);
+
+  // A stalled or failing loop must lead to a reset: feed only when healthy.
+  if (healthy && dev_.watchdog) {
+    if (dev_.watchdog->keepAlive()) ++health_.watchdogFeeds;
+  }
+  h_.events.pushBatch(out.events);
+  ++tick_;
+  publish(out, now);
+  return healthy && sensorsOk;
+}
+
+void ControlCycle::publish(const Outputs& out, TimeNs now) noexcept {
+  if ((tick_ & 63) == 1) summary_ = stats_.summary();  // quantiles are not free: ~6 Hz at 400 Hz
+  if (dev_.truth) dev_.truth->fill(truth_);
+  health_.eventsDropped = h_.events.dropped();
+  health_.stopping = stopping_;
+
+  RuntimeSnapshot snap;
+  snap.tick = tick_;
+  snap.start = start_;
+  snap.telemetry = out.telemetry;
+  snap.telemetry.now = now;
+  snap.loop = summary_;
+  snap.health = health_;
+  snap.sim = truth_;
+  h_.snapshot.store(snap);
+
+  if (cfg_.rowPeriod > 0 && (!rowsStarted_ || now - lastRow_ >= cfg_.rowPeriod)) {
+    // Rows sit on the grid start + k·rowPeriod so t_s is regular.
+    lastRow_ = rowsStarted_ ? lastRow_ + cfg_.rowPeriod * ((now - lastRow_) / cfg_.rowPeriod) : now;
+    rowsStarted_ = true;
+    snap.loop = stats_.summary();
+    while (!h_.rows.push(snap)) {
+      if (!cfg_.blockOnFullRows) {
+        ++health_.rowsDropped;
+        break;
+      }
+      std::this_thread::yield();  // --speed max only: not real time, the writer sets the pace
+    }
+  }
+}
+
+void ControlCycle::beginShutdown() noexcept {
+  stopping_ = true;
+  Command off;
+  off.type = CommandType::Off;
+  core_.command(off);
+}
+
+void ControlCycle::driveSafeState() noexcept {
+  // Enable LOW first: it cuts the field even when the PWM write fails.
+  const bool enOk = dev_.fieldEnable->set(false);
+  const bool pwmOk = dev_.pwm->setDutyPercent(0.0);
+  if (dev_.buzzer) dev_.buzzer->set(false);
+  lastEnable_ = !enOk;  // unknown → assume still on so we retry
+  lastDuty_ = pwmOk ? 0.0 : 100.0;
+  lastBuzzer_ = false;
+  outputsKnown_ = enOk && pwmOk;
+}
+
+}  // namespace xr::rt

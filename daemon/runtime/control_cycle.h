@@ -1,0 +1,87 @@
+#pragma once
+// ControlCycle: the ONE loop body shared by the board and the simulation
+// (DESIGN.md "One control loop, two clocks"):
+//
+//   commands + Params swap (between ticks) → read INA228 + ADS1115 → merge
+//   slow sensors and discrete inputs into Inputs → Regulator::step → write
+//   PWM duty, GPIO4 enable, buzzer, INA mode/BOVL → feed the watchdog only
+//   after a healthy cycle → publish snapshot, events, telemetry rows.
+//
+// Runs on the RT thread: no allocation, no locks, no logging.
+#include <cstdint>
+
+#include "drivers/hal/clock.h"
+#include "runtime/control_core.h"
+#include "runtime/cycle_devices.h"
+#include "runtime/handoffs.h"
+#include "runtime/loop_stats.h"
+
+namespace xr::rt {
+
+struct CycleConfig {
+  TimeNs rowPeriod = fromMs(100);  // telemetry rows for the CSV (0 = none)
+  bool blockOnFullRows = false;    // --speed max: wait for the CSV writer instead of dropping
+  int maxCommandsPerTick = 8;
+};
+
+class ControlCycle {
+ public:
+  // `timing` is a real (wall) clock used only to measure I/O and compute
+  // time; in simulation the loop's own clock is virtual.
+  ControlCycle(ControlCore& core, const CycleDevices& devices, Handoffs& handoffs, LoopStats& stats,
+               const Clock& timing, CycleConfig config = {});
+
+  // Where t_s = 0 is (set by the loop before the first tick).
+  void setStart(TimeNs start) noexcept { start_ = start; }
+
+  // One tick at time `now`. True when healthy (sensors read, step done,
+  // every output written); only then is the watchdog fed.
+  bool tick(TimeNs now) noexcept;
+
+  // Stop path: ask the core for its controlled ramp (SYS_MODE_OFF →
+  // MODE_DISABLED_RAMP); the loop keeps ticking until fieldIsOff().
+  void beginShutdown() noexcept;
+  bool fieldIsOff() const noexcept { return !lastEnable_ && lastDuty_ <= 0.0; }
+
+  // Field enable LOW first, then duty 0, buzzer off. Safe to call any time
+  // on the control thread; also publishes the final state.
+  void driveSafeState() noexcept;
+
+  const RuntimeHealth& health() const noexcept { return health_; }
+  std::uint64_t ticks() const noexcept { return tick_; }
+
+ private:
+  void applyBetweenTicks() noexcept;
+  void mergeSlowInputs() noexcept;
+  void readDiscreteInputs() noexcept;
+  bool writeOutputs(const Outputs& out) noexcept;
+  void publish(const Outputs& out, TimeNs now) noexcept;
+
+  ControlCore& core_;
+  CycleDevices dev_;
+  Handoffs& h_;
+  LoopStats& stats_;
+  const Clock& timing_;
+  CycleConfig cfg_;
+
+  Inputs in_{};
+  RuntimeHealth health_{};
+  LoopStatsSummary summary_{};
+  SimTruth truth_{};
+  TimeNs start_ = 0;
+  TimeNs lastRow_ = 0;
+  bool rowsStarted_ = false;
+  std::uint64_t tick_ = 0;
+  TimeNs lastTempStamp_ = 0, lastVictronStamp_ = 0;
+  TimeNs lastAdsStamp_[4] = {0, 0, 0, 0};
+  TimeNs lastInaStamp_ = 0;
+
+  // What the outputs are known to be (written successfully).
+  bool outputsKnown_ = false;
+  bool lastEnable_ = false;
+  double lastDuty_ = 0.0;
+  bool lastBuzzer_ = false;
+  bool stopping_ = false;
+};
+
+}  // namespace xr::rt

@@ -1,0 +1,50 @@
+#include "runtime/control_loop.h"
+
+namespace xr::rt {
+
+ControlLoop::ControlLoop(ControlCycle& cycle, Clock& clock, LoopStats& stats, LoopConfig config)
+    : cycle_(cycle), clock_(clock), stats_(stats), cfg_(std::move(config)) {
+  if (cfg_.period <= 0) cfg_.period = fromUs(2500);
+}
+
+LoopExit ControlLoop::run() {
+  const TimeNs start = clock_.now();
+  cycle_.setStart(start);
+  TimeNs next = start;
+  bool ramping = false;
+  TimeNs rampStart = 0;
+  LoopExit exit = LoopExit::Stopped;
+
+  for (;;) {
+    if (!ramping && stopRequested()) {
+      ramping = true;
+      rampStart = clock_.now();
+      cycle_.beginShutdown();
+    }
+    if (ramping && (cycle_.fieldIsOff() || clock_.now() - rampStart >= cfg_.shutdownBudget)) break;
+    if (!ramping && cfg_.duration > 0 && next - start >= cfg_.duration) {
+      exit = LoopExit::DurationReached;
+      break;
+    }
+
+    clock_.sleepUntil(next);
+    if (cfg_.wallDeadlineOf && cfg_.wall) stats_.onPeriodError(cfg_.wall->now() - cfg_.wallDeadlineOf(next));
+    cycle_.tick(clock_.now());
+    heartbeat_.fetch_add(1, std::memory_order_relaxed);
+
+    next += cfg_.period;
+    const TimeNs now = clock_.now();
+    if (now >= next + cfg_.period) {
+      // At least one whole deadline passed without a tick: an overrun.
+      // Skip the missed ones rather than bursting to catch up.
+      const TimeNs missed = (now - next) / cfg_.period;
+      stats_.onOverrun(static_cast<std::uint64_t>(missed));
+      next += missed * cfg_.period;
+    }
+  }
+  cycle_.driveSafeState();
+  finished_.store(true, std::memory_order_release);
+  return exit;
+}
+
+}  // namespace xr::rt

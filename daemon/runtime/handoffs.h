@@ -1,0 +1,102 @@
+#pragma once
+// Every lock-free hand-off between the RT control thread and the rest of the
+// daemon, in one place (DESIGN.md thread model):
+//   in : commands (bounded SPSC), whole Params (triple buffer), slow sensor
+//        samples (seqlocks written by the 1-Wire and VE.Direct threads)
+//   out: newest snapshot (seqlock: telemetry + loop statistics + sim truth),
+//        events (SPSC ring), telemetry rows for the CSV writer (SPSC).
+// Multi-producer callers on the non-RT side (several HTTP sessions, the
+// scenario runner) go through submitCommand()/submitParams(), which take a
+// mutex the RT thread never touches.
+#include <cstdint>
+#include <mutex>
+
+#include "core/commands.h"
+#include "core/inputs.h"
+#include "core/telemetry.h"
+#include "params/params.h"
+#include "runtime/event_pump.h"
+#include "runtime/loop_stats.h"
+#include "runtime/seqlock.h"
+#include "runtime/spsc_queue.h"
+#include "runtime/triple_buffer.h"
+
+namespace xr::rt {
+
+// The simulator's physical truth, for the CSV's sim_* columns and the tests.
+struct SimTruth {
+  bool valid = false;
+  double sim_battery_v = 0, sim_alt_a = 0, sim_alt_temp_f = 0, sim_soc_pct = 0;
+  bool sim_bms_connected = true, sim_field_on = false;
+};
+
+// Health of the runtime itself, beside the loop statistics.
+struct RuntimeHealth {
+  std::uint64_t sensorReadErrors = 0;   // ticks where the fast sensors reported an I/O error
+  std::uint64_t outputWriteErrors = 0;  // PWM/GPIO writes that failed (safe state driven)
+  std::uint64_t watchdogFeeds = 0;
+  std::uint64_t commandsApplied = 0, commandsRejected = 0;
+  std::uint64_t paramSwaps = 0;
+  std::uint64_t eventsDropped = 0;
+  std::uint64_t rowsDropped = 0;        // CSV rows lost because the writer fell behind
+  bool stopping = false;                // the controlled shutdown ramp is running
+};
+
+struct RuntimeSnapshot {
+  std::uint64_t tick = 0;
+  TimeNs start = 0;  // loop start (t_s = 0)
+  Telemetry telemetry;
+  LoopStatsSummary loop;
+  RuntimeHealth health;
+  SimTruth sim;
+};
+
+// Latest sample of a slow sensor thread (1 Hz DS18B20, VE.Direct frames).
+struct TemperatureHandoff {
+  double tempF = kNoValue;
+  TimeNs stamp = 0;      // when the valid sample was taken (0 = never)
+  TimeNs heartbeat = 0;  // last completed cycle of the thread (T4), valid or not
+};
+struct VictronHandoff {
+  double currentA = kNoValue, voltageV = kNoValue, solarW = kNoValue;
+  TimeNs stamp = 0;
+};
+
+class Handoffs {
+ public:
+  explicit Handoffs(const Params& initial) : params(initial), acceptedParams_(initial) {}
+
+  // ---- non-RT side (any thread) ----
+  // False when the queue is full (the caller reports 503 / retries).
+  bool submitCommand(const Command& c) {
+    std::lock_guard lock(producerMutex_);
+    return commands.push(c);
+  }
+  // Publish a validated whole Params; the RT thread applies it between ticks.
+  void submitParams(const Params& p) {
+    std::lock_guard lock(producerMutex_);
+    acceptedParams_ = p;
+    params.write(p);
+  }
+  // The newest Params handed to the RT thread (what GET /api/params shows).
+  Params acceptedParams() const {
+    std::lock_guard lock(producerMutex_);
+    return acceptedParams_;
+  }
+  RuntimeSnapshot latest() const { return snapshot.load(); }
+
+  // ---- the hand-offs themselves ----
+  SpscQueue<Command, 64> commands;
+  TripleBuffer<Params> params;
+  SeqLock<RuntimeSnapshot> snapshot;
+  EventRing events;
+  SpscQueue<RuntimeSnapshot, 512> rows;  // telemetry rows at --telemetry-rate
+  SeqLock<TemperatureHandoff> temperature;
+  SeqLock<VictronHandoff> victron;
+
+ private:
+  mutable std::mutex producerMutex_;
+  Params acceptedParams_;
+};
+
+}  // namespace xr::rt

@@ -1,0 +1,283 @@
+#include "runtime/control_cycle.h"
+
+#include <gtest/gtest.h>
+
+#include "fakes.h"
+
+namespace xr::rt {
+namespace {
+
+using test::FakeClock;
+
+struct CycleRig {
+  CycleRig() : handoffs(Params{}), pwm(log), enable(log, 'E'), buzzer(log, 'B') {
+    dev.sensors = &sensors;
+    dev.pwm = &pwm;
+    dev.fieldEnable = &enable;
+    dev.buzzer = &buzzer;
+    dev.watchdog = &watchdog;
+    cycle = std::make_unique<ControlCycle>(core, dev, handoffs, stats, timing, cfg);
+  }
+  bool tick() {
+    clock.t += fromUs(2500);
+    return cycle->tick(clock.t);
+  }
+  test::ScriptedCore core;
+  Handoffs handoffs;
+  LoopStats stats;
+  FakeClock clock, timing;
+  test::OutputLog log;
+  test::FakeSensors sensors;
+  test::FakePwm pwm;
+  test::FakeDigitalOut enable, buzzer;
+  test::FakeWatchdog watchdog;
+  CycleDevices dev;
+  CycleConfig cfg;
+  std::unique_ptr<ControlCycle> cycle;
+};
+
+TEST(ControlCycle, WritesDutyBeforeRaisingEnable) {
+  CycleRig r;
+  r.core.requestDuty = 40.0;
+  r.core.requestEnable = true;
+  ASSERT_TRUE(r.tick());
+  ASSERT_EQ(r.log.entries.size(), 3u);  // buzzer off, duty, enable
+  std::string order;
+  for (auto& e : r.log.entries) order += e.what;
+  EXPECT_LT(order.find('D'), order.find('E'));
+  EXPECT_DOUBLE_EQ(r.pwm.duty, 40.0);
+  EXPECT_TRUE(r.enable.level);
+}
+
+TEST(ControlCycle, DropsEnableBeforeTheDutyWhenTurningOff) {
+  CycleRig r;
+  r.core.requestDuty = 40.0;
+  r.core.requestEnable = true;
+  r.tick();
+  r.log.entries.clear();
+  r.core.requestDuty = 0.0;
+  r.core.requestEnable = false;
+  r.tick();
+  ASSERT_EQ(r.log.entries.size(), 2u);
+  EXPECT_EQ(r.log.entries[0].what, 'E');
+  EXPECT_EQ(r.log.entries[0].value, 0.0);
+  EXPECT_EQ(r.log.entries[1].what, 'D');
+}
+
+TEST(ControlCycle, WritesOnlyOnChange) {
+  CycleRig r;
+  r.core.requestDuty = 25.0;
+  r.core.requestEnable = true;
+  r.tick();
+  const auto n = r.log.entries.size();
+  for (int i = 0; i < 5; ++i) r.tick();
+  EXPECT_EQ(r.log.entries.size(), n);
+}
+
+TEST(ControlCycle, ClampsNonFiniteAndOutOfRangeDuty) {
+  CycleRig r;
+  r.core.requestEnable = true;
+  r.core.requestDuty = 250.0;
+  r.tick();
+  EXPECT_DOUBLE_EQ(r.pwm.duty, 100.0);
+  r.core.requestDuty = std::numeric_limits<double>::quiet_NaN();
+  r.tick();
+  EXPECT_DOUBLE_EQ(r.pwm.duty, 0.0);
+}
+
+TEST(ControlCycle, FeedsWatchdogOnlyAfterHealthyCycles) {
+  CycleRig r;
+  r.core.requestDuty = 30.0;
+  r.core.requestEnable = true;
+  r.tick();
+  r.tick();
+  EXPECT_EQ(r.watchdog.feeds, 2);
+  r.pwm.fail = true;
+  r.core.requestDuty = 35.0;  // forces a write, which fails
+  EXPECT_FALSE(r.tick());
+  EXPECT_EQ(r.watchdog.feeds, 2);
+  EXPECT_EQ(r.cycle->health().outputWriteErrors, 1u);
+}
+
+TEST(ControlCycle, FailedPwmWriteDrivesEnableLow) {
+  CycleRig r;
+  r.core.requestDuty = 30.0;
+  r.core.requestEnable = true;
+  r.tick();
+  ASSERT_TRUE(r.enable.level);
+  r.pwm.fail = true;
+  r.core.requestDuty = 60.0;
+  r.tick();
+  EXPECT_FALSE(r.enable.level);
+}
+
+TEST(ControlCycle, FailedEnableWriteIsNotHealthy) {
+  CycleRig r;
+  r.enable.fail = true;
+  r.core.requestDuty = 30.0;
+  r.core.requestEnable = true;
+  EXPECT_FALSE(r.tick());
+  EXPECT_EQ(r.watchdog.feeds, 0);
+}
+
+TEST(ControlCycle, SensorErrorIsCountedAndNotHealthyButOutputsStillWritten) {
+  CycleRig r;
+  r.sensors.ok = false;
+  r.core.requestDuty = 10.0;
+  r.core.requestEnable = true;
+  EXPECT_FALSE(r.tick());
+  EXPECT_EQ(r.cycle->health().sensorReadErrors, 1u);
+  EXPECT_DOUBLE_EQ(r.pwm.duty, 10.0);
+}
+
+TEST(ControlCycle, AppliesQueuedCommandsAndParamsBetweenTicks) {
+  CycleRig r;
+  Command c;
+  c.type = CommandType::Manual;
+  c.value = 20;
+  ASSERT_TRUE(r.handoffs.submitCommand(c));
+  Params p;
+  p.BulkVoltage = 14.1;
+  r.handoffs.submitParams(p);
+  r.tick();
+  ASSERT_EQ(r.core.commands.size(), 1u);
+  EXPECT_EQ(r.core.commands[0].type, CommandType::Manual);
+  EXPECT_EQ(r.core.paramSets, 1);
+  EXPECT_DOUBLE_EQ(r.core.params.BulkVoltage, 14.1);
+  r.tick();
+  EXPECT_EQ(r.core.paramSets, 1);  // only once per new value
+  EXPECT_EQ(r.handoffs.latest().health.commandsApplied, 1u);
+}
+
+TEST(ControlCycle, RejectedCommandsAreCounted) {
+  CycleRig r;
+  r.core.rejectCommands = true;
+  r.handoffs.submitCommand(Command{});
+  r.tick();
+  EXPECT_EQ(r.handoffs.latest().health.commandsRejected, 1u);
+}
+
+TEST(ControlCycle, BoundsCommandsPerTick) {
+  CycleRig r;
+  for (int i = 0; i < 20; ++i) ASSERT_TRUE(r.handoffs.submitCommand(Command{}));
+  r.tick();
+  EXPECT_EQ(r.core.commands.size(), static_cast<std::size_t>(r.cfg.maxCommandsPerTick));
+  r.tick();
+  r.tick();
+  EXPECT_EQ(r.core.commands.size(), 20u);
+}
+
+TEST(ControlCycle, SlowSensorFreshOnlyOnTheTickAfterANewSample) {
+  CycleRig r;
+  TemperatureHandoff t;
+  t.tempF = 150.0;
+  t.stamp = r.clock.t;
+  t.heartbeat = r.clock.t;
+  r.handoffs.temperature.store(t);
+  r.tick();
+  EXPECT_TRUE(r.core.lastInputs.AlternatorTemperatureF.fresh);
+  EXPECT_DOUBLE_EQ(r.core.lastInputs.AlternatorTemperatureF.value, 150.0);
+  EXPECT_EQ(r.core.lastInputs.tempTaskHeartbeat, t.heartbeat);
+  r.tick();
+  EXPECT_FALSE(r.core.lastInputs.AlternatorTemperatureF.fresh);
+  EXPECT_DOUBLE_EQ(r.core.lastInputs.AlternatorTemperatureF.value, 150.0);  // latest value kept
+  EXPECT_EQ(r.core.lastInputs.AlternatorTemperatureF.stamp, t.stamp);
+}
+
+TEST(ControlCycle, VictronSamplesReachTheInputs) {
+  CycleRig r;
+  VictronHandoff v;
+  v.currentA = -12.5;
+  v.voltageV = 13.1;
+  v.solarW = 240;
+  v.stamp = r.clock.t;
+  r.handoffs.victron.store(v);
+  r.tick();
+  EXPECT_TRUE(r.core.lastInputs.VictronCurrent.fresh);
+  EXPECT_DOUBLE_EQ(r.core.lastInputs.VictronCurrent.value, -12.5);
+  EXPECT_DOUBLE_EQ(r.core.lastInputs.solarPowerW.value, 240);
+}
+
+TEST(ControlCycle, DiscreteInputErrorsReadAsTheSafeLevel) {
+  CycleRig r;
+  test::FakeDigitalIn bms, ign;
+  r.dev.bms = &bms;
+  r.dev.ignition = &ign;
+  r.cycle = std::make_unique<ControlCycle>(r.core, r.dev, r.handoffs, r.stats, r.timing, r.cfg);
+  r.tick();
+  EXPECT_TRUE(r.core.lastInputs.bmsChargeEnabled);
+  EXPECT_TRUE(r.core.lastInputs.ignitionOn);
+  bms.value = -1;
+  ign.value = 0;
+  r.tick();
+  EXPECT_FALSE(r.core.lastInputs.bmsChargeEnabled);
+  EXPECT_FALSE(r.core.lastInputs.ignitionOn);
+}
+
+TEST(ControlCycle, PublishesSnapshotWithTelemetryAndTick) {
+  CycleRig r;
+  r.sensors.ibv = 13.7;
+  r.tick();
+  r.tick();
+  const RuntimeSnapshot s = r.handoffs.latest();
+  EXPECT_EQ(s.tick, 2u);
+  EXPECT_DOUBLE_EQ(s.telemetry.ibv_v, 13.7);
+  EXPECT_EQ(s.telemetry.now, r.clock.t);
+}
+
+TEST(ControlCycle, EventsGoToTheRingAndOverflowIsCounted) {
+  CycleRig r;
+  r.core.eventsPerTick = 10;
+  for (int i = 0; i < 110; ++i) r.tick();  // 1100 events into a 1024 ring
+  EXPECT_EQ(r.handoffs.events.dropped(), 1100u - EventRing::kCapacity);
+  Event e;
+  ASSERT_TRUE(r.handoffs.events.pop(e));
+  EXPECT_DOUBLE_EQ(e.a, 1.0);  // oldest first
+}
+
+TEST(ControlCycle, RowsFollowTheTelemetryRate) {
+  CycleRig r;
+  r.cfg.rowPeriod = fromMs(100);
+  r.cycle = std::make_unique<ControlCycle>(r.core, r.dev, r.handoffs, r.stats, r.timing, r.cfg);
+  for (int i = 0; i < 400; ++i) r.tick();  // 1 s of 2.5 ms ticks
+  EXPECT_EQ(r.handoffs.rows.size(), 10u);
+}
+
+TEST(ControlCycle, RowsAreDroppedAndCountedWhenTheWriterFallsBehind) {
+  CycleRig r;
+  r.cfg.rowPeriod = fromUs(2500);  // one per tick
+  r.cycle = std::make_unique<ControlCycle>(r.core, r.dev, r.handoffs, r.stats, r.timing, r.cfg);
+  const int ticks = static_cast<int>(decltype(r.handoffs.rows)::capacity()) + 5;
+  for (int i = 0; i < ticks; ++i) r.tick();
+  EXPECT_EQ(r.cycle->health().rowsDropped, 5u);
+}
+
+TEST(ControlCycle, ShutdownCommandsOffAndDriveSafeStateLowersEverything) {
+  CycleRig r;
+  r.core.requestDuty = 50.0;
+  r.core.requestEnable = true;
+  r.core.requestBuzzer = true;
+  r.tick();
+  EXPECT_FALSE(r.cycle->fieldIsOff());
+  r.cycle->beginShutdown();
+  ASSERT_FALSE(r.core.commands.empty());
+  EXPECT_EQ(r.core.commands.back().type, CommandType::Off);
+  for (int i = 0; i < 10 && !r.cycle->fieldIsOff(); ++i) r.tick();
+  EXPECT_TRUE(r.cycle->fieldIsOff());
+  r.cycle->driveSafeState();
+  EXPECT_FALSE(r.enable.level);
+  EXPECT_DOUBLE_EQ(r.pwm.duty, 0.0);
+  EXPECT_FALSE(r.buzzer.level);
+}
+
+TEST(ControlCycle, SampleRatesCountFreshSamples) {
+  CycleRig r;
+  for (int i = 0; i < 801; ++i) r.tick();  // 2 s at 400 Hz
+  const LoopStatsSummary s = r.stats.summary();
+  EXPECT_NEAR(s.ch1SampleRateHz, 400.0, 1.0);      // fresh every tick
+  EXPECT_NEAR(s.adsChannelRateHz[0], 100.0, 1.0);  // fresh every 4th tick
+  EXPECT_NEAR(s.inaSampleRateHz, 400.0, 1.0);
+}
+
+}  // namespace
+}  // namespace xr::rt

@@ -1,0 +1,160 @@
+#include "runtime/control_loop.h"
+
+#include <gtest/gtest.h>
+
+#include "fakes.h"
+
+namespace xr::rt {
+namespace {
+
+using test::FakeClock;
+
+struct LoopRig {
+  LoopRig() : handoffs(Params{}), pwm(log), enable(log, 'E') {
+    dev.sensors = &sensors;
+    dev.pwm = &pwm;
+    dev.fieldEnable = &enable;
+    dev.watchdog = &watchdog;
+    cycle = std::make_unique<ControlCycle>(core, dev, handoffs, stats, clock, CycleConfig{});
+  }
+  test::ScriptedCore core;
+  Handoffs handoffs;
+  LoopStats stats;
+  FakeClock clock;
+  test::OutputLog log;
+  test::FakeSensors sensors;
+  test::FakePwm pwm;
+  test::FakeDigitalOut enable;
+  test::FakeWatchdog watchdog;
+  CycleDevices dev;
+  std::unique_ptr<ControlCycle> cycle;
+};
+
+TEST(ControlLoop, RunsForTheDurationOnAbsoluteDeadlines) {
+  LoopRig r;
+  LoopConfig cfg;
+  cfg.period = fromUs(2500);
+  cfg.duration = fromSec(1.0);
+  ControlLoop loop(*r.cycle, r.clock, r.stats, cfg);
+  const TimeNs start = r.clock.t;
+  EXPECT_EQ(loop.run(), LoopExit::DurationReached);
+  EXPECT_EQ(r.core.steps, 400);
+  EXPECT_EQ(loop.heartbeat(), 400u);
+  EXPECT_EQ(r.clock.t, start + fromUs(2500) * 399);  // last deadline slept to
+  EXPECT_TRUE(loop.finished());
+  EXPECT_EQ(r.stats.summary().overruns, 0u);
+}
+
+TEST(ControlLoop, LeavesTheFieldSafeAtTheEnd) {
+  LoopRig r;
+  r.core.requestDuty = 60.0;
+  r.core.requestEnable = true;
+  LoopConfig cfg;
+  cfg.duration = fromMs(100);
+  ControlLoop loop(*r.cycle, r.clock, r.stats, cfg);
+  loop.run();
+  EXPECT_FALSE(r.enable.level);
+  EXPECT_DOUBLE_EQ(r.pwm.duty, 0.0);
+}
+
+TEST(ControlLoop, StopRunsTheControlledRampBeforeForcingOff) {
+  LoopRig r;
+  r.core.requestDuty = 50.0;
+  r.core.requestEnable = true;
+  r.core.rampStep = 10.0;  // 5 ticks to reach 0
+  LoopConfig cfg;
+  ControlLoop loop(*r.cycle, r.clock, r.stats, cfg);
+  int stepsAtStop = -1;
+  r.core.onStep = [&](const Inputs&) {
+    if (r.core.steps == 20) {
+      loop.requestStop();
+      stepsAtStop = r.core.steps;
+    }
+  };
+  EXPECT_EQ(loop.run(), LoopExit::Stopped);
+  ASSERT_EQ(stepsAtStop, 20);
+  // Ramp: 40, 30, 20, 10, 0 written before the loop ended on its own.
+  EXPECT_EQ(r.core.steps, 25);
+  std::vector<double> duties;
+  for (auto& e : r.log.entries)
+    if (e.what == 'D') duties.push_back(e.value);
+  ASSERT_GE(duties.size(), 6u);
+  EXPECT_DOUBLE_EQ(duties[1], 40.0);
+  EXPECT_DOUBLE_EQ(duties[4], 10.0);
+  EXPECT_FALSE(r.enable.level);
+  EXPECT_DOUBLE_EQ(r.pwm.duty, 0.0);
+}
+
+TEST(ControlLoop, StopForcesTheFieldOffWhenTheRampDoesNotFinishInBudget) {
+  LoopRig r;
+  r.core.requestDuty = 50.0;
+  r.core.requestEnable = true;
+  r.core.rampStep = 0.0;  // a core that never ramps down
+  LoopConfig cfg;
+  cfg.shutdownBudget = fromMs(500);
+  ControlLoop loop(*r.cycle, r.clock, r.stats, cfg);
+  r.core.onStep = [&](const Inputs&) {
+    if (r.core.steps == 10) loop.requestStop();
+  };
+  const TimeNs start = r.clock.t;
+  loop.run();
+  EXPECT_FALSE(r.enable.level);
+  EXPECT_DOUBLE_EQ(r.pwm.duty, 0.0);
+  // Ended about one budget after the stop, well inside 3 s.
+  EXPECT_LE(r.clock.t - start, fromMs(25) + fromMs(500) + fromUs(2500));
+}
+
+TEST(ControlLoop, DetectsAndSkipsOverruns) {
+  LoopRig r;
+  LoopConfig cfg;
+  cfg.period = fromUs(2500);
+  cfg.duration = fromMs(100);  // 40 deadlines
+  ControlLoop loop(*r.cycle, r.clock, r.stats, cfg);
+  r.core.onStep = [&](const Inputs&) {
+    if (r.core.steps == 10) r.clock.t += fromUs(2500) * 3 + fromUs(100);  // a 7.6 ms stall
+  };
+  loop.run();
+  // Deadlines 11 and 12 passed entirely during the stall and are skipped;
+  // deadline 13 runs 100 µs late.
+  EXPECT_EQ(r.stats.summary().overruns, 2u);
+  EXPECT_EQ(r.core.steps, 40 - 2);
+}
+
+TEST(ControlLoop, SmallLatenessIsNotAnOverrun) {
+  LoopRig r;
+  LoopConfig cfg;
+  cfg.duration = fromMs(50);
+  ControlLoop loop(*r.cycle, r.clock, r.stats, cfg);
+  r.core.onStep = [&](const Inputs&) { r.clock.t += fromUs(2600); };  // each tick overruns its slot a bit
+  loop.run();
+  EXPECT_EQ(r.stats.summary().overruns, 0u);
+}
+
+TEST(ControlLoop, MeasuresPeriodErrorAgainstTheWallDeadline) {
+  LoopRig r;
+  FakeClock wall;
+  LoopConfig cfg;
+  cfg.duration = fromMs(25);  // 10 ticks
+  cfg.wall = &wall;
+  cfg.wallDeadlineOf = [&](TimeNs t) { return t - r.clock.t + wall.t - fromUs(120); };  // always 120 µs late
+  ControlLoop loop(*r.cycle, r.clock, r.stats, cfg);
+  loop.run();
+  const auto s = r.stats.summary();
+  EXPECT_TRUE(s.periodMeasured);
+  EXPECT_DOUBLE_EQ(s.periodErrMaxUs, 120.0);
+  EXPECT_DOUBLE_EQ(s.periodErrP99Us, 120.0);
+  EXPECT_EQ(s.periodErrHist[2], 0u);   // none under 100 µs
+  EXPECT_EQ(s.periodErrHist[3], 10u);  // all under 200 µs
+}
+
+TEST(ControlLoop, StopRequestedBeforeRunStillLeavesFieldSafe) {
+  LoopRig r;
+  ControlLoop loop(*r.cycle, r.clock, r.stats, LoopConfig{});
+  loop.requestStop();
+  EXPECT_EQ(loop.run(), LoopExit::Stopped);
+  EXPECT_FALSE(r.enable.level);
+  EXPECT_DOUBLE_EQ(r.pwm.duty, 0.0);
+}
+
+}  // namespace
+}  // namespace xr::rt

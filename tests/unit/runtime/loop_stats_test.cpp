@@ -1,0 +1,74 @@
+#include "runtime/loop_stats.h"
+
+#include <gtest/gtest.h>
+
+namespace xr::rt {
+namespace {
+
+TEST(LatencyHistogram, EmptyIsZero) {
+  LatencyHistogram h;
+  EXPECT_EQ(h.quantile(0.5), 0);
+  EXPECT_EQ(h.max(), 0);
+}
+
+TEST(LatencyHistogram, QuantilesResolveToTheBinUpperEdgeCappedAtMax) {
+  LatencyHistogram h;
+  for (int i = 0; i < 98; ++i) h.add(fromUs(5));  // bin [0,10)
+  h.add(fromUs(150));                             // bin [150,160)
+  h.add(fromUs(1234));
+  EXPECT_EQ(h.quantile(0.50), fromUs(10));
+  EXPECT_EQ(h.quantile(0.98), fromUs(10));
+  EXPECT_EQ(h.quantile(0.99), fromUs(160));
+  EXPECT_EQ(h.quantile(1.0), fromUs(1234));
+  EXPECT_EQ(h.max(), fromUs(1234));
+  EXPECT_EQ(h.countBelow(fromUs(100)), 98u);
+  EXPECT_EQ(h.countBelow(fromUs(200)), 99u);
+}
+
+TEST(LatencyHistogram, HugeValuesLandInOverflowAndKeepExactMax) {
+  LatencyHistogram h;
+  h.add(fromMs(50));
+  EXPECT_EQ(h.quantile(0.5), fromMs(50));
+  EXPECT_EQ(h.max(), fromMs(50));
+  EXPECT_EQ(h.countBelow(fromMs(1)), 0u);
+}
+
+TEST(LatencyHistogram, NegativeErrorCountsByMagnitude) {
+  LatencyHistogram h;
+  h.add(-fromUs(30));
+  EXPECT_EQ(h.max(), fromUs(30));
+}
+
+TEST(LoopStats, SummaryReportsComputeIoAndOverruns) {
+  LoopStats s;
+  for (int i = 0; i < 100; ++i) {
+    s.onCompute(fromUs(20));
+    s.onIo(fromUs(300));
+    s.onTick();
+  }
+  s.onOverrun(2);
+  const auto sum = s.summary();
+  EXPECT_EQ(sum.ticks, 100u);
+  EXPECT_EQ(sum.overruns, 2u);
+  EXPECT_DOUBLE_EQ(sum.computeP50Us, 20.0);
+  EXPECT_DOUBLE_EQ(sum.ioMaxUs, 300.0);
+  EXPECT_FALSE(sum.periodMeasured);
+}
+
+TEST(LoopStats, ChannelRatesUseOneSecondWindows) {
+  LoopStats s;
+  TimeNs t = 0;
+  for (int i = 0; i <= 1000; ++i, t += fromMs(1)) {
+    // CH1 every ms, CH0 every 10 ms, CH2/CH3 never
+    s.onSamples(t, {i % 10 == 0, true, false, false}, i % 2 == 0);
+  }
+  const auto sum = s.summary();
+  EXPECT_NEAR(sum.ch1SampleRateHz, 1000.0, 2.0);
+  EXPECT_NEAR(sum.adsChannelRateHz[0], 100.0, 2.0);
+  EXPECT_EQ(sum.adsChannelRateHz[2], 0.0);
+  EXPECT_NEAR(sum.inaSampleRateHz, 500.0, 2.0);
+  EXPECT_NEAR(sum.windowS, 1.0, 0.01);
+}
+
+}  // namespace
+}  // namespace xr::rt
