@@ -1,0 +1,96 @@
+#include "store/schema.h"
+
+#include <sqlite3.h>
+
+#include <string>
+
+namespace xr::store {
+
+namespace {
+
+int setVersion(sql::Db& db, int v) { return db.exec("PRAGMA user_version = " + std::to_string(v)); }
+
+constexpr const char* kV1 = R"sql(
+CREATE TABLE IF NOT EXISTS ledger(name TEXT PRIMARY KEY, value REAL NOT NULL);
+CREATE TABLE IF NOT EXISTS overrides(name TEXT PRIMARY KEY, value TEXT NOT NULL);
+CREATE TABLE IF NOT EXISTS events(id INTEGER PRIMARY KEY, t_ms INTEGER NOT NULL, level TEXT NOT NULL,
+                                  code TEXT NOT NULL, message TEXT NOT NULL);
+)sql";
+
+// v1 -> v2: the time the ledger was saved (unknown for v1 data: 0), overrides
+// remember the file value they replaced, events carry reason and values.
+constexpr const char* kV2 = R"sql(
+CREATE TABLE ledger_meta(id INTEGER PRIMARY KEY CHECK (id = 1), saved_at_ms INTEGER NOT NULL,
+                         reason TEXT NOT NULL);
+INSERT INTO ledger_meta(id, saved_at_ms, reason)
+  SELECT 1, 0, 'migrated from v1' WHERE EXISTS (SELECT 1 FROM ledger);
+ALTER TABLE overrides ADD COLUMN file_value TEXT;
+ALTER TABLE overrides ADD COLUMN changed_at_ms INTEGER NOT NULL DEFAULT 0;
+ALTER TABLE events ADD COLUMN reason TEXT NOT NULL DEFAULT 'NONE';
+ALTER TABLE events ADD COLUMN a REAL NOT NULL DEFAULT 0;
+ALTER TABLE events ADD COLUMN b REAL NOT NULL DEFAULT 0;
+CREATE TABLE kv(key TEXT PRIMARY KEY, value TEXT NOT NULL);
+)sql";
+
+// v2 -> v3: chart history. Rows are (bucket start, series) -> packed float32
+// samples, clustered by time so appends touch the last pages only.
+constexpr const char* kV3 = R"sql(
+CREATE TABLE series(id INTEGER PRIMARY KEY, name TEXT NOT NULL UNIQUE);
+CREATE TABLE history_1s(bucket INTEGER NOT NULL, series INTEGER NOT NULL, data BLOB NOT NULL,
+                        PRIMARY KEY(bucket, series)) WITHOUT ROWID;
+CREATE TABLE history_1m(bucket INTEGER NOT NULL, series INTEGER NOT NULL, data BLOB NOT NULL,
+                        PRIMARY KEY(bucket, series)) WITHOUT ROWID;
+CREATE INDEX events_t ON events(t_ms);
+)sql";
+
+}  // namespace
+
+int createV1(sql::Db& db) {
+  int rc = db.exec(kV1);
+  if (rc == SQLITE_OK) rc = setVersion(db, 1);
+  return rc;
+}
+
+int migrateStep(sql::Db& db, int from) {
+  switch (from) {
+    case 0: return createV1(db);
+    case 1: {
+      int rc = db.exec(kV2);
+      return rc == SQLITE_OK ? setVersion(db, 2) : rc;
+    }
+    case 2: {
+      int rc = db.exec(kV3);
+      return rc == SQLITE_OK ? setVersion(db, 3) : rc;
+    }
+    default: return db.setError(SQLITE_MISMATCH, "no migration from version " + std::to_string(from));
+  }
+}
+
+int migrate(sql::Db& db) {
+  int rc = SQLITE_OK;
+  int v = static_cast<int>(db.queryInt("PRAGMA user_version", &rc));
+  if (!sql::isOk(rc)) return rc;
+  if (v > kSchemaVersion)
+    return db.setError(SQLITE_MISMATCH, "database schema v" + std::to_string(v) + " is newer than v" +
+                                            std::to_string(kSchemaVersion));
+  while (v < kSchemaVersion) {
+    sql::Transaction tx(db);
+    if (tx.beginRc() != SQLITE_OK) return tx.beginRc();
+    rc = migrateStep(db, v);
+    if (rc != SQLITE_OK) return rc;
+    rc = tx.commit();
+    if (rc != SQLITE_OK) return rc;
+    ++v;
+  }
+  return SQLITE_OK;
+}
+
+int createAtVersion(sql::Db& db, int v) {
+  for (int cur = 0; cur < v; ++cur) {
+    const int rc = migrateStep(db, cur);
+    if (rc != SQLITE_OK) return rc;
+  }
+  return SQLITE_OK;
+}
+
+}  // namespace xr::store

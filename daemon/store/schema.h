@@ -1,0 +1,27 @@
+#pragma once
+// Database schema, versioned in PRAGMA user_version. Every historical version
+// stays in the code as a forward migration step, so a database written by any
+// earlier release is brought up to date on open (and each path is tested).
+//
+//   v1  ledger(name, value), overrides(name, value), events(t_ms, level, code, message)
+//   v2  ledger_meta (saved time + reason), overrides gain file_value/changed_at_ms,
+//       events gain reason/a/b, kv (web token, tuning logs)
+//   v3  history_1s / history_1m (packed float buckets) + series names, events index
+#include "store/sqlite_db.h"
+
+namespace xr::store {
+
+inline constexpr int kSchemaVersion = 3;
+
+// Creates the v1 schema on an empty database (user_version 0 -> 1).
+int createV1(sql::Db& db);
+// Applies the migration from version `from` to `from + 1` (from >= 1).
+int migrateStep(sql::Db& db, int from);
+// Brings any version 0..kSchemaVersion up to kSchemaVersion, each step in its
+// own transaction. Returns SQLITE_OK, or an error (the version is then left at
+// the last completed step). A version newer than ours is SQLITE_MISMATCH.
+int migrate(sql::Db& db);
+// Builds exactly version `v` (tests: a database "written by an older release").
+int createAtVersion(sql::Db& db, int v);
+
+}  // namespace xr::store

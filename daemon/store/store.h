@@ -1,0 +1,175 @@
+#pragma once
+// Store: the SQLite persistence of xregulatord (persistence issue). One
+// database file: battery ledger + regulator state, parameter overrides,
+// events, chart history, the web token.
+//
+// Threading: every method is called from ONE non-RT thread (the runtime's
+// store thread). Never from the RT thread: calls block on disk I/O.
+//
+// Failure policy: nothing throws and nothing aborts. A corrupt or unreadable
+// file is moved aside (`<path>.corrupt-<UTC time>`) and a fresh database is
+// started; a file that cannot be written at all (read-only directory) leaves
+// the store running on an in-memory database. Both are reported by
+// OpenResult::alarm() so the runtime raises an alarm event. Write errors (a
+// full disk) come back as StoreStatus values.
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "battery/ledger.h"
+#include "core/events.h"
+#include "store/sqlite_db.h"
+
+namespace xr {
+
+struct StoreStatus {
+  bool ok = true;
+  bool diskFull = false;  // SQLITE_FULL: the disk (or the page quota) is full
+  int code = 0;           // SQLite result code
+  std::string error;
+  explicit operator bool() const { return ok; }
+};
+
+// The series the runtime records for charts, in appendHistory() order.
+std::vector<std::string> defaultHistorySeries();
+
+struct StoreOptions {
+  int busyTimeoutMs = 2000;
+  // History is buffered in memory and written in one transaction this often:
+  // a power cut loses at most this much chart history, and the SD card sees
+  // a few pages per flush instead of a few pages per second.
+  int historyFlushS = 300;
+  std::int64_t history1sKeepS = 48 * 3600;          // 1 s resolution kept 48 h
+  std::int64_t history1mKeepS = 366LL * 24 * 3600;  // 1 min resolution kept a year
+  std::int64_t maxEvents = 50000;                   // events table bounded too
+  std::vector<std::string> historySeries = defaultHistorySeries();
+  // Tests: PRAGMA max_page_count, to simulate a full disk (0 = unlimited).
+  std::int64_t maxPageCount = 0;
+};
+
+struct OpenResult {
+  bool ok = false;         // the database file is open and up to date
+  bool recovered = false;  // the old file was corrupt or unreadable: copy kept, started fresh
+  bool inMemory = false;   // the file cannot be used at all: running in memory, nothing persists
+  std::string message;     // what happened, for the log
+  std::string corruptCopy; // where the bad file was moved
+  int fromVersion = 0;     // schema version found (0 = new file)
+  bool alarm() const { return recovered || inMemory; }
+};
+
+struct SavedLedger {
+  BatteryLedger ledger;
+  std::int64_t savedAtMs = 0;  // UTC ms of the checkpoint (0 = unknown, migrated data)
+  std::string reason;          // "interval", "field_off", "stage", "stop", ...
+};
+
+struct OverrideRow {
+  std::string name;
+  std::string value;      // the operator's value
+  std::string fileValue;  // the value in the TOML file when it was changed
+  std::int64_t changedAtMs = 0;
+};
+
+struct EventRecord {
+  std::int64_t id = 0;  // assigned by the store
+  std::int64_t tMs = 0;  // UTC ms
+  std::string level;     // toString(EventLevel)
+  std::string code;      // toString(EventCode)
+  std::string reason;    // toString(Reason)
+  std::string message;   // describe(e)
+  double a = 0.0, b = 0.0;
+};
+// Formats a core event for the store (allocates: non-RT only).
+EventRecord toEventRecord(const Event& e, std::int64_t tUnixMs);
+
+struct HistoryPoint {
+  std::int64_t tMs = 0;
+  double value = 0.0;
+};
+
+class Store {
+ public:
+  explicit Store(StoreOptions options = {});
+  ~Store();  // flushes buffered history
+  Store(const Store&) = delete;
+  Store& operator=(const Store&) = delete;
+
+  OpenResult open(const std::string& path, std::int64_t nowUnixMs);
+  void close();
+  bool isOpen() const { return db_.isOpen(); }
+  bool inMemory() const { return inMemory_; }
+  const std::string& path() const { return path_; }
+
+  // ---- ledger / regulator state --------------------------------------------
+  // Saves the whole ledger in one transaction with synchronous=FULL (it must
+  // survive a power cut once this returns).
+  StoreStatus checkpoint(const BatteryLedger& ledger, std::string_view reason, std::int64_t nowUnixMs);
+  std::optional<SavedLedger> loadLedger();
+  // Opaque named documents (control's tuning logs as JSON).
+  StoreStatus putBlob(std::string_view key, std::string_view value);
+  std::optional<std::string> getBlob(std::string_view key);
+
+  // ---- parameter overrides -------------------------------------------------
+  StoreStatus setOverride(std::string_view name, std::string_view value, std::string_view fileValue,
+                          std::int64_t nowUnixMs);
+  std::vector<OverrideRow> overrides();
+  std::optional<OverrideRow> findOverride(std::string_view name);
+  // Forget the operator's value: the file value applies again.
+  StoreStatus resetOverride(std::string_view name);
+
+  // ---- events ----------------------------------------------------------------
+  StoreStatus appendEvents(std::span<const EventRecord> events);
+  // Newest first; only events strictly before `beforeMs` when given.
+  std::vector<EventRecord> queryEvents(std::size_t limit, std::optional<std::int64_t> beforeMs = {});
+
+  // ---- chart history ---------------------------------------------------------
+  // One sample: values in options.historySeries order (NaN = no value).
+  // Buffered; flushed every historyFlushS (of sample time) or by flushHistory().
+  StoreStatus appendHistory(std::int64_t tUnixMs, std::span<const double> values);
+  StoreStatus flushHistory();
+  // Points of `series` in [fromMs, toMs], averaged into stepMs bins (step 0 or
+  // < 1 s = raw 1 s points). Uses the 1 s table when the range lies within its
+  // retention and step < 60 s, else the 1 min table. Includes buffered data.
+  std::vector<HistoryPoint> queryHistory(std::string_view series, std::int64_t fromMs, std::int64_t toMs,
+                                         std::int64_t stepMs);
+  // Deletes history and events beyond their retention.
+  StoreStatus compact(std::int64_t nowUnixMs);
+
+  // ---- web token -------------------------------------------------------------
+  // The stored token, or a new random 32-byte hex token stored now.
+  std::string getOrCreateToken();
+
+  // ---- diagnostics -----------------------------------------------------------
+  std::string integrityCheck();  // "ok" when healthy
+  const std::string& lastError() const { return db_.lastError(); }
+
+ private:
+  struct Bucket {
+    std::vector<float> data;  // series-major: data[s * 60 + slot]
+  };
+  StoreStatus status(int rc, std::string_view what);
+  int configure();
+  int seriesId(std::string_view name);
+  int writeBuckets(std::string_view table, std::map<std::int64_t, Bucket>& pending,
+                   std::int64_t bucketSpanS);
+  void closeMinute();
+
+  StoreOptions opt_;
+  sql::Db db_;
+  std::string path_;
+  bool inMemory_ = false;
+  std::vector<int> seriesIds_;
+  std::map<std::int64_t, Bucket> pending1s_;  // key: minute start (s)
+  std::map<std::int64_t, Bucket> pending1m_;  // key: hour start (s)
+  std::int64_t aggMinute_ = -1;               // minute being averaged for the 1 min table
+  std::vector<double> aggSum_;
+  std::vector<int> aggCount_;
+  std::int64_t lastFlushS_ = -1;
+  std::int64_t lastCompactS_ = -1;
+};
+
+}  // namespace xr

@@ -1,0 +1,241 @@
+// Store: ledger, overrides, events, history, token (persistence issue).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "store/param_overrides.h"
+#include "store/schema.h"
+#include "store/store.h"
+#include "store_test_util.h"
+
+namespace xr {
+namespace {
+
+using test::kT0;
+using test::TempDir;
+
+BatteryLedger sampleLedger() {
+  BatteryLedger l;
+  double v = 1.25;
+  visitLedgerFields(l, [&](const char*, double& f) { f = (v *= 1.7); });
+  l.valid = true;
+  return l;
+}
+
+TEST(Store, CreatesWalDatabaseAtCurrentSchema) {
+  TempDir d;
+  Store s;
+  const OpenResult r = s.open(d.file("sub/dir/x.db"), kT0);
+  ASSERT_TRUE(r.ok) << r.message;
+  EXPECT_FALSE(r.alarm());
+  sql::Db db;
+  ASSERT_EQ(db.open(d.file("sub/dir/x.db")), 0);
+  EXPECT_EQ(db.queryText("PRAGMA journal_mode"), "wal");
+  EXPECT_EQ(db.queryInt("PRAGMA user_version"), store::kSchemaVersion);
+}
+
+TEST(Store, LedgerRoundTripWithTimeAndReason) {
+  TempDir d;
+  const BatteryLedger l = sampleLedger();
+  {
+    Store s;
+    ASSERT_TRUE(s.open(d.file("x.db"), kT0).ok);
+    EXPECT_FALSE(s.loadLedger().has_value());  // nothing saved yet
+    ASSERT_TRUE(s.checkpoint(l, "field_off", kT0 + 5000).ok);
+  }
+  Store s;
+  ASSERT_TRUE(s.open(d.file("x.db"), kT0 + 10000).ok);
+  const auto saved = s.loadLedger();
+  ASSERT_TRUE(saved.has_value());
+  EXPECT_EQ(saved->ledger, l);
+  EXPECT_EQ(saved->savedAtMs, kT0 + 5000);
+  EXPECT_EQ(saved->reason, "field_off");
+}
+
+TEST(Store, OverridesSurviveRestartAndFileValueReturnsAfterReset) {
+  TempDir d;
+  const Params file;  // the TOML file's values
+  Params operatorSet = file;
+  operatorSet.BulkVoltage = 14.2;
+  operatorSet.rpmCapCurrentTable[3] = 42.5;
+  {
+    Store s;
+    ASSERT_TRUE(s.open(d.file("x.db"), kT0).ok);
+    ASSERT_TRUE(saveParamOverride(s, "BulkVoltage", file, operatorSet, kT0).ok);
+    ASSERT_TRUE(saveParamOverride(s, "rpmCapCurrentTable", file, operatorSet, kT0).ok);
+    EXPECT_FALSE(saveParamOverride(s, "NoSuchParam", file, operatorSet, kT0).ok);
+  }
+  {
+    Store s;
+    ASSERT_TRUE(s.open(d.file("x.db"), kT0).ok);
+    const auto rows = s.overrides();
+    ASSERT_EQ(rows.size(), 2u);
+    const auto bulk = s.findOverride("BulkVoltage");
+    ASSERT_TRUE(bulk.has_value());
+    EXPECT_EQ(bulk->value, "14.2");
+    EXPECT_EQ(bulk->fileValue, "14.5");  // shown as "changed from 14.5"
+    std::vector<std::string> errors;
+    const Params applied = applyStoredOverrides(file, rows, errors);
+    EXPECT_TRUE(errors.empty());
+    EXPECT_EQ(applied, operatorSet);
+    ASSERT_TRUE(s.resetOverride("BulkVoltage").ok);
+  }
+  Store s;
+  ASSERT_TRUE(s.open(d.file("x.db"), kT0).ok);
+  std::vector<std::string> errors;
+  const Params applied = applyStoredOverrides(file, s.overrides(), errors);
+  EXPECT_DOUBLE_EQ(applied.BulkVoltage, file.BulkVoltage);  // the file value is back
+  EXPECT_DOUBLE_EQ(applied.rpmCapCurrentTable[3], 42.5);   // the other override stays
+}
+
+TEST(Store, BadStoredOverridesAreSkippedNotApplied) {
+  const Params file;
+  std::vector<OverrideRow> rows{{"BulkVoltage", "999", "14.5", 0},
+                                {"Gone", "1", "1", 0},
+                                {"rpmCapCurrentTable", "1,2,3", "", 0},
+                                {"FloatVoltage", "13.2", "13.5", 0}};
+  std::vector<std::string> errors;
+  const Params p = applyStoredOverrides(file, rows, errors);
+  EXPECT_EQ(errors.size(), 3u);
+  EXPECT_DOUBLE_EQ(p.BulkVoltage, file.BulkVoltage);
+  EXPECT_EQ(p.rpmCapCurrentTable, file.rpmCapCurrentTable);
+  EXPECT_DOUBLE_EQ(p.FloatVoltage, 13.2);
+}
+
+TEST(Store, EventsNewestFirstWithLimitAndBefore) {
+  TempDir d;
+  Store s;
+  ASSERT_TRUE(s.open(d.file("x.db"), kT0).ok);
+  std::vector<EventRecord> evs;
+  for (int i = 0; i < 30; ++i) {
+    Event e;
+    e.level = EventLevel::Warning;
+    e.code = EventCode::FullChargeDetected;
+    e.a = i;
+    evs.push_back(toEventRecord(e, kT0 + i * 1000));
+  }
+  ASSERT_TRUE(s.appendEvents(evs).ok);
+  const auto last10 = s.queryEvents(10);
+  ASSERT_EQ(last10.size(), 10u);
+  EXPECT_EQ(last10.front().tMs, kT0 + 29000);
+  EXPECT_EQ(last10.back().tMs, kT0 + 20000);
+  EXPECT_EQ(last10.front().code, "FullChargeDetected");
+  EXPECT_EQ(last10.front().level, toString(EventLevel::Warning));
+  EXPECT_DOUBLE_EQ(last10.front().a, 29.0);
+  EXPECT_FALSE(last10.front().message.empty());
+  const auto page2 = s.queryEvents(10, last10.back().tMs);
+  ASSERT_EQ(page2.size(), 10u);
+  EXPECT_EQ(page2.front().tMs, kT0 + 19000);
+}
+
+TEST(Store, HistoryOneSecondAndOneMinute) {
+  TempDir d;
+  StoreOptions opt;
+  opt.historyFlushS = 120;
+  Store s(opt);
+  ASSERT_TRUE(s.open(d.file("x.db"), kT0).ok);
+  const std::size_t n = opt.historySeries.size();
+  const std::int64_t t0 = (kT0 / 3600000) * 3600000;  // an hour boundary
+  // 10 minutes of samples: soc_pct = minute index, ibv_v = seconds.
+  for (int sec = 0; sec < 600; ++sec) {
+    std::vector<double> v(n, NAN);
+    v[0] = sec;
+    v[3] = sec / 60;
+    ASSERT_TRUE(s.appendHistory(t0 + sec * 1000LL, v).ok);
+  }
+  // Raw 1 s points, half from the database, half still buffered.
+  auto raw = s.queryHistory("ibv_v", t0 + 100000, t0 + 399000, 0);
+  ASSERT_EQ(raw.size(), 300u);
+  EXPECT_DOUBLE_EQ(raw.front().value, 100.0);
+  EXPECT_EQ(raw.back().tMs, t0 + 399000);
+  // 10 s bins average.
+  auto bins = s.queryHistory("ibv_v", t0, t0 + 59999, 10000);
+  ASSERT_EQ(bins.size(), 6u);
+  EXPECT_DOUBLE_EQ(bins[1].value, 14.5);
+  // The 1 min table holds each finished minute's mean.
+  ASSERT_TRUE(s.flushHistory().ok);
+  auto minutes = s.queryHistory("soc_pct", t0, t0 + 3600000, 60000);
+  ASSERT_EQ(minutes.size(), 9u);  // the 10th minute is still being averaged
+  for (std::size_t i = 0; i < minutes.size(); ++i) EXPECT_DOUBLE_EQ(minutes[i].value, static_cast<double>(i));
+  auto ibvMin = s.queryHistory("ibv_v", t0, t0 + 3600000, 60000);
+  ASSERT_FALSE(ibvMin.empty());
+  EXPECT_DOUBLE_EQ(ibvMin[0].value, 29.5);
+  EXPECT_TRUE(s.queryHistory("no_such_series", t0, t0 + 1000, 0).empty());
+  // Survives a restart.
+  s.close();
+  Store s2(opt);
+  ASSERT_TRUE(s2.open(d.file("x.db"), kT0).ok);
+  EXPECT_EQ(s2.queryHistory("ibv_v", t0, t0 + 599000, 0).size(), 600u);
+}
+
+TEST(Store, HistoryRetentionIsBounded) {
+  TempDir d;
+  StoreOptions opt;
+  opt.history1sKeepS = 600;   // shortened retention, same mechanism
+  opt.history1mKeepS = 7200;
+  opt.historyFlushS = 60;
+  Store s(opt);
+  ASSERT_TRUE(s.open(d.file("x.db"), kT0).ok);
+  const std::size_t n = opt.historySeries.size();
+  const std::int64_t t0 = (kT0 / 3600000) * 3600000;
+  std::vector<double> v(n, 1.0);
+  for (int sec = 0; sec < 4 * 3600; sec += 1) ASSERT_TRUE(s.appendHistory(t0 + sec * 1000LL, v).ok);
+  ASSERT_TRUE(s.flushHistory().ok);
+  ASSERT_TRUE(s.compact(t0 + 4 * 3600 * 1000LL).ok);
+  s.close();
+  sql::Db db;
+  ASSERT_EQ(db.open(d.file("x.db")), 0);
+  const std::int64_t rows1s = db.queryInt("SELECT count(*) FROM history_1s");
+  const std::int64_t oldest1s = db.queryInt("SELECT min(bucket) FROM history_1s");
+  const std::int64_t oldest1m = db.queryInt("SELECT min(bucket) FROM history_1m");
+  EXPECT_LE(rows1s, static_cast<std::int64_t>(n) * (600 / 60 + 2));
+  EXPECT_GE(oldest1s, (t0 / 1000) + 4 * 3600 - 600 - 60);
+  EXPECT_GE(oldest1m, (t0 / 1000) + 4 * 3600 - 7200 - 3600);
+}
+
+TEST(Store, EventsBounded) {
+  TempDir d;
+  StoreOptions opt;
+  opt.maxEvents = 100;
+  Store s(opt);
+  ASSERT_TRUE(s.open(d.file("x.db"), kT0).ok);
+  std::vector<EventRecord> evs(250);
+  for (int i = 0; i < 250; ++i) evs[i] = EventRecord{0, kT0 + i, "Info", "Message", "NONE", "m", 0, 0};
+  ASSERT_TRUE(s.appendEvents(evs).ok);
+  ASSERT_TRUE(s.compact(kT0 + 1000).ok);
+  const auto all = s.queryEvents(1000);
+  EXPECT_EQ(all.size(), 100u);
+  EXPECT_EQ(all.front().tMs, kT0 + 249);
+}
+
+TEST(Store, TokenCreatedOnceAndKept) {
+  TempDir d;
+  std::string tok;
+  {
+    Store s;
+    ASSERT_TRUE(s.open(d.file("x.db"), kT0).ok);
+    tok = s.getOrCreateToken();
+    EXPECT_EQ(tok.size(), 64u);
+    EXPECT_EQ(s.getOrCreateToken(), tok);
+  }
+  Store s;
+  ASSERT_TRUE(s.open(d.file("x.db"), kT0).ok);
+  EXPECT_EQ(s.getOrCreateToken(), tok);
+  TempDir d2;
+  Store other;
+  ASSERT_TRUE(other.open(d2.file("y.db"), kT0).ok);
+  EXPECT_NE(other.getOrCreateToken(), tok);
+}
+
+TEST(Store, BlobsForTuningLogs) {
+  TempDir d;
+  Store s;
+  ASSERT_TRUE(s.open(d.file("x.db"), kT0).ok);
+  EXPECT_FALSE(s.getBlob("tuning_log").has_value());
+  ASSERT_TRUE(s.putBlob("tuning_log", R"({"entries":[1,2]})").ok);
+  ASSERT_TRUE(s.putBlob("tuning_log", R"({"entries":[3]})").ok);
+  EXPECT_EQ(s.getBlob("tuning_log").value(), R"({"entries":[3]})");
+}
+
+}  // namespace
+}  // namespace xr
