@@ -66,6 +66,7 @@ ShutdownCommand ProtectionSupervisor::runShutdownPath(const ModeDecision& d, dou
   // GPIO21 in non-normal modes except DISABLED (architecture-legacy.md
   // "Hardware Interface"); an auto-zero measurement is not a fault either.
   faultAlarm_ = faultRamp || lockoutHold;
+  c.faultAlarm = faultAlarm_;
 
   // --- Immediate cut --------------------------------------------------------
   if (isImmediateCutReason(d.reason)) {
