@@ -175,6 +175,11 @@ void probeOneWire(const HardwareSettings& hw, Report& r) {
   const auto sensors = w1::listDs18b20(hw.w1_root);
   const std::string fix = std::string("add 'dtoverlay=w1-gpio,gpiopin=<pin>' to ") + kConfigTxt +
                           " (not GPIO4: it is the field enable here), wire DS18B20 data with a 4.7 kΩ pull-up";
+  if (sensors.empty() && !hw.onewire_sensor_id.empty()) {
+    r.fail("1-Wire sensor " + hw.onewire_sensor_id + " (configured) not present: no DS18B20 under " + hw.w1_root,
+           fix);
+    return;
+  }
   if (sensors.empty()) {
     r.warn("1-Wire: no DS18B20 (28-*) under " + hw.w1_root + " (alternator temperature from the thermistor only)",
            fix);

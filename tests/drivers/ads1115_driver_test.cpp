@@ -1,0 +1,241 @@
+// Ads1115Driver against the simulator's ADS1115 model (drivers/sim): the
+// continuous 860 SPS sequence, the MUX rule (a sample is never labelled with
+// the wrong channel, whatever the oscillator tolerance), both pacings,
+// NACKs and re-detection. Every channel sees a distinct voltage, so a
+// mislabelled sample is caught by the value checks.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "drivers/ads1115/ads1115_driver.h"
+#include "drivers/ads1115/ads1115_registers.h"
+#include "drivers/frontend/analog_frontend.h"
+#include "drivers/sim/ads1115_model.h"
+#include "sim_fixture.h"
+
+namespace xr {
+namespace {
+
+constexpr std::uint16_t kAddr = 0x48;
+constexpr double kBattV = 13.1, kAltA = 42.0, kRpm = 1500.0, kTempF = 150.0;
+
+struct Counts {
+  std::array<int, 4> n{};
+  std::array<int, 4> wrong{};
+  int total() const { return n[0] + n[1] + n[2] + n[3]; }
+  int wrongTotal() const { return wrong[0] + wrong[1] + wrong[2] + wrong[3]; }
+};
+
+class Ads1115DriverTest : public ::testing::TestWithParam<double> {
+ protected:
+  explicit Ads1115DriverTest(double clockScale = 1.0) : bus(&t.now), clock(t), chip(clockScale) {
+    bus.attach(kAddr, &chip);
+    chip.setInputs({frontend::adcFromBatteryVolts(fe, kBattV), frontend::adcFromAltAmps(fe, kAltA),
+                    frontend::adcFromRpm(fe, kRpm), frontend::adcFromTempF(fe, kTempF)});
+  }
+  static bool plausible(int ch, double v) {
+    switch (ch) {
+      case 0: return std::abs(v - kBattV) < 0.01;
+      case 1: return std::abs(v - kAltA) < 0.02;
+      case 2: return std::abs(v - kRpm) < 0.5;
+      default: return std::abs(v - kTempF) < 0.5;
+    }
+  }
+  void tally(const Ads1115Samples& s, Counts& c) {
+    for (int ch = 0; ch < 4; ++ch) {
+      const auto& x = s.ch[static_cast<std::size_t>(ch)];
+      if (!x.fresh) continue;
+      ++c.n[static_cast<std::size_t>(ch)];
+      if (!plausible(ch, x.value)) ++c.wrong[static_cast<std::size_t>(ch)];
+    }
+  }
+  // Timed pacing: poll every `tick` for `dur`.
+  Counts runTimed(Ads1115Driver& d, TimeNs dur, TimeNs tick = 2'500'000) {
+    Counts c;
+    const TimeNs end = t.now + dur;
+    while (t.now < end) {
+      t.now += tick;
+      tally(d.poll(t.now), c);
+    }
+    return c;
+  }
+  // ReadyEdge pacing: find each conversion end in 5 µs steps, hand the edge
+  // to the driver `latency` later; `skipEvery` > 0 drops every Nth edge.
+  Counts runEdges(Ads1115Driver& d, TimeNs dur, TimeNs latency, int skipEvery = 0) {
+    Counts c;
+    const TimeNs end = t.now + dur;
+    auto seen = chip.conversions();
+    int edges = 0;
+    while (t.now < end) {
+      t.now += 5'000;
+      chip.update(t.now);
+      if (chip.conversions() == seen) continue;
+      seen = chip.conversions();
+      ++edges;
+      if (skipEvery > 0 && edges % skipEvery == 0) continue;
+      const TimeNs edge = t.now;
+      t.now += latency;
+      d.onReadyEdge(edge);
+      seen = chip.conversions();  // the transfers may have advanced the chip
+      tally(d.poll(t.now), c);
+    }
+    return c;
+  }
+  AnalogFrontEndSettings fe;
+  test::VirtualTime t;
+  sim::SimI2cBus bus;
+  test::VirtualClock clock;
+  sim::Ads1115Model chip;
+  std::vector<int> seq{1, 0, 1, 2, 1, 3};
+};
+
+TEST_F(Ads1115DriverTest, StartsContinuousAt860SpsOnTheFirstChannel) {
+  Ads1115Driver d(bus, kAddr, seq, fe, clock);
+  ASSERT_EQ(d.start(t.now), 0);
+  EXPECT_TRUE(d.present());
+  const std::uint16_t cfg = chip.peekConfig();
+  EXPECT_EQ(cfg & ads1115::MODE_SINGLE, 0) << "continuous";
+  EXPECT_EQ((cfg >> 5) & 7, 7) << "860 SPS";
+  EXPECT_EQ(ads1115::muxChannelOf(cfg), 1);
+  EXPECT_EQ(cfg & 3, 3) << "comparator off in timed pacing";
+}
+
+TEST_F(Ads1115DriverTest, TimedSequenceScalesEveryChannelAndFavoursCh1) {
+  Ads1115Driver d(bus, kAddr, seq, fe, clock);
+  ASSERT_EQ(d.start(t.now), 0);
+  const Counts c = runTimed(d, 1'000'000'000);
+  EXPECT_EQ(c.wrongTotal(), 0);
+  for (int ch = 0; ch < 4; ++ch) EXPECT_GE(c.n[static_cast<std::size_t>(ch)], 10) << "channel " << ch;
+  EXPECT_NEAR(c.n[1], 3 * c.n[0], 3);
+  EXPECT_GE(c.total(), 150);
+  EXPECT_EQ(chip.protocolErrors(), 0u);
+  const auto s = d.poll(t.now);
+  EXPECT_NEAR(s.ch[0].value, kBattV, 0.01);
+  EXPECT_NEAR(s.ch[1].value, kAltA, 0.02);
+  EXPECT_NEAR(s.ch[2].value, kRpm, 0.5);
+  EXPECT_NEAR(s.ch[3].value, kTempF, 0.5);
+  EXPECT_GT(s.ch[3].stamp, 0);
+}
+
+TEST_F(Ads1115DriverTest, FreshFlagsClearAfterPoll) {
+  Ads1115Driver d(bus, kAddr, seq, fe, clock);
+  ASSERT_EQ(d.start(t.now), 0);
+  runTimed(d, 100'000'000);
+  const auto s = d.poll(t.now);  // same instant: nothing new
+  for (const auto& ch : s.ch) EXPECT_FALSE(ch.fresh);
+  EXPECT_GT(s.ch[1].count, 0u);
+}
+
+TEST_F(Ads1115DriverTest, InvalidSequenceFallsBackToTheDefault) {
+  const std::vector<int> bad{1, 7};
+  Ads1115Driver d(bus, kAddr, bad, fe, clock);
+  EXPECT_TRUE(d.configError());
+  ASSERT_EQ(d.sequence().size(), 6u);
+  EXPECT_EQ(d.sequence()[0], 1);
+  EXPECT_EQ(d.sequence()[3], 2);
+  const std::vector<int> empty;
+  Ads1115Driver e(bus, kAddr, empty, fe, clock);
+  EXPECT_TRUE(e.configError());
+}
+
+TEST_F(Ads1115DriverTest, ConfigurableSequenceWithRepeatsIsHonoured) {
+  const std::vector<int> only{1, 1, 1, 0};
+  Ads1115Driver d(bus, kAddr, only, fe, clock);
+  ASSERT_EQ(d.start(t.now), 0);
+  const Counts c = runTimed(d, 1'000'000'000);
+  EXPECT_EQ(c.wrongTotal(), 0);
+  EXPECT_EQ(c.n[2] + c.n[3], 0);
+  EXPECT_GT(c.n[1], 2 * c.n[0]);
+}
+
+TEST_F(Ads1115DriverTest, NacksMarkAbsentAndRedetectAfterTheInterval) {
+  Ads1115Driver d(bus, kAddr, seq, fe, clock);
+  ASSERT_EQ(d.start(t.now), 0);
+  runTimed(d, 50'000'000);
+  bus.setNack(kAddr, true);
+  Counts c = runTimed(d, 100'000'000);
+  EXPECT_FALSE(d.present());
+  EXPECT_EQ(c.total(), 0);
+  EXPECT_GE(d.stats().failedReads, Ads1115Driver::kFailRunForRedetect);
+  bus.setNack(kAddr, false);
+  runTimed(d, 1'100'000'000);
+  EXPECT_TRUE(d.present());
+  EXPECT_EQ(d.stats().redetects, 1u);
+  c = runTimed(d, 200'000'000);
+  EXPECT_GT(c.total(), 0);
+  EXPECT_EQ(c.wrongTotal(), 0);
+}
+
+TEST_F(Ads1115DriverTest, AbsentAtStartIsAnErrorNotACrash) {
+  bus.detach(kAddr);
+  Ads1115Driver d(bus, kAddr, seq, fe, clock);
+  EXPECT_NE(d.start(t.now), 0);
+  EXPECT_FALSE(d.present());
+  const auto s = d.poll(t.now + 1000);
+  EXPECT_FALSE(s.present);
+  EXPECT_TRUE(std::isnan(s.ch[1].value));
+}
+
+TEST_F(Ads1115DriverTest, ReadyEdgeUsesEveryConversion) {
+  Ads1115Driver d(bus, kAddr, seq, fe, clock, AdsPacing::ReadyEdge);
+  ASSERT_EQ(d.start(t.now), 0);
+  const std::uint16_t cfg = chip.peekConfig();
+  EXPECT_NE(cfg & 3, 3) << "comparator enabled for ALERT/RDY";
+  const Counts c = runEdges(d, 1'000'000'000, 150'000);
+  EXPECT_EQ(c.wrongTotal(), 0);
+  // ~860 conversions/s, two discarded at start: CH1 gets half.
+  EXPECT_GE(c.total(), 840);
+  EXPECT_GE(c.n[1], 400);
+  for (int ch = 0; ch < 4; ++ch) EXPECT_GE(c.n[static_cast<std::size_t>(ch)], 100);
+  EXPECT_EQ(chip.protocolErrors(), 0u);
+}
+
+TEST_F(Ads1115DriverTest, ReadyEdgeLateServiceFlushesInsteadOfMislabelling) {
+  Ads1115Driver d(bus, kAddr, seq, fe, clock, AdsPacing::ReadyEdge);
+  ASSERT_EQ(d.start(t.now), 0);
+  // Handled after more than one data period: attribution is ambiguous.
+  const Counts c = runEdges(d, 200'000'000, 1'300'000);
+  EXPECT_EQ(c.wrongTotal(), 0);
+  EXPECT_GT(d.stats().pipelineFlushes, 0u);
+}
+
+TEST_F(Ads1115DriverTest, ReadyEdgeMissedEdgesFlushInsteadOfMislabelling) {
+  Ads1115Driver d(bus, kAddr, seq, fe, clock, AdsPacing::ReadyEdge);
+  ASSERT_EQ(d.start(t.now), 0);
+  const Counts c = runEdges(d, 1'000'000'000, 100'000, /*skipEvery=*/7);
+  EXPECT_EQ(c.wrongTotal(), 0);
+  EXPECT_GT(d.stats().pipelineFlushes, 50u);
+  EXPECT_GT(c.total(), 300);
+}
+
+// The oscillator may run 10 % slow or fast: no sample is ever mislabelled.
+class Ads1115OscillatorTest : public Ads1115DriverTest {
+ protected:
+  Ads1115OscillatorTest() : Ads1115DriverTest(GetParam()) {}
+};
+
+TEST_P(Ads1115OscillatorTest, TimedNeverMislabels) {
+  Ads1115Driver d(bus, kAddr, seq, fe, clock);
+  ASSERT_EQ(d.start(t.now), 0);
+  const Counts c = runTimed(d, 1'000'000'000, 2'500'000);
+  EXPECT_EQ(c.wrongTotal(), 0);
+  EXPECT_GT(c.total(), 150);
+  // A control loop at another rate.
+  const Counts c2 = runTimed(d, 1'000'000'000, 1'000'000);
+  EXPECT_EQ(c2.wrongTotal(), 0);
+  EXPECT_GT(c2.total(), 300);
+}
+
+TEST_P(Ads1115OscillatorTest, ReadyEdgeNeverMislabels) {
+  Ads1115Driver d(bus, kAddr, seq, fe, clock, AdsPacing::ReadyEdge);
+  ASSERT_EQ(d.start(t.now), 0);
+  const Counts c = runEdges(d, 500'000'000, 200'000);
+  EXPECT_EQ(c.wrongTotal(), 0);
+  EXPECT_GT(c.total(), 350);
+}
+
+INSTANTIATE_TEST_SUITE_P(ClockTolerance, Ads1115OscillatorTest, ::testing::Values(0.9, 1.0, 1.1));
+
+}  // namespace
+}  // namespace xr

@@ -1,0 +1,223 @@
+// Ina228Driver against the simulator's INA228 model (drivers/sim), written
+// separately from the same datasheet facts: detection, configuration,
+// readings, fast/slow mode, BOVL and the ALERT, NACKs and hot-plug.
+#include <gtest/gtest.h>
+
+#include <cerrno>
+
+#include "drivers/ina228/ina228_driver.h"
+#include "drivers/ina228/ina228_registers.h"
+#include "drivers/sim/ina228_model.h"
+#include "sim_fixture.h"
+
+namespace xr {
+namespace {
+
+constexpr std::uint16_t kAddr = 0x40;
+
+class Ina228DriverTest : public ::testing::Test {
+ protected:
+  Ina228DriverTest() : bus(&t.now), drv(bus, kAddr, 0.0005, 200.0) {
+    bus.attach(kAddr, &chip);
+    setPins(13.2, 50.0);
+  }
+  void setPins(double vbus, double amps) { chip.setAnalog({amps * 0.0005, vbus, 31.0}); }
+  // Advance virtual time and poll every `step` until `until`.
+  const Ina228Sample& runFor(TimeNs dur, TimeNs step = 2'500'000) {
+    const TimeNs end = t.now + dur;
+    while (t.now < end) {
+      t.now += step;
+      drv.poll(t.now);
+    }
+    return drv.sample();
+  }
+  test::VirtualTime t;
+  sim::SimI2cBus bus;
+  sim::Ina228Model chip;
+  Ina228Driver drv;
+};
+
+TEST_F(Ina228DriverTest, DetectsByManufacturerAndDeviceId) { EXPECT_EQ(drv.detect(), 0); }
+
+TEST_F(Ina228DriverTest, AbsentChipIsABusErrorNotAMatch) {
+  bus.detach(kAddr);
+  EXPECT_NE(drv.detect(), 0);
+  EXPECT_NE(drv.start(t.now), 0);
+  EXPECT_FALSE(drv.present());
+}
+
+TEST_F(Ina228DriverTest, ConfigureProgramsCalibrationAlertAndLimit) {
+  ASSERT_EQ(drv.setBusOvervoltageLimit(14.8), 0);
+  ASSERT_EQ(drv.start(t.now), 0);
+  EXPECT_TRUE(drv.present());
+  EXPECT_EQ(chip.peek(sim::ina228::SHUNT_CAL), 2500u);
+  EXPECT_EQ(chip.peek(sim::ina228::CONFIG) & (1u << 4), 0u) << "ADCRANGE 0 for a 100 mV full-scale shunt";
+  EXPECT_EQ(chip.peek(sim::ina228::BOVL), ina228::bovlCode(14.8));
+  const auto diag = chip.peek(sim::ina228::DIAG_ALRT);
+  EXPECT_TRUE(diag & sim::ina228::SLOWALERT);
+  EXPECT_FALSE(diag & sim::ina228::APOL) << "ALERT active low";
+  EXPECT_FALSE(diag & sim::ina228::ALATCH);
+  EXPECT_EQ(chip.peek(sim::ina228::ADC_CONFIG), ina228::kAdcConfigSlow);
+  EXPECT_EQ(chip.protocolErrors(), 0u);
+}
+
+TEST_F(Ina228DriverTest, ReadsBusVoltageCurrentAndDieTemperature) {
+  ASSERT_EQ(drv.start(t.now), 0);
+  const auto& s = runFor(3'000'000'000);
+  EXPECT_NEAR(s.busVolts, 13.2, 0.002);
+  EXPECT_NEAR(s.currentA, 50.0, 0.05);
+  EXPECT_NEAR(s.dieTempC, 31.0, 0.05);
+  EXPECT_GT(s.stamp, 0);
+  EXPECT_EQ(chip.protocolErrors(), 0u);
+}
+
+TEST_F(Ina228DriverTest, NegativeCurrentAndInversion) {
+  setPins(12.6, -30.0);
+  ASSERT_EQ(drv.start(t.now), 0);
+  EXPECT_NEAR(runFor(3'000'000'000).currentA, -30.0, 0.05);
+  Ina228Driver inv(bus, kAddr, 0.0005, 200.0, /*invertCurrent=*/true);
+  ASSERT_EQ(inv.start(t.now), 0);
+  const TimeNs end = t.now + 3'000'000'000;
+  while (t.now < end) inv.poll(t.now += 2'500'000);
+  EXPECT_NEAR(inv.sample().currentA, 30.0, 0.05);
+}
+
+TEST_F(Ina228DriverTest, FastModeWhileFieldOnChangesTheChipCadence) {
+  ASSERT_EQ(drv.start(t.now), 0);
+  EXPECT_FALSE(drv.fastModeActive());
+  ASSERT_EQ(drv.setFastMode(true), 0);
+  EXPECT_TRUE(drv.fastModeActive());
+  EXPECT_EQ(chip.peek(sim::ina228::ADC_CONFIG), ina228::kAdcConfigFast);
+  EXPECT_EQ(chip.updatePeriod(), drv.conversionCycle());
+  EXPECT_LT(drv.conversionCycle(), 5'000'000);
+  // A step in current shows up within a few fast cycles.
+  runFor(50'000'000);
+  setPins(13.2, 80.0);
+  EXPECT_NEAR(runFor(20'000'000).currentA, 80.0, 0.1);
+  ASSERT_EQ(drv.setFastMode(false), 0);
+  EXPECT_EQ(chip.peek(sim::ina228::ADC_CONFIG), ina228::kAdcConfigSlow);
+  EXPECT_GT(drv.conversionCycle(), 1'000'000'000);
+}
+
+TEST_F(Ina228DriverTest, FreshOnlyWhenANewResultIsDue) {
+  ASSERT_EQ(drv.start(t.now), 0);
+  drv.setFastMode(true);
+  int fresh = 0, polls = 0;
+  for (int i = 0; i < 400; ++i) {  // one second of 2.5 ms ticks
+    t.now += 2'500'000;
+    fresh += drv.poll(t.now).fresh ? 1 : 0;
+    ++polls;
+  }
+  // ~4.5 ms cycle -> about every second tick; never every tick.
+  EXPECT_GT(fresh, 150);
+  EXPECT_LT(fresh, 250);
+}
+
+TEST_F(Ina228DriverTest, BusOvervoltageFlagAndAlertAboveBovl) {
+  ASSERT_EQ(drv.start(t.now), 0);
+  drv.setFastMode(true);
+  ASSERT_EQ(drv.setBusOvervoltageLimit(14.8), 0);
+  setPins(14.7, 10.0);
+  EXPECT_FALSE(runFor(50'000'000).busOvervoltage);
+  EXPECT_FALSE(chip.alertActive());
+  setPins(14.9, 10.0);
+  EXPECT_TRUE(runFor(50'000'000).busOvervoltage);
+  EXPECT_TRUE(chip.alertActive());
+  EXPECT_FALSE(chip.alertPinHigh()) << "active low";
+  // A BulkVoltage change moves the limit: 15.1 V now clears it.
+  ASSERT_EQ(drv.setBusOvervoltageLimit(15.1), 0);
+  EXPECT_FALSE(runFor(50'000'000).busOvervoltage);
+}
+
+TEST_F(Ina228DriverTest, RunOfNacksMarksAbsentThenRedetectsRateLimited) {
+  ASSERT_EQ(drv.setBusOvervoltageLimit(14.8), 0);
+  ASSERT_EQ(drv.start(t.now), 0);
+  drv.setFastMode(true);
+  runFor(20'000'000);
+  bus.setNack(kAddr, true);
+  for (unsigned i = 0; i < Ina228Driver::kFailRunForRedetect - 1; ++i) drv.poll(t.now += 2'500'000);
+  EXPECT_TRUE(drv.present()) << "a short run of failures is tolerated";
+  drv.poll(t.now += 2'500'000);
+  EXPECT_FALSE(drv.present());
+  EXPECT_GE(drv.stats().failedReads, Ina228Driver::kFailRunForRedetect);
+  EXPECT_NE(drv.stats().lastError, 0);
+  // Chip back, but re-detection waits for the rate limit.
+  bus.setNack(kAddr, false);
+  const auto transfersBefore = bus.transfers();
+  drv.poll(t.now += 2'500'000);
+  EXPECT_FALSE(drv.present());
+  EXPECT_EQ(bus.transfers(), transfersBefore) << "no bus traffic while waiting to re-detect";
+  runFor(Ina228Driver::kRedetectInterval);
+  EXPECT_TRUE(drv.present());
+  EXPECT_EQ(drv.stats().redetects, 1u);
+}
+
+TEST_F(Ina228DriverTest, HotPlugOfAFreshChipGetsFullyReprogrammed) {
+  ASSERT_EQ(drv.setBusOvervoltageLimit(14.8), 0);
+  ASSERT_EQ(drv.start(t.now), 0);
+  drv.setFastMode(true);
+  runFor(20'000'000);
+  bus.detach(kAddr);  // unplugged
+  runFor(100'000'000);
+  EXPECT_FALSE(drv.present());
+  sim::Ina228Model fresh;  // a new chip with reset registers
+  fresh.setAnalog({20.0 * 0.0005, 13.0, 25.0});
+  bus.attach(kAddr, &fresh);
+  runFor(2'000'000'000);
+  ASSERT_TRUE(drv.present());
+  EXPECT_EQ(fresh.peek(sim::ina228::BOVL), ina228::bovlCode(14.8));
+  EXPECT_EQ(fresh.peek(sim::ina228::SHUNT_CAL), 2500u);
+  EXPECT_EQ(fresh.peek(sim::ina228::ADC_CONFIG), ina228::kAdcConfigFast);
+  EXPECT_NEAR(drv.sample().currentA, 20.0, 0.05);
+  EXPECT_EQ(fresh.protocolErrors(), 0u);
+}
+
+TEST_F(Ina228DriverTest, SilentChipResetIsRepairedByTheReadBack) {
+  // A brown-out resets the chip without any failed read: BOVL back at
+  // 0x7FFF would disable the hardware OV backup.
+  ASSERT_EQ(drv.setBusOvervoltageLimit(14.8), 0);
+  ASSERT_EQ(drv.start(t.now), 0);
+  runFor(100'000'000);
+  sim::Ina228Model reset;
+  reset.setAnalog({10.0 * 0.0005, 13.0, 25.0});
+  bus.attach(kAddr, &reset);
+  runFor(Ina228Driver::kHousekeepingInterval + 10'000'000);
+  EXPECT_GE(drv.stats().reconfigures, 1u);
+  EXPECT_EQ(reset.peek(sim::ina228::BOVL), ina228::bovlCode(14.8));
+  EXPECT_EQ(reset.peek(sim::ina228::SHUNT_CAL), 2500u);
+}
+
+// A chip at the address that is not an INA228.
+class OtherChip final : public sim::SimI2cDevice {
+ public:
+  void update(TimeNs) noexcept override {}
+  int write(const std::uint8_t* buf, std::size_t len) noexcept override {
+    if (len >= 1) ptr_ = buf[0];
+    return 0;
+  }
+  int read(std::uint8_t* buf, std::size_t len) noexcept override {
+    for (std::size_t i = 0; i < len; ++i) buf[i] = static_cast<std::uint8_t>(0x12 + ptr_);
+    return 0;
+  }
+
+ private:
+  std::uint8_t ptr_ = 0;
+};
+
+TEST_F(Ina228DriverTest, WrongIdsAreEnodev) {
+  OtherChip other;
+  bus.attach(kAddr, &other);
+  EXPECT_EQ(drv.detect(), ENODEV);
+  EXPECT_EQ(drv.start(t.now), ENODEV);
+  EXPECT_FALSE(drv.present());
+}
+
+TEST_F(Ina228DriverTest, UnencodableShuntIsRejected) {
+  Ina228Driver bad(bus, kAddr, 0.0, 200.0);
+  EXPECT_EQ(bad.start(t.now), EINVAL);
+  EXPECT_FALSE(bad.present());
+  EXPECT_EQ(drv.setBusOvervoltageLimit(-3.0), EINVAL);
+}
+
+}  // namespace
+}  // namespace xr

@@ -1,0 +1,144 @@
+// DS18B20 over w1 sysfs: the w1_slave parser (datasheet-facts §3) and the
+// reader on a fake /sys/bus/w1/devices tree.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <thread>
+
+#include "drivers/onewire/ds18b20_reader.h"
+#include "drivers/onewire/latest_value.h"
+#include "drivers/onewire/w1_therm.h"
+#include "temp_dir.h"
+
+namespace xr {
+namespace {
+
+constexpr const char* kGood =
+    "2c 01 ff ff 7f ff ff ff 61 : crc=61 YES\n2c 01 ff ff 7f ff ff ff 61 t=18750\n";
+
+TEST(W1Slave, ParsesTheDocumentedExample) {
+  const auto r = w1::parseW1Slave(kGood);
+  EXPECT_EQ(r.error, w1::ParseError::None);
+  EXPECT_EQ(r.milliC, 18750);
+}
+
+TEST(W1Slave, NegativeTemperature) {
+  const auto r = w1::parseW1Slave("5e ff 4b 46 7f ff 02 10 41 : crc=41 YES\n5e ff 4b 46 7f ff 02 10 41 t=-10125\n");
+  EXPECT_EQ(r.error, w1::ParseError::None);
+  EXPECT_EQ(r.milliC, -10125);
+}
+
+TEST(W1Slave, CrcNoIsRejectedEvenWithATemperature) {
+  const auto r = w1::parseW1Slave("2c 01 ff ff 7f ff ff ff 62 : crc=61 NO\n2c 01 ff ff 7f ff ff ff 61 t=18750\n");
+  EXPECT_EQ(r.error, w1::ParseError::CrcNo);
+}
+
+TEST(W1Slave, PowerOnValueIsRejected) {
+  const auto r = w1::parseW1Slave("50 05 4b 46 7f ff 0c 10 1c : crc=1c YES\n50 05 4b 46 7f ff 0c 10 1c t=85000\n");
+  EXPECT_EQ(r.error, w1::ParseError::PowerOnValue);
+}
+
+TEST(W1Slave, EmptyAndGarbage) {
+  EXPECT_EQ(w1::parseW1Slave("").error, w1::ParseError::Empty);
+  EXPECT_EQ(w1::parseW1Slave("garbage").error, w1::ParseError::Malformed);
+  EXPECT_EQ(w1::parseW1Slave("aa : crc=61 YES\nno temperature\n").error, w1::ParseError::Malformed);
+  EXPECT_EQ(w1::parseW1Slave("aa : crc=61 YES\naa t=12x\n").error, w1::ParseError::Malformed);
+  EXPECT_EQ(w1::parseW1Slave("aa : crc=61 YES\naa t=300000\n").error, w1::ParseError::Malformed);
+}
+
+TEST(W1Slave, ListsOnlyFamily28Sorted) {
+  test::TempDir d;
+  test::writeFile(d / "28-0000000002/w1_slave", kGood);
+  test::writeFile(d / "28-0000000001/w1_slave", kGood);
+  test::writeFile(d / "10-000000000a/w1_slave", kGood);
+  test::writeFile(d / "w1_bus_master1/x", "");
+  const auto l = w1::listDs18b20(d.path());
+  ASSERT_EQ(l.size(), 2u);
+  EXPECT_EQ(l[0], "28-0000000001");
+  EXPECT_EQ(l[1], "28-0000000002");
+  EXPECT_TRUE(w1::listDs18b20(d / "missing").empty());
+}
+
+class Ds18b20ReaderTest : public ::testing::Test {
+ protected:
+  TimeNs fakeNow = 5'000'000'000;
+  Ds18b20Reader::NowFn now() {
+    return [this] { return fakeNow; };
+  }
+  test::TempDir d;
+};
+
+TEST_F(Ds18b20ReaderTest, PublishesFahrenheitStampAndHeartbeat) {
+  test::writeFile(d / "28-00000abc/w1_slave", kGood);
+  Ds18b20Reader r(d.path(), "", 1'000'000'000, now());
+  r.readOnce();
+  const auto s = r.latest();
+  EXPECT_TRUE(s.sensorFound);
+  EXPECT_NEAR(s.tempF, 18.75 * 9 / 5 + 32, 1e-9);
+  EXPECT_EQ(s.stamp, fakeNow);
+  EXPECT_EQ(s.heartbeat, fakeNow);
+  EXPECT_EQ(s.good, 1u);
+}
+
+TEST_F(Ds18b20ReaderTest, BadReadKeepsTheOldStampButBeatsTheHeart) {
+  test::writeFile(d / "28-00000abc/w1_slave", kGood);
+  Ds18b20Reader r(d.path(), "28-00000abc", 1'000'000'000, now());
+  r.readOnce();
+  const TimeNs firstStamp = fakeNow;
+  fakeNow += 1'000'000'000;
+  test::writeFile(d / "28-00000abc/w1_slave",
+                  "2c 01 ff ff 7f ff ff ff 62 : crc=61 NO\n2c 01 ff ff 7f ff ff ff 61 t=99000\n");
+  r.readOnce();
+  const auto s = r.latest();
+  EXPECT_EQ(s.stamp, firstStamp) << "T5 sees the sample age grow";
+  EXPECT_EQ(s.heartbeat, fakeNow) << "T4 sees the task alive";
+  EXPECT_NEAR(s.tempF, 18.75 * 9 / 5 + 32, 1e-9);
+  EXPECT_EQ(s.lastError, w1::ParseError::CrcNo);
+  EXPECT_EQ(s.bad, 1u);
+}
+
+TEST_F(Ds18b20ReaderTest, MissingSensorIsReportedAndPickedUpLater) {
+  Ds18b20Reader r(d.path(), "", 1'000'000'000, now());
+  r.readOnce();
+  EXPECT_FALSE(r.latest().sensorFound);
+  EXPECT_EQ(r.latest().stamp, 0);
+  test::writeFile(d / "28-00000def/w1_slave", kGood);
+  r.readOnce();
+  EXPECT_TRUE(r.latest().sensorFound);
+  EXPECT_GT(r.latest().stamp, 0);
+}
+
+TEST_F(Ds18b20ReaderTest, ThreadPublishesAndStops) {
+  test::writeFile(d / "28-00000abc/w1_slave", kGood);
+  Ds18b20Reader r(d.path(), "", 1'000'000);  // real monotonic clock, 1 ms period
+  r.start();
+  // Wait (bounded) for a publication; no timing is asserted.
+  for (int i = 0; i < 2000 && r.latest().good < 2; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  r.stop();
+  EXPECT_GE(r.latest().good, 2u);
+  EXPECT_GT(r.latest().heartbeat, 0);
+}
+
+struct Big {
+  std::uint64_t a, b, c;
+};
+
+TEST(LatestValue, ReadersNeverSeeATornValue) {
+  LatestValue<Big> v;
+  std::atomic<bool> stop{false};
+  std::thread w([&] {
+    for (std::uint64_t i = 1; !stop.load(); ++i) v.publish({i, i * 2, i * 3});
+  });
+  int torn = 0;
+  for (int i = 0; i < 200000; ++i) {
+    Big b{};
+    if (v.tryRead(&b) && (b.b != b.a * 2 || b.c != b.a * 3)) ++torn;
+  }
+  stop = true;
+  w.join();
+  EXPECT_EQ(torn, 0);
+  EXPECT_GT(v.version(), 0u);
+}
+
+}  // namespace
+}  // namespace xr
