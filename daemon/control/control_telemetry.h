@@ -9,6 +9,8 @@ struct ControlTelemetry {
   SysMode sysMode = SysMode::SYS_MODE_OFF;
   GovMode govMode = GovMode::GOV_NORMAL_SLEW;
   double I_cap = 0.0;           // getCapCurrentForRPM
+  double I_cmd = 0.0;           // after penalty, MaxTableValue, battery ceiling, warm-up
+  double uTargetRaw = 0.0;      // before fastOvCurrentCap (after MaintainMode / TuningMode)
   double uTargetAmps = 0.0;
   double setpointCommand = 0.0;
   double setpointLimited = 0.0;
@@ -27,9 +29,29 @@ struct ControlTelemetry {
   double g_voltLoopActualIntervalMs = 0.0;
   double tempFiltered = 0.0, projectedTempF = 0.0, thermalSlopeFPerSec = 0.0;
   double thermalPenaltyAmps = 0.0;
+  double thermalPenaltyAmps_d = 0.0;  // tempPID output before the slew
+  bool thermalHolding = false;        // stale temperature: penalty held
   double MeasuredAmps = 0.0, MeasuredAmps_filtered = 0.0, g_pidI_filtered = 0.0, g_pidMA_N = 0.0;
   double IBV_filtered = 0.0;
   bool inStartupRamp = false;
+  bool fastRiseActive = false;        // FastSetpointRiseRate window
+  bool warmupActive = false;          // warm-up ceiling applying
+  bool fastOvClampActive = false;
+  bool cvOvershootBypass = false;     // GOV_BYPASS_SLEW latch (CV overshoot)
+  bool inBulkStage = true, inAbsorptionStage = false, inFloatStage = false, inIdleStage = false;
+  bool tailSuppressedByThermal = false;
+  bool rebulkBlockedBySoc = false;
+  bool limpHome = false;
+  // TuningMode / CVTuningMode.
+  bool tuningRunning = false, tuningHighPhase = false;
+  double tuningScore = 0.0;
+  int tuningLogCount = 0;
+  bool cvTuningRunning = false;
+  double cvTuningScore = 0.0, cvTuningSettleSec = -1.0;
+  int cvTuningLogCount = 0;
+  // SystemID (Plant Delay).
+  bool sysIDRunning = false, sysIDValid = false;
+  double sysIDDutyOut = 0.0, sysIDDeadTimeMs = 0.0, sysIDRiseTimeMs = 0.0, sysIDSlopeAps = 0.0;
 };
 
 }  // namespace xr

@@ -1,0 +1,121 @@
+#include "control/charging_stage.h"
+
+#include "params/constants.h"
+
+namespace xr {
+
+double ChargingStageMachine::ChargingVoltageTarget(const Params& p) const {
+  switch (stage_) {
+    case ChargeStage::ABSORPTION: return p.AbsorptionVoltage;
+    case ChargeStage::FLOAT:
+    case ChargeStage::IDLE: return p.FloatVoltage;
+    case ChargeStage::BULK:
+    default: return p.BulkVoltage;
+  }
+}
+
+void ChargingStageMachine::enter(ChargeStage s, TimeNs now) {
+  previous_ = stage_;
+  stage_ = s;
+  stageStart_ = now;
+  bulkHoldArmed_ = tailArmed_ = rebulkArmed_ = false;
+  tailThermalSuppressed_ = false;
+  if (s == ChargeStage::ABSORPTION) absorptionStartTime_ = now;
+}
+
+void ChargingStageMachine::resetToBulk(TimeNs now) {
+  previous_ = stage_;
+  stage_ = ChargeStage::BULK;
+  stageStart_ = now;
+  bulkHoldArmed_ = tailArmed_ = rebulkArmed_ = false;
+  tailThermalSuppressed_ = rebulkBlockedBySoc_ = false;
+}
+
+// FLOAT / IDLE re-bulk: after MinFloatTime, voltage sag OR significant
+// discharge, confirmed continuously for rebulkDebounceTime, with SOC gating.
+bool ChargingStageMachine::rebulkDue(const StageInputs& in, const Params& p) {
+  bool cond = (in.v < p.RebulkVoltage) || (in.Bcur < -p.RebulkCurrent_A);
+  rebulkBlockedBySoc_ = false;
+  if (in.socValid) {
+    if (in.SOC_percent >= p.SOC_BlockRebulk_percent) {
+      cond = false;  // full enough: never re-bulk
+      rebulkBlockedBySoc_ = true;
+    } else if (in.SOC_percent <= p.SOC_AllowRebulk_percent) {
+      cond = true;  // low enough: re-bulk regardless of voltage/current
+    }
+  }
+  if (in.now - stageStart_ < fromMs(p.MinFloatTime)) {
+    rebulkArmed_ = false;
+    return false;
+  }
+  if (!cond) {
+    rebulkArmed_ = false;
+    return false;
+  }
+  if (!rebulkArmed_) {
+    rebulkArmed_ = true;
+    rebulkStart_ = in.now;
+  }
+  return in.now - rebulkStart_ >= fromMs(p.rebulkDebounceTime);
+}
+
+bool ChargingStageMachine::updateChargingStage(const StageInputs& in, const Params& p) {
+  if (in.suppressed) {
+    bulkHoldArmed_ = tailArmed_ = rebulkArmed_ = false;
+    return false;
+  }
+  const ChargeStage before = stage_;
+  switch (stage_) {
+    case ChargeStage::BULK: {
+      // Two-sided band: arm at Bulk - 0.05 V, clear below Bulk - 0.10 V.
+      if (in.v >= p.BulkVoltage - k::BULK_V_BAND_ENTER) {
+        if (!bulkHoldArmed_) {
+          bulkHoldArmed_ = true;
+          bulkVoltageHoldTimer_ = in.now;
+        }
+      } else if (in.v < p.BulkVoltage - k::BULK_V_BAND_EXIT) {
+        bulkHoldArmed_ = false;
+      }
+      if (bulkHoldArmed_ && in.now - bulkVoltageHoldTimer_ >= fromMs(p.bulkVoltageHoldMs))
+        enter(ChargeStage::ABSORPTION, in.now);
+      break;
+    }
+    case ChargeStage::ABSORPTION: {
+      // Low current from thermal derating is not "battery full".
+      tailThermalSuppressed_ =
+          in.thermalPenaltyAmps > k::TAIL_THERMAL_PENALTY_A && in.uTargetAmps <= 2.0 * p.TailCurrent_A;
+      const bool tail = !tailThermalSuppressed_ && in.Bcur <= p.TailCurrent_A;
+      if (tail) {
+        if (!tailArmed_) {
+          tailArmed_ = true;
+          tailStart_ = in.now;
+        }
+      } else {
+        tailArmed_ = false;
+      }
+      const bool tailDone = tailArmed_ && in.now - tailStart_ >= fromMs(p.absorptionCompleteTime);
+      const bool timeout = in.now - absorptionStartTime_ >= fromMs(p.AbsorptionTimeoutMs);
+      if (tailDone || timeout) enter(p.UseFloat ? ChargeStage::FLOAT : ChargeStage::IDLE, in.now);
+      break;
+    }
+    case ChargeStage::FLOAT: {
+      if (!p.UseFloat) {
+        enter(ChargeStage::IDLE, in.now);
+        break;
+      }
+      if (in.now - stageStart_ >= fromSec(static_cast<double>(k::FLOAT_DURATION_S))) {
+        enter(ChargeStage::BULK, in.now);  // unconditional after 12 h
+        break;
+      }
+      if (rebulkDue(in, p)) enter(ChargeStage::BULK, in.now);
+      break;
+    }
+    case ChargeStage::IDLE: {
+      if (rebulkDue(in, p)) enter(ChargeStage::BULK, in.now);
+      break;
+    }
+  }
+  return stage_ != before;
+}
+
+}  // namespace xr

@@ -1,0 +1,63 @@
+#pragma once
+// updateChargingStage(): BULK / ABSORPTION / FLOAT / IDLE exactly as
+// field-control.md "Charging-Stage State Machine". Drives inBulkStage,
+// inAbsorptionStage, inIdleStage, voltageControlActive and
+// ChargingVoltageTarget.
+#include "core/modes.h"
+#include "core/time.h"
+#include "params/params.h"
+
+namespace xr {
+
+struct StageInputs {
+  TimeNs now = 0;
+  double v = 0.0;                   // IBV
+  double Bcur = 0.0;                // + = charging
+  double thermalPenaltyAmps = 0.0;
+  double uTargetAmps = 0.0;
+  double SOC_percent = 0.0;
+  bool socValid = false;            // SOC gating only with a real SoC
+  // MaintainMode / TargetVoltageMode / CVTuningMode / manual: those set the
+  // target themselves and the stage machine holds (timers cleared).
+  bool suppressed = false;
+};
+
+class ChargingStageMachine {
+ public:
+  // Returns true when the stage changed this call.
+  bool updateChargingStage(const StageInputs& in, const Params& p);
+  // enter_sys_auto(): always BULK, timers reset.
+  void resetToBulk(TimeNs now);
+
+  ChargeStage stage() const { return stage_; }
+  ChargeStage previousStage() const { return previous_; }
+  bool inBulkStage() const { return stage_ == ChargeStage::BULK; }
+  bool inAbsorptionStage() const { return stage_ == ChargeStage::ABSORPTION; }
+  bool inFloatStage() const { return stage_ == ChargeStage::FLOAT; }
+  bool inIdleStage() const { return stage_ == ChargeStage::IDLE; }
+  // chargingEnabled is false in IDLE (folded into the tick snapshot).
+  bool chargingEnabled() const { return stage_ != ChargeStage::IDLE; }
+  bool voltageControlActive() const { return stage_ == ChargeStage::ABSORPTION || stage_ == ChargeStage::FLOAT; }
+  double ChargingVoltageTarget(const Params& p) const;
+  bool tailSuppressedByThermal() const { return tailThermalSuppressed_; }
+  bool rebulkBlockedBySoc() const { return rebulkBlockedBySoc_; }
+
+ private:
+  void enter(ChargeStage s, TimeNs now);
+  bool rebulkDue(const StageInputs& in, const Params& p);
+
+  ChargeStage stage_ = ChargeStage::BULK;
+  ChargeStage previous_ = ChargeStage::BULK;
+  TimeNs stageStart_ = 0;
+  bool bulkHoldArmed_ = false;
+  TimeNs bulkVoltageHoldTimer_ = 0;
+  bool tailArmed_ = false;
+  TimeNs tailStart_ = 0;
+  bool tailThermalSuppressed_ = false;
+  TimeNs absorptionStartTime_ = 0;
+  bool rebulkArmed_ = false;
+  TimeNs rebulkStart_ = 0;
+  bool rebulkBlockedBySoc_ = false;
+};
+
+}  // namespace xr

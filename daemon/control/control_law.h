@@ -1,0 +1,175 @@
+#pragma once
+// ControlLaw: the cascaded loops of field-control.md and their state, as
+// plain members (the seeds' globals). Regulator::step drives it; tests drive
+// it directly. No protection or battery types here: the fast-OV supervisors'
+// actions come in as a FastOvApply, so the law is testable on its own.
+//
+// One AUTO tick, in the seed's command-path order:
+//   computeUTarget()  : I_cap -> - thermalPenaltyAmps -> clamp [0, MaxTableValue]
+//                       -> MaximumAllowedBatteryAmps -> warm-up ceiling
+//                       -> MaintainMode 0 / TuningMode wave   => uTargetRaw
+//   (Regulator runs the fast-OV supervisors on uTargetRaw)
+//   finishAuto()      : fastOvCurrentCap clamp => uTargetAmps -> CV (Icv) or
+//                       direct => setpointCommand -> slew => setpointLimited ->
+//                       currentPID -> governor_apply -> TrackAppliedOutput.
+#include "control/charging_stage.h"
+#include "control/control_telemetry.h"
+#include "control/cv_loop.h"
+#include "control/cv_tuning_mode.h"
+#include "control/feedback_filters.h"
+#include "control/governor.h"
+#include "control/limp_home.h"
+#include "control/pid.h"
+#include "control/system_id.h"
+#include "control/thermal_derate.h"
+#include "control/tuning_mode.h"
+#include "core/events.h"
+#include "core/inputs.h"
+#include "core/modes.h"
+#include "params/params.h"
+
+namespace xr {
+
+// Sensor values of this tick, already corrected (auto-zero, shunt gain).
+struct ControlSensors {
+  TimeNs now = 0;
+  bool ch1Fresh = false;        // control work fires on fresh CH1
+  double MeasuredAmps = kNoValue;  // CH1 - DynamicAltCurrentZero
+  double IBV = kNoValue;
+  bool ibvFresh = false;
+  double Bcur = kNoValue;       // INA228 x DynamicShuntGainFactor (never Victron: MaintainMode)
+  double rpm = kNoValue;
+  double TempToUse = kNoValue;  // per TempSource
+  TimeNs tempStamp = 0;
+  double SOC_percent = kNoValue;
+};
+
+// What the fast-OV supervisors (Groups 1/2/3, load dump) decided this tick.
+struct FastOvApply {
+  double fastOvCurrentCap = 1e300;  // clamp on uTargetAmps
+  bool fastOvClampActive = false;
+  bool setCvI = false;              // Snap / Bleed / Reseed
+  double cv_I = 0.0;
+  bool zeroSetpointLimited = false;  // load dump
+  bool forceBypassSlew = false;
+  bool sensorFailureBypass = false;  // !voltagePlausible || voltageDisagreementCritical
+};
+
+class ControlLaw {
+ public:
+  explicit ControlLaw(const Params& p);
+
+  // Every tick, first: filters on fresh CH1 / IBV, control dt bookkeeping.
+  void updateFilters(const ControlSensors& s, const Params& p);
+  // Step 3 (before mode selection): stage machine and override targets.
+  // Returns true when the stage changed (event pushed).
+  void updateChargingStage(const ControlSensors& s, const Params& p, bool manualMode, EventBatch& ev);
+
+  // ---- AUTO path -----------------------------------------------------------
+  double computeUTarget(const ControlSensors& s, const Params& p);  // returns uTargetRaw
+  // Returns the applied duty (after governor). Holds the PID and the duty when
+  // CH1 is not fresh (the protections' state actions still apply).
+  double finishAuto(const ControlSensors& s, const Params& p, const FastOvApply& fa, EventBatch& ev);
+
+  // ---- MANUAL / Limp Home / shutdown --------------------------------------
+  double runManual(const ControlSensors& s, const Params& p, double manualDuty);
+  double runLimpHome(const ControlSensors& s, const Params& p, EventBatch& ev);
+  // The sequencer owns the duty: track it bumplessly (PID in MANUAL).
+  void trackShutdown(double appliedDuty, const Params& p, double rpm);
+
+  // ---- mode entry (bumpless wrappers) --------------------------------------
+  void enter_sys_off();
+  void enter_sys_manual();
+  void enter_sys_auto(const ControlSensors& s, const Params& p);
+  void enter_sys_fault();
+  // Control-side effects of the universal immediate cut (protection decides).
+  void applyImmediateCut();
+  // Field enable rising edge: startup ramp and warm-up ceiling start now.
+  void onFieldTurnOn(TimeNs now);
+  // A protection cleared: opens the FastSetpointRiseRate window.
+  void onProtectionCleared(TimeNs now) { protectionClearedAt_ = now; haveProtectionCleared_ = true; }
+
+  // ---- commands ----------------------------------------------------------
+  bool startSystemId(TimeNs now, bool autoRunning);
+  bool commitTuning(TimeNs now, const Params& p) { return tuning_.commit(now, p); }
+  bool commitCvTuning(TimeNs now, const Params& p) { return cvTuning_.commit(now, p); }
+
+  // ---- read-back -----------------------------------------------------------
+  SysMode sysMode() const { return sysMode_; }
+  double lastAppliedDuty() const { return lastAppliedDuty_; }
+  double rpmMinDuty() const { return rpmMinDuty_; }
+  double setpointLimited() const { return setpointLimited_; }
+  double uTargetAmps() const { return uTargetAmps_; }
+  double ChargingVoltageTarget() const { return ChargingVoltageTarget_; }
+  bool voltageControlActive() const { return voltageControlActive_; }
+  double thermalPenaltyAmps() const { return thermal_.thermalPenaltyAmps(); }
+  double MeasuredAmps_filtered() const { return emaInput_.value(); }
+  double g_pidI_filtered() const { return emaPid_.value(); }
+  double cv_I() const { return cv_.cv_I(); }
+  bool fastOvClampActive() const { return fastOvClampActive_; }
+  bool sysIDRunning() const { return sysId_.sysIDRunning(); }
+  const ChargingStageMachine& stages() const { return stages_; }
+  const Pid& currentPID() const { return currentPID_; }
+  const VoltageCvLoop& cvLoop() const { return cv_; }
+  const ThermalDerate& thermal() const { return thermal_; }
+  const TuningModeRunner& tuning() const { return tuning_; }
+  const CvTuningModeRunner& cvTuning() const { return cvTuning_; }
+  const SystemId& systemId() const { return sysId_; }
+  double controlDtSec() const { return controlDt_; }
+  GovMode govMode() const { return govMode_; }
+  double dutyRequest() const { return dutyRequest_; }
+  double setpointCommand() const { return setpointCommand_; }
+  void fillTelemetry(ControlTelemetry& t) const;
+
+ private:
+  void configurePid(const Params& p);
+  double pidFeedback(const Params& p) const;
+  double governorStep(const Params& p, double request, GovMode mode, double dt);
+  void enterManualLike(SysMode m);
+  void updateGovMode(const ControlSensors& s, const Params& p, const FastOvApply& fa);
+
+  // Loops.
+  Pid currentPID_;
+  VoltageCvLoop cv_;
+  ThermalDerate thermal_;
+  ChargingStageMachine stages_;
+  TuningModeRunner tuning_;
+  CvTuningModeRunner cvTuning_;
+  SystemId sysId_;
+  LimpHome limp_;
+
+  // Filters (CH1 record path).
+  Ema emaInput_, emaPid_, emaIBV_;
+  MovingAverage<64> maPid_;
+  double MeasuredAmps_ = 0.0;
+  double pidSig_ = 0.0;
+
+  // Timing.
+  TimeNs lastControlTick_ = -1, lastTick_ = -1;
+  double controlDt_ = 0.0, tickDt_ = 0.0;
+  TimeNs lastPidCompute_ = -1;
+  int pidSampleCounter_ = 0;
+  TimeNs lastTempStamp_ = 0;
+  TimeNs lastFilterIbvNs_ = -1;
+
+  // Command path state (the seeds' globals).
+  SysMode sysMode_ = SysMode::SYS_MODE_OFF;
+  GovMode govMode_ = GovMode::GOV_NORMAL_SLEW;
+  double I_cap_ = 0.0, I_cmd_ = 0.0, uTargetRaw_ = 0.0, uTargetAmps_ = 0.0, nonThermalCeiling_ = 0.0;
+  double setpointCommand_ = 0.0, setpointLimited_ = 0.0;
+  double dutyRequest_ = 0.0, lastAppliedDuty_ = 0.0, rpmMinDuty_ = 0.0;
+  bool voltageControlActive_ = false;
+  double ChargingVoltageTarget_ = 0.0;
+  bool inStartupRamp_ = false;
+  TimeNs fieldOnAt_ = -1;
+  TimeNs protectionClearedAt_ = 0;
+  bool haveProtectionCleared_ = false;
+  bool fastOvClampActive_ = false, fastOvWasActive_ = false;
+  bool cvOvershootBypass_ = false;
+  bool fastRiseActive_ = false;
+  bool warmupActive_ = false;
+  bool overrideWasActive_ = false;
+  double sysIdDutyOut_ = 0.0;
+};
+
+}  // namespace xr

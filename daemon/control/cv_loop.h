@@ -1,0 +1,61 @@
+#pragma once
+// The voltage CV loop (field-control.md "Voltage CV Loop (custom
+// position-form PI)"): computes Icv, the current setpoint fed to the inner
+// PID while voltageControlActive.
+#include "core/time.h"
+#include "params/params.h"
+
+namespace xr {
+
+struct CvLoopInputs {
+  TimeNs now = 0;
+  double dtSec = 0.0;                 // this control tick
+  bool voltageControlActive = false;
+  double ChargingVoltageTarget = 0.0;
+  double IBV = 0.0;                   // INA228 bus voltage
+  double filtV = 0.0;                 // getFiltV() = IBV_filtered (slope bleed only)
+  double g_pidI_filtered = 0.0;       // inner-loop feedback (bumpless seed / tracker)
+  double uTargetAmps = 0.0;           // ceiling after fastOvCurrentCap
+  double uTargetRaw = 0.0;            // ceiling before fastOvCurrentCap (uTargetRaw_cached)
+  bool fastOvClampActive = false;
+};
+
+class VoltageCvLoop {
+ public:
+  // One control tick. Returns Icv.
+  double update(const CvLoopInputs& in, const Params& p);
+
+  // Protection hooks (Groups 3 / load dump act on cv_I).
+  void setCvI(double v);
+  double cv_I() const { return cv_I_; }
+  // Bumpless restore (SystemID): integrator and tracker to v.
+  void restore(double v);
+  void reset();
+
+  double Icv() const { return Icv_; }
+  double cv_I_track() const { return cv_I_track_; }
+  double cv_I_aw_cap() const { return cv_I_aw_cap_; }
+  double voltageTargetSlewed() const { return voltageTargetSlewed_; }
+  int g_awState() const { return g_awState_; }
+  double cvDSlope() const { return cvDSlope_; }
+  double g_voltLoopActualIntervalMs() const { return g_voltLoopActualIntervalMs_; }
+  double lastError() const { return e_; }
+
+ private:
+  void seedOnEntry(const CvLoopInputs& in, const Params& p);
+  void fire(const CvLoopInputs& in, const Params& p, double dtSec);
+  double slewedTarget(const CvLoopInputs& in, const Params& p) const;
+
+  bool wasActive_ = false;
+  TimeNs lastVoltageLoopNs_ = 0;  // 0: fires on the enteringCV edge
+  TimeNs awSeedProtectStartNs_ = -1;
+  double cv_I_ = 0.0, cv_I_track_ = 0.0, cv_I_aw_cap_ = -1.0;  // aw cap < 0: not initialised
+  double Icv_ = 0.0, e_ = 0.0;
+  double voltageTargetSlewed_ = 0.0;
+  int g_awState_ = 4;
+  double cvDSlope_ = 0.0, lastFiltV_ = 0.0;
+  bool haveFiltV_ = false;
+  double g_voltLoopActualIntervalMs_ = 0.0;
+};
+
+}  // namespace xr

@@ -1,0 +1,38 @@
+#pragma once
+// Limp Home (field-control.md "Limp Home"): operator-toggled emergency mode.
+// handleLimpHome() ramps the duty to LIMP_HOME_DUTY (30 %) through the normal
+// governor slew; mode selection has already bypassed every protection except
+// the INA228 hardware ALERT latch. One log event per LIMP_HOME_LOG_MS.
+#include "control/governor.h"
+#include "core/events.h"
+#include "core/time.h"
+#include "params/constants.h"
+
+namespace xr {
+
+class LimpHome {
+ public:
+  double handleLimpHome(TimeNs now, double lastApplied, double rpmMinDuty, double dtSec,
+                        const GovernorLimits& lim, EventBatch& ev) {
+    if (!logged_ || now - lastLog_ >= fromMs(k::LIMP_HOME_LOG_MS)) {
+      Event e;
+      e.t = now;
+      e.level = EventLevel::Warning;
+      e.code = EventCode::LimpHomeActive;
+      e.reason = Reason::REASON_LIMP_HOME;
+      e.mode = FieldControlMode::MODE_LIMP_HOME;
+      e.a = k::LIMP_HOME_DUTY;
+      ev.push(e);
+      lastLog_ = now;
+      logged_ = true;
+    }
+    return governor_apply(lastApplied, k::LIMP_HOME_DUTY, GovMode::GOV_NORMAL_SLEW, rpmMinDuty, dtSec, lim);
+  }
+  void reset() { logged_ = false; }
+
+ private:
+  bool logged_ = false;
+  TimeNs lastLog_ = 0;
+};
+
+}  // namespace xr

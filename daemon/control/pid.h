@@ -1,0 +1,62 @@
+#pragma once
+// Pid: our own PID with the semantics field-control.md expects of the seed's
+// PID_v1_xeng library (Brett Beauregard's PID_v1 plus extensions):
+//  - DIRECT / REVERSE action (REVERSE: rising input raises the output),
+//  - output limits clamp both the output and the integrator (outputSum),
+//  - MANUAL / AUTOMATIC; MANUAL -> AUTOMATIC initialises outputSum from the
+//    current output and lastInput from the current input (bumpless),
+//  - derivative on measurement (no derivative kick on setpoint steps),
+//  - TrackAppliedOutput(): back-calculation anti-windup pulling outputSum
+//    toward the actuator's applied value at `trackingGain` per second,
+//  - ResetIntegratorTo(), and P/I/D term read-back for telemetry.
+// Unlike the library, Compute() takes the real dt of this compute, so the
+// same gains give the same response at any tick rate (the library assumes its
+// nominal SampleTime). Plain state, no allocation.
+namespace xr {
+
+class Pid {
+ public:
+  enum Direction { DIRECT, REVERSE };
+  enum Mode { MANUAL, AUTOMATIC };
+
+  Pid(double kp, double ki, double kd, Direction dir);
+
+  void SetTunings(double kp, double ki, double kd);
+  void SetOutputLimits(double min, double max);
+  void SetControllerDirection(Direction dir) { direction_ = dir; }
+  void SetTrackingGain(double perSecond) { trackingGain_ = perSecond; }
+  void SetMode(Mode mode);  // bumpless on MANUAL -> AUTOMATIC
+  Mode GetMode() const { return mode_; }
+
+  // Runs one compute with the real elapsed time. Returns false (and changes
+  // nothing) in MANUAL or when dtSec <= 0 or the input is not finite.
+  bool Compute(double dtSec);
+
+  // Anti-windup: outputSum += min(1, Kt*dt) * (applied - outputSum).
+  void TrackAppliedOutput(double applied, double dtSec);
+  // Pins the integrator (and the output) to v, e.g. every MANUAL tick.
+  void ResetIntegratorTo(double v);
+
+  double GetPterm() const { return pTerm_; }
+  double GetIterm() const { return outputSum_; }
+  double GetDterm() const { return dTerm_; }
+  double GetKp() const { return kp_; }
+
+  // The library's three bound variables, held here instead of by pointer.
+  double input = 0.0;
+  double output = 0.0;
+  double setpoint = 0.0;
+
+ private:
+  double clampOut(double v) const;
+  double kp_, ki_, kd_;
+  Direction direction_;
+  Mode mode_ = MANUAL;
+  double outMin_ = 0.0, outMax_ = 100.0;
+  double trackingGain_ = 0.0;
+  double outputSum_ = 0.0;
+  double lastInput_ = 0.0;
+  double pTerm_ = 0.0, dTerm_ = 0.0;
+};
+
+}  // namespace xr

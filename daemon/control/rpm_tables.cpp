@@ -1,0 +1,43 @@
+#include "control/rpm_tables.h"
+
+#include <cmath>
+
+namespace xr {
+
+double interpolateRpmTable(const RpmTable& pts, const RpmTable& v, double rpm) {
+  if (!std::isfinite(rpm) || rpm <= pts[0]) return v[0];
+  for (std::size_t i = 1; i < RPM_TABLE_SIZE; ++i) {
+    if (rpm <= pts[i]) {
+      const double span = pts[i] - pts[i - 1];
+      if (span <= 0.0) return v[i];  // malformed (non-ascending) table: no division by zero
+      const double f = (rpm - pts[i - 1]) / span;
+      return v[i - 1] + f * (v[i] - v[i - 1]);
+    }
+  }
+  return v[RPM_TABLE_SIZE - 1];
+}
+
+const RpmTable& activeCapCurrentTable(const Params& p) {
+  return p.HiLow ? p.rpmCapCurrentTable : p.rpmCapCurrentTableLo;
+}
+const RpmTable& activeCapPowerTable(const Params& p) {
+  return p.HiLow ? p.rpmCapPowerTable : p.rpmCapPowerTableLo;
+}
+const RpmTable& activeMinDutyTable(const Params& p) {
+  return p.HiLow ? p.rpmMinDutyTable : p.rpmMinDutyTableLo;
+}
+
+double getCapCurrentForRPM(const Params& p, double rpm, double ibv) {
+  if (p.capLimitMode == 1) {
+    const double kw = interpolateRpmTable(p.rpmTableRPMPoints, activeCapPowerTable(p), rpm);
+    if (!std::isfinite(ibv) || ibv < 1.0) return 0.0;
+    return std::max(0.0, kw * 1000.0 / ibv);
+  }
+  return std::max(0.0, interpolateRpmTable(p.rpmTableRPMPoints, activeCapCurrentTable(p), rpm));
+}
+
+double getMinDutyForRPM(const Params& p, double rpm) {
+  return interpolateRpmTable(p.rpmTableRPMPoints, activeMinDutyTable(p), rpm);
+}
+
+}  // namespace xr

@@ -1,0 +1,56 @@
+#pragma once
+// SystemID (field-control.md "SystemID"): plant-delay step test. The duty is
+// held at sysIDBaseDuty for sysIDDurationMs, then stepped to sysIDStepDuty for
+// sysIDDurationMs, with the governor in GOV_BYPASS_SLEW. The alternator
+// current response gives dead time (10 % of the final change), rise time
+// (10 % -> 90 %) and slope (A/s over the rise). Samples go to a fixed buffer
+// (decimated to fit), so the test never allocates.
+#include <array>
+
+#include "core/time.h"
+#include "params/params.h"
+
+namespace xr {
+
+struct SystemIdSnapshot {
+  bool autoRunning = false;  // sysMode AUTO in MODE_NORMAL_AUTO_PID
+  double setpointLimited = 0.0;
+  double lastAppliedDuty = 0.0;
+  double cv_I = 0.0;
+  bool voltageControlActive = false;
+};
+
+struct SystemIdResult {
+  bool valid = false;
+  double deadTimeMs = 0.0, riseTimeMs = 0.0, slopeAps = 0.0;
+  double I0 = 0.0, I1 = 0.0;
+};
+
+class SystemId {
+ public:
+  // Legal only while running normally in AUTO.
+  bool start(TimeNs now, const SystemIdSnapshot& pre);
+  // While running: returns sysIDDutyOut. Sets `finished` on the falling edge.
+  double systemID_tick(TimeNs now, double measuredAmps, const Params& p, bool& finished);
+  void abort() { running_ = false; }
+
+  bool sysIDRunning() const { return running_; }
+  const SystemIdSnapshot& snapshot() const { return pre_; }
+  const SystemIdResult& result() const { return result_; }
+  bool stepped() const { return stepped_; }
+
+ private:
+  void analyse();
+  static constexpr int kSamples = 1024;
+  bool running_ = false, stepped_ = false;
+  TimeNs start_ = 0, stepAt_ = 0, lastSample_ = 0;
+  SystemIdSnapshot pre_;
+  SystemIdResult result_;
+  double baseSum_ = 0.0;
+  int baseCount_ = 0;
+  std::array<float, kSamples> amps_{};
+  std::array<float, kSamples> tMs_{};
+  int n_ = 0;
+};
+
+}  // namespace xr

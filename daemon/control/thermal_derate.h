@@ -1,0 +1,53 @@
+#pragma once
+// T0: the temperature PID (field-control.md "Temperature PID (tempPID)",
+// safeties-and-protections.md "T0 — Thermal PID"). REVERSE action on the
+// predictive projectedTempF; output thermalPenaltyAmps, slew-limited.
+#include <array>
+
+#include "control/pid.h"
+#include "core/time.h"
+#include "params/constants.h"
+#include "params/params.h"
+
+namespace xr {
+
+struct ThermalInputs {
+  TimeNs now = 0;
+  double dtSec = 0.0;
+  double TempToUse = 0.0;   // degF from TempSource
+  bool tempFresh = false;   // a new sample this tick
+  bool tempValid = false;   // not stale, finite, within [-50, 400] degF
+  // Implied-penalty anti-windup: what the non-thermal constraints already take
+  // off I_cap (I_cap - the lowest non-thermal ceiling), amps.
+  double impliedPenalty = 0.0;
+};
+
+class ThermalDerate {
+ public:
+  ThermalDerate();
+  // Once per control tick. Returns thermalPenaltyAmps.
+  double update(const ThermalInputs& in, const Params& p);
+  void reset();
+
+  double tempFiltered() const { return tempFiltered_; }
+  double projectedTempF() const { return projectedTempF_; }
+  double thermalSlopeFPerSec() const { return thermalSlopeFPerSec_; }
+  double thermalPenaltyAmps() const { return thermalPenaltyAmps_; }
+  double penaltyTarget() const { return tempPID_.output; }  // thermalPenaltyAmps_d
+  double integrator() const { return tempPID_.GetIterm(); }
+  bool holding() const { return holding_; }
+
+ private:
+  Pid tempPID_;
+  bool primed_ = false;
+  double tempFiltered_ = 0.0, projectedTempF_ = 0.0, thermalSlopeFPerSec_ = 0.0;
+  double thermalPenaltyAmps_ = 0.0;
+  TimeNs lastComputeNs_ = 0;
+  bool haveCompute_ = false;
+  std::array<double, k::THERMAL_SLOPE_BUF> thermalSlopeBuffer_{};
+  std::array<TimeNs, k::THERMAL_SLOPE_BUF> slopeStamps_{};
+  int slopeCount_ = 0, slopeHead_ = 0;
+  bool holding_ = false;
+};
+
+}  // namespace xr

@@ -1,0 +1,53 @@
+#pragma once
+// TuningMode (field-control.md "TuningMode (inner current loop)"): square-wave
+// current setpoint between TUNING_BASE_A and TUNING_BASE_A + waveAmplitude,
+// toggling every wavePeriod/2. The score (ISE/T of setpointLimited -
+// MeasuredAmps) accumulates only while the setpoint slews slower than
+// 1 A/s, so it is independent of the slew rate itself. A record is committed
+// to the 50-entry tuningLog on the operator's command (tuning_commit).
+#include <array>
+
+#include "core/time.h"
+#include "params/constants.h"
+#include "params/params.h"
+
+namespace xr {
+
+struct TuningRecord {
+  TimeNs t = 0;
+  double PidKp = 0.0, PidKi = 0.0, PidKd = 0.0;
+  double waveAmplitude = 0.0, wavePeriod = 0.0;
+  double score = 0.0;         // ISE / T, A^2
+  double scoredSec = 0.0;     // time inside the scoring window
+};
+
+class TuningModeRunner {
+ public:
+  // Square-wave uTargetAmps for this tick (starts on the first call after reset).
+  double waveTarget(TimeNs now, const Params& p);
+  // Scoring, after the setpoint slew of this tick.
+  void score(double setpointLimited, double measuredAmps, double dtSec);
+  bool commit(TimeNs now, const Params& p);  // tuning_commit
+  void reset();
+
+  bool running() const { return running_; }
+  bool highPhase() const { return high_; }
+  bool scoringOpen() const { return scoringOpen_; }
+  double currentScore() const { return scoredSec_ > 0 ? ise_ / scoredSec_ : 0.0; }
+  double scoredSec() const { return scoredSec_; }
+  int logCount() const { return logCount_; }
+  const TuningRecord& record(int i) const {  // 0 = oldest
+    return tuningLog_[static_cast<std::size_t>((logHead_ - logCount_ + i + 2 * k::TUNING_LOG_SIZE) % k::TUNING_LOG_SIZE)];
+  }
+
+ private:
+  bool running_ = false, high_ = false, scoringOpen_ = false;
+  TimeNs start_ = 0;
+  double lastSetpoint_ = 0.0;
+  bool haveLast_ = false;
+  double ise_ = 0.0, scoredSec_ = 0.0;
+  std::array<TuningRecord, k::TUNING_LOG_SIZE> tuningLog_{};
+  int logCount_ = 0, logHead_ = 0;
+};
+
+}  // namespace xr
