@@ -1,0 +1,219 @@
+// Detector details the table cannot express: INA228 latch cadences and the
+// post-clear disagreement suppression, boot graces, ignore switches, the
+// current-stale window in INA slow mode, single-sensor implausibility.
+#include <gtest/gtest.h>
+
+#include <limits>
+
+#include "rig.h"
+
+namespace xr::test {
+namespace {
+
+using M = FieldControlMode;
+
+TEST(InaLatch, StillAssertedAt3sIsRecheckedEvery10s) {
+  Rig r;
+  r.warmUp();
+  r.inaAlert = true;
+  ASSERT_GE(r.runUntil([&] { return r.sup.flags().inaOvervoltageLatched; }, fromMs(300)), 0);
+  r.run(fromSec(3.5));  // release check at 3 s finds the alert still asserted
+  r.inaAlert = false;
+  EXPECT_TRUE(r.sup.flags().inaOvervoltageLatched);
+  // Next (definitive) check 10 s after the 3 s one.
+  const TimeNs rel = r.runUntil([&] { return !r.sup.flags().inaOvervoltageLatched; }, fromSec(12.0));
+  ASSERT_GE(rel, 0);
+  EXPECT_NEAR(toSec(rel) + 3.5, 13.0, 0.3);
+  EXPECT_EQ(r.count(EventCode::InaLatchCleared), 1u);
+}
+
+TEST(InaLatch, DisagreementSuppressedWhileLatchedAndFor10sAfterClear) {
+  Rig r;
+  r.warmUp();
+  r.inaAlert = true;
+  r.batteryV = 12.0;  // sensors diverge as the field collapses
+  r.run(fromMs(300));
+  r.inaAlert = false;
+  ASSERT_GE(r.runUntil([&] { return !r.sup.flags().inaOvervoltageLatched; }, fromSec(4.0)), 0);
+  r.run(fromSec(9.9));
+  EXPECT_FALSE(r.sup.flags().voltageDisagreeCritical);
+  EXPECT_EQ(r.d.mode, M::MODE_NORMAL_AUTO_PID);
+  // After the 10 s window the check resumes (critical: 1.5 V for 3 s).
+  const TimeNs crit = r.runUntil([&] { return r.sup.flags().voltageDisagreeCritical; }, fromSec(5.0));
+  EXPECT_NEAR(toSec(crit), 0.1 + 3.0, 0.02);
+}
+
+TEST(InaLatch, DisabledWhenInaDisconnected) {
+  Params p;
+  p.INADisconnected = true;
+  Rig r(p);
+  r.limp = true;  // the only way to run without the INA228
+  r.warmUp();
+  r.inaAlert = true;
+  r.run(fromSec(1.0));
+  EXPECT_FALSE(r.sup.flags().inaOvervoltageLatched);
+  EXPECT_EQ(r.d.mode, M::MODE_LIMP_HOME);
+}
+
+TEST(Disagreement, NanSensorIsCriticalAtOnce) {
+  Rig r;
+  r.warmUp();
+  r.batteryV = std::numeric_limits<double>::quiet_NaN();
+  r.tick();
+  EXPECT_EQ(r.d.reason, Reason::REASON_VOLTAGE_DISAGREE_CRITICAL);
+  EXPECT_EQ(r.count(EventCode::VoltageDisagreement), 1u);
+}
+
+TEST(Disagreement, NotJudgedBeforeTheFirstSampleArrivesThenCriticalAfterGrace) {
+  Rig q;
+  EventBatch ev;
+  q.in.IBV = {13.5, q.t, true};
+  q.in.BatteryV = Reading{};  // ADS1115 CH0 never answered
+  for (int i = 0; i < 300; ++i) {  // 1.5 s
+    q.t += kTick;
+    q.in.now = q.t;
+    q.in.IBV.stamp = q.t;
+    q.sup.updateDetectors(q.in, 20.0, ev);
+    EXPECT_FALSE(q.sup.flags().voltageDisagreeCritical);
+  }
+  for (int i = 0; i < 200; ++i) {  // past the 2 s first-sample grace
+    q.t += kTick;
+    q.in.now = q.t;
+    q.in.IBV.stamp = q.t;
+    q.sup.updateDetectors(q.in, 20.0, ev);
+  }
+  EXPECT_TRUE(q.sup.flags().voltageDisagreeCritical);
+}
+
+TEST(Implausible, SingleSensorOutOfRangePasses) {
+  Rig r;
+  r.warmUp();
+  r.ibv = 13.5;
+  r.batteryV = 16.0;  // only one sensor outside 4.5–15.5 V
+  r.tick();
+  EXPECT_FALSE(r.sup.flags().voltageImplausible);
+  r.ibv = 16.0;
+  r.tick();
+  EXPECT_TRUE(r.sup.flags().voltageImplausible);
+}
+
+TEST(Implausible, RangeScalesWithSystemClass) {
+  Params p;
+  p.BulkVoltage = 28.8;  // 24 V class: 9.0–30.5 V
+  p.AbsorptionVoltage = 28.6;
+  Rig r(p);
+  r.ibv = r.batteryV = 27.0;
+  r.warmUp();
+  EXPECT_FALSE(r.sup.flags().voltageImplausible);
+  r.ibv = r.batteryV = 8.9;
+  r.tick();
+  EXPECT_TRUE(r.sup.flags().voltageImplausible);
+}
+
+TEST(T5, NeverReadTemperatureGetsA60sBootGrace) {
+  Rig r;
+  r.freezeTemp = true;  // the sensor never answers
+  r.run(fromSec(59.9), fromMs(10));
+  EXPECT_FALSE(r.sup.flags().tempStale);
+  r.run(fromSec(0.2), fromMs(10));
+  EXPECT_TRUE(r.sup.flags().tempStale);
+  EXPECT_EQ(r.count(EventCode::TempSensorStale), 1u);
+}
+
+TEST(T5, RecoversOnFirstValidReadAfterLockout) {
+  Rig r;
+  r.warmUp();
+  r.freezeTemp = true;
+  ASSERT_GE(r.runUntil([&] { return r.sup.flags().lockoutActive; }, fromSec(25.0), fromMs(10)), 0);
+  r.freezeTemp = false;
+  ASSERT_GE(r.runUntil([&] { return r.d.mode == M::MODE_NORMAL_AUTO_PID; }, fromSec(31.0), fromMs(10)), 0);
+}
+
+TEST(IgnoreTemperature, DisablesT1T3ButNotT4T5) {
+  Params p;
+  p.IgnoreTemperature = true;
+  Rig r(p);
+  r.warmUp();
+  r.tempF = 170.0;
+  r.run(fromSec(1.0));
+  EXPECT_FALSE(r.sup.flags().tempWarning);
+  EXPECT_FALSE(r.sup.flags().tempCritical);
+  EXPECT_EQ(r.d.mode, M::MODE_NORMAL_AUTO_PID);
+  r.freezeTemp = true;
+  r.freezeHeartbeat = true;
+  r.run(fromSec(21.0), fromMs(10));
+  EXPECT_TRUE(r.sup.flags().tempStale);
+  EXPECT_TRUE(r.sup.flags().tempTaskAlarm);
+}
+
+TEST(IgnoreRpm, DisablesTheGate) {
+  Params p;
+  p.IgnoreRPM = true;
+  Rig r(p);
+  r.rpm = 0.0;
+  r.warmUp();
+  EXPECT_FALSE(r.sup.flags().rpmBelowMin);
+  EXPECT_EQ(r.d.mode, M::MODE_NORMAL_AUTO_PID);
+}
+
+TEST(RpmGate, UnknownRpmCountsAsBelow) {
+  Rig r;
+  r.rpm = std::numeric_limits<double>::quiet_NaN();
+  r.warmUp();
+  EXPECT_EQ(r.d.reason, Reason::REASON_RPM_LOW);
+  EXPECT_FALSE(r.sc.fieldEnable);
+}
+
+TEST(CurrentStale, InaSlowModeIsNotStale) {
+  Rig r;
+  r.in.inaFastModeActive = false;
+  r.warmUp();
+  // INA228 slow mode: one sample every ~1.05 s.
+  for (int i = 0; i < 10; ++i) {
+    r.freezeIna = true;
+    r.run(fromMs(1050));
+    r.freezeIna = false;
+    r.tick();
+    EXPECT_FALSE(r.sup.flags().currentStale);
+  }
+  // Switching to fast mode does not trip on the last slow sample's age.
+  r.in.inaFastModeActive = true;
+  r.freezeIna = true;
+  r.run(fromMs(1000));
+  EXPECT_FALSE(r.sup.flags().currentStale);
+}
+
+TEST(CurrentStale, InaSilentInFastModeTrips) {
+  Rig r;
+  r.warmUp();
+  r.freezeIna = true;
+  const TimeNs took = r.runUntil([&] { return r.sup.flags().currentStale; }, fromSec(1.0));
+  EXPECT_NEAR(toSec(took), 0.505, 0.006);
+}
+
+TEST(HardOvercurrent, ShortSpikeBelowDebounceDoesNotTrip) {
+  Rig r;
+  r.warmUp();
+  r.altAmps = 100.0;
+  r.run(fromMs(15));
+  r.altAmps = 20.0;
+  r.run(fromMs(100));
+  EXPECT_EQ(r.count(EventCode::ProtectionTrip, Reason::REASON_HARD_OVERCURRENT), 0u);
+}
+
+TEST(AutoZero, LockoutRampWithoutAlarmOrLockout) {
+  Rig r;
+  r.warmUp();
+  r.autoZero = true;
+  ASSERT_GE(r.runUntil([&] { return !r.sc.fieldEnable; }, fromSec(10.0)), 0);
+  EXPECT_EQ(r.d.mode, M::MODE_LOCKOUT_RAMP);
+  EXPECT_EQ(r.d.reason, Reason::REASON_AUTO_ZERO);
+  EXPECT_FALSE(r.sc.faultAlarm);
+  EXPECT_EQ(r.count(EventCode::LockoutStarted), 0u);
+  r.autoZero = false;
+  r.tick();
+  EXPECT_EQ(r.d.mode, M::MODE_NORMAL_AUTO_PID);
+}
+
+}  // namespace
+}  // namespace xr::test
