@@ -83,7 +83,10 @@ class AdsReadyLine {
   bool open(const std::string& chipName, int line);
   const std::string& error() const noexcept { return error_; }
   // RT path: waits up to `timeoutNs` for an edge. Returns 1 and the kernel
-  // timestamp (ns) of the edge, 0 on timeout, -1 on error.
+  // timestamp (ns) of the edge, 0 on timeout, -1 on error. The kernel stamps
+  // line events with CLOCK_MONOTONIC since Linux 5.7 (CLOCK_REALTIME before):
+  // the runtime must compare it with a monotonic Clock, or stamp the edge
+  // itself when it returns, for Ads1115Driver::onReadyEdge().
   int wait(long timeoutNs, long long* stampNs) noexcept;
   int fd() const noexcept;
   void close() noexcept;

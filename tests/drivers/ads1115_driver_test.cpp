@@ -239,3 +239,28 @@ INSTANTIATE_TEST_SUITE_P(ClockTolerance, Ads1115OscillatorTest, ::testing::Value
 
 }  // namespace
 }  // namespace xr
+
+#include "drivers/ads1115/ads1115_inputs.h"
+
+namespace xr {
+namespace {
+
+TEST_F(Ads1115DriverTest, FillsTheCoreInputs) {
+  Ads1115Driver d(bus, kAddr, seq, fe, clock);
+  ASSERT_EQ(d.start(t.now), 0);
+  Inputs in;
+  int ch1Fresh = 0;
+  for (int i = 0; i < 400; ++i) {
+    t.now += 2'500'000;
+    fillAdsInputs(d.poll(t.now), in);
+    ch1Fresh += in.altCurrentRaw.fresh ? 1 : 0;
+  }
+  EXPECT_GT(ch1Fresh, 50);
+  EXPECT_NEAR(in.BatteryV.value, kBattV, 0.01);
+  EXPECT_NEAR(in.altCurrentRaw.value, kAltA, 0.02);
+  EXPECT_NEAR(in.rpm.value, kRpm, 0.5);
+  EXPECT_NEAR(in.thermistorF.value, kTempF, 0.5);
+}
+
+}  // namespace
+}  // namespace xr

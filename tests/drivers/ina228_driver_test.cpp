@@ -221,3 +221,35 @@ TEST_F(Ina228DriverTest, UnencodableShuntIsRejected) {
 
 }  // namespace
 }  // namespace xr
+
+#include "drivers/ina228/ina228_inputs.h"
+
+namespace xr {
+namespace {
+
+TEST_F(Ina228DriverTest, FillsTheCoreInputs) {
+  ASSERT_EQ(drv.start(t.now), 0);
+  drv.setFastMode(true);
+  Inputs in;
+  bool sawFresh = false;
+  for (int i = 0; i < 40; ++i) {
+    drv.poll(t.now += 2'500'000);
+    fillInaInputs(drv, in);
+    sawFresh = sawFresh || in.IBV.fresh;
+  }
+  EXPECT_TRUE(sawFresh);
+  EXPECT_TRUE(in.inaPresent);
+  EXPECT_TRUE(in.inaFastModeActive);
+  EXPECT_NEAR(in.IBV.value, 13.2, 0.002);
+  EXPECT_NEAR(in.Bcur.value, 50.0, 0.05);
+  EXPECT_GT(in.IBV.stamp, 0);
+  EXPECT_GT(in.inaDiagStamp, 0);
+  bus.setNack(kAddr, true);
+  for (int i = 0; i < 10; ++i) drv.poll(t.now += 2'500'000);
+  fillInaInputs(drv, in);
+  EXPECT_FALSE(in.inaPresent);
+  EXPECT_FALSE(in.IBV.fresh);
+}
+
+}  // namespace
+}  // namespace xr
