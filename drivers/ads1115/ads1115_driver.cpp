@@ -41,10 +41,29 @@ int Ads1115Driver::nextChannel() noexcept {
   return seq_[seqPos_];
 }
 
+std::uint16_t Ads1115Driver::configFor(int channel) const noexcept {
+  return ads1115::configContinuous(channel, pga_[static_cast<std::size_t>(channel)], ads1115::DR_860,
+                                   pacing_ == AdsPacing::ReadyEdge);
+}
+
 int Ads1115Driver::writeMux(int channel) noexcept {
-  const std::uint16_t cfg = ads1115::configContinuous(channel, pga_[static_cast<std::size_t>(channel)],
-                                                      ads1115::DR_860, pacing_ == AdsPacing::ReadyEdge);
-  return i2creg::writeReg16(bus_, addr_, ads1115::CONFIG, cfg);
+  const std::uint16_t cfg = configFor(channel);
+  const int rc = i2creg::writeReg16(bus_, addr_, ads1115::CONFIG, cfg);
+  if (rc == 0) lastWritten_ = cfg;
+  return rc;
+}
+
+int Ads1115Driver::readConversionChecked(std::uint16_t* raw) noexcept {
+  std::uint8_t pCfg = ads1115::CONFIG, pConv = ads1115::CONVERSION;
+  std::uint8_t cfg[2] = {}, conv[2] = {};
+  I2cMsg msgs[4] = {{addr_, false, &pCfg, 1}, {addr_, true, cfg, 2}, {addr_, false, &pConv, 1}, {addr_, true, conv, 2}};
+  const int rc = bus_.transfer(msgs);
+  if (rc != 0) return rc;
+  const std::uint16_t c = static_cast<std::uint16_t>((cfg[0] << 8) | cfg[1]);
+  // OS (bit 15) is a busy flag when read: compare the rest.
+  if ((c & 0x7FFF) != (lastWritten_ & 0x7FFF)) return ESTALE;
+  *raw = static_cast<std::uint16_t>((conv[0] << 8) | conv[1]);
+  return 0;
 }
 
 int Ads1115Driver::readConversion(std::uint16_t* raw) noexcept {
@@ -79,8 +98,12 @@ int Ads1115Driver::start(TimeNs now) noexcept {
   muxWrittenAt_ = clock_.now();
   // Continuous conversions start at the write with this config: the one in
   // progress and the next both use it.
-  inProgress_ = first;
-  nextUp_ = first;
+  // Edge pacing: the conversion running at the write may use an older
+  // Config (a restart while the chip kept converting): label nothing until
+  // the pipeline refills.
+  inProgress_ = -1;
+  nextUp_ = -1;
+  nextVerify_ = now + kVerifyInterval;
   lastEdge_ = 0;
   return 0;
 }
@@ -125,8 +148,14 @@ Ads1115Samples Ads1115Driver::poll(TimeNs now) noexcept {
     bool advance = true;
     if (timedChannel_ >= 0) {
       std::uint16_t raw = 0;
-      const int rc = readConversion(&raw);
-      if (rc != 0) {
+      const int rc = readConversionChecked(&raw);
+      if (rc == ESTALE) {
+        // The chip lost our Config (power glitch / hot-plug): restart it.
+        ++stats_.reconfigures;
+        ++stats_.discarded;
+        if (start(now) != 0) noteFailure(stats_.lastError, now);
+        advance = false;
+      } else if (rc != 0) {
         noteFailure(rc, now);
         advance = false;  // keep the channel; read again next poll
       } else {
@@ -147,6 +176,20 @@ Ads1115Samples Ads1115Driver::poll(TimeNs now) noexcept {
         muxWrittenAt_ = clock_.now();
         if (rc != 0) noteFailure(rc, now);
       }
+    }
+  }
+  if (present_ && pacing_ == AdsPacing::ReadyEdge && now >= nextVerify_) {
+    nextVerify_ = now + kVerifyInterval;
+    std::uint16_t cfg = 0;
+    const int rc = i2creg::readReg16(bus_, addr_, ads1115::CONFIG, &cfg);
+    // Only a MUX-independent check is race-free here (the MUX changes every
+    // edge): continuous mode, 860 SPS, comparator on.
+    const std::uint16_t mask = ads1115::MODE_SINGLE | (7u << 5) | 3u;
+    if (rc == 0 && (cfg & mask) != (configFor(seq_[0]) & mask)) {
+      ++stats_.reconfigures;
+      if (start(now) != 0) noteFailure(stats_.lastError, now);
+    } else if (rc != 0) {
+      noteFailure(rc, now);
     }
   }
   Ads1115Samples out = samples_;

@@ -52,6 +52,7 @@ struct Ads1115Stats {
   unsigned long discarded = 0;      // results dropped by the MUX rule / pipeline flushes
   unsigned long pipelineFlushes = 0;
   unsigned long redetects = 0;
+  unsigned long reconfigures = 0;   // Config found reset/changed behind our back (power glitch) and restored
   int lastError = 0;
 };
 
@@ -77,7 +78,10 @@ class Ads1115Driver {
   // continuous mode, 860 SPS. Marks the chip present on success. 0 or errno.
   int start(TimeNs now) noexcept;
 
-  // Timed pacing: reads/advances when the settle time has passed. Both
+  // Timed pacing: reads/advances when the settle time has passed (each
+  // result read together with the Config, see readConversionChecked). Both
+  // pacings: once a second the Config is read back; a chip that reset is
+  // restarted (stats().reconfigures). Both
   // pacings: returns every channel's latest sample with `fresh` set for those
   // updated since the previous poll(), then clears the fresh flags. While
   // absent, re-starts at most once per kRedetectInterval.
@@ -98,6 +102,11 @@ class Ads1115Driver {
  private:
   int writeMux(int channel) noexcept;
   int readConversion(std::uint16_t* raw) noexcept;
+  // Timed pacing: Config and Conversion in ONE combined transaction; the
+  // result is trusted only when Config still holds what we wrote (a chip
+  // that reset reads single-shot with a zero result). ESTALE on a mismatch.
+  int readConversionChecked(std::uint16_t* raw) noexcept;
+  std::uint16_t configFor(int channel) const noexcept;
   void accept(int channel, std::uint16_t raw, TimeNs stamp) noexcept;
   void noteFailure(int err, TimeNs now) noexcept;
   void flushPipeline() noexcept;
@@ -122,6 +131,9 @@ class Ads1115Driver {
   int nextUp_ = -1;
   TimeNs lastEdge_ = 0;
   TimeNs nextRedetect_ = 0;
+  TimeNs nextVerify_ = 0;
+  std::uint16_t lastWritten_ = 0;  // last Config written successfully
+  static constexpr TimeNs kVerifyInterval = 1'000'000'000;
   Ads1115Samples samples_;
   Ads1115Stats stats_;
 };

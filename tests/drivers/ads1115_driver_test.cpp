@@ -264,3 +264,40 @@ TEST_F(Ads1115DriverTest, FillsTheCoreInputs) {
 
 }  // namespace
 }  // namespace xr
+
+namespace xr {
+namespace {
+
+TEST_F(Ads1115DriverTest, TimedChipResetBehindOurBackIsNeverReadAsASample) {
+  Ads1115Driver d(bus, kAddr, seq, fe, clock);
+  ASSERT_EQ(d.start(t.now), 0);
+  Counts c = runTimed(d, 100'000'000);
+  EXPECT_EQ(c.wrongTotal(), 0);
+  // Power glitch: a chip with reset registers (single-shot, result 0) answers.
+  sim::Ads1115Model fresh;
+  fresh.setInputs({frontend::adcFromBatteryVolts(fe, kBattV), frontend::adcFromAltAmps(fe, kAltA),
+                   frontend::adcFromRpm(fe, kRpm), frontend::adcFromTempF(fe, kTempF)});
+  bus.attach(kAddr, &fresh);
+  c = runTimed(d, 500'000'000);
+  EXPECT_EQ(c.wrongTotal(), 0) << "the zero result of a reset chip must not become a sample";
+  EXPECT_GE(d.stats().reconfigures, 1u);
+  EXPECT_GT(c.total(), 50);
+  EXPECT_EQ(fresh.protocolErrors(), 0u);
+}
+
+TEST_F(Ads1115DriverTest, ReadyEdgeChipResetIsRepairedByThePeriodicCheck) {
+  Ads1115Driver d(bus, kAddr, seq, fe, clock, AdsPacing::ReadyEdge);
+  ASSERT_EQ(d.start(t.now), 0);
+  runEdges(d, 100'000'000, 100'000);
+  sim::Ads1115Model fresh;
+  fresh.setInputs({frontend::adcFromBatteryVolts(fe, kBattV), frontend::adcFromAltAmps(fe, kAltA),
+                   frontend::adcFromRpm(fe, kRpm), frontend::adcFromTempF(fe, kTempF)});
+  bus.attach(kAddr, &fresh);
+  // No edges from a powered-down chip: the runtime keeps polling on timeouts.
+  for (int i = 0; i < 500; ++i) d.poll(t.now += 2'500'000);
+  EXPECT_GE(d.stats().reconfigures, 1u);
+  EXPECT_EQ(fresh.peekConfig() & ads1115::MODE_SINGLE, 0) << "continuous again";
+}
+
+}  // namespace
+}  // namespace xr
