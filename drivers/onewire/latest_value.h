@@ -26,8 +26,9 @@ class LatestValue {
     std::memcpy(w, &v, sizeof(T));
     const auto s = seq_.load(std::memory_order_relaxed);
     seq_.store(s + 1, std::memory_order_relaxed);  // odd: write in progress
-    std::atomic_thread_fence(std::memory_order_release);
-    for (std::size_t i = 0; i < kWords; ++i) words_[i].store(w[i], std::memory_order_relaxed);
+    // Release on every word (no fences: ThreadSanitizer does not model
+    // them): a reader that sees any new word also sees the odd sequence.
+    for (std::size_t i = 0; i < kWords; ++i) words_[i].store(w[i], std::memory_order_release);
     seq_.store(s + 2, std::memory_order_release);
   }
 
@@ -38,8 +39,7 @@ class LatestValue {
       const auto s1 = seq_.load(std::memory_order_acquire);
       if (s1 & 1) continue;
       std::uint64_t w[kWords];
-      for (std::size_t i = 0; i < kWords; ++i) w[i] = words_[i].load(std::memory_order_relaxed);
-      std::atomic_thread_fence(std::memory_order_acquire);
+      for (std::size_t i = 0; i < kWords; ++i) w[i] = words_[i].load(std::memory_order_acquire);
       if (seq_.load(std::memory_order_relaxed) == s1) {
         std::memcpy(out, w, sizeof(T));
         return true;
