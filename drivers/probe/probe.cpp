@@ -232,7 +232,32 @@ void probeSerial(const HardwareSettings& hw, Report& r) {
   r.ok("VE.Direct port " + hw.vedirect_port + " (19200 8N1)");
 }
 
+void probeI2cClock(const HardwareSettings& hw, Report& r) {
+  const unsigned long hz = readI2cClockHz(hw.i2c_bus);
+  if (hz == 0) return;  // not a device-tree adapter: nothing to say
+  if (hz < 400000) {
+    r.warn("I2C bus clock " + std::to_string(hz / 1000) + " kHz: INA228 + ADS1115 reads take most of a 2.5 ms tick",
+           std::string("add 'dtparam=i2c_arm_baudrate=400000' to ") + kConfigTxt + " and reboot");
+  } else {
+    r.ok("I2C bus clock " + std::to_string(hz / 1000) + " kHz");
+  }
+}
+
 }  // namespace
+
+unsigned long readI2cClockHz(const std::string& devPath, const std::string& sysRoot) {
+  const auto slash = devPath.find_last_of('/');
+  const std::string name = slash == std::string::npos ? devPath : devPath.substr(slash + 1);
+  const std::string p = sysRoot + "/class/i2c-dev/" + name + "/device/of_node/clock-frequency";
+  FILE* f = std::fopen(p.c_str(), "rb");
+  if (!f) return 0;
+  unsigned char b[4] = {};
+  const std::size_t n = std::fread(b, 1, 4, f);
+  std::fclose(f);
+  if (n != 4) return 0;
+  return (static_cast<unsigned long>(b[0]) << 24) | (static_cast<unsigned long>(b[1]) << 16) |
+         (static_cast<unsigned long>(b[2]) << 8) | b[3];
+}
 
 int runProbe(const Settings& settings, std::ostream& out) { return runProbe(settings, out, nullptr); }
 
@@ -257,6 +282,7 @@ int runProbe(const Settings& settings, std::ostream& out, I2cBus* busOverride) {
              "point [hardware] i2c_bus at /dev/i2c-N ('i2cdetect -l' lists them)");
     } else {
       r.ok("I2C bus " + hw.i2c_bus);
+      probeI2cClock(hw, r);
       probeChips(hw, bus, r);
     }
   }

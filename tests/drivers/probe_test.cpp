@@ -90,3 +90,21 @@ TEST_F(ProbeTest, ConfiguredSensorMissingIsAFailure) {
 
 }  // namespace
 }  // namespace xr
+
+namespace xr {
+namespace {
+
+TEST(ProbeI2cClock, ReadsTheBigEndianDeviceTreeValue) {
+  test::TempDir d;
+  const std::string dir = d / "class/i2c-dev/i2c-1/device/of_node";
+  test::writeFile(dir + "/clock-frequency", std::string("\x00\x01\x86\xa0", 4));  // 100000
+  EXPECT_EQ(readI2cClockHz("/dev/i2c-1", d.path()), 100000u);
+  test::writeFile(dir + "/clock-frequency", std::string("\x00\x06\x1a\x80", 4));  // 400000
+  EXPECT_EQ(readI2cClockHz("/dev/i2c-1", d.path()), 400000u);
+  EXPECT_EQ(readI2cClockHz("/dev/i2c-7", d.path()), 0u);
+  test::writeFile(dir + "/clock-frequency", "ab");
+  EXPECT_EQ(readI2cClockHz("/dev/i2c-1", d.path()), 0u) << "short file";
+}
+
+}  // namespace
+}  // namespace xr
