@@ -20,7 +20,8 @@
 //   (e) ModeDecision d = selectFieldMode(snap);   (mode_selection.h, pure)
 //   (f) ShutdownCommand sc = prot.runShutdownPath(d, lastAppliedDuty,
 //                                                  rpmMinDuty, events);
-//       EVERY tick, normal modes included (it tracks transitions).
+//       EVERY tick, normal modes included (it tracks transitions). The
+//       caller emits the ModeChanged event on mode transitions; this does not.
 //       - if sc.applyImmediateCut: run control's applyImmediateCut(): PWM 0,
 //         currentPID reset (integrator -> 0, MANUAL), sysMode = SYS_MODE_FAULT,
 //         setpointLimited = 0, abort any running SystemID. (GPIO4 LOW and the

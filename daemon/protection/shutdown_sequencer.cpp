@@ -32,17 +32,11 @@ void ProtectionSupervisor::startLockout(EventBatch& ev) {
 ShutdownCommand ProtectionSupervisor::runShutdownPath(const ModeDecision& d, double lastAppliedDuty,
                                                       double rpmMinDuty, EventBatch& ev) {
   const bool normal = isNormalMode(d.mode);
-  const bool changed = firstSequencerTick_ || d.mode != lastMode_ || d.reason != lastReason_;
-  const bool wasNormal = !firstSequencerTick_ && isNormalMode(lastMode_);
+  // ModeChanged ("Entering normal mode" / "Exiting normal mode: <reason>") is
+  // emitted by Regulator::step with its enter_sys_* transition, not here, so
+  // the journal gets one line per transition.
   lastMode_ = d.mode;
   lastReason_ = d.reason;
-  if (changed) {
-    // "Entering normal mode" / "Exiting normal mode: <reason>"; detail 1 =
-    // a change between two non-normal modes.
-    const int detail = (!normal && !wasNormal && !firstSequencerTick_) ? 1 : 0;
-    if (firstSequencerTick_ || normal != wasNormal || !normal)
-      push(ev, EventCode::ModeChanged, normal ? EventLevel::Info : EventLevel::Warning, d.reason, 0.0, 0.0, detail);
-  }
   firstSequencerTick_ = false;
 
   ShutdownCommand c;
