@@ -76,7 +76,14 @@ int Ina228Driver::setFastMode(bool fast) noexcept {
   // The new mode is remembered even when absent: configure() applies it.
   if (!present_) return 0;
   const int rc = writeReg(ADC_CONFIG, fast ? kAdcConfigFast : kAdcConfigSlow);
-  if (rc != 0) stats_.lastError = rc;
+  if (rc != 0) {
+    // Report the mode the chip is really in (inaFastModeActive gates the
+    // fast-OV protection); the caller asks again next tick.
+    fast_ = !fast;
+    ++stats_.failedReads;
+    stats_.lastError = rc;
+    return rc;
+  }
   // A new cycle starts at the write; read as soon as the first result is due.
   nextRead_ = 0;
   return rc;

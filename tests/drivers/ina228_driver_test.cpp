@@ -253,3 +253,32 @@ TEST_F(Ina228DriverTest, FillsTheCoreInputs) {
 
 }  // namespace
 }  // namespace xr
+
+namespace xr {
+namespace {
+
+TEST_F(Ina228DriverTest, FailedModeWriteReportsTheModeTheChipIsIn) {
+  ASSERT_EQ(drv.start(t.now), 0);
+  bus.setNack(kAddr, true);
+  EXPECT_NE(drv.setFastMode(true), 0);
+  EXPECT_FALSE(drv.fastModeActive()) << "the chip is still in slow mode";
+  bus.setNack(kAddr, false);
+  EXPECT_EQ(drv.setFastMode(true), 0);
+  EXPECT_TRUE(drv.fastModeActive());
+  EXPECT_EQ(chip.peek(sim::ina228::ADC_CONFIG), ina228::kAdcConfigFast);
+}
+
+TEST_F(Ina228DriverTest, ModeAndLimitChosenWhileAbsentAreAppliedOnDetection) {
+  bus.detach(kAddr);
+  EXPECT_NE(drv.start(t.now), 0);
+  EXPECT_EQ(drv.setFastMode(true), 0);
+  EXPECT_EQ(drv.setBusOvervoltageLimit(29.1), 0);
+  bus.attach(kAddr, &chip);
+  runFor(Ina228Driver::kRedetectInterval + 10'000'000);
+  ASSERT_TRUE(drv.present());
+  EXPECT_EQ(chip.peek(sim::ina228::ADC_CONFIG), ina228::kAdcConfigFast);
+  EXPECT_EQ(chip.peek(sim::ina228::BOVL), ina228::bovlCode(29.1));
+}
+
+}  // namespace
+}  // namespace xr
