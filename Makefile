@@ -51,8 +51,19 @@ test: build
 bench: build
 	@if [ -x tests/bench/run.sh ]; then tests/bench/run.sh $(BUILD); else echo "no benchmarks yet"; fi
 
+# Debian package: dpkg-buildpackage writes beside the source tree; the results
+# are moved to $(BUILD)/deb. `make package-test` also lintians, installs,
+# checks and purges it (slow, so not part of `make test`).
+DEB_VERSION = $(shell dpkg-parsechangelog -S Version 2>/dev/null)
 deb: deps
 	dpkg-buildpackage -us -uc -b
+	@mkdir -p $(BUILD)/deb
+	mv ../xregulator_$(DEB_VERSION)_* ../xregulator-dbgsym_$(DEB_VERSION)_* $(BUILD)/deb/ 2>/dev/null || true
+	@ls -l $(BUILD)/deb
+
+.PHONY: package-test
+package-test: deps
+	tests/package/run.sh
 
 format:
 	find daemon drivers web/server tests tools -name '*.cpp' -o -name '*.h' | xargs clang-format -i
