@@ -22,6 +22,12 @@ class LinuxI2cBus final : public I2cBus {
   // Opens the device (e.g. "/dev/i2c-1"). Returns 0 or errno. Not RT (open()).
   int open(const std::string& path) noexcept;
   void close() noexcept;
+  // Takes ownership of an already open descriptor without the adapter
+  // check (tests drive the ioctl error path with a non-i2c fd this way).
+  void adoptFd(int fd) noexcept {
+    close();
+    fd_ = fd;
+  }
   bool isOpen() const noexcept { return fd_ >= 0; }
   const std::string& path() const noexcept { return path_; }
 

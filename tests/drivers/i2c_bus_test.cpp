@@ -49,3 +49,35 @@ TEST(LinuxI2cBus, TransientErrorClassification) {
 
 }  // namespace
 }  // namespace xr
+
+#include <fcntl.h>
+
+namespace xr {
+namespace {
+
+TEST(LinuxI2cBus, IoctlErrorOnANonAdapterFdIsReturnedNotRetried) {
+  LinuxI2cBus bus(/*retries=*/3);
+  bus.adoptFd(::open("/dev/null", O_RDWR));
+  ASSERT_TRUE(bus.isOpen());
+  std::uint8_t ptr = 0x3E, buf[2] = {};
+  I2cMsg msgs[2] = {{0x40, false, &ptr, 1}, {0x40, true, buf, 2}};
+  EXPECT_EQ(bus.transfer(msgs), ENOTTY);
+  EXPECT_EQ(bus.transfers(), 1u);
+  EXPECT_EQ(bus.failures(), 1u);
+  EXPECT_EQ(bus.retriesUsed(), 0u) << "ENOTTY is not transient";
+}
+
+TEST(LinuxI2cBus, BadMessageListsAreEinval) {
+  LinuxI2cBus bus;
+  bus.adoptFd(::open("/dev/null", O_RDWR));
+  EXPECT_EQ(bus.transfer({}), EINVAL);
+  I2cMsg many[LinuxI2cBus::kMaxMsgs + 1] = {};
+  std::uint8_t b = 0;
+  for (auto& m : many) m = {0x40, false, &b, 1};
+  EXPECT_EQ(bus.transfer(many), EINVAL);
+  I2cMsg nullBuf{0x40, true, nullptr, 2};
+  EXPECT_EQ(bus.transfer({&nullBuf, 1}), EINVAL);
+}
+
+}  // namespace
+}  // namespace xr

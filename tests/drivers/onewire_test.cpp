@@ -142,3 +142,49 @@ TEST(LatestValue, ReadersNeverSeeATornValue) {
 
 }  // namespace
 }  // namespace xr
+
+#include "drivers/onewire/slow_inputs.h"
+
+namespace xr {
+namespace {
+
+TEST(SlowInputs, TemperatureFreshOnlyWhenTheStampMoves) {
+  SlowInputsState st;
+  Inputs in;
+  Ds18b20Sample s;
+  s.heartbeat = 10;
+  fillTempInputs(s, st, in);
+  EXPECT_FALSE(in.AlternatorTemperatureF.fresh) << "never read";
+  EXPECT_EQ(in.tempTaskHeartbeat, 10);
+  s.tempF = 150.0;
+  s.stamp = 20;
+  fillTempInputs(s, st, in);
+  EXPECT_TRUE(in.AlternatorTemperatureF.fresh);
+  EXPECT_DOUBLE_EQ(in.AlternatorTemperatureF.value, 150.0);
+  EXPECT_EQ(in.AlternatorTemperatureF.stamp, 20);
+  fillTempInputs(s, st, in);
+  EXPECT_FALSE(in.AlternatorTemperatureF.fresh);
+  EXPECT_EQ(in.AlternatorTemperatureF.stamp, 20);
+}
+
+TEST(SlowInputs, VictronLabelsMapToTheirReadings) {
+  SlowInputsState st;
+  Inputs in;
+  VeDirectSample s;
+  s.currentA = -4.5;
+  s.hasCurrent = true;
+  s.ppvW = 210;
+  s.hasPpv = true;
+  s.stamp = 7;
+  fillVictronInputs(s, st, in);
+  EXPECT_TRUE(in.VictronCurrent.fresh);
+  EXPECT_DOUBLE_EQ(in.VictronCurrent.value, -4.5);
+  EXPECT_TRUE(in.solarPowerW.fresh);
+  EXPECT_FALSE(in.VictronVoltage.fresh);
+  EXPECT_EQ(in.VictronVoltage.stamp, 0) << "never reported";
+  fillVictronInputs(s, st, in);
+  EXPECT_FALSE(in.VictronCurrent.fresh);
+}
+
+}  // namespace
+}  // namespace xr
