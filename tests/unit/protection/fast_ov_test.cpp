@@ -123,6 +123,21 @@ TEST(Group1, PredictionFromDvdtEmaFiresBeforeMeasuredThreshold) {
   EXPECT_TRUE(r.a.fastOvClampActive);
 }
 
+TEST(Group1, FiresAtPredMarginNotJustBelowAndCapsBySlope) {
+  Params p;
+  p.OvGroup2Enable = false;
+  FastRig r(p);
+  r.ibv = r.batteryV = 14.549;  // steady: dvdt 0, Vpred = IBV, margin 0.15 not exceeded
+  r.steps(50);
+  EXPECT_FALSE(r.a.group1);
+  r.ibv = r.batteryV = 14.56;
+  r.steps(1);
+  ASSERT_TRUE(r.a.group1);
+  const double vpred = r.sup.telemetry().Vpred;
+  EXPECT_GT(vpred, 14.56);  // the step itself raised dvdt
+  EXPECT_NEAR(r.a.fastOvCurrentCap, 40.0 - 35.0 * (vpred - 14.55), 1e-9);
+}
+
 TEST(Group1, PredGuardBlocksFarBelowTarget) {
   FastRig r;
   r.steps(5);

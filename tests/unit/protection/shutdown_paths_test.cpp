@@ -229,7 +229,7 @@ TEST(DisabledRamp, WarningDuringDisabledRampBringsLockout) {
   EXPECT_EQ(r.count(EventCode::LockoutStarted), 1u);
 }
 
-TEST(FaultAlarm, WarningRampSoundsTheBuzzerDisabledDoesNot) {
+TEST(FaultAlarm, WarningRampSoundsTheBuzzer) {
   Rig r;
   r.warmUp();
   r.tempF = 152.5;
