@@ -28,6 +28,11 @@ bool GpioOutputLine::set(bool on) noexcept {
   return line_ && gpiod_line_set_value(line_, physicalLevel(on, activeHigh_)) == 0;
 }
 
+void GpioOutputLine::setOffSignalSafe(void* self) noexcept {
+  auto* l = static_cast<GpioOutputLine*>(self);
+  if (l && l->line_) gpiod_line_set_value(l->line_, physicalLevel(false, l->activeHigh_));
+}
+
 GpioInputLine::~GpioInputLine() {
   if (line_) gpiod_line_release(line_);
 }

@@ -30,8 +30,12 @@ class GpioOutputLine final : public DigitalOutput {
   GpioOutputLine(gpiod_line* line, bool activeHigh) noexcept : line_(line), activeHigh_(activeHigh) {}
   ~GpioOutputLine() override;
   bool set(bool on) noexcept override;  // logical on/off (polarity applied)
-  // The line's fd is not exposed by libgpiod 1.6 for raw writes; the signal
-  // handler path uses set() (gpiod_line_set_value is an ioctl, no allocation).
+  // For fatal-signal / std::terminate handlers (rt::fatal::addCallback with
+  // ctx = this GpioOutputLine): drives the line to its OFF level. libgpiod
+  // 1.6 gpiod_line_set_value() builds its request on the stack and issues
+  // one ioctl on the line handle: no allocation, no locks.
+  static void setOffSignalSafe(void* self) noexcept;
+
  private:
   gpiod_line* line_;
   bool activeHigh_;

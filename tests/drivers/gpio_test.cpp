@@ -51,3 +51,16 @@ TEST(AdsReadyLine, MissingChipIsAnError) {
 
 }  // namespace
 }  // namespace xr
+
+namespace xr {
+namespace {
+
+TEST(GpioOutputLine, SignalSafeOffToleratesNull) {
+  GpioOutputLine out(nullptr, true);
+  GpioOutputLine::setOffSignalSafe(&out);  // no line: nothing to do, no crash
+  GpioOutputLine::setOffSignalSafe(nullptr);
+  EXPECT_FALSE(out.set(false));
+}
+
+}  // namespace
+}  // namespace xr
