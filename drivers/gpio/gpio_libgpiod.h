@@ -64,10 +64,13 @@ class GpioLibgpiod {
   bool open(const HardwareSettings& hw);
   const std::string& error() const noexcept { return error_; }
 
-  DigitalOutput* fieldEnable() noexcept { return fieldEnable_.get(); }
-  DigitalOutput* buzzer() noexcept { return buzzer_.get(); }
-  DigitalInput* bms() noexcept { return bms_.get(); }            // nullptr when not wired
-  DigitalInput* ignition() noexcept { return ignition_.get(); }  // nullptr when not wired
+  GpioOutputLine* fieldEnable() noexcept { return fieldEnable_.get(); }  // also a DigitalOutput*
+  GpioOutputLine* buzzer() noexcept { return buzzer_.get(); }
+  // bms()->get(): 1 = "charge disabled" asserted (the level bms_active_low
+  // names), 0 = charging allowed, -1 = read error. nullptr when not wired.
+  DigitalInput* bms() noexcept { return bms_.get(); }
+  // ignition()->get(): 1 = ignition on, 0 = off, -1 = error. nullptr when not wired.
+  DigitalInput* ignition() noexcept { return ignition_.get(); }
   void close() noexcept;
 
  private:
