@@ -47,7 +47,7 @@ class SimPwm final : public PwmOutput {
  private:
   const TimeNs* now_;
   double duty_ = 0.0;
-  bool enabled_ = false;
+  bool enabled_ = true;  // a started sysfs channel is enabled
   bool failing_ = false;
   ChangeLog dutyLog_, enableLog_;
 };
