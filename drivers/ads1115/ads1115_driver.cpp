@@ -42,12 +42,15 @@ int Ads1115Driver::nextChannel() noexcept {
 }
 
 std::uint16_t Ads1115Driver::configFor(int channel) const noexcept {
-  return ads1115::configContinuous(channel, pga_[static_cast<std::size_t>(channel)], ads1115::DR_860,
-                                   pacing_ == AdsPacing::ReadyEdge);
+  const std::uint16_t c = ads1115::configContinuous(channel, pga_[static_cast<std::size_t>(channel)],
+                                                    ads1115::DR_860, pacing_ == AdsPacing::ReadyEdge);
+  return pacing_ == AdsPacing::SingleShot ? static_cast<std::uint16_t>(c | ads1115::MODE_SINGLE) : c;
 }
 
 int Ads1115Driver::writeMux(int channel) noexcept {
-  const std::uint16_t cfg = configFor(channel);
+  // SingleShot: OS=1 starts the conversion with this MUX at once.
+  const std::uint16_t cfg =
+      pacing_ == AdsPacing::SingleShot ? static_cast<std::uint16_t>(configFor(channel) | ads1115::OS) : configFor(channel);
   const int rc = i2creg::writeReg16(bus_, addr_, ads1115::CONFIG, cfg);
   if (rc == 0) lastWritten_ = cfg;
   return rc;
@@ -83,8 +86,7 @@ int Ads1115Driver::start(TimeNs now) noexcept {
   // field but OS (a busy flag) as the presence check.
   std::uint16_t back = 0;
   if (rc == 0) rc = i2creg::readReg16(bus_, addr_, ads1115::CONFIG, &back);
-  const std::uint16_t want = ads1115::configContinuous(first, pga_[static_cast<std::size_t>(first)],
-                                                       ads1115::DR_860, pacing_ == AdsPacing::ReadyEdge);
+  const std::uint16_t want = configFor(first);
   if (rc == 0 && (back & 0x7FFF) != (want & 0x7FFF)) rc = ENODEV;
   if (rc != 0) {
     present_ = false;
@@ -178,6 +180,9 @@ Ads1115Samples Ads1115Driver::poll(TimeNs now) noexcept {
       }
     }
   }
+  if (present_ && pacing_ == AdsPacing::SingleShot && now - muxWrittenAt_ >= kSingleShotWait) {
+    pollSingleShot(now);
+  }
   if (present_ && pacing_ == AdsPacing::ReadyEdge && now >= nextVerify_) {
     nextVerify_ = now + kVerifyInterval;
     std::uint16_t cfg = 0;
@@ -196,6 +201,38 @@ Ads1115Samples Ads1115Driver::poll(TimeNs now) noexcept {
   out.present = present_;
   for (auto& s : samples_.ch) s.fresh = false;
   return out;
+}
+
+void Ads1115Driver::pollSingleShot(TimeNs now) noexcept {
+  std::uint8_t pCfg = ads1115::CONFIG, pConv = ads1115::CONVERSION;
+  std::uint8_t cfg[2] = {}, conv[2] = {};
+  I2cMsg msgs[4] = {{addr_, false, &pCfg, 1}, {addr_, true, cfg, 2}, {addr_, false, &pConv, 1}, {addr_, true, conv, 2}};
+  int rc = bus_.transfer(msgs);
+  if (rc != 0) {
+    noteFailure(rc, now);
+    // The conversion may or may not have been started: start one afresh.
+    if (present_ && writeMux(seq_[seqPos_]) == 0) {
+      timedChannel_ = seq_[seqPos_];
+      muxWrittenAt_ = clock_.now();
+    }
+    return;
+  }
+  stats_.consecutiveFailures = 0;
+  const std::uint16_t c = static_cast<std::uint16_t>((cfg[0] << 8) | cfg[1]);
+  if ((c & 0x7FFF) != (lastWritten_ & 0x7FFF)) {
+    // Reset chip (power glitch) or a foreign write: restart, label nothing.
+    ++stats_.reconfigures;
+    ++stats_.discarded;
+    if (start(now) != 0) noteFailure(stats_.lastError, now);
+    return;
+  }
+  if ((c & ads1115::OS) == 0) return;  // still converting (slow oscillator): next poll
+  if (timedChannel_ >= 0) accept(timedChannel_, static_cast<std::uint16_t>((conv[0] << 8) | conv[1]), now);
+  const int next = nextChannel();
+  rc = writeMux(next);
+  timedChannel_ = rc == 0 ? next : -1;
+  muxWrittenAt_ = clock_.now();
+  if (rc != 0) noteFailure(rc, now);
 }
 
 void Ads1115Driver::onReadyEdge(TimeNs edge) noexcept {

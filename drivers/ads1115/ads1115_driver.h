@@ -31,7 +31,12 @@
 
 namespace xr {
 
-enum class AdsPacing { Timed, ReadyEdge };
+// Timed: continuous, 2-period settle after each MUX write (~1 sample per
+//   2.6 ms). SingleShot: one triggered 860 SPS conversion per poll, started
+//   with its MUX so nothing is ambiguous, read once OS reports done (~1.3 ms
+//   later): one sample per control tick, twice Timed's rate without an
+//   ALERT/RDY line. ReadyEdge: continuous, pipelined on the RDY edges.
+enum class AdsPacing { Timed, ReadyEdge, SingleShot };
 
 struct AdsChannelSample {
   double adcVolts = kNoValue;  // volts at the ADS input
@@ -98,6 +103,8 @@ class Ads1115Driver {
   static constexpr TimeNs kSettle = (2 * 1'000'000'000LL / 860) * 11 / 10 + 20'000;
   // Nominal data period at 860 SPS.
   static constexpr TimeNs kPeriod = 1'000'000'000LL / 860;
+  // SingleShot: one conversion (oscillator 10 % slow) + power-up, then read.
+  static constexpr TimeNs kSingleShotWait = kPeriod * 11 / 10 + 45'000;
 
  private:
   int writeMux(int channel) noexcept;
@@ -107,6 +114,7 @@ class Ads1115Driver {
   // that reset reads single-shot with a zero result). ESTALE on a mismatch.
   int readConversionChecked(std::uint16_t* raw) noexcept;
   std::uint16_t configFor(int channel) const noexcept;
+  void pollSingleShot(TimeNs now) noexcept;
   void accept(int channel, std::uint16_t raw, TimeNs stamp) noexcept;
   void noteFailure(int err, TimeNs now) noexcept;
   void flushPipeline() noexcept;

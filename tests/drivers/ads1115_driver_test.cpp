@@ -301,3 +301,60 @@ TEST_F(Ads1115DriverTest, ReadyEdgeChipResetIsRepairedByThePeriodicCheck) {
 
 }  // namespace
 }  // namespace xr
+
+namespace xr {
+namespace {
+
+TEST_F(Ads1115DriverTest, SingleShotGivesOneLabelledSamplePerTick) {
+  Ads1115Driver d(bus, kAddr, seq, fe, clock, AdsPacing::SingleShot);
+  ASSERT_EQ(d.start(t.now), 0);
+  EXPECT_NE(chip.peekConfig() & ads1115::MODE_SINGLE, 0);
+  const Counts c = runTimed(d, 1'000'000'000);
+  EXPECT_EQ(c.wrongTotal(), 0);
+  EXPECT_GE(c.total(), 395) << "a sample every 2.5 ms tick";
+  EXPECT_GE(c.n[1], 195);
+  EXPECT_EQ(chip.protocolErrors(), 0u);
+}
+
+TEST_F(Ads1115DriverTest, SingleShotChipResetIsNeverReadAsASample) {
+  Ads1115Driver d(bus, kAddr, seq, fe, clock, AdsPacing::SingleShot);
+  ASSERT_EQ(d.start(t.now), 0);
+  runTimed(d, 100'000'000);
+  sim::Ads1115Model fresh;
+  fresh.setInputs({frontend::adcFromBatteryVolts(fe, kBattV), frontend::adcFromAltAmps(fe, kAltA),
+                   frontend::adcFromRpm(fe, kRpm), frontend::adcFromTempF(fe, kTempF)});
+  bus.attach(kAddr, &fresh);
+  const Counts c = runTimed(d, 500'000'000);
+  EXPECT_EQ(c.wrongTotal(), 0);
+  EXPECT_GE(d.stats().reconfigures, 1u);
+  EXPECT_GT(c.total(), 150);
+}
+
+TEST_F(Ads1115DriverTest, SingleShotNacksThenRecovers) {
+  Ads1115Driver d(bus, kAddr, seq, fe, clock, AdsPacing::SingleShot);
+  ASSERT_EQ(d.start(t.now), 0);
+  runTimed(d, 50'000'000);
+  bus.setNack(kAddr, true);
+  runTimed(d, 100'000'000);
+  EXPECT_FALSE(d.present());
+  bus.setNack(kAddr, false);
+  runTimed(d, 1'100'000'000);
+  EXPECT_TRUE(d.present());
+  const Counts c = runTimed(d, 200'000'000);
+  EXPECT_GT(c.total(), 50);
+  EXPECT_EQ(c.wrongTotal(), 0);
+}
+
+TEST_P(Ads1115OscillatorTest, SingleShotNeverMislabels) {
+  Ads1115Driver d(bus, kAddr, seq, fe, clock, AdsPacing::SingleShot);
+  ASSERT_EQ(d.start(t.now), 0);
+  const Counts c = runTimed(d, 1'000'000'000, 2'500'000);
+  EXPECT_EQ(c.wrongTotal(), 0);
+  EXPECT_GT(c.total(), 390);
+  const Counts c2 = runTimed(d, 1'000'000'000, 1'000'000);
+  EXPECT_EQ(c2.wrongTotal(), 0);
+  EXPECT_GT(c2.total(), 450);
+}
+
+}  // namespace
+}  // namespace xr
