@@ -27,12 +27,12 @@ bool ProtectionSupervisor::checkAlarms(bool effAnomalyAlarmActive, EventBatch& e
   set(AlarmRow::VoltageHigh, std::isfinite(IBV_) && IBV_ > p_.VoltageAlarmHigh, IBV_, p_.VoltageAlarmHigh);
   // "VoltageAlarmLow (11 V, > 8 V floor)": a threshold at or under the floor disables the row.
   set(AlarmRow::VoltageLow,
-      p_.VoltageAlarmLow > k::VOLTAGE_ALARM_LOW_FLOOR_V && std::isfinite(IBV_) && IBV_ < p_.VoltageAlarmLow, IBV_,
-      p_.VoltageAlarmLow);
-  set(AlarmRow::AltCurrentHigh, std::isfinite(MeasuredAmps_) && MeasuredAmps_ > p_.CurrentAlarmHigh, MeasuredAmps_,
-      p_.CurrentAlarmHigh);
-  set(AlarmRow::BatteryCurrentHigh, std::isfinite(Bcur_) && std::fabs(Bcur_) > p_.MaximumAllowedBatteryAmps, Bcur_,
-      p_.MaximumAllowedBatteryAmps);
+      p_.VoltageAlarmLow > k::VOLTAGE_ALARM_LOW_FLOOR_V && std::isfinite(IBV_) && IBV_ < p_.VoltageAlarmLow,
+      IBV_, p_.VoltageAlarmLow);
+  set(AlarmRow::AltCurrentHigh, std::isfinite(MeasuredAmps_) && MeasuredAmps_ > p_.CurrentAlarmHigh,
+      MeasuredAmps_, p_.CurrentAlarmHigh);
+  set(AlarmRow::BatteryCurrentHigh, std::isfinite(Bcur_) && std::fabs(Bcur_) > p_.MaximumAllowedBatteryAmps,
+      Bcur_, p_.MaximumAllowedBatteryAmps);
   set(AlarmRow::InaOvervoltage, flags_.inaOvervoltageLatched, IBV_, 0.0);
   set(AlarmRow::TempSensorDead, tempStaleRaw_, TempToUse_, k::TEMP_STALE_MS / 1000.0);
   set(AlarmRow::EfficiencyAnomaly, effAnomalyAlarmActive, 0.0, 0.0);
@@ -47,7 +47,8 @@ bool ProtectionSupervisor::checkAlarms(bool effAnomalyAlarmActive, EventBatch& e
     // One console message per row per 30 s while it holds.
     if (counts && (alarmMsgAt_[i] < 0 || now_ - alarmMsgAt_[i] >= fromMs(k::ALARM_MESSAGE_THROTTLE_MS))) {
       alarmMsgAt_[i] = now_;
-      push(ev, EventCode::AlarmCondition, EventLevel::Warning, Reason::NONE, val[i], lim[i], static_cast<int>(i));
+      push(ev, EventCode::AlarmCondition, EventLevel::Warning, Reason::NONE, val[i], lim[i],
+           static_cast<int>(i));
     }
     alarmRowOn_[i] = counts;
   }
@@ -58,8 +59,8 @@ bool ProtectionSupervisor::checkAlarms(bool effAnomalyAlarmActive, EventBatch& e
   buzzer_ = cond || alarmLatched_;
   if (buzzer_ != lastBuzzerEvent_) {
     lastBuzzerEvent_ = buzzer_;
-    push(ev, buzzer_ ? EventCode::AlarmOn : EventCode::AlarmOff, buzzer_ ? EventLevel::Warning : EventLevel::Info,
-         Reason::NONE);
+    push(ev, buzzer_ ? EventCode::AlarmOn : EventCode::AlarmOff,
+         buzzer_ ? EventLevel::Warning : EventLevel::Info, Reason::NONE);
   }
   return buzzer_;
 }

@@ -101,15 +101,15 @@ void ProtectionSupervisor::updateVoltageSensors(const Inputs& in, EventBatch& ev
     edge(evAltHs_, flags_.altHardShutdown, Reason::REASON_ALT_HARD_SHUTDOWN, IBV_, hs, ev, EventLevel::Error);
 
   const bool inaUsable = !p_.INADisconnected;
-  const bool notReadYet = (in.IBV.stamp == 0 || in.BatteryV.stamp == 0) &&
-                          now_ - boot_ < fromMs(kSensorBootGraceMs);
+  const bool notReadYet =
+      (in.IBV.stamp == 0 || in.BatteryV.stamp == 0) && now_ - boot_ < fromMs(kSensorBootGraceMs);
   const bool suppress = flags_.inaOvervoltageLatched ||
                         (inaClearedAt_ >= 0 && now_ - inaClearedAt_ < fromMs(k::INA_OV_DISAGREE_SUPPRESS_MS));
   bool disW = false, disC = false, impl = false;
   if (inaUsable && !notReadYet) {
     if (!suppress) {
-      const bool dead = !finite(BatteryV_) || !finite(IBV_) || BatteryV_ < k::SENSOR_DEAD_V ||
-                        IBV_ < k::SENSOR_DEAD_V;
+      const bool dead =
+          !finite(BatteryV_) || !finite(IBV_) || BatteryV_ < k::SENSOR_DEAD_V || IBV_ < k::SENSOR_DEAD_V;
       const double diff = dead ? 0.0 : std::fabs(BatteryV_ - IBV_);
       // NaN / < 0.1 V: critical at once, no debounce.
       disC = sustained(disagreeCritT_, !dead && diff > criticalDisagreementThreshold(p_),
@@ -129,9 +129,11 @@ void ProtectionSupervisor::updateVoltageSensors(const Inputs& in, EventBatch& ev
   // Seed console wording for either level.
   if ((disW && !evDisW_) || (disC && !evDisC_))
     push(ev, EventCode::VoltageDisagreement, disC ? EventLevel::Critical : EventLevel::Error,
-         disC ? Reason::REASON_VOLTAGE_DISAGREE_CRITICAL : Reason::REASON_VOLTAGE_DISAGREE_WARNING, BatteryV_, IBV_);
+         disC ? Reason::REASON_VOLTAGE_DISAGREE_CRITICAL : Reason::REASON_VOLTAGE_DISAGREE_WARNING, BatteryV_,
+         IBV_);
   edge(evDisW_, disW, Reason::REASON_VOLTAGE_DISAGREE_WARNING, BatteryV_, IBV_, ev, EventLevel::Error, false);
-  edge(evDisC_, disC, Reason::REASON_VOLTAGE_DISAGREE_CRITICAL, BatteryV_, IBV_, ev, EventLevel::Critical, false);
+  edge(evDisC_, disC, Reason::REASON_VOLTAGE_DISAGREE_CRITICAL, BatteryV_, IBV_, ev, EventLevel::Critical,
+       false);
   edge(evImpl_, impl, Reason::REASON_VOLTAGE_IMPLAUSIBLE, IBV_, BatteryV_, ev, EventLevel::Critical);
   flags_.voltageDisagreeWarning = disW;
   flags_.voltageDisagreeCritical = disC;
@@ -160,7 +162,8 @@ void ProtectionSupervisor::updateTemperature(const Inputs& in, EventBatch& ev) {
     push(ev, EventCode::ProtectionTrip, EventLevel::Error, Reason::REASON_TEMP_SUSTAINED, t,
          p_.TemperatureLimitF + p_.TempWarnExcess);
   }
-  edge(evT1_, t1, Reason::REASON_TEMP_WARNING, t, p_.TemperatureLimitF + p_.TempWarnExcess, ev, EventLevel::Error);
+  edge(evT1_, t1, Reason::REASON_TEMP_WARNING, t, p_.TemperatureLimitF + p_.TempWarnExcess, ev,
+       EventLevel::Error);
   edge(evT3_, t3, Reason::REASON_TEMP_CRITICAL, t, p_.TemperatureLimitF + p_.TempCritExcess, ev,
        EventLevel::Critical);
   flags_.tempWarning = t1;
@@ -202,8 +205,8 @@ void ProtectionSupervisor::updateCurrent(const Inputs& in, double MeasuredAmps, 
   const TimeNs inaWin = settledFast ? win : win + 2 * fromMs(k::INA_SLOW_INTERVAL_MS);
   const bool inaStale = !p_.INADisconnected && staleOf(std::max(in.IBV.stamp, in.Bcur.stamp), inaWin);
   flags_.currentStale = ch1Stale || inaStale;
-  edge(evCur_, flags_.currentStale, Reason::REASON_CURRENT_STALE, ch1Stale ? 1.0 : 0.0, inaStale ? 1.0 : 0.0, ev,
-       EventLevel::Critical);
+  edge(evCur_, flags_.currentStale, Reason::REASON_CURRENT_STALE, ch1Stale ? 1.0 : 0.0, inaStale ? 1.0 : 0.0,
+       ev, EventLevel::Critical);
 }
 
 // Fresh INA228 samples feed the Group 1 dv/dt EMA and the load-dump dBcur/dt.

@@ -43,7 +43,8 @@ void ProtectionSupervisor::edge(bool& prev, bool now, Reason r, double a, double
 void ProtectionSupervisor::reenableField() {
   flags_.tempSustained = false;
   t1T_.since = -1;  // the sustained timer restarts from the re-enable
-  if (flags_.rampLatched && flags_.rampLatchedReason == Reason::REASON_TEMP_SUSTAINED) flags_.rampLatched = false;
+  if (flags_.rampLatched && flags_.rampLatchedReason == Reason::REASON_TEMP_SUSTAINED)
+    flags_.rampLatched = false;
 }
 
 void ProtectionSupervisor::resetAlarmLatch() { alarmLatched_ = false; }

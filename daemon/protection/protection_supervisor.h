@@ -68,26 +68,26 @@ namespace xr {
 
 // Result of runShutdownPath() for this tick.
 struct ShutdownCommand {
-  bool active = false;             // a non-normal mode owns the outputs this tick
-  double dutyPct = 0.0;            // duty to apply (already slewed; 0..100)
-  bool fieldEnable = true;         // GPIO4; false once cut
+  bool active = false;      // a non-normal mode owns the outputs this tick
+  double dutyPct = 0.0;     // duty to apply (already slewed; 0..100)
+  bool fieldEnable = true;  // GPIO4; false once cut
   GovMode govMode = GovMode::GOV_NORMAL_SLEW;
   double effectiveMin = 0.0;       // always 0 during shutdown (field-control.md)
   bool applyImmediateCut = false;  // control must run its applyImmediateCut() resets
   ShutdownPhase phase = ShutdownPhase::PHASE_NONE;
-  bool faultAlarm = false;         // critical/warning/lockout (not DISABLED): GPIO21 wants ON
+  bool faultAlarm = false;  // critical/warning/lockout (not DISABLED): GPIO21 wants ON
 };
 
 // Control values the fast-OV supervisors read (AUTO path only).
 struct FastOvInputs {
   bool voltageControlActive = false;
   double ChargingVoltageTarget = 0.0;
-  double uTargetAmps = 0.0;       // fastOvBaseCap: the request before the fast-OV clamp
-  double setpointLimited = 0.0;   // slewed setpoint of the previous tick
-  double cv_I = 0.0;              // CV integrator now
-  double MeasuredAmps = 0.0;      // raw alternator current (A)
+  double uTargetAmps = 0.0;            // fastOvBaseCap: the request before the fast-OV clamp
+  double setpointLimited = 0.0;        // slewed setpoint of the previous tick
+  double cv_I = 0.0;                   // CV integrator now
+  double MeasuredAmps = 0.0;           // raw alternator current (A)
   double MeasuredAmps_filtered = 0.0;  // EMA(InputFilterTC)
-  bool altCurrentFresh = false;   // a new CH1 sample this tick (feeds the MA window)
+  bool altCurrentFresh = false;        // a new CH1 sample this tick (feeds the MA window)
 };
 
 enum class CvIAction { None, Snap, Bleed, Reseed };
@@ -97,8 +97,8 @@ struct FastOvAction {
   double fastOvCurrentCap = 0.0;  // clamp uTargetAmps to this (== uTargetAmps when idle)
   bool fastOvClampActive = false;
   CvIAction cvIAction = CvIAction::None;
-  double cv_I = 0.0;              // new cv_I when cvIAction != None
-  bool forceBypassSlew = false;   // govMode = GOV_BYPASS_SLEW this tick
+  double cv_I = 0.0;                 // new cv_I when cvIAction != None
+  bool forceBypassSlew = false;      // govMode = GOV_BYPASS_SLEW this tick
   bool zeroSetpointLimited = false;  // load dump: setpointLimited = 0
   // Which supervisors acted (telemetry/tests).
   bool group1 = false, group2 = false, group3 = false, loadDump = false;
@@ -174,9 +174,8 @@ class ProtectionSupervisor {
   // Sustained timers.
   TimerState disagreeWarnT_, disagreeCritT_, hardOcT_, t1T_;
   // Edge memories for trip/clear events.
-  bool evHardOc_ = false, evT3_ = false, evT1_ = false, evRpm_ = false, evAltHs_ = false,
-       evDisW_ = false, evDisC_ = false, evImpl_ = false, evT5_ = false, evCur_ = false,
-       evT4_ = false;
+  bool evHardOc_ = false, evT3_ = false, evT1_ = false, evRpm_ = false, evAltHs_ = false, evDisW_ = false,
+       evDisC_ = false, evImpl_ = false, evT5_ = false, evCur_ = false, evT4_ = false;
 
   // Shutdown sequencer.
   FieldControlMode lastMode_ = FieldControlMode::MODE_DISABLED_RAMP;

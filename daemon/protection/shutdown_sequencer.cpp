@@ -67,8 +67,9 @@ ShutdownCommand ProtectionSupervisor::runShutdownPath(const ModeDecision& d, dou
     // Duplicate logging suppressed when already cut; the INA228 alert has
     // already pulled GPIO4 LOW in hardware, its InaLatchSet line is the log.
     if (!fieldCut_ && d.reason != Reason::REASON_INA_OVERVOLTAGE)
-      push(ev, EventCode::ImmediateCut, d.reason == Reason::REASON_RPM_LOW ? EventLevel::Info : EventLevel::Critical,
-           d.reason, lastAppliedDuty);
+      push(ev, EventCode::ImmediateCut,
+           d.reason == Reason::REASON_RPM_LOW ? EventLevel::Info : EventLevel::Critical, d.reason,
+           lastAppliedDuty);
     fieldCut_ = true;
     duty_ = 0.0;
     phase_ = ShutdownPhase::PHASE_4;  // a later re-entry never re-runs the ramp

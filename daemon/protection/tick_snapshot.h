@@ -65,9 +65,9 @@ struct TickSnapshot {
 
   // Charging-enabled inputs, kept separate so the reason code can name the
   // one acting (MODE_DISABLED_RAMP, no alarm).
-  bool ignitionOn = true;        // Inputs::ignitionOn
-  bool OnOff = true;             // Params::OnOff
-  bool bmsChargeEnabled = true;  // Inputs::bmsChargeEnabled
+  bool ignitionOn = true;          // Inputs::ignitionOn
+  bool OnOff = true;               // Params::OnOff
+  bool bmsChargeEnabled = true;    // Inputs::bmsChargeEnabled
   bool weatherModeActive = false;  // weatherModeEnabled && currentWeatherMode
   bool idleStage = false;          // ChargeStage::IDLE (UseFloat = 0 after absorption)
 

@@ -22,7 +22,8 @@ const AlarmCase kAlarmCases[] = {
     {"VoltageHigh", AlarmRow::VoltageHigh, [](Rig& r, bool a) { r.ibv = r.batteryV = a ? 15.01 : 14.99; }},
     {"VoltageLow", AlarmRow::VoltageLow, [](Rig& r, bool a) { r.ibv = r.batteryV = a ? 10.99 : 11.01; }},
     {"AltCurrentHigh", AlarmRow::AltCurrentHigh, [](Rig& r, bool a) { r.altAmps = a ? 100.1 : 99.9; }},
-    {"BatteryCurrentHigh", AlarmRow::BatteryCurrentHigh, [](Rig& r, bool a) { r.bcur = a ? -150.1 : -149.9; }},
+    {"BatteryCurrentHigh", AlarmRow::BatteryCurrentHigh,
+     [](Rig& r, bool a) { r.bcur = a ? -150.1 : -149.9; }},
     {"InaOvervoltage", AlarmRow::InaOvervoltage, [](Rig& r, bool a) { r.inaAlert = a; }},
     {"EfficiencyAnomaly", AlarmRow::EfficiencyAnomaly, [](Rig& r, bool a) { r.effAnomaly = a; }},
 };
@@ -68,7 +69,9 @@ TEST_P(AlarmRowTest, SoundsAboveNotBelowAndOnlyWithAlarmActivate) {
 }
 
 INSTANTIATE_TEST_SUITE_P(BuzzerTable, AlarmRowTest, ::testing::ValuesIn(kAlarmCases),
-                         [](const ::testing::TestParamInfo<AlarmCase>& i) { return std::string(i.param.name); });
+                         [](const ::testing::TestParamInfo<AlarmCase>& i) {
+                           return std::string(i.param.name);
+                         });
 
 TEST(Alarms, TempSensorNotRespondingAfter20s) {
   Params p;

@@ -68,7 +68,7 @@ TEST(Disagreement, NotJudgedBeforeTheFirstSampleArrivesThenCriticalAfterGrace) {
   Rig q;
   EventBatch ev;
   q.in.IBV = {13.5, q.t, true};
-  q.in.BatteryV = Reading{};  // ADS1115 CH0 never answered
+  q.in.BatteryV = Reading{};       // ADS1115 CH0 never answered
   for (int i = 0; i < 300; ++i) {  // 1.5 s
     q.t += kTick;
     q.in.now = q.t;

@@ -1,7 +1,7 @@
 // selectFieldControlMode / selectFieldEventReason: the pure priority function.
-#include <gtest/gtest.h>
-
 #include "protection/mode_selection.h"
+
+#include <gtest/gtest.h>
 
 namespace xr {
 namespace {
@@ -31,16 +31,21 @@ TEST(ModeSelection, TwoSimultaneousFaultsHigherPriorityWins) {
     Reason expect;
   };
   const Case cases[] = {
-      {[](ProtectionFlags& f) { f.hardOvercurrent = f.tempCritical = true; }, Reason::REASON_HARD_OVERCURRENT},
-      {[](ProtectionFlags& f) { f.tempCritical = f.voltageDisagreeCritical = true; }, Reason::REASON_TEMP_CRITICAL},
+      {[](ProtectionFlags& f) { f.hardOvercurrent = f.tempCritical = true; },
+       Reason::REASON_HARD_OVERCURRENT},
+      {[](ProtectionFlags& f) { f.tempCritical = f.voltageDisagreeCritical = true; },
+       Reason::REASON_TEMP_CRITICAL},
       {[](ProtectionFlags& f) { f.rpmBelowMin = f.tempStale = true; }, Reason::REASON_RPM_LOW},
       {[](ProtectionFlags& f) { f.tempCritical = f.rpmBelowMin = true; }, Reason::REASON_TEMP_CRITICAL},
-      {[](ProtectionFlags& f) { f.voltageImplausible = f.altHardShutdown = true; }, Reason::REASON_VOLTAGE_IMPLAUSIBLE},
+      {[](ProtectionFlags& f) { f.voltageImplausible = f.altHardShutdown = true; },
+       Reason::REASON_VOLTAGE_IMPLAUSIBLE},
       {[](ProtectionFlags& f) { f.currentStale = f.tempWarning = true; }, Reason::REASON_CURRENT_STALE},
-      {[](ProtectionFlags& f) { f.altHardShutdown = f.tempWarning = true; }, Reason::REASON_ALT_HARD_SHUTDOWN},
+      {[](ProtectionFlags& f) { f.altHardShutdown = f.tempWarning = true; },
+       Reason::REASON_ALT_HARD_SHUTDOWN},
       {[](ProtectionFlags& f) { f.tempSustained = f.tempWarning = true; }, Reason::REASON_TEMP_SUSTAINED},
       {[](ProtectionFlags& f) { f.lockoutActive = f.tempWarning = true; }, Reason::REASON_LOCKOUT},
-      {[](ProtectionFlags& f) { f.lockoutActive = f.hardOvercurrent = true; }, Reason::REASON_HARD_OVERCURRENT},
+      {[](ProtectionFlags& f) { f.lockoutActive = f.hardOvercurrent = true; },
+       Reason::REASON_HARD_OVERCURRENT},
   };
   for (const Case& c : cases) {
     TickSnapshot s = healthy();

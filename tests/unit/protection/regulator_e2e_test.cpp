@@ -198,7 +198,8 @@ TEST(RegulatorE2E, ManualHardOvercurrentCutsButAltHardShutdownDoesNot) {
   r.run(0.05);
   EXPECT_EQ(r.out->telemetry.mode, M::MODE_NORMAL_MANUAL);
   // The crude plant gives 0.6 A/% -> 54 A at 90 %: above the 50 A fuse.
-  const double t = r.runUntil([&] { return r.out->telemetry.reason == Reason::REASON_HARD_OVERCURRENT; }, 10.0);
+  const double t =
+      r.runUntil([&] { return r.out->telemetry.reason == Reason::REASON_HARD_OVERCURRENT; }, 10.0);
   ASSERT_GT(t, 0.0);
   EXPECT_FALSE(r.out->fieldEnable);
   EXPECT_EQ(r.out->dutyPct, 0.0);

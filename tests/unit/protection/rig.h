@@ -123,7 +123,8 @@ struct Rig {
         std::count_if(log.begin(), log.end(), [&](const Event& e) { return e.code == c && e.reason == r; }));
   }
   std::size_t count(EventCode c) const {
-    return static_cast<std::size_t>(std::count_if(log.begin(), log.end(), [&](const Event& e) { return e.code == c; }));
+    return static_cast<std::size_t>(
+        std::count_if(log.begin(), log.end(), [&](const Event& e) { return e.code == c; }));
   }
 };
 

@@ -34,8 +34,10 @@ TEST(WarningRamp, PhasesSlopesHoldsEdgeAndLockoutLength) {
       EXPECT_DOUBLE_EQ(r.sc.dutyPct, 5.0);
     }
     if (r.sc.phase == ShutdownPhase::PHASE_3) {
-      if (p3 < 0) p3 = r.t - t0;
-      else EXPECT_NEAR(prev - r.sc.dutyPct, r.p.DutySlowRampRate * toSec(kTick), 1e-9);
+      if (p3 < 0)
+        p3 = r.t - t0;
+      else
+        EXPECT_NEAR(prev - r.sc.dutyPct, r.p.DutySlowRampRate * toSec(kTick), 1e-9);
     }
     if (r.sc.phase == ShutdownPhase::PHASE_4 && p4 < 0) p4 = r.t - t0;
     if (!r.sc.fieldEnable) {
