@@ -6,6 +6,7 @@
 #include <charconv>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <string_view>
 
 #include <boost/json.hpp>
@@ -82,8 +83,14 @@ std::optional<double> jsonNumber(const json::value& v) {
   return std::nullopt;
 }
 
+std::string plain(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
 std::string rangeText(const ParamSpec& spec) {
-  return "must be between " + json::serialize(number(spec.min)) + " and " + json::serialize(number(spec.max)) +
+  return "must be between " + plain(spec.min) + " and " + plain(spec.max) +
          (spec.unit.empty() ? "" : " " + std::string(spec.unit));
 }
 

@@ -1,6 +1,7 @@
 // WebServerOptions from [web] settings, --http ADDR:PORT parsing, token generation.
 #include <charconv>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <stdexcept>
 
@@ -50,6 +51,13 @@ std::string generateToken() {
     hex.push_back(kDigits[b & 0xf]);
   }
   return hex;
+}
+
+std::string defaultWwwRoot() {
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(std::filesystem::path(XR_WWW_INSTALL_DIR) / "index.html", ec))
+    return XR_WWW_INSTALL_DIR;
+  return XR_WWW_BUILD_DIR;
 }
 
 }  // namespace xr::web

@@ -52,6 +52,10 @@ bool parseListenAddress(const std::string& text, WebServerOptions& opts);
 // and logs it once).
 std::string generateToken();
 
+// Where the dashboard assets are when [web] www_root is empty: the installed
+// path (/usr/share/xregulator/www) if it exists, else the build tree's copy.
+std::string defaultWwwRoot();
+
 // Counters exported on /metrics (and readable by tests).
 struct WebServerStats {
   std::uint64_t http_requests = 0;
