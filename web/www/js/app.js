@@ -67,8 +67,8 @@ function makeChart(el, series) {
     width: width(el), height: 220,
     scales: { x: { time: true }, V: { auto: true }, A: { auto: true } },
     axes: [{ stroke: "#8aa0b3", grid: { stroke: "#1f3446" } },
-           { scale: "V", stroke: "#3fb6ff", grid: { stroke: "#1f3446" }, values: (u, v) => v.map((x) => x + " V") },
-           { scale: "A", side: 1, stroke: "#ffb020", grid: { show: false }, values: (u, v) => v.map((x) => x + " A") }],
+           { scale: "V", size: 64, stroke: "#3fb6ff", grid: { stroke: "#1f3446" }, values: (u, v) => v.map((x) => x + " V") },
+           { scale: "A", side: 1, size: 56, stroke: "#ffb020", grid: { show: false }, values: (u, v) => v.map((x) => x + " A") }],
     series: [{}, ...series],
   }, [[], ...series.map(() => [])], el);
 }
