@@ -189,6 +189,25 @@ TEST(Regulator, TelemetryHasEveryDesignColumn) {
   EXPECT_DOUBLE_EQ(r.out->telemetry.temp_f, 100.0);
 }
 
+TEST(Regulator, AutoZeroRunsBeforeControlAndHoldsTheFieldLow) {
+  Params p;
+  p.AutoAltCurrentZero = 1;
+  test::RegRig r(p);
+  r.run(3.0);
+  ASSERT_TRUE(r.out->fieldEnable);
+  r.tempF = 125.0;  // moved >= 20 degF since the baseline: auto-zero triggers
+  r.tick();
+  EXPECT_FALSE(r.out->fieldEnable);  // LOW within the same tick (no ramp)
+  EXPECT_DOUBLE_EQ(r.out->dutyPct, 0.0);
+  EXPECT_EQ(r.out->telemetry.mode, FieldControlMode::MODE_LOCKOUT_RAMP);
+  EXPECT_EQ(r.out->telemetry.reason, Reason::REASON_AUTO_ZERO);
+  r.run(5.0);
+  EXPECT_FALSE(r.out->fieldEnable);
+  r.run(40.0);  // measurement over: charging resumes
+  EXPECT_TRUE(r.out->fieldEnable);
+  EXPECT_EQ(r.out->telemetry.mode, FieldControlMode::MODE_NORMAL_AUTO_PID);
+}
+
 TEST(Regulator, NanSensorsGiveSafeStateNotCrash) {
   test::RegRig r;
   r.run(2.0);
