@@ -5,7 +5,7 @@
 # script first proves it would notice a broken unit.
 #   verify_units.sh SYSTEMD_DIR
 set -u
-src=$1
+src=$(cd "$1" && pwd)
 if ! command -v systemd-analyze >/dev/null 2>&1; then
   echo "SKIP: systemd-analyze not installed"
   exit 77
