@@ -22,7 +22,8 @@ constexpr TimeNs kSameChannelWait = Ads1115Driver::kPeriod * 11 / 10 + 20'000;
 }  // namespace
 
 Ads1115Driver::Ads1115Driver(I2cBus& bus, std::uint16_t address, std::span<const int> channelSequence,
-                             const AnalogFrontEndSettings& frontend, const Clock& clock, AdsPacing pacing) noexcept
+                             const AnalogFrontEndSettings& frontend, const Clock& clock,
+                             AdsPacing pacing) noexcept
     : bus_(bus), addr_(address), fe_(frontend), clock_(clock), pacing_(pacing) {
   bool ok = !channelSequence.empty() && channelSequence.size() <= kMaxSequence;
   for (int c : channelSequence) ok = ok && c >= 0 && c <= 3;
@@ -49,8 +50,9 @@ std::uint16_t Ads1115Driver::configFor(int channel) const noexcept {
 
 int Ads1115Driver::writeMux(int channel) noexcept {
   // SingleShot: OS=1 starts the conversion with this MUX at once.
-  const std::uint16_t cfg =
-      pacing_ == AdsPacing::SingleShot ? static_cast<std::uint16_t>(configFor(channel) | ads1115::OS) : configFor(channel);
+  const std::uint16_t cfg = pacing_ == AdsPacing::SingleShot
+                                ? static_cast<std::uint16_t>(configFor(channel) | ads1115::OS)
+                                : configFor(channel);
   const int rc = i2creg::writeReg16(bus_, addr_, ads1115::CONFIG, cfg);
   if (rc == 0) lastWritten_ = cfg;
   return rc;
@@ -59,7 +61,8 @@ int Ads1115Driver::writeMux(int channel) noexcept {
 int Ads1115Driver::readConversionChecked(std::uint16_t* raw) noexcept {
   std::uint8_t pCfg = ads1115::CONFIG, pConv = ads1115::CONVERSION;
   std::uint8_t cfg[2] = {}, conv[2] = {};
-  I2cMsg msgs[4] = {{addr_, false, &pCfg, 1}, {addr_, true, cfg, 2}, {addr_, false, &pConv, 1}, {addr_, true, conv, 2}};
+  I2cMsg msgs[4] = {
+      {addr_, false, &pCfg, 1}, {addr_, true, cfg, 2}, {addr_, false, &pConv, 1}, {addr_, true, conv, 2}};
   const int rc = bus_.transfer(msgs);
   if (rc != 0) return rc;
   const std::uint16_t c = static_cast<std::uint16_t>((cfg[0] << 8) | cfg[1]);
@@ -125,10 +128,18 @@ void Ads1115Driver::accept(int channel, std::uint16_t raw, TimeNs stamp) noexcep
   const double v = ads1115::codeToVolts(raw, pga_[static_cast<std::size_t>(channel)]);
   s.adcVolts = v;
   switch (channel) {
-    case 0: s.value = frontend::batteryVoltsFromAdc(fe_, v); break;
-    case 1: s.value = frontend::altAmpsFromAdc(fe_, v); break;
-    case 2: s.value = frontend::rpmFromAdc(fe_, v); break;
-    default: s.value = frontend::tempFFromAdc(fe_, v); break;
+    case 0:
+      s.value = frontend::batteryVoltsFromAdc(fe_, v);
+      break;
+    case 1:
+      s.value = frontend::altAmpsFromAdc(fe_, v);
+      break;
+    case 2:
+      s.value = frontend::rpmFromAdc(fe_, v);
+      break;
+    default:
+      s.value = frontend::tempFFromAdc(fe_, v);
+      break;
   }
   s.stamp = stamp;
   s.fresh = true;
@@ -206,7 +217,8 @@ Ads1115Samples Ads1115Driver::poll(TimeNs now) noexcept {
 void Ads1115Driver::pollSingleShot(TimeNs now) noexcept {
   std::uint8_t pCfg = ads1115::CONFIG, pConv = ads1115::CONVERSION;
   std::uint8_t cfg[2] = {}, conv[2] = {};
-  I2cMsg msgs[4] = {{addr_, false, &pCfg, 1}, {addr_, true, cfg, 2}, {addr_, false, &pConv, 1}, {addr_, true, conv, 2}};
+  I2cMsg msgs[4] = {
+      {addr_, false, &pCfg, 1}, {addr_, true, cfg, 2}, {addr_, false, &pConv, 1}, {addr_, true, conv, 2}};
   int rc = bus_.transfer(msgs);
   if (rc != 0) {
     noteFailure(rc, now);

@@ -54,10 +54,10 @@ struct Ads1115Samples {
 struct Ads1115Stats {
   unsigned long failedReads = 0;
   unsigned consecutiveFailures = 0;
-  unsigned long discarded = 0;      // results dropped by the MUX rule / pipeline flushes
+  unsigned long discarded = 0;  // results dropped by the MUX rule / pipeline flushes
   unsigned long pipelineFlushes = 0;
   unsigned long redetects = 0;
-  unsigned long reconfigures = 0;   // Config found reset/changed behind our back (power glitch) and restored
+  unsigned long reconfigures = 0;  // Config found reset/changed behind our back (power glitch) and restored
   int lastError = 0;
 };
 

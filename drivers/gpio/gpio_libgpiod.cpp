@@ -82,7 +82,8 @@ bool GpioLibgpiod::open(const HardwareSettings& hw) {
   };
   // Field enable first, requested with its OFF level so the field never
   // pulses on at start.
-  gpiod_line* fe = requestOut(hw.field_enable_line, physicalLevel(false, hw.field_enable_active_high), "field enable");
+  gpiod_line* fe =
+      requestOut(hw.field_enable_line, physicalLevel(false, hw.field_enable_active_high), "field enable");
   if (!fe) {
     close();
     return false;
@@ -137,7 +138,8 @@ bool AdsReadyLine::open(const std::string& chipName, int line) {
   line_ = gpiod_chip_get_line(chip_, static_cast<unsigned>(line));
   // ALERT/RDY is open drain, active low by default (COMP_POL=0): falling edges.
   if (!line_ || gpiod_line_request_falling_edge_events(line_, kGpioConsumer) != 0) {
-    error_ = "gpio: cannot request ADS1115 ALERT/RDY (line " + std::to_string(line) + "): " + std::strerror(errno);
+    error_ =
+        "gpio: cannot request ADS1115 ALERT/RDY (line " + std::to_string(line) + "): " + std::strerror(errno);
     line_ = nullptr;
     close();
     return false;

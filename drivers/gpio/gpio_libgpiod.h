@@ -19,7 +19,9 @@ namespace xr {
 inline constexpr const char* kGpioConsumer = "xregulatord";
 
 // Physical level for a logical "on" with an active-high/low line.
-constexpr int physicalLevel(bool logicalOn, bool activeHigh) noexcept { return (logicalOn == activeHigh) ? 1 : 0; }
+constexpr int physicalLevel(bool logicalOn, bool activeHigh) noexcept {
+  return (logicalOn == activeHigh) ? 1 : 0;
+}
 // Logical level from a physical one; -1 stays -1 (error).
 constexpr int logicalLevel(int physical, bool activeLow) noexcept {
   return physical < 0 ? -1 : ((physical != 0) != activeLow ? 1 : 0);
@@ -46,6 +48,7 @@ class GpioInputLine final : public DigitalInput {
   GpioInputLine(gpiod_line* line, bool activeLow) noexcept : line_(line), activeLow_(activeLow) {}
   ~GpioInputLine() override;
   int get() noexcept override;
+
  private:
   gpiod_line* line_;
   bool activeLow_;

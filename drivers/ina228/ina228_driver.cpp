@@ -23,7 +23,9 @@ Ina228Driver::Ina228Driver(I2cBus& bus, std::uint16_t address, double shuntOhm, 
 int Ina228Driver::readReg(std::uint8_t reg, std::size_t bytes, std::uint64_t* v) noexcept {
   return i2creg::readReg(bus_, addr_, reg, bytes, v);
 }
-int Ina228Driver::writeReg(std::uint8_t reg, std::uint16_t v) noexcept { return i2creg::writeReg16(bus_, addr_, reg, v); }
+int Ina228Driver::writeReg(std::uint8_t reg, std::uint16_t v) noexcept {
+  return i2creg::writeReg16(bus_, addr_, reg, v);
+}
 
 int Ina228Driver::detect() noexcept {
   std::uint64_t mfr = 0, dev = 0;

@@ -27,11 +27,11 @@ struct Ina228Sample {
 };
 
 struct Ina228Stats {
-  unsigned long failedReads = 0;       // every failed transaction while present
-  unsigned consecutiveFailures = 0;    // current run
-  unsigned long redetects = 0;         // successful re-detections after loss
-  unsigned long reconfigures = 0;      // register read-back mismatch (chip reset) repaired
-  int lastError = 0;                   // errno of the last failure (ENODEV: wrong IDs)
+  unsigned long failedReads = 0;     // every failed transaction while present
+  unsigned consecutiveFailures = 0;  // current run
+  unsigned long redetects = 0;       // successful re-detections after loss
+  unsigned long reconfigures = 0;    // register read-back mismatch (chip reset) repaired
+  int lastError = 0;                 // errno of the last failure (ENODEV: wrong IDs)
 };
 
 class Ina228Driver {

@@ -59,7 +59,8 @@ inline constexpr int kConvTimeUs[8] = {50, 84, 150, 280, 540, 1052, 2074, 4120};
 // Averaging codes: 0..7 = 1, 4, 16, 64, 128, 256, 512, 1024 samples.
 inline constexpr int kAvgCount[8] = {1, 4, 16, 64, 128, 256, 512, 1024};
 
-constexpr std::uint16_t adcConfig(unsigned mode, unsigned vbusct, unsigned vshct, unsigned vtct, unsigned avg) {
+constexpr std::uint16_t adcConfig(unsigned mode, unsigned vbusct, unsigned vshct, unsigned vtct,
+                                  unsigned avg) {
   return static_cast<std::uint16_t>(((mode & 0xF) << 12) | ((vbusct & 7) << 9) | ((vshct & 7) << 6) |
                                     ((vtct & 7) << 3) | (avg & 7));
 }
@@ -83,7 +84,9 @@ constexpr std::int32_t decode20(std::uint32_t raw24) {
   if (v & 0x80000) v -= 0x100000;
   return v;
 }
-constexpr std::uint32_t encode20(std::int32_t code) { return (static_cast<std::uint32_t>(code) & 0xFFFFF) << 4; }
+constexpr std::uint32_t encode20(std::int32_t code) {
+  return (static_cast<std::uint32_t>(code) & 0xFFFFF) << 4;
+}
 
 inline constexpr double kVbusLsbV = 195.3125e-6;   // VBUS
 inline constexpr double kDieTempLsbC = 7.8125e-3;  // DIETEMP, full 16 bits signed
@@ -97,7 +100,9 @@ constexpr double currentLsb(double maxCurrentA) { return maxCurrentA / 524288.0;
 constexpr double currentAmps(std::uint32_t raw24, double lsb) { return decode20(raw24) * lsb; }
 
 // ADCRANGE=1 (±40.96 mV) when the full-scale shunt voltage fits it, for 4x resolution.
-constexpr bool useLowAdcRange(double shuntOhm, double maxCurrentA) { return shuntOhm * maxCurrentA <= 0.04096; }
+constexpr bool useLowAdcRange(double shuntOhm, double maxCurrentA) {
+  return shuntOhm * maxCurrentA <= 0.04096;
+}
 
 // SHUNT_CAL = 13107.2e6 * CURRENT_LSB * R_SHUNT (x4 with ADCRANGE=1). Returns
 // -1 when it does not fit the 15-bit field or rounds to 0 (a configuration

@@ -9,11 +9,16 @@ namespace xr::w1 {
 
 const char* toString(ParseError e) noexcept {
   switch (e) {
-    case ParseError::None: return "ok";
-    case ParseError::Empty: return "empty read (conversion failed or sensor gone)";
-    case ParseError::Malformed: return "malformed w1_slave text";
-    case ParseError::CrcNo: return "CRC mismatch (crc=.. NO)";
-    case ParseError::PowerOnValue: return "85000 power-on value (no conversion happened)";
+    case ParseError::None:
+      return "ok";
+    case ParseError::Empty:
+      return "empty read (conversion failed or sensor gone)";
+    case ParseError::Malformed:
+      return "malformed w1_slave text";
+    case ParseError::CrcNo:
+      return "CRC mismatch (crc=.. NO)";
+    case ParseError::PowerOnValue:
+      return "85000 power-on value (no conversion happened)";
   }
   return "?";
 }
@@ -53,7 +58,8 @@ W1Reading parseW1Slave(std::string_view text) noexcept {
     return r;
   }
   std::string_view num = line2.substr(t + 2);
-  while (!num.empty() && (num.back() == '\n' || num.back() == '\r' || num.back() == ' ')) num.remove_suffix(1);
+  while (!num.empty() && (num.back() == '\n' || num.back() == '\r' || num.back() == ' '))
+    num.remove_suffix(1);
   int v = 0;
   const auto [p, ec] = std::from_chars(num.data(), num.data() + num.size(), v);
   if (ec != std::errc() || p != num.data() + num.size() || num.empty()) {

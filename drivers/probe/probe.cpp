@@ -66,7 +66,8 @@ void probeChips(const HardwareSettings& hw, I2cBus& bus, Report& r) {
            "check the INA228 wiring (SDA/SCL/VS/GND) and its A0/A1 straps; set [hardware] ina228_address "
            "(0x40-0x4F); 'i2cdetect -y 1' lists the answering addresses");
   } else if (mfr != ina228::kManufacturerTI || ((dev >> 4) & 0xFFF) != ina228::kDieId) {
-    r.fail(inaAt + ": a different chip answers (MANUFACTURER_ID " + hex(mfr, 4) + ", DEVICE_ID " + hex(dev, 4) + ")",
+    r.fail(inaAt + ": a different chip answers (MANUFACTURER_ID " + hex(mfr, 4) + ", DEVICE_ID " +
+               hex(dev, 4) + ")",
            "expected MANUFACTURER_ID 0x5449 and DEVICE_ID 0x228x; check [hardware] ina228_address");
   } else {
     r.ok(inaAt + " (MANUFACTURER_ID " + hex(mfr, 4) + ", DEVICE_ID " + hex(dev, 4) + ")");
@@ -125,10 +126,13 @@ void probeGpio(const HardwareSettings& hw, Report& r) {
       return;
     }
     gpiod_line* l = gpiod_chip_get_line(chip, static_cast<unsigned>(offset));
-    const std::string name = std::string(what) + " (" + hw.gpio_chip + " line " + std::to_string(offset) + ")";
+    const std::string name =
+        std::string(what) + " (" + hw.gpio_chip + " line " + std::to_string(offset) + ")";
     if (!l) {
-      if (required) r.fail(name + ": no such line", "check the line number in [hardware]");
-      else r.warn(name + ": no such line", "check the line number in [hardware]");
+      if (required)
+        r.fail(name + ": no such line", "check the line number in [hardware]");
+      else
+        r.warn(name + ": no such line", "check the line number in [hardware]");
       return;
     }
     gpiod_line_update(l);
@@ -140,8 +144,10 @@ void probeGpio(const HardwareSettings& hw, Report& r) {
       } else {
         const std::string msg = name + ": in use by '" + who + "'";
         const std::string fix = "free the line (remove the overlay or program using it; 'gpioinfo' shows it)";
-        if (required) r.fail(msg, fix);
-        else r.warn(msg, fix);
+        if (required)
+          r.fail(msg, fix);
+        else
+          r.warn(msg, fix);
       }
       return;
     }
@@ -163,9 +169,10 @@ void probeWatchdog(const HardwareSettings& hw, Report& r) {
     return;
   }
   if (::access(hw.watchdog_device.c_str(), W_OK) != 0) {
-    r.warn("watchdog " + hw.watchdog_device + " not writable: " + err(errno),
-           "run the service as root or grant it access (systemd unit); make sure systemd's RuntimeWatchdogSec "
-           "does not hold it");
+    r.warn(
+        "watchdog " + hw.watchdog_device + " not writable: " + err(errno),
+        "run the service as root or grant it access (systemd unit); make sure systemd's RuntimeWatchdogSec "
+        "does not hold it");
     return;
   }
   r.ok("watchdog " + hw.watchdog_device);
@@ -173,15 +180,18 @@ void probeWatchdog(const HardwareSettings& hw, Report& r) {
 
 void probeOneWire(const HardwareSettings& hw, Report& r) {
   const auto sensors = w1::listDs18b20(hw.w1_root);
-  const std::string fix = std::string("add 'dtoverlay=w1-gpio,gpiopin=<pin>' to ") + kConfigTxt +
-                          " (not GPIO4: it is the field enable here), wire DS18B20 data with a 4.7 kΩ pull-up";
+  const std::string fix =
+      std::string("add 'dtoverlay=w1-gpio,gpiopin=<pin>' to ") + kConfigTxt +
+      " (not GPIO4: it is the field enable here), wire DS18B20 data with a 4.7 kΩ pull-up";
   if (sensors.empty() && !hw.onewire_sensor_id.empty()) {
-    r.fail("1-Wire sensor " + hw.onewire_sensor_id + " (configured) not present: no DS18B20 under " + hw.w1_root,
-           fix);
+    r.fail(
+        "1-Wire sensor " + hw.onewire_sensor_id + " (configured) not present: no DS18B20 under " + hw.w1_root,
+        fix);
     return;
   }
   if (sensors.empty()) {
-    r.warn("1-Wire: no DS18B20 (28-*) under " + hw.w1_root + " (alternator temperature from the thermistor only)",
+    r.warn("1-Wire: no DS18B20 (28-*) under " + hw.w1_root +
+               " (alternator temperature from the thermistor only)",
            fix);
     return;
   }
@@ -218,8 +228,9 @@ void probeSerial(const HardwareSettings& hw, Report& r) {
   if (fd < 0) {
     const int e = errno;
     r.fail("VE.Direct port " + hw.vedirect_port + ": " + err(e),
-           e == EACCES ? "add the service user to the 'dialout' group"
-                       : "plug in the VE.Direct USB cable or fix [hardware] vedirect_port (ls /dev/serial/by-id/)");
+           e == EACCES
+               ? "add the service user to the 'dialout' group"
+               : "plug in the VE.Direct USB cable or fix [hardware] vedirect_port (ls /dev/serial/by-id/)");
     return;
   }
   const int rc = configureVeDirectTty(fd);
@@ -236,7 +247,8 @@ void probeI2cClock(const HardwareSettings& hw, Report& r) {
   const unsigned long hz = readI2cClockHz(hw.i2c_bus);
   if (hz == 0) return;  // not a device-tree adapter: nothing to say
   if (hz < 400000) {
-    r.warn("I2C bus clock " + std::to_string(hz / 1000) + " kHz: INA228 + ADS1115 reads take most of a 2.5 ms tick",
+    r.warn("I2C bus clock " + std::to_string(hz / 1000) +
+               " kHz: INA228 + ADS1115 reads take most of a 2.5 ms tick",
            std::string("add 'dtparam=i2c_arm_baudrate=400000' to ") + kConfigTxt + " and reboot");
   } else {
     r.ok("I2C bus clock " + std::to_string(hz / 1000) + " kHz");

@@ -97,15 +97,17 @@ bool PwmSysfs::open(const std::string& root, int chip, int channel, double frequ
   if (!exists(dir_)) {
     const int rc = writeOnce(chipDir + "/export", std::to_string(channel) + "\n", false);
     if (rc != 0) {
-      error_ = "pwm: cannot export channel " + std::to_string(channel) + " via " + chipDir + "/export: " +
-               errnoText(rc) + (rc == EACCES ? " (add the user to the 'gpio' group or run as root)" : "");
+      error_ = "pwm: cannot export channel " + std::to_string(channel) + " via " + chipDir +
+               "/export: " + errnoText(rc) +
+               (rc == EACCES ? " (add the user to the 'gpio' group or run as root)" : "");
       return false;
     }
     // udev applies group permissions shortly after the export.
     for (int i = 0; i < 100 && !exists(dir_ + "/enable"); ++i) ::usleep(10'000);
     if (!exists(dir_)) {
-      error_ = "pwm: " + dir_ + " did not appear after export; check that channel " + std::to_string(channel) +
-               " exists on pwmchip" + std::to_string(chip) + " (" + kOverlayHint + ")";
+      error_ = "pwm: " + dir_ + " did not appear after export; check that channel " +
+               std::to_string(channel) + " exists on pwmchip" + std::to_string(chip) + " (" + kOverlayHint +
+               ")";
       return false;
     }
   }

@@ -122,7 +122,8 @@ std::size_t Parser::feed(std::string_view bytes, FrameFn onFrame, void* ctx) noe
         labelLen_ = valueLen_ = 0;
         state_ = State::Idle;
         break;
-      case State::Hex: break;
+      case State::Hex:
+        break;
     }
   }
   return found;

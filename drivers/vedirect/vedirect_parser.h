@@ -16,9 +16,9 @@ struct Frame {
   double currentA = 0.0;  // label I, mA (+ = into the battery)
   double ppvW = 0.0;      // label PPV, W (panel power)
   bool hasVPV = false;
-  double panelV = 0.0;    // label VPV, mV
+  double panelV = 0.0;  // label VPV, mV
   bool hasCS = false;
-  int chargeState = 0;    // label CS
+  int chargeState = 0;  // label CS
 };
 
 class Parser {

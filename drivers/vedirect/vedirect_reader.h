@@ -21,7 +21,7 @@ struct VeDirectSample {
   double voltageV = 0.0;
   double ppvW = 0.0;
   bool hasCurrent = false, hasVoltage = false, hasPpv = false;
-  TimeNs stamp = 0;         // monotonic time of the last valid block (0 = never)
+  TimeNs stamp = 0;  // monotonic time of the last valid block (0 = never)
   std::uint32_t frames = 0;
   std::uint32_t badChecksums = 0;
   bool portOpen = false;

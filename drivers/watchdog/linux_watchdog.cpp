@@ -49,7 +49,8 @@ bool LinuxWatchdog::open(const std::string& path, int timeoutS) {
   timeoutS_ = t;
   // Hardware may round (the BCM2835 caps at 15 s): report what it took.
   if (t != timeoutS) {
-    warning_ = "watchdog: requested " + std::to_string(timeoutS) + " s, device uses " + std::to_string(t) + " s";
+    warning_ =
+        "watchdog: requested " + std::to_string(timeoutS) + " s, device uses " + std::to_string(t) + " s";
   }
   return true;
 }

@@ -3,12 +3,13 @@
 // the wrong channel, whatever the oscillator tolerance), both pacings,
 // NACKs and re-detection. Every channel sees a distinct voltage, so a
 // mislabelled sample is caught by the value checks.
+#include "drivers/ads1115/ads1115_driver.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
 
-#include "drivers/ads1115/ads1115_driver.h"
 #include "drivers/ads1115/ads1115_registers.h"
 #include "drivers/frontend/analog_frontend.h"
 #include "drivers/sim/ads1115_model.h"
@@ -36,10 +37,14 @@ class Ads1115DriverTest : public ::testing::TestWithParam<double> {
   }
   static bool plausible(int ch, double v) {
     switch (ch) {
-      case 0: return std::abs(v - kBattV) < 0.01;
-      case 1: return std::abs(v - kAltA) < 0.02;
-      case 2: return std::abs(v - kRpm) < 0.5;
-      default: return std::abs(v - kTempF) < 0.5;
+      case 0:
+        return std::abs(v - kBattV) < 0.01;
+      case 1:
+        return std::abs(v - kAltA) < 0.02;
+      case 2:
+        return std::abs(v - kRpm) < 0.5;
+      default:
+        return std::abs(v - kTempF) < 0.5;
     }
   }
   void tally(const Ads1115Samples& s, Counts& c) {

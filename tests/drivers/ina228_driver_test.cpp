@@ -1,11 +1,12 @@
 // Ina228Driver against the simulator's INA228 model (drivers/sim), written
 // separately from the same datasheet facts: detection, configuration,
 // readings, fast/slow mode, BOVL and the ALERT, NACKs and hot-plug.
+#include "drivers/ina228/ina228_driver.h"
+
 #include <gtest/gtest.h>
 
 #include <cerrno>
 
-#include "drivers/ina228/ina228_driver.h"
 #include "drivers/ina228/ina228_registers.h"
 #include "drivers/sim/ina228_model.h"
 #include "sim_fixture.h"

@@ -1,8 +1,8 @@
 // INA228 encodings against the worked example of datasheet-facts §1.4 (TI
 // INA229 sibling: Imax 10 A) and the register layout facts.
-#include <gtest/gtest.h>
-
 #include "drivers/ina228/ina228_registers.h"
+
+#include <gtest/gtest.h>
 
 namespace xr::ina228 {
 namespace {

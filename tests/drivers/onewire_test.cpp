@@ -13,8 +13,7 @@
 namespace xr {
 namespace {
 
-constexpr const char* kGood =
-    "2c 01 ff ff 7f ff ff ff 61 : crc=61 YES\n2c 01 ff ff 7f ff ff ff 61 t=18750\n";
+constexpr const char* kGood = "2c 01 ff ff 7f ff ff ff 61 : crc=61 YES\n2c 01 ff ff 7f ff ff ff 61 t=18750\n";
 
 TEST(W1Slave, ParsesTheDocumentedExample) {
   const auto r = w1::parseW1Slave(kGood);
@@ -23,18 +22,21 @@ TEST(W1Slave, ParsesTheDocumentedExample) {
 }
 
 TEST(W1Slave, NegativeTemperature) {
-  const auto r = w1::parseW1Slave("5e ff 4b 46 7f ff 02 10 41 : crc=41 YES\n5e ff 4b 46 7f ff 02 10 41 t=-10125\n");
+  const auto r =
+      w1::parseW1Slave("5e ff 4b 46 7f ff 02 10 41 : crc=41 YES\n5e ff 4b 46 7f ff 02 10 41 t=-10125\n");
   EXPECT_EQ(r.error, w1::ParseError::None);
   EXPECT_EQ(r.milliC, -10125);
 }
 
 TEST(W1Slave, CrcNoIsRejectedEvenWithATemperature) {
-  const auto r = w1::parseW1Slave("2c 01 ff ff 7f ff ff ff 62 : crc=61 NO\n2c 01 ff ff 7f ff ff ff 61 t=18750\n");
+  const auto r =
+      w1::parseW1Slave("2c 01 ff ff 7f ff ff ff 62 : crc=61 NO\n2c 01 ff ff 7f ff ff ff 61 t=18750\n");
   EXPECT_EQ(r.error, w1::ParseError::CrcNo);
 }
 
 TEST(W1Slave, PowerOnValueIsRejected) {
-  const auto r = w1::parseW1Slave("50 05 4b 46 7f ff 0c 10 1c : crc=1c YES\n50 05 4b 46 7f ff 0c 10 1c t=85000\n");
+  const auto r =
+      w1::parseW1Slave("50 05 4b 46 7f ff 0c 10 1c : crc=1c YES\n50 05 4b 46 7f ff 0c 10 1c t=85000\n");
   EXPECT_EQ(r.error, w1::ParseError::PowerOnValue);
 }
 
@@ -113,7 +115,8 @@ TEST_F(Ds18b20ReaderTest, ThreadPublishesAndStops) {
   Ds18b20Reader r(d.path(), "", 1'000'000);  // real monotonic clock, 1 ms period
   r.start();
   // Wait (bounded) for a publication; no timing is asserted.
-  for (int i = 0; i < 2000 && r.latest().good < 2; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  for (int i = 0; i < 2000 && r.latest().good < 2; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
   r.stop();
   EXPECT_GE(r.latest().good, 2u);
   EXPECT_GT(r.latest().heartbeat, 0);

@@ -1,9 +1,10 @@
 // runProbe on fake trees: what it reports and its exit status.
+#include "drivers/probe/probe.h"
+
 #include <gtest/gtest.h>
 
 #include <sstream>
 
-#include "drivers/probe/probe.h"
 #include "drivers/sim/ads1115_model.h"
 #include "drivers/sim/ina228_model.h"
 #include "sim_fixture.h"

@@ -1,13 +1,13 @@
 // PwmSysfs against a fake /sys/class/pwm tree (issue 7 tests).
-#include <gtest/gtest.h>
+#include "drivers/pwm/pwm_sysfs.h"
 
-#include <cmath>
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 
-#include "drivers/pwm/pwm_sysfs.h"
 #include "temp_dir.h"
 
 namespace xr {

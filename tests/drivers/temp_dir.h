@@ -1,10 +1,10 @@
 #pragma once
 // A temporary directory for fake sysfs trees, removed with its content.
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 #include <string>
-
-#include <unistd.h>
 
 namespace xr::test {
 

@@ -1,9 +1,8 @@
 // VE.Direct: the block parser (checksum, labels, garbage, HEX interleaving)
 // and the reader thread on a pseudo-terminal (good frames, bad checksums,
 // garbage, unplug).
-#include <gtest/gtest.h>
-
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <stdlib.h>
 #include <unistd.h>
 
@@ -115,7 +114,9 @@ class Pty {
   }
   ~Pty() { closeMaster(); }
   const std::string& slave() const { return name_; }
-  bool write(const std::string& s) { return ::write(master_, s.data(), s.size()) == static_cast<ssize_t>(s.size()); }
+  bool write(const std::string& s) {
+    return ::write(master_, s.data(), s.size()) == static_cast<ssize_t>(s.size());
+  }
   void closeMaster() {
     if (master_ >= 0) ::close(master_);
     master_ = -1;
