@@ -6,12 +6,15 @@
 //   v1  ledger(name, value), overrides(name, value), events(t_ms, level, code, message)
 //   v2  ledger_meta (saved time + reason), overrides gain file_value/changed_at_ms,
 //       events gain reason/a/b, kv (web token, tuning logs)
-//   v3  history_1s / history_1m (packed float buckets) + series names, events index
+//   v3  history_1s / history_1m (packed float buckets, rowid = bucket * 64 + series)
+//       + series names, events index
 #include "store/sqlite_db.h"
 
 namespace xr::store {
 
 inline constexpr int kSchemaVersion = 3;
+// History rows: rowid = bucket start (s) * kSeriesSlots + series id.
+inline constexpr int kSeriesSlots = 64;
 
 // Creates the v1 schema on an empty database (user_version 0 -> 1).
 int createV1(sql::Db& db);

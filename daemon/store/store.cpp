@@ -69,6 +69,7 @@ Store::~Store() { close(); }
 
 void Store::close() {
   if (db_.isOpen()) {
+    closeMinute();
     flushHistory();
     db_.exec("PRAGMA wal_checkpoint(TRUNCATE)");
   }
@@ -99,6 +100,13 @@ int Store::configure() {
   // commits; checkpoint() switches to FULL for the ledger.
   rc = db_.exec("PRAGMA synchronous = NORMAL");
   if (rc != SQLITE_OK) return rc;
+  // Debian builds SQLite with secure_delete on: every freed page (history
+  // retention) would be zeroed on disk. FAST zeroes only when it costs no
+  // extra I/O. The WAL file is kept to 4 MiB after each checkpoint.
+  db_.queryText("PRAGMA secure_delete = FAST", &rc);
+  if (!sql::isOk(rc)) return rc;
+  db_.queryInt("PRAGMA journal_size_limit = 4194304", &rc);
+  if (!sql::isOk(rc)) return rc;
   if (opt_.maxPageCount > 0) {
     db_.queryInt("PRAGMA max_page_count = " + std::to_string(opt_.maxPageCount), &rc);
     if (!sql::isOk(rc)) return rc;
@@ -329,7 +337,10 @@ int Store::seriesId(std::string_view name) {
   sql::Stmt ins(db_, "INSERT OR IGNORE INTO series(name) VALUES(?1)");
   ins.bind(1, name).step();
   sql::Stmt sel(db_, "SELECT id FROM series WHERE name = ?1");
-  if (sel.bind(1, name).step() == SQLITE_ROW) return static_cast<int>(sel.colInt(0));
+  if (sel.bind(1, name).step() == SQLITE_ROW) {
+    const auto id = sel.colInt(0);
+    if (id >= 0 && id < store::kSeriesSlots) return static_cast<int>(id);
+  }
   return -1;
 }
 
@@ -371,7 +382,7 @@ StoreStatus Store::appendHistory(std::int64_t tUnixMs, std::span<const double> v
   if (lastFlushS_ < 0) lastFlushS_ = sec;
   if (sec - lastFlushS_ >= opt_.historyFlushS) {
     lastFlushS_ = sec;
-    StoreStatus st = flushHistory();
+    StoreStatus st = flushPending(false);
     if (st && sec - lastCompactS_ >= 3600) {
       lastCompactS_ = sec;
       st = compact(tUnixMs);
@@ -383,18 +394,20 @@ StoreStatus Store::appendHistory(std::int64_t tUnixMs, std::span<const double> v
 
 int Store::writeBuckets(std::string_view table, std::map<std::int64_t, Bucket>& pending, std::int64_t) {
   const std::size_t n = opt_.historySeries.size();
-  sql::Stmt sel(db_, "SELECT data FROM " + std::string(table) + " WHERE bucket = ?1 AND series = ?2");
-  sql::Stmt ins(db_, "INSERT OR REPLACE INTO " + std::string(table) + "(bucket, series, data) VALUES(?1, ?2, ?3)");
+  sql::Stmt sel(db_, "SELECT data FROM " + std::string(table) + " WHERE key = ?1");
+  sql::Stmt ins(db_, "INSERT OR REPLACE INTO " + std::string(table) + "(key, data) VALUES(?1, ?2)");
   if (!sel.ok()) return sel.prepareRc();
   if (!ins.ok()) return ins.prepareRc();
   std::vector<float> row(kSlots);
   for (auto& [bucket, b] : pending) {
     for (std::size_t s = 0; s < n; ++s) {
+      if (s >= seriesIds_.size() || seriesIds_[s] < 0) continue;  // no id: series not recorded
       const float* src = &b.data[s * kSlots];
       if (std::none_of(src, src + kSlots, [](float v) { return !std::isnan(v); })) continue;
       std::fill(row.begin(), row.end(), NAN);
+      const std::int64_t key = bucket * store::kSeriesSlots + seriesIds_[s];
       sel.reset();
-      if (sel.bind(1, bucket).bind(2, seriesIds_[s]).step() == SQLITE_ROW) {
+      if (sel.bind(1, key).step() == SQLITE_ROW) {
         const auto blob = sel.colBlob(0);
         if (blob.size() == kSlots * sizeof(float)) std::memcpy(row.data(), blob.data(), blob.size());
       }
@@ -402,27 +415,45 @@ int Store::writeBuckets(std::string_view table, std::map<std::int64_t, Bucket>& 
         if (!std::isnan(src[i])) row[i] = src[i];
       ins.reset();
       const auto* bytes = reinterpret_cast<const std::uint8_t*>(row.data());
-      const int rc = ins.bind(1, bucket).bind(2, seriesIds_[s])
-                         .bindBlob(3, std::span<const std::uint8_t>(bytes, kSlots * sizeof(float)))
-                         .step();
+      const int rc =
+          ins.bind(1, key).bindBlob(2, std::span<const std::uint8_t>(bytes, kSlots * sizeof(float))).step();
       if (rc != SQLITE_DONE) return rc;
     }
   }
   return SQLITE_OK;
 }
 
-StoreStatus Store::flushHistory() {
-  if (pending1s_.empty() && pending1m_.empty()) return {};
-  if (!db_.isOpen()) return status(SQLITE_MISUSE, "flushHistory");
-  sql::Transaction tx(db_);
-  int rc = tx.beginRc();
-  if (rc == SQLITE_OK) rc = writeBuckets("history_1s", pending1s_, 60);
-  if (rc == SQLITE_OK) rc = writeBuckets("history_1m", pending1m_, 3600);
-  if (rc == SQLITE_OK) rc = tx.commit();
+StoreStatus Store::flushHistory() { return flushPending(true); }
+
+StoreStatus Store::flushPending(bool all) {
+  // The periodic flush writes a 1 min row only once its hour is complete:
+  // rewriting the open hour's rows every flush would cost pages for data the
+  // 1 s table already holds. flushHistory()/close() write everything.
+  std::map<std::int64_t, Bucket> keep1m;
+  if (!all && aggMinute_ >= 0) {
+    const std::int64_t openHour = floorDiv(aggMinute_, 60) * 3600;
+    for (auto it = pending1m_.lower_bound(openHour); it != pending1m_.end();) {
+      keep1m.insert(std::move(*it));
+      it = pending1m_.erase(it);
+    }
+  }
+  StoreStatus st;
+  if (!pending1s_.empty() || !pending1m_.empty()) {
+    if (!db_.isOpen()) {
+      st = status(SQLITE_MISUSE, "flushHistory");
+    } else {
+      sql::Transaction tx(db_);
+      int rc = tx.beginRc();
+      if (rc == SQLITE_OK) rc = writeBuckets("history_1s", pending1s_, 60);
+      if (rc == SQLITE_OK) rc = writeBuckets("history_1m", pending1m_, 3600);
+      if (rc == SQLITE_OK) rc = tx.commit();
+      st = status(rc, "flushHistory");
+    }
+  }
   // On error the buffer is dropped anyway: bounded memory beats chart history.
   pending1s_.clear();
-  pending1m_.clear();
-  return status(rc, "flushHistory");
+  pending1m_ = std::move(keep1m);
+  return st;
 }
 
 StoreStatus Store::compact(std::int64_t nowUnixMs) {
@@ -431,12 +462,12 @@ StoreStatus Store::compact(std::int64_t nowUnixMs) {
   sql::Transaction tx(db_);
   int rc = tx.beginRc();
   if (rc == SQLITE_OK) {
-    sql::Stmt st(db_, "DELETE FROM history_1s WHERE bucket < ?1");
-    rc = st.bind(1, nowS - opt_.history1sKeepS - 60).step();
+    sql::Stmt st(db_, "DELETE FROM history_1s WHERE key < ?1");
+    rc = st.bind(1, (nowS - opt_.history1sKeepS - 60) * store::kSeriesSlots).step();
   }
   if (rc == SQLITE_DONE) {
-    sql::Stmt st(db_, "DELETE FROM history_1m WHERE bucket < ?1");
-    rc = st.bind(1, nowS - opt_.history1mKeepS - 3600).step();
+    sql::Stmt st(db_, "DELETE FROM history_1m WHERE key < ?1");
+    rc = st.bind(1, (nowS - opt_.history1mKeepS - 3600) * store::kSeriesSlots).step();
   }
   if (rc == SQLITE_DONE) {
     sql::Stmt st(db_, "DELETE FROM events WHERE id <= (SELECT max(id) FROM events) - ?1");
@@ -452,6 +483,7 @@ std::vector<HistoryPoint> Store::queryHistory(std::string_view series, std::int6
   const auto it = std::find(opt_.historySeries.begin(), opt_.historySeries.end(), series);
   if (it == opt_.historySeries.end() || toMs < fromMs || !db_.isOpen()) return out;
   const std::size_t s = static_cast<std::size_t>(it - opt_.historySeries.begin());
+  if (s >= seriesIds_.size() || seriesIds_[s] < 0) return out;
   const std::int64_t newest = pending1s_.empty() ? toMs : std::max(toMs, (pending1s_.rbegin()->first + 60) * 1000);
   const bool fine = stepMs < 60000 && fromMs >= (newest - opt_.history1sKeepS * 1000);
   const std::int64_t slotS = fine ? 1 : 60;
@@ -466,15 +498,18 @@ std::vector<HistoryPoint> Store::queryHistory(std::string_view series, std::int6
     }
   };
   {
-    sql::Stmt st(db_, std::string("SELECT bucket, data FROM ") + (fine ? "history_1s" : "history_1m") +
-                          " WHERE series = ?1 AND bucket >= ?2 AND bucket <= ?3 ORDER BY bucket");
-    st.bind(1, seriesIds_[s]).bind(2, floorDiv(fromS, spanS) * spanS).bind(3, toS);
+    sql::Stmt st(db_, std::string("SELECT key, data FROM ") + (fine ? "history_1s" : "history_1m") +
+                          " WHERE key >= ?1 AND key <= ?2 AND key % ?3 = ?4 ORDER BY key");
+    st.bind(1, floorDiv(fromS, spanS) * spanS * store::kSeriesSlots)
+        .bind(2, toS * store::kSeriesSlots + store::kSeriesSlots - 1)
+        .bind(3, store::kSeriesSlots)
+        .bind(4, seriesIds_[s]);
     std::vector<float> row(kSlots);
     while (st.ok() && st.step() == SQLITE_ROW) {
       const auto blob = st.colBlob(1);
       if (blob.size() != kSlots * sizeof(float)) continue;
       std::memcpy(row.data(), blob.data(), blob.size());
-      take(st.colInt(0), row.data());
+      take(floorDiv(st.colInt(0), store::kSeriesSlots), row.data());
     }
   }
   for (const auto& [bucket, b] : fine ? pending1s_ : pending1m_) take(bucket, &b.data[s * kSlots]);

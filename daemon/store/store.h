@@ -40,9 +40,10 @@ std::vector<std::string> defaultHistorySeries();
 struct StoreOptions {
   int busyTimeoutMs = 2000;
   // History is buffered in memory and written in one transaction this often:
-  // a power cut loses at most this much chart history, and the SD card sees
-  // a few pages per flush instead of a few pages per second.
-  int historyFlushS = 300;
+  // a power cut loses at most this much chart history (the ledger has its own
+  // checkpoints), and the SD card sees a few pages per flush instead of a few
+  // pages per second (docs/performance.md "Storage writes").
+  int historyFlushS = 600;
   std::int64_t history1sKeepS = 48 * 3600;          // 1 s resolution kept 48 h
   std::int64_t history1mKeepS = 366LL * 24 * 3600;  // 1 min resolution kept a year
   std::int64_t maxEvents = 50000;                   // events table bounded too
@@ -157,6 +158,7 @@ class Store {
   int writeBuckets(std::string_view table, std::map<std::int64_t, Bucket>& pending,
                    std::int64_t bucketSpanS);
   void closeMinute();
+  StoreStatus flushPending(bool all);
 
   StoreOptions opt_;
   sql::Db db_;

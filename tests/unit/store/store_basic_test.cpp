@@ -186,8 +186,10 @@ TEST(Store, HistoryRetentionIsBounded) {
   sql::Db db;
   ASSERT_EQ(db.open(d.file("x.db")), 0);
   const std::int64_t rows1s = db.queryInt("SELECT count(*) FROM history_1s");
-  const std::int64_t oldest1s = db.queryInt("SELECT min(bucket) FROM history_1s");
-  const std::int64_t oldest1m = db.queryInt("SELECT min(bucket) FROM history_1m");
+  const std::int64_t oldest1s = db.queryInt("SELECT min(key) FROM history_1s") / store::kSeriesSlots;
+  const std::int64_t oldest1m = db.queryInt("SELECT min(key) FROM history_1m") / store::kSeriesSlots;
+  ASSERT_GT(oldest1s, 0);
+  ASSERT_GT(oldest1m, 0);
   EXPECT_LE(rows1s, static_cast<std::int64_t>(n) * (600 / 60 + 2));
   EXPECT_GE(oldest1s, (t0 / 1000) + 4 * 3600 - 600 - 60);
   EXPECT_GE(oldest1m, (t0 / 1000) + 4 * 3600 - 7200 - 3600);
