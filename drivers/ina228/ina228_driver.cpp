@@ -65,6 +65,7 @@ int Ina228Driver::start(TimeNs now) noexcept {
   stats_.consecutiveFailures = 0;
   nextRead_ = now;
   nextHousekeeping_ = now;
+  housekeepingPhase_ = 0;
   return 0;
 }
 
@@ -110,16 +111,38 @@ void Ina228Driver::noteFailure(int err, TimeNs now) noexcept {
   }
 }
 
-bool Ina228Driver::verifyConfiguration() noexcept {
-  // A brown-out resets the chip to defaults (BOVL 0x7FFF = no hardware OV
-  // protection, SHUNT_CAL 0x1000) while reads keep succeeding: compare.
-  std::uint64_t adc = 0, bovl = 0, cal = 0;
-  if (readReg(ADC_CONFIG, 2, &adc) != 0 || readReg(BOVL, 2, &bovl) != 0 || readReg(SHUNT_CAL, 2, &cal) != 0)
-    return true;  // a read failure is counted by the regular reads
-  const std::uint16_t wantBovl = bovlVolts_ > 0.0 ? bovlCode(bovlVolts_) : 0x7FFF;
-  const long wantCal = shuntCal(shuntOhm_, maxCurrentA_, lowRange_);
-  return adc == (fast_ ? kAdcConfigFast : kAdcConfigSlow) && bovl == wantBovl &&
-         static_cast<long>(cal & 0x7FFF) == wantCal;
+int Ina228Driver::housekeepingStep() noexcept {
+  // One register per tick (bounded I2C time per tick on a 100 kHz bus):
+  // DIETEMP, then a read-back of ADC_CONFIG, BOVL and SHUNT_CAL. A brown-out
+  // resets the chip to defaults (BOVL 0x7FFF = no hardware OV backup,
+  // SHUNT_CAL 0x1000) while reads keep succeeding: any mismatch reconfigures.
+  std::uint64_t v = 0;
+  static constexpr std::uint8_t kRegs[] = {DIETEMP, ADC_CONFIG, BOVL, SHUNT_CAL};
+  const std::uint8_t reg = kRegs[housekeepingPhase_];
+  const int rc = readReg(reg, 2, &v);
+  if (rc != 0) return rc;
+  bool ok = true;
+  switch (reg) {
+    case DIETEMP:
+      sample_.dieTempC = dieTempC(static_cast<std::uint16_t>(v));
+      break;
+    case ADC_CONFIG:
+      ok = v == (fast_ ? kAdcConfigFast : kAdcConfigSlow);
+      break;
+    case BOVL:
+      ok = v == (bovlVolts_ > 0.0 ? bovlCode(bovlVolts_) : 0x7FFFu);
+      break;
+    default:
+      ok = static_cast<long>(v & 0x7FFF) == shuntCal(shuntOhm_, maxCurrentA_, lowRange_);
+      break;
+  }
+  housekeepingPhase_ = (housekeepingPhase_ + 1) % 4;
+  if (!ok) {
+    ++stats_.reconfigures;
+    housekeepingPhase_ = 0;
+    return configure();
+  }
+  return 0;
 }
 
 const Ina228Sample& Ina228Driver::poll(TimeNs now) noexcept {
@@ -161,19 +184,13 @@ const Ina228Sample& Ina228Driver::poll(TimeNs now) noexcept {
   }
 
   if (now >= nextHousekeeping_) {
-    nextHousekeeping_ = now + kHousekeepingInterval;
-    std::uint64_t t = 0;
-    rc = readReg(DIETEMP, 2, &t);
+    rc = housekeepingStep();
     if (rc != 0) {
       noteFailure(rc, now);
-      return sample_;
+      housekeepingPhase_ = 0;
     }
-    sample_.dieTempC = dieTempC(static_cast<std::uint16_t>(t));
-    if (!verifyConfiguration()) {
-      ++stats_.reconfigures;
-      rc = configure();
-      if (rc != 0) noteFailure(rc, now);
-    }
+    // The next register next tick; a full round once per interval.
+    if (housekeepingPhase_ == 0) nextHousekeeping_ = now + kHousekeepingInterval;
   }
   return sample_;
 }

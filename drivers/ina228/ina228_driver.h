@@ -68,9 +68,10 @@ class Ina228Driver {
   double busOvervoltageLimit() const noexcept { return bovlVolts_; }
 
   // Once per control tick. Reads DIAG_ALRT every call and VBUS/CURRENT when a
-  // new averaged result is due (conversion cycle of the current mode); die
-  // temperature and a register read-back (repairing a chip that reset
-  // behind our back) once a second. While absent, re-detects at most once
+  // new averaged result is due (conversion cycle of the current mode); once a
+  // second, over four consecutive ticks (one register each), die temperature
+  // and a read-back of ADC_CONFIG/BOVL/SHUNT_CAL (repairing a chip that reset
+  // behind our back). While absent, re-detects at most once
   // per kRedetectInterval. Returns the latest sample (values persist; `fresh`
   // tells whether this call read new ones).
   const Ina228Sample& poll(TimeNs now) noexcept;
@@ -87,7 +88,7 @@ class Ina228Driver {
   int writeReg(std::uint8_t reg, std::uint16_t v) noexcept;
   void noteFailure(int err, TimeNs now) noexcept;
   void noteSuccess() noexcept { stats_.consecutiveFailures = 0; }
-  bool verifyConfiguration() noexcept;
+  int housekeepingStep() noexcept;
 
   I2cBus& bus_;
   std::uint16_t addr_;
@@ -101,6 +102,7 @@ class Ina228Driver {
   double bovlVolts_ = 0.0;  // 0 = not programmed (chip default 0x7FFF = never)
   TimeNs nextRead_ = 0;
   TimeNs nextHousekeeping_ = 0;
+  unsigned housekeepingPhase_ = 0;
   TimeNs nextRedetect_ = 0;
   Ina228Sample sample_;
   Ina228Stats stats_;

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cerrno>
 
 #include "drivers/ina228/ina228_registers.h"
@@ -279,6 +280,29 @@ TEST_F(Ina228DriverTest, ModeAndLimitChosenWhileAbsentAreAppliedOnDetection) {
   ASSERT_TRUE(drv.present());
   EXPECT_EQ(chip.peek(sim::ina228::ADC_CONFIG), ina228::kAdcConfigFast);
   EXPECT_EQ(chip.peek(sim::ina228::BOVL), ina228::bovlCode(29.1));
+}
+
+}  // namespace
+}  // namespace xr
+
+namespace xr {
+namespace {
+
+TEST_F(Ina228DriverTest, AtMostFourTransfersInAnySteadyStateTick) {
+  // Bounded bus time per control tick: DIAG_ALRT, VBUS, CURRENT and at most
+  // one housekeeping register.
+  ASSERT_EQ(drv.setBusOvervoltageLimit(14.8), 0);
+  ASSERT_EQ(drv.start(t.now), 0);
+  drv.setFastMode(true);
+  std::uint64_t worst = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const auto before = bus.transfers();
+    drv.poll(t.now += 2'500'000);
+    worst = std::max<std::uint64_t>(worst, bus.transfers() - before);
+  }
+  EXPECT_LE(worst, 4u);
+  EXPECT_GE(worst, 3u);
+  EXPECT_EQ(drv.stats().reconfigures, 0u) << "a healthy chip is never reconfigured";
 }
 
 }  // namespace
