@@ -70,7 +70,7 @@ TEST(VeDirectParser, ByteByByteEqualsWhole) {
   EXPECT_FALSE(c.frames[1].hasI);
 }
 
-TEST(VeDirectParser, GarbageNeverProducesAFrameAndTheStreamRecovers) {
+TEST(VeDirectParser, GarbageIsSurvivedAndTheStreamRecovers) {
   vedirect::Parser p;
   Collect c;
   std::string junk;
