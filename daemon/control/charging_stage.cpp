@@ -6,11 +6,14 @@ namespace xr {
 
 double ChargingStageMachine::ChargingVoltageTarget(const Params& p) const {
   switch (stage_) {
-    case ChargeStage::ABSORPTION: return p.AbsorptionVoltage;
+    case ChargeStage::ABSORPTION:
+      return p.AbsorptionVoltage;
     case ChargeStage::FLOAT:
-    case ChargeStage::IDLE: return p.FloatVoltage;
+    case ChargeStage::IDLE:
+      return p.FloatVoltage;
     case ChargeStage::BULK:
-    default: return p.BulkVoltage;
+    default:
+      return p.BulkVoltage;
   }
 }
 

@@ -11,12 +11,12 @@ namespace xr {
 
 struct StageInputs {
   TimeNs now = 0;
-  double v = 0.0;                   // IBV
-  double Bcur = 0.0;                // + = charging
+  double v = 0.0;     // IBV
+  double Bcur = 0.0;  // + = charging
   double thermalPenaltyAmps = 0.0;
   double uTargetAmps = 0.0;
   double SOC_percent = 0.0;
-  bool socValid = false;            // SOC gating only with a real SoC
+  bool socValid = false;  // SOC gating only with a real SoC
   // MaintainMode / TargetVoltageMode / CVTuningMode / manual: those set the
   // target themselves and the stage machine holds (timers cleared).
   bool suppressed = false;
@@ -37,7 +37,9 @@ class ChargingStageMachine {
   bool inIdleStage() const { return stage_ == ChargeStage::IDLE; }
   // chargingEnabled is false in IDLE (folded into the tick snapshot).
   bool chargingEnabled() const { return stage_ != ChargeStage::IDLE; }
-  bool voltageControlActive() const { return stage_ == ChargeStage::ABSORPTION || stage_ == ChargeStage::FLOAT; }
+  bool voltageControlActive() const {
+    return stage_ == ChargeStage::ABSORPTION || stage_ == ChargeStage::FLOAT;
+  }
   double ChargingVoltageTarget(const Params& p) const;
   bool tailSuppressedByThermal() const { return tailThermalSuppressed_; }
   bool rebulkBlockedBySoc() const { return rebulkBlockedBySoc_; }

@@ -36,7 +36,8 @@ void ControlLaw::updateFilters(const ControlSensors& s, const Params& p) {
   tickDt_ = lastTick_ < 0 ? 0.0 : std::clamp(toSec(s.now - lastTick_), 0.0, kMaxControlDtSec);
   lastTick_ = s.now;
   if (s.ch1Fresh) {
-    controlDt_ = lastControlTick_ < 0 ? 0.0 : std::clamp(toSec(s.now - lastControlTick_), 0.0, kMaxControlDtSec);
+    controlDt_ =
+        lastControlTick_ < 0 ? 0.0 : std::clamp(toSec(s.now - lastControlTick_), 0.0, kMaxControlDtSec);
     lastControlTick_ = s.now;
     if (finite(s.MeasuredAmps)) {
       MeasuredAmps_ = s.MeasuredAmps;
@@ -52,10 +53,12 @@ void ControlLaw::updateFilters(const ControlSensors& s, const Params& p) {
     emaIBV_.update(s.IBV, dt, p.VoltageFilterTC);
     lastFilterIbvNs_ = s.now;
   }
-  pidSig_ = p.OutputPIDSigSrc == 2 ? MeasuredAmps_ : (p.OutputPIDSigSrc == 1 ? maPid_.value() : emaPid_.value());
+  pidSig_ =
+      p.OutputPIDSigSrc == 2 ? MeasuredAmps_ : (p.OutputPIDSigSrc == 1 ? maPid_.value() : emaPid_.value());
 }
 
-void ControlLaw::updateChargingStage(const ControlSensors& s, const Params& p, bool manualMode, EventBatch& ev) {
+void ControlLaw::updateChargingStage(const ControlSensors& s, const Params& p, bool manualMode,
+                                     EventBatch& ev) {
   const bool overrideNow = p.MaintainMode || p.TargetVoltageMode || p.CVTuningMode;
   // The stage machine only advances while charging in AUTO (IDLE keeps its
   // re-bulk watch while the field is off); override modes and manual hold it.
@@ -125,7 +128,8 @@ double ControlLaw::computeUTarget(const ControlSensors& s, const Params& p) {
   // Warm-up ceiling (ours, off by default): for WarmupCeilingSec after the
   // field turns on, the command is held under WarmupCeilingAmps so a cold
   // alternator and belt are not loaded at full current at once.
-  warmupActive_ = p.WarmupCeilingAmps > 0.0 && fieldOnAt_ >= 0 && s.now - fieldOnAt_ < fromSec(p.WarmupCeilingSec);
+  warmupActive_ =
+      p.WarmupCeilingAmps > 0.0 && fieldOnAt_ >= 0 && s.now - fieldOnAt_ < fromSec(p.WarmupCeilingSec);
   if (warmupActive_) I_cmd = std::min(I_cmd, p.WarmupCeilingAmps);
   I_cmd_ = I_cmd;
 
@@ -158,7 +162,8 @@ double ControlLaw::governorStep(const Params& p, double request, GovMode mode, d
   return governor_apply(lastAppliedDuty_, request, mode, rpmMinDuty_, dt, lim);
 }
 
-double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const FastOvApply& fa, EventBatch& ev) {
+double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const FastOvApply& fa,
+                              EventBatch& ev) {
   fastOvClampActive_ = fa.fastOvClampActive;
   if (fastOvWasActive_ && !fastOvClampActive_) onProtectionCleared(s.now);
   fastOvWasActive_ = fastOvClampActive_;
@@ -221,11 +226,14 @@ double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const Fa
   // Setpoint slew: StartupRiseRate until caught up, FastSetpointRiseRate x
   // rise inside the post-protection window (with voltage headroom), fall
   // unlimited while a fast-OV clamp is acting.
-  fastRiseActive_ = haveProtectionCleared_ && s.now - protectionClearedAt_ < fromMs(p.FastSetpointRiseWindowMs) &&
-                    finite(s.IBV) && s.IBV < ChargingVoltageTarget_ - p.FastSetpointRiseHeadroomV;
+  fastRiseActive_ = haveProtectionCleared_ &&
+                    s.now - protectionClearedAt_ < fromMs(p.FastSetpointRiseWindowMs) && finite(s.IBV) &&
+                    s.IBV < ChargingVoltageTarget_ - p.FastSetpointRiseHeadroomV;
   double rise = p.SetpointRiseRate;
-  if (inStartupRamp_) rise = p.StartupRiseRate;
-  else if (fastRiseActive_) rise = p.SetpointRiseRate * p.FastSetpointRiseRate;
+  if (inStartupRamp_)
+    rise = p.StartupRiseRate;
+  else if (fastRiseActive_)
+    rise = p.SetpointRiseRate * p.FastSetpointRiseRate;
   const double fall = fastOvClampActive_ ? 1e9 : p.SetpointFallRate;
   setpointLimited_ = slew_limit_f(setpointLimited_, setpointCommand_, rise, fall, dt);
   if (inStartupRamp_ && setpointLimited_ >= setpointCommand_ - 1e-9) inStartupRamp_ = false;

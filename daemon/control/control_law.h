@@ -33,11 +33,11 @@ namespace xr {
 // Sensor values of this tick, already corrected (auto-zero, shunt gain).
 struct ControlSensors {
   TimeNs now = 0;
-  bool ch1Fresh = false;        // control work fires on fresh CH1
+  bool ch1Fresh = false;           // control work fires on fresh CH1
   double MeasuredAmps = kNoValue;  // CH1 - DynamicAltCurrentZero
   double IBV = kNoValue;
   bool ibvFresh = false;
-  double Bcur = kNoValue;       // INA228 x DynamicShuntGainFactor (never Victron: MaintainMode)
+  double Bcur = kNoValue;  // INA228 x DynamicShuntGainFactor (never Victron: MaintainMode)
   double rpm = kNoValue;
   double TempToUse = kNoValue;  // per TempSource
   TimeNs tempStamp = 0;
@@ -48,7 +48,7 @@ struct ControlSensors {
 struct FastOvApply {
   double fastOvCurrentCap = 1e300;  // clamp on uTargetAmps
   bool fastOvClampActive = false;
-  bool setCvI = false;              // Snap / Bleed / Reseed
+  bool setCvI = false;  // Snap / Bleed / Reseed
   double cv_I = 0.0;
   bool zeroSetpointLimited = false;  // load dump
   bool forceBypassSlew = false;
@@ -87,7 +87,10 @@ class ControlLaw {
   // Field enable rising edge: startup ramp and warm-up ceiling start now.
   void onFieldTurnOn(TimeNs now);
   // A protection cleared: opens the FastSetpointRiseRate window.
-  void onProtectionCleared(TimeNs now) { protectionClearedAt_ = now; haveProtectionCleared_ = true; }
+  void onProtectionCleared(TimeNs now) {
+    protectionClearedAt_ = now;
+    haveProtectionCleared_ = true;
+  }
 
   // ---- commands ----------------------------------------------------------
   bool startSystemId(TimeNs now, bool autoRunning);

@@ -8,9 +8,9 @@ namespace xr {
 struct ControlTelemetry {
   SysMode sysMode = SysMode::SYS_MODE_OFF;
   GovMode govMode = GovMode::GOV_NORMAL_SLEW;
-  double I_cap = 0.0;           // getCapCurrentForRPM
-  double I_cmd = 0.0;           // after penalty, MaxTableValue, battery ceiling, warm-up
-  double uTargetRaw = 0.0;      // before fastOvCurrentCap (after MaintainMode / TuningMode)
+  double I_cap = 0.0;       // getCapCurrentForRPM
+  double I_cmd = 0.0;       // after penalty, MaxTableValue, battery ceiling, warm-up
+  double uTargetRaw = 0.0;  // before fastOvCurrentCap (after MaintainMode / TuningMode)
   double uTargetAmps = 0.0;
   double setpointCommand = 0.0;
   double setpointLimited = 0.0;
@@ -34,10 +34,10 @@ struct ControlTelemetry {
   double MeasuredAmps = 0.0, MeasuredAmps_filtered = 0.0, g_pidI_filtered = 0.0, g_pidMA_N = 0.0;
   double IBV_filtered = 0.0;
   bool inStartupRamp = false;
-  bool fastRiseActive = false;        // FastSetpointRiseRate window
-  bool warmupActive = false;          // warm-up ceiling applying
+  bool fastRiseActive = false;  // FastSetpointRiseRate window
+  bool warmupActive = false;    // warm-up ceiling applying
   bool fastOvClampActive = false;
-  bool cvOvershootBypass = false;     // GOV_BYPASS_SLEW latch (CV overshoot)
+  bool cvOvershootBypass = false;  // GOV_BYPASS_SLEW latch (CV overshoot)
   bool inBulkStage = true, inAbsorptionStage = false, inFloatStage = false, inIdleStage = false;
   bool tailSuppressedByThermal = false;
   bool rebulkBlockedBySoc = false;

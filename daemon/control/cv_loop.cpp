@@ -87,7 +87,8 @@ double VoltageCvLoop::update(const CvLoopInputs& in, const Params& p) {
   const bool entering = in.voltageControlActive && !wasActive_;
   wasActive_ = in.voltageControlActive;
   if (entering) seedOnEntry(in, p);
-  const bool seedProtect = awSeedProtectStartNs_ >= 0 && (in.now - awSeedProtectStartNs_) < fromMs(p.AwSeedProtectMs);
+  const bool seedProtect =
+      awSeedProtectStartNs_ >= 0 && (in.now - awSeedProtectStartNs_) < fromMs(p.AwSeedProtectMs);
 
   // cv_I_aw_cap: bleeds during fast-OV, recovers slowly afterward (both scaled
   // by MaxTableValue so the aggression is the same for any alternator size).

@@ -9,14 +9,14 @@ namespace xr {
 
 struct CvLoopInputs {
   TimeNs now = 0;
-  double dtSec = 0.0;                 // this control tick
+  double dtSec = 0.0;  // this control tick
   bool voltageControlActive = false;
   double ChargingVoltageTarget = 0.0;
-  double IBV = 0.0;                   // INA228 bus voltage
-  double filtV = 0.0;                 // getFiltV() = IBV_filtered (slope bleed only)
-  double g_pidI_filtered = 0.0;       // inner-loop feedback (bumpless seed / tracker)
-  double uTargetAmps = 0.0;           // ceiling after fastOvCurrentCap
-  double uTargetRaw = 0.0;            // ceiling before fastOvCurrentCap (uTargetRaw_cached)
+  double IBV = 0.0;              // INA228 bus voltage
+  double filtV = 0.0;            // getFiltV() = IBV_filtered (slope bleed only)
+  double g_pidI_filtered = 0.0;  // inner-loop feedback (bumpless seed / tracker)
+  double uTargetAmps = 0.0;      // ceiling after fastOvCurrentCap
+  double uTargetRaw = 0.0;       // ceiling before fastOvCurrentCap (uTargetRaw_cached)
   bool fastOvClampActive = false;
 };
 

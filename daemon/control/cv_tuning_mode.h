@@ -21,8 +21,8 @@ struct CvTuningRecord {
   TimeNs t = 0;
   double VoltageKp = 0.0, VoltageKi = 0.0;
   double cvWaveAmplitudeV = 0.0, cvWavePeriod = 0.0;
-  double score = 0.0;          // weighted ISE / T, V^2
-  double settleSec = -1.0;     // mean settle time of the phases that settled (-1: none)
+  double score = 0.0;       // weighted ISE / T, V^2
+  double settleSec = -1.0;  // mean settle time of the phases that settled (-1: none)
 };
 
 class CvTuningModeRunner {
@@ -39,7 +39,8 @@ class CvTuningModeRunner {
   double lastSettleSec() const { return lastSettleSec_; }
   int logCount() const { return logCount_; }
   const CvTuningRecord& record(int i) const {  // 0 = oldest
-    return cvTuningLog_[static_cast<std::size_t>((logHead_ - logCount_ + i + 2 * k::TUNING_LOG_SIZE) % k::TUNING_LOG_SIZE)];
+    return cvTuningLog_[static_cast<std::size_t>((logHead_ - logCount_ + i + 2 * k::TUNING_LOG_SIZE) %
+                                                 k::TUNING_LOG_SIZE)];
   }
 
  private:

@@ -41,14 +41,17 @@ class MovingAverage {
   // Window n is clamped to [1, Capacity]; changing it restarts the average.
   double update(double x, int n) {
     if (!std::isfinite(x)) return value();
-    std::size_t w = n < 1 ? 1 : (static_cast<std::size_t>(n) > Capacity ? Capacity : static_cast<std::size_t>(n));
+    std::size_t w =
+        n < 1 ? 1 : (static_cast<std::size_t>(n) > Capacity ? Capacity : static_cast<std::size_t>(n));
     if (w != window_) {
       window_ = w;
       count_ = head_ = 0;
       sum_ = 0.0;
     }
-    if (count_ == window_) sum_ -= buf_[(head_ + Capacity - window_) % Capacity];
-    else ++count_;
+    if (count_ == window_)
+      sum_ -= buf_[(head_ + Capacity - window_) % Capacity];
+    else
+      ++count_;
     buf_[head_] = x;
     head_ = (head_ + 1) % Capacity;
     sum_ += x;

@@ -23,8 +23,8 @@ double governor_apply(double lastApplied, double request, GovMode govMode, doubl
     default:
       // Bounds are enforced on the result too: coming up from 0 after field
       // turn-on the duty starts at the floor, never below it.
-      return std::clamp(slew_limit_f(last, requestClamped, lim.DutyRampRate, lim.DutyRampRate, dtSec), finalMin,
-                        hardMax);
+      return std::clamp(slew_limit_f(last, requestClamped, lim.DutyRampRate, lim.DutyRampRate, dtSec),
+                        finalMin, hardMax);
   }
 }
 

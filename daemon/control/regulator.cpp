@@ -93,21 +93,43 @@ bool Regulator::command(const Command& cmd) {
         s.opOff = false;
       }
       break;
-    case CommandType::Off: s.opOff = true; break;
-    case CommandType::LimpHome: s.limpHome = true; break;
-    case CommandType::LimpHomeOff: s.limpHome = false; break;
-    case CommandType::ReenableField: s.prot.reenableField(); break;
-    case CommandType::ResetAlarmLatch: s.prot.resetAlarmLatch(); break;
-    case CommandType::ResetSocGain: s.bat.resetSocGain(); break;
-    case CommandType::ResetAltZero: s.bat.resetAltZero(); break;
-    case CommandType::SetSoc: ok = s.bat.setSoc(cmd.value); break;
+    case CommandType::Off:
+      s.opOff = true;
+      break;
+    case CommandType::LimpHome:
+      s.limpHome = true;
+      break;
+    case CommandType::LimpHomeOff:
+      s.limpHome = false;
+      break;
+    case CommandType::ReenableField:
+      s.prot.reenableField();
+      break;
+    case CommandType::ResetAlarmLatch:
+      s.prot.resetAlarmLatch();
+      break;
+    case CommandType::ResetSocGain:
+      s.bat.resetSocGain();
+      break;
+    case CommandType::ResetAltZero:
+      s.bat.resetAltZero();
+      break;
+    case CommandType::SetSoc:
+      ok = s.bat.setSoc(cmd.value);
+      break;
     case CommandType::SystemIdStart:
       ok = !s.firstTick && s.lastMode == FieldControlMode::MODE_NORMAL_AUTO_PID && s.lastField &&
            s.law.startSystemId(s.now, true);
       break;
-    case CommandType::TuningCommit: ok = s.p.TuningMode && s.law.commitTuning(s.now, s.p); break;
-    case CommandType::CvTuningCommit: ok = s.p.CVTuningMode && s.law.commitCvTuning(s.now, s.p); break;
-    case CommandType::WeatherMode: s.currentWeatherMode = cmd.flag; break;
+    case CommandType::TuningCommit:
+      ok = s.p.TuningMode && s.law.commitTuning(s.now, s.p);
+      break;
+    case CommandType::CvTuningCommit:
+      ok = s.p.CVTuningMode && s.law.commitCvTuning(s.now, s.p);
+      break;
+    case CommandType::WeatherMode:
+      s.currentWeatherMode = cmd.flag;
+      break;
   }
   Event e;
   e.t = s.now;
@@ -183,9 +205,15 @@ const Outputs& Regulator::step(const Inputs& in) {
         if (!s.firstTick && isRampMode(s.lastMode)) s.law.onProtectionCleared(in.now);
         break;
       case FieldControlMode::MODE_NORMAL_MANUAL:
-      case FieldControlMode::MODE_LIMP_HOME: s.law.enter_sys_manual(); break;
-      case FieldControlMode::MODE_DISABLED_RAMP: s.law.enter_sys_off(); break;
-      default: s.law.enter_sys_fault(); break;
+      case FieldControlMode::MODE_LIMP_HOME:
+        s.law.enter_sys_manual();
+        break;
+      case FieldControlMode::MODE_DISABLED_RAMP:
+        s.law.enter_sys_off();
+        break;
+      default:
+        s.law.enter_sys_fault();
+        break;
     }
     Event e;
     e.t = in.now;

@@ -31,7 +31,8 @@ double ThermalDerate::update(const ThermalInputs& in, const Params& p) {
   if (holding_) return thermalPenaltyAmps_;
 
   if (in.tempFresh || !primed_) {
-    tempFiltered_ = primed_ ? tempFiltered_ + p.TempPIDFilterAlpha * (in.TempToUse - tempFiltered_) : in.TempToUse;
+    tempFiltered_ =
+        primed_ ? tempFiltered_ + p.TempPIDFilterAlpha * (in.TempToUse - tempFiltered_) : in.TempToUse;
     primed_ = true;
   }
 
@@ -47,7 +48,8 @@ double ThermalDerate::update(const ThermalInputs& in, const Params& p) {
       const int newest = (slopeHead_ + k::THERMAL_SLOPE_BUF - 1) % k::THERMAL_SLOPE_BUF;
       const int oldest = (slopeHead_ + k::THERMAL_SLOPE_BUF - slopeCount_) % k::THERMAL_SLOPE_BUF;
       const double span = toSec(slopeStamps_[newest] - slopeStamps_[oldest]);
-      thermalSlopeFPerSec_ = span > 0 ? (thermalSlopeBuffer_[newest] - thermalSlopeBuffer_[oldest]) / span : 0.0;
+      thermalSlopeFPerSec_ =
+          span > 0 ? (thermalSlopeBuffer_[newest] - thermalSlopeBuffer_[oldest]) / span : 0.0;
     }
     projectedTempF_ = tempFiltered_ + thermalSlopeFPerSec_ * p.ThermalLookaheadSec;
     tempPID_.input = projectedTempF_;

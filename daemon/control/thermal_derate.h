@@ -14,9 +14,9 @@ namespace xr {
 struct ThermalInputs {
   TimeNs now = 0;
   double dtSec = 0.0;
-  double TempToUse = 0.0;   // degF from TempSource
-  bool tempFresh = false;   // a new sample this tick
-  bool tempValid = false;   // not stale, finite, within [-50, 400] degF
+  double TempToUse = 0.0;  // degF from TempSource
+  bool tempFresh = false;  // a new sample this tick
+  bool tempValid = false;  // not stale, finite, within [-50, 400] degF
   // Implied-penalty anti-windup: what the non-thermal constraints already take
   // off I_cap (I_cap - the lowest non-thermal ceiling), amps.
   double impliedPenalty = 0.0;

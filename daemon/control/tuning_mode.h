@@ -17,8 +17,8 @@ struct TuningRecord {
   TimeNs t = 0;
   double PidKp = 0.0, PidKi = 0.0, PidKd = 0.0;
   double waveAmplitude = 0.0, wavePeriod = 0.0;
-  double score = 0.0;         // ISE / T, A^2
-  double scoredSec = 0.0;     // time inside the scoring window
+  double score = 0.0;      // ISE / T, A^2
+  double scoredSec = 0.0;  // time inside the scoring window
 };
 
 class TuningModeRunner {
@@ -37,7 +37,8 @@ class TuningModeRunner {
   double scoredSec() const { return scoredSec_; }
   int logCount() const { return logCount_; }
   const TuningRecord& record(int i) const {  // 0 = oldest
-    return tuningLog_[static_cast<std::size_t>((logHead_ - logCount_ + i + 2 * k::TUNING_LOG_SIZE) % k::TUNING_LOG_SIZE)];
+    return tuningLog_[static_cast<std::size_t>((logHead_ - logCount_ + i + 2 * k::TUNING_LOG_SIZE) %
+                                               k::TUNING_LOG_SIZE)];
   }
 
  private:

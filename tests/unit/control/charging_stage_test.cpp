@@ -1,6 +1,7 @@
+#include "control/charging_stage.h"
+
 #include <gtest/gtest.h>
 
-#include "control/charging_stage.h"
 #include "law_rig.h"
 
 namespace xr {

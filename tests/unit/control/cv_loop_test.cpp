@@ -1,8 +1,9 @@
+#include "control/cv_loop.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "control/cv_loop.h"
 #include "law_rig.h"
 
 namespace xr {
@@ -177,6 +178,19 @@ TEST(CvLoop, SeedProtectBlocksPerTickBleedRightAfterEntry) {
   const double seeded = r.cv.cv_I();
   r.run(0.05);  // 50 ms < AwSeedProtectMs
   EXPECT_GE(r.cv.cv_I(), seeded);
+}
+
+TEST(CvLoop, FiresEveryVoltageLoopIntervalAndReportsTheActualInterval) {
+  CvRig r;
+  r.p.VoltageLoopInterval = 100;
+  r.cv.update(r.in, r.p);
+  r.in.dtSec = 0.003;  // 3 ms ticks: fires at the first tick >= 100 ms
+  const double before = r.cv.cv_I();
+  r.run(0.099);
+  EXPECT_DOUBLE_EQ(r.cv.cv_I(), before);  // no integration between fires
+  r.run(0.003);
+  EXPECT_GT(r.cv.cv_I(), before);
+  EXPECT_NEAR(r.cv.g_voltLoopActualIntervalMs(), 102.0, 1e-6);
 }
 
 TEST(CvLoop, NoStepInSetpointCommandOnCvEntryInClosedLoop) {

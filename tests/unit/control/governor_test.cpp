@@ -1,8 +1,8 @@
+#include "control/governor.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
-
-#include "control/governor.h"
 
 namespace xr {
 namespace {
@@ -42,7 +42,8 @@ TEST(Governor, NanRequestGivesTheFloorNotGarbage) {
 
 TEST(Governor, ShutdownSpecialCaseGoesBelowMinDutyToZero) {
   double d = 4.0;
-  for (int i = 0; i < 500; ++i) d = governor_apply_shutdown(d, 0.0, GovMode::GOV_NORMAL_SLEW, 1.0, 0.01, 90.0);
+  for (int i = 0; i < 500; ++i)
+    d = governor_apply_shutdown(d, 0.0, GovMode::GOV_NORMAL_SLEW, 1.0, 0.01, 90.0);
   EXPECT_DOUBLE_EQ(d, 0.0);
   EXPECT_NEAR(governor_apply_shutdown(4.0, 0.0, GovMode::GOV_NORMAL_SLEW, 1.0, 1.0, 90.0), 3.0, 1e-12);
   EXPECT_DOUBLE_EQ(governor_apply_shutdown(40.0, 0.0, GovMode::GOV_BYPASS_SLEW, 1.0, 0.01, 90.0), 0.0);

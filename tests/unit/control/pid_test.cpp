@@ -1,9 +1,10 @@
+#include "control/pid.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
 
-#include "control/pid.h"
 #include "law_rig.h"
 #include "plant.h"
 

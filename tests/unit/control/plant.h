@@ -9,15 +9,15 @@
 namespace xr::test {
 
 struct Plant {
-  double tau = 0.15;          // s, field time constant
-  double ampsPerPct = 1.0;    // A per % duty at this RPM
-  double deadTime = 0.0;      // s, transport delay of the duty (SystemID tests)
-  double Ialt = 0.0;          // A
-  double house = 5.0;         // A drawn by the house
-  double Vocv = 13.0;         // V
-  double R = 0.01;            // ohm
+  double tau = 0.15;               // s, field time constant
+  double ampsPerPct = 1.0;         // A per % duty at this RPM
+  double deadTime = 0.0;           // s, transport delay of the duty (SystemID tests)
+  double Ialt = 0.0;               // A
+  double house = 5.0;              // A drawn by the house
+  double Vocv = 13.0;              // V
+  double R = 0.01;                 // ohm
   double voltsPerAmpSec = 0.0005;  // dVocv/dt per net amp (a small bank so CV tests run in seconds)
-  double VocvMax = 14.8;      // the bank saturates here
+  double VocvMax = 14.8;           // the bank saturates here
   // Delay line for deadTime (fixed size, no allocation).
   double delayed[4096] = {};
   int head = 0, len = 0;

@@ -144,6 +144,22 @@ TEST(Regulator, BulkAbsorptionFloatThroughTheWholeRegulator) {
   EXPECT_LT(r.out->telemetry.setpoint_a, 1.0);
 }
 
+TEST(Regulator, UseFloatZeroEndsInIdleWithTheFieldOff) {
+  Params p;
+  p.bulkVoltageHoldMs = 5000;
+  p.absorptionCompleteTime = 5000;
+  p.UseFloat = 0;
+  test::RegRig r(p);
+  r.plant.Vocv = 14.2;
+  r.plant.VocvMax = 14.38;
+  r.run(400.0);
+  EXPECT_EQ(r.out->telemetry.stage, ChargeStage::IDLE);
+  EXPECT_EQ(r.out->telemetry.mode, FieldControlMode::MODE_DISABLED_RAMP);
+  EXPECT_EQ(r.out->telemetry.reason, Reason::REASON_IDLE_STAGE);
+  EXPECT_FALSE(r.out->fieldEnable);
+  EXPECT_FALSE(r.out->telemetry.alarm);  // disabled, not a fault
+}
+
 TEST(Regulator, CommandsForwardToBatteryAndCheckLegality) {
   test::RegRig r;
   r.run(0.5);
@@ -179,10 +195,29 @@ TEST(Regulator, TelemetryHasEveryDesignColumn) {
   test::RegRig r;
   r.run(0.1);
   std::set<std::string> names;
-  visitTelemetryColumns(r.out->telemetry, 0, [&](std::string_view n, const ColumnValue&) { names.emplace(n); });
-  for (const char* c : {"t_s", "mode", "stage", "reason", "ibv_v", "battery_v", "bcur_a", "alt_a", "rpm", "temp_f",
-                        "duty_pct", "field_enable", "setpoint_a", "target_a", "target_v", "thermal_penalty_a",
-                        "fast_ov_active", "soc_pct", "alarm", "charged_wh_lifetime", "alt_charged_wh_lifetime"})
+  visitTelemetryColumns(r.out->telemetry, 0,
+                        [&](std::string_view n, const ColumnValue&) { names.emplace(n); });
+  for (const char* c : {"t_s",
+                        "mode",
+                        "stage",
+                        "reason",
+                        "ibv_v",
+                        "battery_v",
+                        "bcur_a",
+                        "alt_a",
+                        "rpm",
+                        "temp_f",
+                        "duty_pct",
+                        "field_enable",
+                        "setpoint_a",
+                        "target_a",
+                        "target_v",
+                        "thermal_penalty_a",
+                        "fast_ov_active",
+                        "soc_pct",
+                        "alarm",
+                        "charged_wh_lifetime",
+                        "alt_charged_wh_lifetime"})
     EXPECT_TRUE(names.count(c)) << c;
   EXPECT_NEAR(r.out->telemetry.ibv_v, r.plant.V(), 0.05);
   EXPECT_DOUBLE_EQ(r.out->telemetry.rpm, 2000.0);

@@ -1,8 +1,8 @@
+#include "control/rpm_tables.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
-
-#include "control/rpm_tables.h"
 
 namespace xr {
 namespace {
@@ -49,7 +49,7 @@ TEST(RpmTables, CapInKwModeConvertsThroughLiveIBV) {
   Params p;
   p.capLimitMode = 1;
   p.rpmCapPowerTable = {0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0};
-  EXPECT_NEAR(getCapCurrentForRPM(p, 2000.0, 12.5), 80.0, 1e-9);   // 1 kW / 12.5 V
+  EXPECT_NEAR(getCapCurrentForRPM(p, 2000.0, 12.5), 80.0, 1e-9);  // 1 kW / 12.5 V
   EXPECT_NEAR(getCapCurrentForRPM(p, 2000.0, 14.0), 1000.0 / 14.0, 1e-9);
   // Amps table ignored in kW mode.
   p.rpmCapCurrentTable = {0, 5, 5, 5, 5, 5, 5, 5, 5, 5};

@@ -47,7 +47,7 @@ TEST(Thermal, PenaltyIsSlewLimitedAsymmetrically) {
   ThermalRig r;
   r.p.TempPIDFilterAlpha = 1.0;
   r.p.TempPIDIntervalMs = 100;
-  r.run(0.5, [](double) { return 200.0; });  // target jumps to MaxTableValue (60 A)
+  r.run(0.5, [](double) { return 200.0; });                // target jumps to MaxTableValue (60 A)
   EXPECT_NEAR(r.t.thermalPenaltyAmps(), 60.0 * 0.5, 0.7);  // ThermalPenaltyRiseRate 60 A/s
   r.run(2.0, [](double) { return 200.0; });
   ASSERT_NEAR(r.t.thermalPenaltyAmps(), 60.0, 1e-9);
