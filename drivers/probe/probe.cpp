@@ -118,7 +118,7 @@ void probeGpio(const HardwareSettings& hw, Report& r) {
     r.fail("GPIO chip " + hw.gpio_chip + ": " + err(e),
            e == EACCES ? "add the service user to the 'gpio' group"
                        : "check [hardware] gpio_chip ('gpiodetect' lists the chips; the 40-pin header is "
-                         "gpiochip0, or gpiochip4 on a Raspberry Pi 5 with kernels before 6.6.45)");
+                         "gpiochip0, or gpiochip4 on a Raspberry Pi 5 with older kernels)");
     return;
   }
   auto line = [&](int offset, const char* what, bool required) {
