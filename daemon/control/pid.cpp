@@ -48,12 +48,19 @@ bool Pid::Compute(double dtSec) {
 
 void Pid::TrackAppliedOutput(double applied, double dtSec) {
   if (!(dtSec > 0.0) || !std::isfinite(applied)) return;
-  // Pulls outputSum itself toward the applied value (field-control.md: "pulls
-  // outputSum toward what the actuator actually applied"). Independent of the
-  // last output, so it converges even when Compute() runs far less often than
-  // this (tempPID parks its integrator at the implied penalty).
+  // Back-calculation: pulls outputSum toward the value that, with the present
+  // P and D terms, reproduces what the actuator actually applied. Zero effect
+  // while the output is not clamped downstream (applied == output), so the
+  // linear loop keeps exactly its Kp/Ki/Kd.
   const double a = std::min(1.0, trackingGain_ * dtSec);
-  outputSum_ = clampOut(outputSum_ + a * (applied - outputSum_));
+  const double wanted = applied - pTerm_ - dTerm_;
+  outputSum_ = clampOut(outputSum_ + a * (wanted - outputSum_));
+}
+
+void Pid::TrackIntegratorTo(double target, double dtSec) {
+  if (!(dtSec > 0.0) || !std::isfinite(target)) return;
+  const double a = std::min(1.0, trackingGain_ * dtSec);
+  outputSum_ = clampOut(outputSum_ + a * (target - outputSum_));
 }
 
 void Pid::ResetIntegratorTo(double v) {

@@ -32,8 +32,13 @@ class Pid {
   // nothing) in MANUAL or when dtSec <= 0 or the input is not finite.
   bool Compute(double dtSec);
 
-  // Anti-windup: outputSum += min(1, Kt*dt) * (applied - outputSum).
+  // Anti-windup (back-calculation): outputSum += min(1, Kt*dt) *
+  // ((applied - P - D) - outputSum). Neutral while the output is not clamped.
   void TrackAppliedOutput(double applied, double dtSec);
+  // Parks the integrator itself toward `target` at Kt per second (T0's
+  // implied-penalty anti-windup: "parks it near where the constraints already
+  // imply", without making the penalty act while the temperature is low).
+  void TrackIntegratorTo(double target, double dtSec);
   // Pins the integrator (and the output) to v, e.g. every MANUAL tick.
   void ResetIntegratorTo(double v);
 

@@ -48,6 +48,20 @@ TEST(Pid, DtCorrectness_SameResponseAt200HzAnd400Hz) {
   for (std::size_t i = 0; i < a.size(); ++i) EXPECT_NEAR(a[i], b[i], 0.6) << "at " << (i + 1) * 50 << " ms";
 }
 
+TEST(Pid, DtCorrectness_WholeControlLawSameAt200HzAnd400Hz) {
+  // Filters, setpoint slew, PID, governor and tracking all use the real dt.
+  test::LawRig a, b;
+  a.start();
+  b.start();
+  for (int k = 1; k <= 20; ++k) {  // compare every 0.5 s over 10 s
+    a.run(0.5, 1.0 / 200.0);
+    b.run(0.5, 1.0 / 400.0);
+    EXPECT_NEAR(a.plant.Ialt, b.plant.Ialt, 0.5) << "at " << k * 0.5 << " s";
+    EXPECT_NEAR(a.law.setpointLimited(), b.law.setpointLimited(), 0.05);
+  }
+  EXPECT_GT(a.plant.Ialt, 20.0);
+}
+
 TEST(Pid, TrackingAntiWindupUnwindsAtTheSetGain) {
   for (double Kt : {4.0, 8.0}) {
     Pid pid(0.0, 0.0, 0.0, Pid::DIRECT);
@@ -86,9 +100,9 @@ TEST(Pid, TrackingAntiWindupKeepsIntegratorNearClampedDuty) {
     plant.advance(applied, true, dt);
   }
   // Without tracking the integrator would be pinned at 100 %. With it, it sits
-  // where tracking (Kt x (I - 30)) balances the integral action (Ki x 50 A):
-  // I = 30 + 2 x 50 / 4 = 55 %.
-  EXPECT_NEAR(pid.GetIterm(), 55.0, 1.0);
+  // where back-calculation (Kt x (30 - P - I)) balances the integral action
+  // (Ki x 50 A) with P = 0.3 x 50 = 15: I = 30 - 15 + 2 x 50 / 4 = 40 %.
+  EXPECT_NEAR(pid.GetIterm(), 40.0, 1.0);
 }
 
 TEST(Pid, ManualToAutomaticIsBumpless) {
