@@ -23,8 +23,7 @@ double clampFinite(double v, double lo, double hi, double fallback) {
   return std::clamp(v, lo, hi);
 }
 
-Event makeEvent(TimeNs t, EventLevel level, EventCode code, double a = 0.0, double b = 0.0,
-                int detail = 0) {
+Event makeEvent(TimeNs t, EventLevel level, EventCode code, double a = 0.0, double b = 0.0, int detail = 0) {
   Event e;
   e.t = t;
   e.level = level;
@@ -92,8 +91,8 @@ void BatteryMonitor::checkAutoZeroTriggers(const Inputs& in, EventBatch& ev) {
   autoZeroStartTime_ = in.now;
   autoZeroAccumulator_ = 0.0;
   autoZeroSampleCount_ = 0;
-  ev.push(makeEvent(in.now, EventLevel::Info, EventCode::AutoZeroStarted, ledger_.DynamicAltCurrentZero,
-                    0.0, tempShift ? 1 : 0));
+  ev.push(makeEvent(in.now, EventLevel::Info, EventCode::AutoZeroStarted, ledger_.DynamicAltCurrentZero, 0.0,
+                    tempShift ? 1 : 0));
 }
 
 bool BatteryMonitor::processAutoZero(const Inputs& in, EventBatch& ev) {
@@ -102,7 +101,8 @@ bool BatteryMonitor::processAutoZero(const Inputs& in, EventBatch& ev) {
   if (elapsed < fromMs(battery_k::AUTO_ZERO_DURATION_MS)) {
     // Field is held off by the caller; sample only after the 2 s settle and
     // only new CH1 conversions (the same sample must not count twice).
-    if (elapsed > fromMs(k::AUTO_ZERO_SETTLE_MS) && in.altCurrentRaw.fresh && finite(in.altCurrentRaw.value)) {
+    if (elapsed > fromMs(k::AUTO_ZERO_SETTLE_MS) && in.altCurrentRaw.fresh &&
+        finite(in.altCurrentRaw.value)) {
       autoZeroAccumulator_ += in.altCurrentRaw.value;
       ++autoZeroSampleCount_;
     }
@@ -114,8 +114,10 @@ bool BatteryMonitor::processAutoZero(const Inputs& in, EventBatch& ev) {
     detail = 1;  // no samples: keep the old zero
   } else {
     const double mean = autoZeroAccumulator_ / static_cast<double>(autoZeroSampleCount_);
-    if (std::fabs(mean) > battery_k::AUTO_ZERO_MAX_OFFSET_A) detail = 2;
-    else zero = mean;
+    if (std::fabs(mean) > battery_k::AUTO_ZERO_MAX_OFFSET_A)
+      detail = 2;
+    else
+      zero = mean;
   }
   ledger_.DynamicAltCurrentZero = zero;
   lastAutoZeroTime_ = in.now;
@@ -170,14 +172,17 @@ void BatteryMonitor::UpdateBatterySOC(const Inputs& in, double measuredAltAmps, 
     lastValidVoltage_ = V;
   }
   batteryCurrentForSoC_ = iOk ? I : 0.0;
+  socInputsValid_ = iOk && vOk;
   usingVictron_ = usingVictronCurrent(in);
 
   if (dt > 0.0) {
     if (iOk) intAh_ += I * dt / 3600.0;
     if (iOk && vOk) {
       const double wh = V * I * dt / 3600.0;
-      if (wh > 0.0) intChargeWh_ += wh;
-      else intDischargeWh_ -= wh;
+      if (wh > 0.0)
+        intChargeWh_ += wh;
+      else
+        intDischargeWh_ -= wh;
     }
     const bool alternatorIsOn = finite(measuredAltAmps) && measuredAltAmps > p_.CurrentThreshold;
     if (alternatorIsOn) {
@@ -231,8 +236,8 @@ void BatteryMonitor::runSocBody(TimeNs now, double elapsed_s, EventBatch& ev) {
     // Cp = C20 (I20/I)^(n-1) is the effective capacity at I; removing
     // deltaAh / (Cp/C20) Ah depletes a bank faster at high currents, as
     // the seed says ("Peukert reduces effective capacity").
-    batteryDeltaAh = deltaAh / peukertFactor(dischargeCurrent_A, cap, p_.PeukertRatedCurrent_A,
-                                             p_.PeukertExponent);
+    batteryDeltaAh =
+        deltaAh / peukertFactor(dischargeCurrent_A, cap, p_.PeukertRatedCurrent_A, p_.PeukertExponent);
   }
   ledger_.coulombAccumulator_Ah += batteryDeltaAh;
   if (gainReferenceValid_) unclampedCount_Ah_ += batteryDeltaAh;
@@ -256,7 +261,8 @@ void BatteryMonitor::runSocBody(TimeNs now, double elapsed_s, EventBatch& ev) {
   // ---- fuel (alternator only; the seed's 30 % x 50 % chain)
   if (intAltWh_ > 0.0) {
     const double energyJoules = intAltWh_ * 3600.0;
-    const double fuelEnergyUsed_J = energyJoules / (k::FUEL_ENGINE_EFFICIENCY * k::FUEL_ALTERNATOR_EFFICIENCY);
+    const double fuelEnergyUsed_J =
+        energyJoules / (k::FUEL_ENGINE_EFFICIENCY * k::FUEL_ALTERNATOR_EFFICIENCY);
     const double fuelUsed_L = fuelEnergyUsed_J / k::DIESEL_J_PER_ML / 1000.0;
     fuelFraction_L_ += fuelUsed_L;
     // Roll whole hundredths of a litre, keep the rest (seed).
@@ -283,14 +289,20 @@ void BatteryMonitor::runSocBody(TimeNs now, double elapsed_s, EventBatch& ev) {
 
   // ---- full-charge detection (independent of the charging stage)
   const double tail_A = p_.TailCurrent * cap / 100.0;
-  if (std::fabs(batteryCurrentForSoC_) <= tail_A && currentBatteryVoltage_ >= p_.ChargedVoltage) {
+  // Only on live samples: a dead INA228 reads "0 A" and must not declare the
+  // bank full at the last voltage it saw.
+  if (socInputsValid_ && std::fabs(batteryCurrentForSoC_) <= tail_A &&
+      currentBatteryVoltage_ >= p_.ChargedVoltage) {
     FullChargeTimer_s_ += elapsed_s;
     if (FullChargeTimer_s_ >= p_.ChargedDetectionTime) {
       if (!FullChargeDetected_)
-        ev.push(makeEvent(now, EventLevel::Info, EventCode::FullChargeDetected, ledger_.CoulombCount_Ah, cap));
+        ev.push(
+            makeEvent(now, EventLevel::Info, EventCode::FullChargeDetected, ledger_.CoulombCount_Ah, cap));
       // Gain correction compares the count at "full" before it is reset.
-      if (p_.AutoShuntGainCorrection) applySocGainCorrection(now, ev);
-      else lastGainGuard_ = GainGuard::FeatureOff;
+      if (p_.AutoShuntGainCorrection)
+        applySocGainCorrection(now, ev);
+      else
+        lastGainGuard_ = GainGuard::FeatureOff;
       ledger_.CoulombCount_Ah = cap;
       ledger_.coulombAccumulator_Ah = 0.0;
       FullChargeDetected_ = true;
@@ -400,7 +412,8 @@ void BatteryMonitor::restoreLedger(const BatteryLedger& in) {
   l.coulombAccumulator_Ah = clampFinite(l.coulombAccumulator_Ah, -COULOMB_COMMIT_AH, COULOMB_COMMIT_AH, 0.0);
   l.DynamicShuntGainFactor =
       clampFinite(l.DynamicShuntGainFactor, MIN_DYNAMIC_GAIN_FACTOR, MAX_DYNAMIC_GAIN_FACTOR, 1.0);
-  l.DynamicAltCurrentZero = clampFinite(l.DynamicAltCurrentZero, -AUTO_ZERO_MAX_OFFSET_A, AUTO_ZERO_MAX_OFFSET_A, 0.0);
+  l.DynamicAltCurrentZero =
+      clampFinite(l.DynamicAltCurrentZero, -AUTO_ZERO_MAX_OFFSET_A, AUTO_ZERO_MAX_OFFSET_A, 0.0);
   const double big = 1e15;
   auto nonNeg = [&](double& v) { v = clampFinite(v, 0.0, big, 0.0); };
   nonNeg(l.ChargedEnergy_AllTime_Wh);

@@ -74,10 +74,10 @@ inline constexpr std::int64_t SOLAR_STALE_MS = 10000;
 enum class GainGuard {
   Applied = 0,
   FeatureOff,
-  TooSoon,            // MIN_GAIN_CORRECTION_INTERVAL
-  NoReference,        // no full charge / setSoc since boot: count is not a measurement
+  TooSoon,      // MIN_GAIN_CORRECTION_INTERVAL
+  NoReference,  // no full charge / setSoc since boot: count is not a measurement
   ImplausibleCapacity,
-  ErrorTooLarge,      // MAX_REASONABLE_ERROR
+  ErrorTooLarge,  // MAX_REASONABLE_ERROR
 };
 
 class BatteryMonitor {
@@ -117,8 +117,8 @@ class BatteryMonitor {
   void UpdateBatterySOC(const Inputs& in, double measuredAltAmps, EventBatch& ev);
 
   // ---- commands (between ticks) --------------------------------------------
-  void resetSocGain();   // handleSocGainReset: DynamicShuntGainFactor = 1.0
-  void resetAltZero();   // handleAltZeroReset: DynamicAltCurrentZero = 0
+  void resetSocGain();      // handleSocGainReset: DynamicShuntGainFactor = 1.0
+  void resetAltZero();      // handleAltZeroReset: DynamicAltCurrentZero = 0
   bool setSoc(double pct);  // false (unchanged) when pct is outside 0..100 or NaN
 
   // ---- persistence ---------------------------------------------------------
@@ -160,20 +160,21 @@ class BatteryMonitor {
   TimeNs lastTick_ = 0;
   TimeNs lastSocUpdate_ = 0;
   TimeNs lastChargeTimes_ = 0;
-  double intAh_ = 0.0;         // signed battery Ah (raw, before efficiency/Peukert)
-  double intChargeWh_ = 0.0;   // V*I > 0
+  double intAh_ = 0.0;           // signed battery Ah (raw, before efficiency/Peukert)
+  double intChargeWh_ = 0.0;     // V*I > 0
   double intDischargeWh_ = 0.0;  // |V*I| for V*I < 0
-  double intAltWh_ = 0.0;      // V * MeasuredAmps while alternatorIsOn
-  double intSolarWh_ = 0.0;    // PPV
+  double intAltWh_ = 0.0;        // V * MeasuredAmps while alternatorIsOn
+  double intSolarWh_ = 0.0;      // PPV
   double intAltOn_s_ = 0.0;
-  double intSoc_s_ = 0.0;      // seconds integrated this interval
-  double intV_s_ = 0.0;        // V*s
-  double intVtime_s_ = 0.0;    // seconds with a valid voltage
+  double intSoc_s_ = 0.0;    // seconds integrated this interval
+  double intV_s_ = 0.0;      // V*s
+  double intVtime_s_ = 0.0;  // seconds with a valid voltage
 
   // Latest samples used by the body.
   double currentBatteryVoltage_ = 0.0;
   double batteryCurrentForSoC_ = 0.0;
   bool usingVictron_ = false;
+  bool socInputsValid_ = false;  // current and voltage samples live at the last tick
   double lastValidVoltage_ = 0.0;
 
   // Session energies and figures.
@@ -187,8 +188,8 @@ class BatteryMonitor {
   // Full charge / gain.
   double FullChargeTimer_s_ = 0.0;
   bool FullChargeDetected_ = false;
-  bool gainReferenceValid_ = false;   // a full charge or setSoc happened this session
-  double unclampedCount_Ah_ = 0.0;    // count since the reference, without the 0..cap clamp
+  bool gainReferenceValid_ = false;  // a full charge or setSoc happened this session
+  double unclampedCount_Ah_ = 0.0;   // count since the reference, without the 0..cap clamp
   bool haveGainCorrection_ = false;
   TimeNs lastGainCorrectionTime_ = 0;
   GainGuard lastGainGuard_ = GainGuard::FeatureOff;

@@ -22,7 +22,7 @@ struct BatteryTelemetry {
          AlternatorChargedEnergy_AllTime_Wh = 0.0, SolarChargedEnergy_AllTime_Wh = 0.0;
   double AlternatorFuelUsed_AllTime_L = 0.0;
   double AlternatorOnTime_AllTime_s = 0.0;
-  int nominalVoltage = 12;  // 12 / 24 / 48 from the battery voltage (cycle counter)
+  int nominalVoltage = 12;           // 12 / 24 / 48 from the battery voltage (cycle counter)
   bool usingVictronCurrent = false;  // BatteryCurrentSource = 3 and VE.Direct fresh
 };
 

@@ -5,7 +5,7 @@
 namespace xr {
 
 struct BatteryLedger {
-  double CoulombCount_Ah = 0.0;  // SoC = CoulombCount_Ah / BatteryCapacity_Ah
+  double CoulombCount_Ah = 0.0;        // SoC = CoulombCount_Ah / BatteryCapacity_Ah
   double coulombAccumulator_Ah = 0.0;  // retained remainder
   double DynamicShuntGainFactor = 1.0;
   double DynamicAltCurrentZero = 0.0;
@@ -13,9 +13,9 @@ struct BatteryLedger {
   double DischargedEnergy_AllTime_Wh = 0.0;
   double AlternatorChargedEnergy_AllTime_Wh = 0.0;
   double SolarChargedEnergy_AllTime_Wh = 0.0;
-  double socAccumulator_AllTime = 0.0;        // %·s
-  double totalSocSampleTime_AllTime = 0.0;    // s
-  double voltageAccumulator_AllTime = 0.0;    // V·s
+  double socAccumulator_AllTime = 0.0;          // %·s
+  double totalSocSampleTime_AllTime = 0.0;      // s
+  double voltageAccumulator_AllTime = 0.0;      // V·s
   double totalVoltageSampleTime_AllTime = 0.0;  // s
   double AlternatorFuelUsed_AllTime_L = 0.0;
   double AlternatorOnTime_AllTime_s = 0.0;

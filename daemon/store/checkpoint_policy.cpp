@@ -6,17 +6,24 @@ namespace xr {
 
 std::string_view toString(CheckpointReason r) {
   switch (r) {
-    case CheckpointReason::None: return "none";
-    case CheckpointReason::Start: return "start";
-    case CheckpointReason::Interval: return "interval";
-    case CheckpointReason::FieldOff: return "field_off";
-    case CheckpointReason::Stage: return "stage";
-    case CheckpointReason::Stop: return "stop";
+    case CheckpointReason::None:
+      return "none";
+    case CheckpointReason::Start:
+      return "start";
+    case CheckpointReason::Interval:
+      return "interval";
+    case CheckpointReason::FieldOff:
+      return "field_off";
+    case CheckpointReason::Stage:
+      return "stage";
+    case CheckpointReason::Stop:
+      return "stop";
   }
   return "none";
 }
 
-CheckpointPolicy::CheckpointPolicy(std::int64_t intervalS) : interval_(fromSec(intervalS > 0 ? intervalS : 300)) {}
+CheckpointPolicy::CheckpointPolicy(std::int64_t intervalS)
+    : interval_(fromSec(intervalS > 0 ? intervalS : 300)) {}
 
 CheckpointReason CheckpointPolicy::poll(TimeNs now, bool fieldEnable, ChargeStage stage, bool stopping) {
   if (stopped_) return CheckpointReason::None;

@@ -62,8 +62,8 @@ bool parseParamValue(const ParamSpec& spec, std::string_view text, Params& p, st
   return true;
 }
 
-StoreStatus saveParamOverride(Store& store, std::string_view name, const Params& fileParams, const Params& current,
-                              std::int64_t nowUnixMs) {
+StoreStatus saveParamOverride(Store& store, std::string_view name, const Params& fileParams,
+                              const Params& current, std::int64_t nowUnixMs) {
   const ParamSpec* spec = findParam(name);
   if (!spec) {
     StoreStatus s;
@@ -71,7 +71,8 @@ StoreStatus saveParamOverride(Store& store, std::string_view name, const Params&
     s.error = "unknown parameter " + std::string(name);
     return s;
   }
-  return store.setOverride(name, formatParamValue(*spec, current), formatParamValue(*spec, fileParams), nowUnixMs);
+  return store.setOverride(name, formatParamValue(*spec, current), formatParamValue(*spec, fileParams),
+                           nowUnixMs);
 }
 
 Params applyStoredOverrides(const Params& fileParams, const std::vector<OverrideRow>& rows,

@@ -17,8 +17,8 @@ std::string formatParamValue(const ParamSpec& spec, const Params& p);
 bool parseParamValue(const ParamSpec& spec, std::string_view text, Params& p, std::string* error);
 
 // Saves `current`'s value of `name` as an override, remembering the file's.
-StoreStatus saveParamOverride(Store& store, std::string_view name, const Params& fileParams, const Params& current,
-                              std::int64_t nowUnixMs);
+StoreStatus saveParamOverride(Store& store, std::string_view name, const Params& fileParams,
+                              const Params& current, std::int64_t nowUnixMs);
 
 // fileParams with every stored override applied. Rows that no longer fit
 // (unknown name, bad value) are skipped and described in `errors`.

@@ -53,7 +53,8 @@ int createV1(sql::Db& db) {
 
 int migrateStep(sql::Db& db, int from) {
   switch (from) {
-    case 0: return createV1(db);
+    case 0:
+      return createV1(db);
     case 1: {
       int rc = db.exec(kV2);
       return rc == SQLITE_OK ? setVersion(db, 2) : rc;
@@ -62,7 +63,8 @@ int migrateStep(sql::Db& db, int from) {
       int rc = db.exec(kV3);
       return rc == SQLITE_OK ? setVersion(db, 3) : rc;
     }
-    default: return db.setError(SQLITE_MISMATCH, "no migration from version " + std::to_string(from));
+    default:
+      return db.setError(SQLITE_MISMATCH, "no migration from version " + std::to_string(from));
   }
 }
 

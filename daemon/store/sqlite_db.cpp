@@ -136,7 +136,8 @@ double Stmt::colDouble(int i) const { return sqlite3_column_double(stmt_, i); }
 std::int64_t Stmt::colInt(int i) const { return sqlite3_column_int64(stmt_, i); }
 std::string Stmt::colText(int i) const {
   const unsigned char* t = sqlite3_column_text(stmt_, i);
-  return t ? std::string(reinterpret_cast<const char*>(t), static_cast<std::size_t>(sqlite3_column_bytes(stmt_, i)))
+  return t ? std::string(reinterpret_cast<const char*>(t),
+                         static_cast<std::size_t>(sqlite3_column_bytes(stmt_, i)))
            : std::string();
 }
 bool Stmt::colIsNull(int i) const { return sqlite3_column_type(stmt_, i) == SQLITE_NULL; }

@@ -168,8 +168,8 @@ OpenResult Store::open(const std::string& path, std::int64_t nowUnixMs) {
   if (rc == SQLITE_OK) {
     r.ok = true;
     if (r.message.empty())
-      r.message = existed ? "database " + path + " opened (schema v" + std::to_string(r.fromVersion) + " -> v" +
-                                std::to_string(store::kSchemaVersion) + ")"
+      r.message = existed ? "database " + path + " opened (schema v" + std::to_string(r.fromVersion) +
+                                " -> v" + std::to_string(store::kSchemaVersion) + ")"
                           : "database " + path + " created";
   } else {
     // Last resort: an in-memory database keeps the API working (overrides,
@@ -182,8 +182,26 @@ OpenResult Store::open(const std::string& path, std::int64_t nowUnixMs) {
     r.message += (r.message.empty() ? "" : "; ") + std::string("cannot use database ") + path + " (" + why +
                  "): running without persistence";
     rc = db_.open(":memory:");
+    // A read-only state directory (read-only root file systems exist) still
+    // lets us read the last checkpoint: copy the file into memory.
+    if (rc == SQLITE_OK && existed && !r.recovered && path.find_first_of("?#%") == std::string::npos) {
+      sql::Db ro;
+      if (ro.open("file:" + path + "?immutable=1", SQLITE_OPEN_READONLY | SQLITE_OPEN_URI) == SQLITE_OK) {
+        if (sqlite3_backup* b = sqlite3_backup_init(db_.handle(), "main", ro.handle(), "main")) {
+          const int brc = sqlite3_backup_step(b, -1);
+          sqlite3_backup_finish(b);
+          if (brc == SQLITE_DONE) r.message += "; last saved state loaded read-only";
+        }
+      }
+    }
     if (rc == SQLITE_OK) rc = configure();
-    if (rc != SQLITE_OK) db_.close();
+    if (rc != SQLITE_OK) {
+      // The copy was unusable: an empty in-memory database then.
+      db_.close();
+      rc = db_.open(":memory:");
+      if (rc == SQLITE_OK) rc = configure();
+      if (rc != SQLITE_OK) db_.close();
+    }
   }
   seriesIds_.clear();
   if (db_.isOpen())
@@ -201,8 +219,9 @@ StoreStatus Store::checkpoint(const BatteryLedger& ledger, std::string_view reas
     sql::Transaction tx(db_);
     rc = tx.beginRc();
     if (rc == SQLITE_OK) {
-      sql::Stmt st(db_, "INSERT INTO ledger(name, value) VALUES(?1, ?2) "
-                        "ON CONFLICT(name) DO UPDATE SET value = excluded.value");
+      sql::Stmt st(db_,
+                   "INSERT INTO ledger(name, value) VALUES(?1, ?2) "
+                   "ON CONFLICT(name) DO UPDATE SET value = excluded.value");
       BatteryLedger copy = ledger;
       visitLedgerFields(copy, [&](const char* name, double& v) {
         if (rc != SQLITE_OK) return;
@@ -212,8 +231,10 @@ StoreStatus Store::checkpoint(const BatteryLedger& ledger, std::string_view reas
       });
     }
     if (rc == SQLITE_OK) {
-      sql::Stmt meta(db_, "INSERT INTO ledger_meta(id, saved_at_ms, reason) VALUES(1, ?1, ?2) "
-                          "ON CONFLICT(id) DO UPDATE SET saved_at_ms = excluded.saved_at_ms, reason = excluded.reason");
+      sql::Stmt meta(
+          db_,
+          "INSERT INTO ledger_meta(id, saved_at_ms, reason) VALUES(1, ?1, ?2) "
+          "ON CONFLICT(id) DO UPDATE SET saved_at_ms = excluded.saved_at_ms, reason = excluded.reason");
       const int s = meta.bind(1, nowUnixMs).bind(2, reason).step();
       if (s != SQLITE_DONE) rc = s;
     }
@@ -247,7 +268,8 @@ std::optional<SavedLedger> Store::loadLedger() {
 }
 
 StoreStatus Store::putBlob(std::string_view key, std::string_view value) {
-  sql::Stmt st(db_, "INSERT INTO kv(key, value) VALUES(?1, ?2) ON CONFLICT(key) DO UPDATE SET value = excluded.value");
+  sql::Stmt st(
+      db_, "INSERT INTO kv(key, value) VALUES(?1, ?2) ON CONFLICT(key) DO UPDATE SET value = excluded.value");
   return status(st.bind(1, key).bind(2, value).step(), "putBlob");
 }
 
@@ -296,11 +318,18 @@ StoreStatus Store::appendEvents(std::span<const EventRecord> events) {
   sql::Transaction tx(db_);
   int rc = tx.beginRc();
   if (rc == SQLITE_OK) {
-    sql::Stmt st(db_, "INSERT INTO events(t_ms, level, code, reason, message, a, b) VALUES(?1,?2,?3,?4,?5,?6,?7)");
+    sql::Stmt st(db_,
+                 "INSERT INTO events(t_ms, level, code, reason, message, a, b) VALUES(?1,?2,?3,?4,?5,?6,?7)");
     for (const auto& e : events) {
       st.reset();
-      const int s = st.bind(1, e.tMs).bind(2, e.level).bind(3, e.code).bind(4, e.reason).bind(5, e.message)
-                        .bind(6, e.a).bind(7, e.b).step();
+      const int s = st.bind(1, e.tMs)
+                        .bind(2, e.level)
+                        .bind(3, e.code)
+                        .bind(4, e.reason)
+                        .bind(5, e.message)
+                        .bind(6, e.a)
+                        .bind(7, e.b)
+                        .step();
       if (s != SQLITE_DONE) {
         rc = s;
         break;
@@ -313,8 +342,9 @@ StoreStatus Store::appendEvents(std::span<const EventRecord> events) {
 
 std::vector<EventRecord> Store::queryEvents(std::size_t limit, std::optional<std::int64_t> beforeMs) {
   std::vector<EventRecord> out;
-  sql::Stmt st(db_, "SELECT id, t_ms, level, code, reason, message, a, b FROM events WHERE t_ms < ?1 "
-                    "ORDER BY t_ms DESC, id DESC LIMIT ?2");
+  sql::Stmt st(db_,
+               "SELECT id, t_ms, level, code, reason, message, a, b FROM events WHERE t_ms < ?1 "
+               "ORDER BY t_ms DESC, id DESC LIMIT ?2");
   st.bind(1, beforeMs.value_or(INT64_MAX)).bind(2, static_cast<std::int64_t>(limit));
   while (st.ok() && st.step() == SQLITE_ROW) {
     EventRecord e;
@@ -484,7 +514,8 @@ std::vector<HistoryPoint> Store::queryHistory(std::string_view series, std::int6
   if (it == opt_.historySeries.end() || toMs < fromMs || !db_.isOpen()) return out;
   const std::size_t s = static_cast<std::size_t>(it - opt_.historySeries.begin());
   if (s >= seriesIds_.size() || seriesIds_[s] < 0) return out;
-  const std::int64_t newest = pending1s_.empty() ? toMs : std::max(toMs, (pending1s_.rbegin()->first + 60) * 1000);
+  const std::int64_t newest =
+      pending1s_.empty() ? toMs : std::max(toMs, (pending1s_.rbegin()->first + 60) * 1000);
   const bool fine = stepMs < 60000 && fromMs >= (newest - opt_.history1sKeepS * 1000);
   const std::int64_t slotS = fine ? 1 : 60;
   const std::int64_t spanS = slotS * kSlots;

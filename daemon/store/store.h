@@ -53,12 +53,12 @@ struct StoreOptions {
 };
 
 struct OpenResult {
-  bool ok = false;         // the database file is open and up to date
-  bool recovered = false;  // the old file was corrupt or unreadable: copy kept, started fresh
-  bool inMemory = false;   // the file cannot be used at all: running in memory, nothing persists
-  std::string message;     // what happened, for the log
-  std::string corruptCopy; // where the bad file was moved
-  int fromVersion = 0;     // schema version found (0 = new file)
+  bool ok = false;          // the database file is open and up to date
+  bool recovered = false;   // the old file was corrupt or unreadable: copy kept, started fresh
+  bool inMemory = false;    // the file cannot be used at all: running in memory, nothing persists
+  std::string message;      // what happened, for the log
+  std::string corruptCopy;  // where the bad file was moved
+  int fromVersion = 0;      // schema version found (0 = new file)
   bool alarm() const { return recovered || inMemory; }
 };
 
@@ -76,7 +76,7 @@ struct OverrideRow {
 };
 
 struct EventRecord {
-  std::int64_t id = 0;  // assigned by the store
+  std::int64_t id = 0;   // assigned by the store
   std::int64_t tMs = 0;  // UTC ms
   std::string level;     // toString(EventLevel)
   std::string code;      // toString(EventCode)
@@ -155,8 +155,7 @@ class Store {
   StoreStatus status(int rc, std::string_view what);
   int configure();
   int seriesId(std::string_view name);
-  int writeBuckets(std::string_view table, std::map<std::int64_t, Bucket>& pending,
-                   std::int64_t bucketSpanS);
+  int writeBuckets(std::string_view table, std::map<std::int64_t, Bucket>& pending, std::int64_t bucketSpanS);
   void closeMinute();
   StoreStatus flushPending(bool all);
 

@@ -76,6 +76,22 @@ TEST(FullCharge, NeedsChargedVoltage) {
   EXPECT_TRUE(r.mon.fullChargeDetected());
 }
 
+TEST(FullCharge, NotDeclaredOnStaleSensor) {
+  BatteryRig r(calParams());
+  r.mon.setSoc(80.0);
+  r.ina(14.0, 30.0);
+  r.tick(1.0);
+  // The INA228 stops answering: stamps freeze, the monitor sees no current.
+  for (int i = 0; i < 300; ++i) {
+    r.now += fromSec(1.0);
+    r.in.now = r.now;
+    r.ev.clear();
+    r.mon.UpdateBatterySOC(r.in, 0.0, r.ev);
+  }
+  EXPECT_FALSE(r.mon.fullChargeDetected());
+  EXPECT_LT(r.mon.socPercent(), 100.0);
+}
+
 TEST(GainCorrection, AppliedWithRateLimit) {
   BatteryRig r(calParams());
   r.mon.setSoc(95.0);  // reference: the count is 190 Ah, nameplate 200 Ah

@@ -238,7 +238,7 @@ TEST(BatterySource, VictronCurrentWhenSelectedAndFreshElseIna) {
   EXPECT_DOUBLE_EQ(r.mon.getBatteryCurrent(r.in), 7.0);  // exactly 10 s old: still fresh
   r.in.VictronCurrent.stamp = r.now - fromMs(k::VICTRON_STALE_MS) - fromMs(1);
   EXPECT_DOUBLE_EQ(r.mon.getBatteryCurrent(r.in), 5.0);  // stale > 10 s: INA228
-  r.in.VictronCurrent = Reading{};                        // never received
+  r.in.VictronCurrent = Reading{};                       // never received
   EXPECT_DOUBLE_EQ(r.mon.getBatteryCurrent(r.in), 5.0);
 
   Params p0 = baseParams();

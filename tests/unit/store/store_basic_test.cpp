@@ -85,7 +85,7 @@ TEST(Store, OverridesSurviveRestartAndFileValueReturnsAfterReset) {
   std::vector<std::string> errors;
   const Params applied = applyStoredOverrides(file, s.overrides(), errors);
   EXPECT_DOUBLE_EQ(applied.BulkVoltage, file.BulkVoltage);  // the file value is back
-  EXPECT_DOUBLE_EQ(applied.rpmCapCurrentTable[3], 42.5);   // the other override stays
+  EXPECT_DOUBLE_EQ(applied.rpmCapCurrentTable[3], 42.5);    // the other override stays
 }
 
 TEST(Store, BadStoredOverridesAreSkippedNotApplied) {
@@ -171,7 +171,7 @@ TEST(Store, HistoryOneSecondAndOneMinute) {
 TEST(Store, HistoryRetentionIsBounded) {
   TempDir d;
   StoreOptions opt;
-  opt.history1sKeepS = 600;   // shortened retention, same mechanism
+  opt.history1sKeepS = 600;  // shortened retention, same mechanism
   opt.history1mKeepS = 7200;
   opt.historyFlushS = 60;
   Store s(opt);

@@ -72,13 +72,16 @@ ChildRun runAndKill(const std::string& db, int commitsFirst, std::chrono::micros
   std::string line;
   while (std::getline(lines, line)) {
     if (line.size() < 3) continue;  // a line cut by the kill
-    if (line[0] == 'R') out.restored = std::stod(line.substr(2));
+    if (line[0] == 'R')
+      out.restored = std::stod(line.substr(2));
     else if (line[0] == 'C') {
       out.lastCommitted = std::stod(line.substr(2));
       ++out.commits;
-    } else if (line[0] == 'E') out.errors += line + "\n";
+    } else if (line[0] == 'E')
+      out.errors += line + "\n";
   }
-  if (WIFEXITED(status)) out.errors += "helper exited by itself: " + std::to_string(WEXITSTATUS(status)) + "\n";
+  if (WIFEXITED(status))
+    out.errors += "helper exited by itself: " + std::to_string(WEXITSTATUS(status)) + "\n";
   return out;
 }
 
@@ -116,7 +119,8 @@ TEST(StoreCrash, KillNineAtRandomMomentsSixtyTimes) {
       EXPECT_LE(now, run.lastCommitted + 1.0) << "run " << i;
     }
     if (saved) {
-      EXPECT_DOUBLE_EQ(saved->ledger.AlternatorChargedEnergy_AllTime_Wh, now / 2.0) << "torn ledger, run " << i;
+      EXPECT_DOUBLE_EQ(saved->ledger.AlternatorChargedEnergy_AllTime_Wh, now / 2.0)
+          << "torn ledger, run " << i;
     }
     previous = now;
   }

@@ -54,7 +54,7 @@ TEST_P(Migration, FromEarlierSchemaKeepsData) {
   EXPECT_DOUBLE_EQ(saved->ledger.CoulombCount_Ah, 150.0);
   EXPECT_DOUBLE_EQ(saved->ledger.DynamicShuntGainFactor, 1.03);
   EXPECT_DOUBLE_EQ(saved->ledger.SolarChargedEnergy_AllTime_Wh, 0.0);  // absent field: default
-  EXPECT_EQ(saved->savedAtMs, 0);                                     // unknown for old data
+  EXPECT_EQ(saved->savedAtMs, 0);                                      // unknown for old data
   const auto o = s.findOverride("BulkVoltage");
   ASSERT_TRUE(o.has_value());
   EXPECT_EQ(o->value, "14.1");
@@ -104,7 +104,8 @@ TEST(StoreFailure, DamagedPagesAreDetected) {
   {
     Store s;
     ASSERT_TRUE(s.open(d.file("x.db"), kT0).ok);
-    std::vector<EventRecord> evs(2000, EventRecord{0, kT0, "Info", "Message", "NONE", std::string(200, 'x'), 0, 0});
+    std::vector<EventRecord> evs(2000,
+                                 EventRecord{0, kT0, "Info", "Message", "NONE", std::string(200, 'x'), 0, 0});
     ASSERT_TRUE(s.appendEvents(evs).ok);
     BatteryLedger l;
     ASSERT_TRUE(s.checkpoint(l, "stop", kT0).ok);
@@ -181,6 +182,45 @@ TEST(StoreFailure, ReadOnlyDirectoryRunsInMemoryWithAlarm) {
   EXPECT_FALSE(fs::exists(path));
 }
 
+TEST(StoreFailure, ReadOnlyDirectoryStillRestoresLastCheckpoint) {
+  TempDir d;
+  const std::string path = d.file("x.db");
+  {
+    Store s;
+    ASSERT_TRUE(s.open(path, kT0).ok);
+    BatteryLedger l;
+    l.ChargedEnergy_AllTime_Wh = 4321.0;
+    ASSERT_TRUE(s.checkpoint(l, "stop", kT0).ok);
+    ASSERT_TRUE(s.setOverride("BulkVoltage", "14.1", "14.5", kT0).ok);
+  }
+  fs::permissions(
+      path, fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read | fs::perms::others_read);
+  fs::permissions(d.path, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
+                              fs::perms::others_read | fs::perms::others_exec);
+  if (geteuid() != 0) {
+    fs::permissions(d.path, fs::perms::owner_write, fs::perm_options::remove);
+    fs::permissions(path, fs::perms::owner_write, fs::perm_options::remove);
+  }
+  const int rc = asUnprivilegedChild([&] {
+    Store s;
+    const OpenResult r = s.open(path, kT0);
+    if (r.ok || !r.inMemory) return 1;
+    const auto saved = s.loadLedger();
+    if (!saved || saved->ledger.ChargedEnergy_AllTime_Wh != 4321.0) return 2;
+    if (!s.findOverride("BulkVoltage")) return 3;
+    BatteryLedger l = saved->ledger;
+    l.ChargedEnergy_AllTime_Wh += 1.0;
+    if (!s.checkpoint(l, "interval", kT0).ok) return 4;  // into memory, no crash
+    return 0;
+  });
+  EXPECT_EQ(rc, 0);
+  Store s;  // the file itself is untouched
+  fs::permissions(d.path, fs::perms::owner_all, fs::perm_options::add);
+  fs::permissions(path, fs::perms::owner_write, fs::perm_options::add);
+  ASSERT_TRUE(s.open(path, kT0).ok);
+  EXPECT_DOUBLE_EQ(s.loadLedger()->ledger.ChargedEnergy_AllTime_Wh, 4321.0);
+}
+
 TEST(StoreFailure, UnreadableExistingFileWithoutWriteAccess) {
   TempDir d;
   const std::string path = d.file("x.db");
@@ -218,7 +258,8 @@ TEST(StoreFailure, FullDiskIsAnErrorValueNotACrash) {
   ASSERT_TRUE(s.checkpoint(l, "interval", kT0).ok);
   bool sawFull = false;
   for (int i = 0; i < 200 && !sawFull; ++i) {
-    std::vector<EventRecord> evs(20, EventRecord{0, kT0 + i, "Info", "Message", "NONE", std::string(500, 'e'), 0, 0});
+    std::vector<EventRecord> evs(
+        20, EventRecord{0, kT0 + i, "Info", "Message", "NONE", std::string(500, 'e'), 0, 0});
     const StoreStatus st = s.appendEvents(evs);
     if (!st.ok) {
       EXPECT_TRUE(st.diskFull) << st.error;
