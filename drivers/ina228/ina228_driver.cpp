@@ -152,7 +152,9 @@ const Ina228Sample& Ina228Driver::poll(TimeNs now) noexcept {
       nextRedetect_ = now + kRedetectInterval;
       if (start(now) == 0) ++stats_.redetects;
     }
-    if (!present_) return sample_;
+    // Readings resume next tick: detect + configure already used this
+    // tick's bus time.
+    return sample_;
   }
 
   std::uint64_t diag = 0;
