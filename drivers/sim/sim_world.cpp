@@ -33,7 +33,7 @@ SimWorld::SimWorld(const WorldConfig& cfg, const HardwareSettings& hw)
 
 SimWorld::~SimWorld() = default;
 
-void SimWorld::setBmsChargeEnabled(bool en) noexcept { bmsLine_.setLevel(en); }
+void SimWorld::setBmsChargeEnabled(bool en) noexcept { bmsLine_.setLevel(!en); }
 
 void SimWorld::setFault(Fault f, bool active, double value) {
   faults_[int(f)] = active;

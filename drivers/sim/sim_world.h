@@ -74,7 +74,7 @@ class SimWorld {
   DigitalOutput& fieldEnable() noexcept { return fieldEnable_; }
   DigitalOutput& buzzer() noexcept { return buzzer_; }
   DigitalInput& ignition() noexcept { return ignition_; }
-  // BMS signal line, logical level as ControlCycle reads it: 1 = charge enabled.
+  // BMS signal line (cycle_devices.h): 1 = the BMS asserts "charge disabled".
   DigitalInput& bmsLine() noexcept { return bmsLine_; }
   Watchdog& watchdog() noexcept { return watchdog_; }
   const std::filesystem::path& w1Root() const noexcept { return cfg_.w1Root; }
@@ -117,7 +117,7 @@ class SimWorld {
   SimDigitalOutput fieldEnable_;
   SimDigitalOutput buzzer_;
   SimDigitalInput ignition_;
-  SimDigitalInput bmsLine_{true};
+  SimDigitalInput bmsLine_{false};
   SimWatchdog watchdog_;
   std::array<bool, kFaultCount> faults_{};
   std::array<double, kFaultCount> faultValues_{};
