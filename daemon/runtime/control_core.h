@@ -16,6 +16,9 @@ class ControlCore {
   virtual const Outputs& step(const Inputs& in) = 0;
   virtual void setParams(const Params& p) = 0;
   virtual bool command(const Command& c) = 0;
+  // The persistent battery state, for the store (copied out periodically).
+  // False when the core has none.
+  virtual bool ledger(BatteryLedger&) { return false; }
 };
 
 }  // namespace xr::rt

@@ -45,7 +45,7 @@ void ControlCycle::mergeSlowInputs() noexcept {
 
 void ControlCycle::readDiscreteInputs() noexcept {
   // A read error counts as the safe level: charging disabled / ignition off.
-  if (dev_.bms) in_.bmsChargeEnabled = dev_.bms->get() == 1;
+  if (dev_.bms) in_.bmsChargeEnabled = dev_.bms->get() == 0;
   else in_.bmsChargeEnabled = true;
   if (dev_.ignition) in_.ignitionOn = dev_.ignition->get() == 1;
   else in_.ignitionOn = true;
@@ -82,7 +82,8 @@ bool ControlCycle::writeOutputs(const Outputs& out) noexcept {
   return ok;
 }
 
-bool ControlCycle::tick(TimeNs now) noexcept {
+bool ControlCycle::tick(TimeNs now) {
+  if (dev_.hook) dev_.hook->beforeTick(now);
   applyBetweenTicks();
 
   const TimeNs t0 = timing_.now();
@@ -113,6 +114,10 @@ bool ControlCycle::tick(TimeNs now) noexcept {
   }
   h_.events.pushBatch(out.events);
   ++tick_;
+  if ((tick_ % 100) == 1) {
+    BatteryLedger l;
+    if (core_.ledger(l)) h_.ledger.store(l);
+  }
   publish(out, now);
   return healthy && sensorsOk;
 }

@@ -35,8 +35,9 @@ class ControlCycle {
   void setStart(TimeNs start) noexcept { start_ = start; }
 
   // One tick at time `now`. True when healthy (sensors read, step done,
-  // every output written); only then is the watchdog fed.
-  bool tick(TimeNs now) noexcept;
+  // every output written); only then is the watchdog fed. Throws only what
+  // the TickHook throws.
+  bool tick(TimeNs now);
 
   // Stop path: ask the core for its controlled ramp (SYS_MODE_OFF →
   // MODE_DISABLED_RAMP); the loop keeps ticking until fieldIsOff().

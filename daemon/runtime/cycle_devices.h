@@ -31,15 +31,26 @@ class TruthSource {
   virtual void fill(SimTruth& t) noexcept = 0;
 };
 
+// Called on the control thread at the start of every tick, before anything
+// else: the simulation plays its scenario events here and the slow sensor
+// readers are relayed into the hand-offs. An exception thrown here leaves
+// the loop through the control thread's exception path (safe state, exit 70).
+class TickHook {
+ public:
+  virtual ~TickHook() = default;
+  virtual void beforeTick(TimeNs now) = 0;
+};
+
 struct CycleDevices {
   FastSensors* sensors = nullptr;        // required
   PwmOutput* pwm = nullptr;              // required
   DigitalOutput* fieldEnable = nullptr;  // required (GPIO4)
   DigitalOutput* buzzer = nullptr;       // optional (GPIO21)
-  DigitalInput* bms = nullptr;           // optional: not wired = charge enabled
+  DigitalInput* bms = nullptr;           // optional, 1 = BMS asserts "charge disabled"; not wired = enabled
   DigitalInput* ignition = nullptr;      // optional: not wired = on
   Watchdog* watchdog = nullptr;          // optional: fed after healthy cycles only
   TruthSource* truth = nullptr;          // simulation only
+  TickHook* hook = nullptr;              // optional
 };
 
 }  // namespace xr::rt

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <mutex>
 
+#include "battery/ledger.h"
 #include "core/commands.h"
 #include "core/inputs.h"
 #include "core/telemetry.h"
@@ -93,6 +94,7 @@ class Handoffs {
   SpscQueue<RuntimeSnapshot, 512> rows;  // telemetry rows at --telemetry-rate
   SeqLock<TemperatureHandoff> temperature;
   SeqLock<VictronHandoff> victron;
+  SeqLock<BatteryLedger> ledger;  // the core's ledger, copied out ~4 times a second
 
  private:
   mutable std::mutex producerMutex_;

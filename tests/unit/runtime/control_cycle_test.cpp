@@ -201,14 +201,19 @@ TEST(ControlCycle, VictronSamplesReachTheInputs) {
 TEST(ControlCycle, DiscreteInputErrorsReadAsTheSafeLevel) {
   CycleRig r;
   test::FakeDigitalIn bms, ign;
+  bms.value = 0;  // BMS not asserting "charge disabled"
   r.dev.bms = &bms;
   r.dev.ignition = &ign;
   r.cycle = std::make_unique<ControlCycle>(r.core, r.dev, r.handoffs, r.stats, r.timing, r.cfg);
   r.tick();
   EXPECT_TRUE(r.core.lastInputs.bmsChargeEnabled);
   EXPECT_TRUE(r.core.lastInputs.ignitionOn);
-  bms.value = -1;
+  bms.value = -1;  // read error
   ign.value = 0;
+  r.tick();
+  EXPECT_FALSE(r.core.lastInputs.bmsChargeEnabled);
+  EXPECT_FALSE(r.core.lastInputs.ignitionOn);
+  bms.value = 1;  // BMS asserts charge disabled
   r.tick();
   EXPECT_FALSE(r.core.lastInputs.bmsChargeEnabled);
   EXPECT_FALSE(r.core.lastInputs.ignitionOn);

@@ -1,0 +1,53 @@
+#pragma once
+// The real board: i2c-dev, sysfs PWM, libgpiod lines, /dev/watchdog,
+// DS18B20 (w1 sysfs, 1 Hz thread) and VE.Direct (serial thread), with the
+// same drivers and control cycle as the simulation. Throws
+// std::runtime_error naming what to fix when a required device is missing.
+#include <memory>
+
+#include "app/driver_sensors.h"
+#include "config/settings.h"
+#include "drivers/gpio/gpio_libgpiod.h"
+#include "drivers/i2c/linux_i2c_bus.h"
+#include "drivers/onewire/ds18b20_reader.h"
+#include "drivers/pwm/pwm_sysfs.h"
+#include "drivers/vedirect/vedirect_reader.h"
+#include "drivers/watchdog/linux_watchdog.h"
+#include "runtime/handoffs.h"
+#include "runtime/monotonic_clock.h"
+
+namespace xr::app {
+
+class BoardRig final : public rt::TickHook {
+ public:
+  explicit BoardRig(const Settings& settings);
+  ~BoardRig() override;
+  rt::CycleDevices devices();
+  Clock& loopClock() { return clock_; }
+  rt::MonotonicClock& wall() { return clock_; }
+  DriverSensors::StartReport startSensors(double bovlVolts);
+  void attach(rt::Handoffs& h) { handoffs_ = &h; }
+  // Async-signal-safe fatal actions: PWM duty 0 + enable 0 via the
+  // pre-opened sysfs descriptors, GPIO4 LOW via its requested line.
+  void registerFatalActions();
+  const std::string& watchdogWarning() const { return watchdogWarning_; }
+  void beforeTick(TimeNs now) override;
+
+ private:
+  rt::MonotonicClock clock_;
+  LinuxI2cBus bus_;
+  std::unique_ptr<Ina228Driver> ina_;
+  std::unique_ptr<Ads1115Driver> ads_;
+  std::unique_ptr<DriverSensors> sensors_;
+  PwmSysfs pwm_;
+  PwmSafeStateWriter pwmSafe_;
+  GpioLibgpiod gpio_;
+  LinuxWatchdog watchdog_;
+  std::string watchdogWarning_;
+  std::unique_ptr<Ds18b20Reader> ds18b20_;
+  std::unique_ptr<VeDirectReader> vedirect_;
+  rt::Handoffs* handoffs_ = nullptr;
+  std::uint64_t lastVictronFrames_ = 0;
+};
+
+}  // namespace xr::app

@@ -1,0 +1,57 @@
+#pragma once
+// xregulatord command line (DESIGN.md "Interfaces other programs rely on"):
+//   xregulatord [--config FILE] [--sim] [--scenario FILE] [--speed X|max]
+//     [--duration S] [--telemetry-csv FILE] [--telemetry-rate HZ]
+//     [--http ADDR:PORT] [--state-db FILE] [--check-config]
+//     [--print-default-config] [--probe] [--version] [--seed N]
+//     [--log-level L] [--sim-outputs FILE]
+// Both "--opt value" and "--opt=value" are accepted. A bad argument is a
+// usage error: exit 64 (EX_USAGE) with a message naming it.
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace xr::app {
+
+inline constexpr int kExitUsage = 64;     // EX_USAGE
+inline constexpr int kExitSoftware = 70;  // EX_SOFTWARE: internal error (exception)
+inline constexpr int kExitUnavailable = 69;  // EX_UNAVAILABLE: hardware missing
+
+// Test-only faults (hidden, accepted only with --sim): end the daemon by a
+// given path at a given simulated time so tests/e2e can prove each exit path
+// leaves the field off.
+enum class TestFault { None, Segv, Abort, Throw, Terminate, ThrowInControl };
+
+struct CliOptions {
+  std::optional<std::string> config;
+  bool sim = false;
+  std::optional<std::string> scenario;
+  double speed = 1.0;  // 0 = max
+  bool speedGiven = false;
+  std::optional<double> durationS;
+  std::optional<std::string> telemetryCsv;
+  double telemetryRateHz = 10.0;
+  std::optional<std::string> http;
+  std::optional<std::string> stateDb;
+  bool checkConfig = false;
+  bool printDefaultConfig = false;
+  bool probe = false;
+  bool version = false;
+  bool help = false;
+  std::optional<unsigned long long> seed;
+  std::optional<std::string> logLevel;
+  std::optional<std::string> simOutputs;
+  TestFault testFault = TestFault::None;
+  double testFaultAtS = 1.0;
+};
+
+struct CliResult {
+  CliOptions options;
+  std::string error;  // non-empty: usage error (exit 64)
+  bool ok() const { return error.empty(); }
+};
+
+CliResult parseCommandLine(const std::vector<std::string>& args);
+std::string usageText();
+
+}  // namespace xr::app

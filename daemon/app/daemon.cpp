@@ -1,0 +1,335 @@
+#include "app/daemon.h"
+
+#include <signal.h>
+#include <spdlog/spdlog.h>
+#include <systemd/sd-daemon.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdlib>
+#include <exception>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <thread>
+
+#include "app/board_rig.h"
+#include "app/csv_writer.h"
+#include "app/regulator_core.h"
+#include "app/sim_rig.h"
+#include "app/status_source.h"
+#include "app/store_service.h"
+#include "app/thread_names.h"
+#include "app/web_api.h"
+#include "config/config.h"
+#include "control/regulator.h"
+#include "drivers/sim/scenario.h"
+#include "logging/logging.h"
+#include "params/derived.h"
+#include "runtime/control_loop.h"
+#include "runtime/event_pump.h"
+#include "runtime/fatal_guard.h"
+#include "runtime/rt_setup.h"
+#include "web/server/web_server.h"
+
+namespace xr::app {
+
+namespace {
+
+void logLoopStats(const rt::LoopStatsSummary& s, const rt::RuntimeHealth& h) {
+  spdlog::info(
+      "control loop: {} ticks, {} overruns, period error p50/p99/max {:.0f}/{:.0f}/{:.0f} us, compute "
+      "p50/p99/max {:.0f}/{:.0f}/{:.0f} us, I/O p50/p99/max {:.0f}/{:.0f}/{:.0f} us, CH1 {:.0f} Hz (CH0 {:.0f}, "
+      "CH2 {:.0f}, CH3 {:.0f}), INA {:.0f} Hz, sensor errors {}, output errors {}, events dropped {}",
+      s.ticks, s.overruns, s.periodErrP50Us, s.periodErrP99Us, s.periodErrMaxUs, s.computeP50Us, s.computeP99Us,
+      s.computeMaxUs, s.ioP50Us, s.ioP99Us, s.ioMaxUs, s.ch1SampleRateHz, s.adsChannelRateHz[0],
+      s.adsChannelRateHz[2], s.adsChannelRateHz[3], s.inaSampleRateHz, h.sensorReadErrors, h.outputWriteErrors,
+      h.eventsDropped);
+}
+
+double wallSecondsNow() { return static_cast<double>(unixMsNow()) / 1000.0; }
+
+}  // namespace
+
+int Daemon::run() {
+  const Settings& settings = config_.settings;
+  const auto kernel = rt::detectPreemptRt();
+  spdlog::info("xregulatord {} starting ({}), kernel {}: PREEMPT_RT {} ({})", XR_VERSION_STRING,
+               cli_.sim ? "simulation" : "board", kernel.release, kernel.preemptRt ? "yes" : "no", kernel.how);
+
+  // ---- parameters: file, then scenario [config], then stored overrides ----
+  Params fileParams = config_.params;
+  std::optional<sim::Scenario> scenario;
+  if (cli_.sim) {
+    try {
+      scenario = cli_.scenario ? sim::loadScenario(*cli_.scenario) : sim::defaultScenario();
+      sim::applyOverrides(fileParams, scenario->config, scenario->source);
+    } catch (const std::exception& e) {
+      spdlog::critical("{}", e.what());
+      std::fprintf(stderr, "xregulatord: %s\n", e.what());
+      return kExitConfig;
+    }
+    spdlog::info("scenario '{}' ({} s, seed {})", scenario->name, scenario->duration_s,
+                 cli_.seed ? *cli_.seed : scenario->seed);
+  }
+
+  std::unique_ptr<StoreService> store;
+  std::string dbPath = cli_.stateDb.value_or(cli_.sim ? std::string() : settings.store.path);
+  Params params = fileParams;
+  std::optional<BatteryLedger> restored;
+  if (!dbPath.empty()) {
+    store = std::make_unique<StoreService>(dbPath, settings.store.checkpoint_interval_s);
+    const OpenResult& o = store->openResult();
+    if (o.alarm()) spdlog::error("store: {}", o.message);
+    else spdlog::info("store: {} ({})", dbPath, o.message);
+    if (auto saved = store->loadLedger()) {
+      restored = saved->ledger;
+      spdlog::info("store: ledger restored (saved for '{}')", saved->reason);
+    }
+    std::vector<std::string> errs;
+    params = store->applyOverrides(fileParams, errs);
+    for (auto& e : errs) spdlog::warn("store: stored override skipped: {}", e);
+  }
+
+  // ---- the core and the hand-offs ----
+  Regulator regulator(params);
+  if (restored) regulator.restoreLedger(*restored);
+  RegulatorCore core(regulator);
+  auto handoffs = std::make_unique<rt::Handoffs>(params);
+
+  // ---- the rig ----
+  std::unique_ptr<SimRig> simRig;
+  std::unique_ptr<BoardRig> boardRig;
+  rt::CycleDevices devices;
+  Clock* loopClock = nullptr;
+  rt::MonotonicClock* wall = nullptr;
+  std::function<TimeNs(TimeNs)> wallDeadlineOf;
+  try {
+    if (cli_.sim) {
+      simRig = std::make_unique<SimRig>(*scenario, settings, cli_);
+      simRig->attach(*handoffs);
+      devices = simRig->devices();
+      loopClock = &simRig->loopClock();
+      wall = &simRig->wall();
+      wallDeadlineOf = simRig->wallDeadlineOf();
+      if (auto* m = simRig->mirror()) m->registerFatalAction();
+    } else {
+      boardRig = std::make_unique<BoardRig>(settings);
+      boardRig->attach(*handoffs);
+      devices = boardRig->devices();
+      loopClock = &boardRig->loopClock();
+      wall = &boardRig->wall();
+      wallDeadlineOf = [](TimeNs t) { return t; };
+      boardRig->registerFatalActions();
+      if (!boardRig->watchdogWarning().empty()) spdlog::warn("{}", boardRig->watchdogWarning());
+    }
+  } catch (const std::exception& e) {
+    rt::fatal::driveSafeNow();
+    spdlog::critical("hardware setup failed: {}", e.what());
+    std::fprintf(stderr, "xregulatord: %s\n", e.what());
+    return kExitUnavailable;
+  }
+  rt::fatal::install();
+
+  rt::LoopStats stats;
+  rt::CycleConfig cycleCfg;
+  cycleCfg.rowPeriod = cli_.telemetryCsv ? fromSec(1.0 / cli_.telemetryRateHz) : 0;
+  cycleCfg.blockOnFullRows = cli_.sim && cli_.speed <= 0.0;
+  rt::ControlCycle cycle(core, devices, *handoffs, stats, *wall, cycleCfg);
+  cycle.driveSafeState();  // field known LOW before anything runs
+
+  const auto sensorsStart =
+      simRig ? simRig->startSensors(voltageHardwareLimit(params)) : boardRig->startSensors(voltageHardwareLimit(params));
+  if (sensorsStart.inaError) spdlog::error("INA228 not answering at start (errno {}): will re-detect", sensorsStart.inaError);
+  if (sensorsStart.adsError) spdlog::error("ADS1115 not answering at start (errno {}): will re-detect", sensorsStart.adsError);
+
+  // ---- non-RT services ----
+  RecentEvents recent;
+  rt::EventPump pump(handoffs->events);
+  pump.addSink([](const Event& e) { logEvent(e); });
+  pump.addSink([&recent](const Event& e) { recent.add(e, wallSecondsNow(), describe(e)); });
+  if (store) pump.addSink([&store](const Event& e) { store->appendEvent(e); });
+  pump.start();
+
+  std::unique_ptr<CsvWriter> csv;
+  if (cli_.telemetryCsv) {
+    try {
+      csv = std::make_unique<CsvWriter>(*cli_.telemetryCsv, *handoffs, cli_.sim);
+    } catch (const std::exception& e) {
+      spdlog::critical("{}", e.what());
+      std::fprintf(stderr, "xregulatord: %s\n", e.what());
+      pump.stop();
+      return kExitConfig;
+    }
+    csv->start();
+  }
+
+  std::atomic<std::int64_t> lastHeartbeatWallMs{0};
+  std::atomic<bool> outputsFault{false};
+  std::unique_ptr<WebApi> api;
+  std::unique_ptr<web::WebServer> server;
+  const bool wantWeb = cli_.http.has_value() || !cli_.sim;
+  if (wantWeb) {
+    WebApiContext ctx;
+    ctx.handoffs = handoffs.get();
+    ctx.fileParams = fileParams;
+    ctx.store = store.get();
+    ctx.events = &recent;
+    ctx.sim = cli_.sim;
+    ctx.controlPeriodUs = settings.runtime.control_period_us;
+    ctx.lastHeartbeatWallMs = &lastHeartbeatWallMs;
+    ctx.fieldSafeFault = &outputsFault;
+    api = std::make_unique<WebApi>(ctx);
+    std::string token = settings.web.token;
+    if (token.empty()) token = store ? store->token() : web::generateToken();
+    auto opts = web::WebServerOptions::fromSettings(settings.web, token);
+    if (opts.www_root.empty()) {
+      for (const char* p : {"web/www/dist", "web/www", XR_SOURCE_DIR "/web/www/dist", XR_SOURCE_DIR "/web/www",
+                            "/usr/share/xregulator/www"}) {
+        if (std::filesystem::exists(std::string(p) + "/index.html")) {
+          opts.www_root = p;
+          break;
+        }
+      }
+    }
+    if (cli_.http && !web::parseListenAddress(*cli_.http, opts)) {
+      std::fprintf(stderr, "xregulatord: --http: expected ADDR:PORT, got '%s'\n", cli_.http->c_str());
+      pump.stop();
+      if (csv) csv->stop();
+      return kExitUsage;
+    }
+    server = std::make_unique<web::WebServer>(*api, opts);
+    try {
+      server->start();
+    } catch (const std::exception& e) {
+      spdlog::critical("web server: {}", e.what());
+      std::fprintf(stderr, "xregulatord: web server: %s\n", e.what());
+      pump.stop();
+      if (csv) csv->stop();
+      return kExitUnavailable;
+    }
+    spdlog::info("dashboard at http://{}:{}/ (www root '{}')", opts.listen, server->port(), opts.www_root);
+    if (settings.web.token.empty() && !store) spdlog::info("API write token for this run: {}", token);
+  }
+
+  // ---- the control thread ----
+  rt::LoopConfig loopCfg;
+  loopCfg.period = fromUs(settings.runtime.control_period_us);
+  if (cli_.durationS) loopCfg.duration = fromSec(*cli_.durationS);
+  else if (cli_.sim && cli_.speed <= 0.0) loopCfg.duration = fromSec(scenario->duration_s);
+  loopCfg.wallDeadlineOf = wallDeadlineOf;
+  loopCfg.wall = wall;
+  rt::ControlLoop loop(cycle, *loopClock, stats, loopCfg);
+
+  std::atomic<bool> controlFailed{false};
+  std::string controlError;
+  const bool realtime = !cli_.sim || cli_.speed > 0.0;
+  rt::RtSetupReport rtReport;
+  std::atomic<bool> rtReady{false};
+  std::thread control([&] {
+    rtReport = rt::setupRealtimeThread(settings.runtime, "xr-control", realtime);
+    rtReady = true;
+    rt::fatal::installAltStackForThisThread();
+    try {
+      loop.run();
+    } catch (const std::exception& e) {
+      controlError = e.what();
+      controlFailed = true;
+    } catch (...) {
+      controlError = "unknown exception";
+      controlFailed = true;
+    }
+    if (controlFailed) {
+      cycle.driveSafeState();
+      rt::fatal::driveSafeNow();
+    }
+  });
+  while (!rtReady) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  spdlog::info("control thread: {} period {} us", rtReport.summary(), settings.runtime.control_period_us);
+  for (const auto& w : rtReport.warnings) spdlog::warn("control thread: {}", w);
+
+  sd_notify(0, "READY=1\nSTATUS=control loop running, field enable LOW until the regulator enables it");
+
+  // ---- supervisor (this thread): signals, sd_notify, stats, store ----
+  sigset_t stopSignals;
+  sigemptyset(&stopSignals);
+  sigaddset(&stopSignals, SIGTERM);
+  sigaddset(&stopSignals, SIGINT);
+  sigaddset(&stopSignals, SIGHUP);
+  int exitCode = 0;
+  std::uint64_t lastBeat = 0;
+  auto lastStatsLog = std::chrono::steady_clock::now();
+  auto lastHousekeeping = lastStatsLog;
+  bool stopRequested = false;
+  try {
+    while (!loop.finished() && !controlFailed) {
+      timespec ts{0, 100'000'000};
+      const int sig = sigtimedwait(&stopSignals, nullptr, &ts);
+      if ((sig == SIGTERM || sig == SIGINT) && !stopRequested) {
+        spdlog::info("{}: stopping through the controlled ramp", sig == SIGTERM ? "SIGTERM" : "SIGINT");
+        sd_notify(0, "STOPPING=1\nSTATUS=stopping: ramping the field down");
+        loop.requestStop();
+        stopRequested = true;
+      } else if (sig == SIGHUP) {
+        spdlog::info("SIGHUP ignored: parameters change through the API; restart to reload the file");
+      }
+      const auto now = std::chrono::steady_clock::now();
+      const std::uint64_t beat = loop.heartbeat();
+      if (beat != lastBeat) {
+        lastBeat = beat;
+        lastHeartbeatWallMs = unixMsNow();
+        sd_notify(0, "WATCHDOG=1");  // only while the control thread ticks
+      }
+      if (now - lastHousekeeping >= std::chrono::seconds(1)) {
+        lastHousekeeping = now;
+        const rt::RuntimeSnapshot s = handoffs->latest();
+        outputsFault = s.health.outputWriteErrors > 0 && !s.telemetry.field_enable && s.health.stopping;
+        sd_notifyf(0, "STATUS=%s %s SoC %.0f%% duty %.1f%%", std::string(toString(s.telemetry.mode)).c_str(),
+                   std::string(toString(s.telemetry.stage)).c_str(), s.telemetry.soc_pct, s.telemetry.duty_pct);
+        if (store) store->housekeeping(s, handoffs->ledger.load(), s.tick > 100);
+        if (cli_.testFault == TestFault::Throw && simRig &&
+            toSec(s.telemetry.now - s.start) >= cli_.testFaultAtS && s.tick > 0)
+          throw std::runtime_error("test fault: exception on the main thread");
+      }
+      if (now - lastStatsLog >= std::chrono::minutes(1)) {
+        lastStatsLog = now;
+        const rt::RuntimeSnapshot s = handoffs->latest();
+        logLoopStats(s.loop, s.health);
+      }
+    }
+  } catch (const std::exception& e) {
+    // Safe state first, then tell.
+    rt::fatal::driveSafeNow();
+    loop.requestStop();
+    spdlog::critical("fatal: {}: field enable LOW, duty 0", e.what());
+    exitCode = kExitSoftware;
+    control.join();
+    cycle.driveSafeState();
+    rt::fatal::driveSafeNow();  // the last write wins: the mirror says via=fatal
+    if (server) server->stop();
+    pump.stop();
+    if (csv) csv->stop();
+    return exitCode;
+  }
+  control.join();
+
+  if (controlFailed) {
+    spdlog::critical("control thread failed: {}: field enable LOW, duty 0", controlError);
+    exitCode = kExitSoftware;
+  } else {
+    // Clean stop: the field is off; only now may the watchdog be disarmed.
+    if (devices.watchdog) devices.watchdog->closeClean();
+    if (simRig && simRig->mirror()) simRig->mirror()->markStopped();
+    spdlog::info("stopped cleanly: field enable LOW, duty 0");
+  }
+  const rt::RuntimeSnapshot last = handoffs->latest();
+  logLoopStats(last.loop, last.health);
+  if (server) server->stop();
+  pump.stop();
+  if (csv) csv->stop();
+  if (store) store->stop(handoffs->ledger.load(), last.tick > 100);
+  return exitCode;
+}
+
+}  // namespace xr::app

@@ -1,0 +1,76 @@
+// xregulatord: alternator field regulator daemon. See DESIGN.md for the
+// command line and daemon/app/daemon.h for the exit paths.
+#include <signal.h>
+
+#include <cstdio>
+#include <exception>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "app/cli.h"
+#include "app/daemon.h"
+#include "config/config.h"
+#include "drivers/probe/probe.h"
+#include "logging/logging.h"
+#include "runtime/fatal_guard.h"
+
+int main(int argc, char** argv) {
+  using namespace xr;
+  using namespace xr::app;
+
+  // Stop signals are taken synchronously by the supervisor (sigtimedwait):
+  // block them before any thread exists so every thread inherits the mask.
+  sigset_t stopSignals;
+  sigemptyset(&stopSignals);
+  sigaddset(&stopSignals, SIGTERM);
+  sigaddset(&stopSignals, SIGINT);
+  sigaddset(&stopSignals, SIGHUP);
+  pthread_sigmask(SIG_BLOCK, &stopSignals, nullptr);
+  signal(SIGPIPE, SIG_IGN);  // a vanished web client must not kill the regulator
+
+  const CliResult cli = parseCommandLine(std::vector<std::string>(argv + 1, argv + argc));
+  if (!cli.ok()) {
+    std::fprintf(stderr, "xregulatord: %s\n(run xregulatord --help for usage)\n", cli.error.c_str());
+    return kExitUsage;
+  }
+  const CliOptions& o = cli.options;
+  if (o.help) {
+    std::cout << usageText();
+    return 0;
+  }
+  if (o.version) {
+    std::cout << "xregulatord " << XR_VERSION_STRING << "\n";
+    return 0;
+  }
+  if (o.printDefaultConfig) {
+    std::cout << defaultConfigText();
+    return 0;
+  }
+  if (o.checkConfig) return checkConfigMain(*o.config, std::cout, std::cerr);
+
+  Config config;
+  if (o.config) {
+    LoadResult r = loadConfigFile(*o.config);
+    if (!r.ok()) {
+      for (const auto& e : r.errors) std::cerr << e.toString() << "\n";
+      std::cerr << "xregulatord: configuration rejected; the field stays off\n";
+      return kExitConfig;
+    }
+    config = std::move(*r.config);
+  }
+  if (auto err = initLogging(config.settings.log, o.logLevel); !err.empty()) {
+    std::fprintf(stderr, "xregulatord: %s\n", err.c_str());
+    return o.logLevel ? kExitUsage : kExitConfig;
+  }
+  if (o.probe) return runProbe(config.settings, std::cout);
+
+  try {
+    Daemon daemon(std::move(config), o);
+    return daemon.run();
+  } catch (const std::exception& e) {
+    rt::fatal::driveSafeNow();
+    std::fprintf(stderr, "xregulatord: fatal: %s (field enable LOW, duty 0)\n", e.what());
+    return kExitSoftware;
+  }
+}

@@ -1,0 +1,109 @@
+#include "app/store_service.h"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <cmath>
+#include <map>
+
+#include "store/param_overrides.h"
+
+namespace xr::app {
+
+std::int64_t unixMsNow() {
+  return std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+StoreService::StoreService(const std::string& path, int checkpointIntervalS)
+    : policy_(checkpointIntervalS), series_(defaultHistorySeries()) {
+  open_ = store_.open(path, unixMsNow());
+}
+
+std::optional<SavedLedger> StoreService::loadLedger() {
+  std::lock_guard lock(m_);
+  return store_.loadLedger();
+}
+
+Params StoreService::applyOverrides(const Params& fileParams, std::vector<std::string>& errors) {
+  std::lock_guard lock(m_);
+  return applyStoredOverrides(fileParams, store_.overrides(), errors);
+}
+
+void StoreService::saveOverrides(const Params& fileParams, const Params& before, const Params& after) {
+  std::lock_guard lock(m_);
+  for (const ParamSpec& spec : catalogue()) {
+    bool changed = false;
+    const std::size_t n = spec.kind == ParamKind::Table ? RPM_TABLE_SIZE : 1;
+    for (std::size_t i = 0; i < n; ++i) changed |= spec.get(before, i) != spec.get(after, i);
+    if (!changed) continue;
+    const StoreStatus st = saveParamOverride(store_, spec.name, fileParams, after, unixMsNow());
+    if (!st) spdlog::error("store: cannot save override {}: {}", spec.name, st.error);
+  }
+}
+
+void StoreService::appendEvent(const Event& e) {
+  std::lock_guard lock(m_);
+  const EventRecord r = toEventRecord(e, unixMsNow());
+  const StoreStatus st = store_.appendEvents(std::span<const EventRecord>(&r, 1));
+  if (!st) spdlog::warn("store: event not saved: {}", st.error);
+}
+
+namespace {
+double columnValue(const rt::RuntimeSnapshot& s, const std::string& name) {
+  double out = std::nan("");
+  visitTelemetryColumns(s.telemetry, s.start, [&](std::string_view n, const ColumnValue& v) {
+    if (n != name) return;
+    if (const double* d = std::get_if<double>(&v)) out = *d;
+    else if (const bool* b = std::get_if<bool>(&v)) out = *b ? 1.0 : 0.0;
+  });
+  return out;
+}
+}  // namespace
+
+void StoreService::housekeeping(const rt::RuntimeSnapshot& s, const BatteryLedger& ledger, bool ledgerValid) {
+  std::lock_guard lock(m_);
+  const std::int64_t nowMs = unixMsNow();
+  if (nowMs / 1000 != lastHistoryS_) {
+    lastHistoryS_ = nowMs / 1000;
+    std::vector<double> values;
+    values.reserve(series_.size());
+    for (const auto& name : series_) values.push_back(columnValue(s, name));
+    const StoreStatus st = store_.appendHistory(nowMs, values);
+    if (!st) spdlog::warn("store: history not saved: {}", st.error);
+  }
+  const CheckpointReason why = policy_.poll(s.telemetry.now, s.telemetry.field_enable, s.telemetry.stage, false);
+  if (why != CheckpointReason::None && ledgerValid) {
+    const StoreStatus st = store_.checkpoint(ledger, toString(why), nowMs);
+    if (!st) spdlog::error("store: checkpoint ({}) failed: {}", toString(why), st.error);
+  }
+}
+
+void StoreService::stop(const BatteryLedger& ledger, bool ledgerValid) {
+  std::lock_guard lock(m_);
+  if (ledgerValid) {
+    const StoreStatus st = store_.checkpoint(ledger, "stop", unixMsNow());
+    if (!st) spdlog::error("store: final checkpoint failed: {}", st.error);
+  }
+  store_.flushHistory();
+  store_.close();
+}
+
+std::vector<EventRecord> StoreService::queryEvents(std::size_t limit, std::optional<std::int64_t> beforeId) {
+  std::lock_guard lock(m_);
+  (void)beforeId;
+  return store_.queryEvents(limit);
+}
+
+std::vector<HistoryPoint> StoreService::queryHistory(const std::string& series, std::int64_t fromMs,
+                                                     std::int64_t toMs, std::int64_t stepMs) {
+  std::lock_guard lock(m_);
+  return store_.queryHistory(series, fromMs, toMs, stepMs);
+}
+
+std::string StoreService::token() {
+  std::lock_guard lock(m_);
+  return store_.getOrCreateToken();
+}
+
+}  // namespace xr::app

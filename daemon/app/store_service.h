@@ -1,0 +1,55 @@
+#pragma once
+// The SQLite store as the running daemon uses it, off the RT thread: one
+// mutex around Store (the main/supervisor thread, the event pump and the web
+// threads all reach it; the RT thread never does).
+//   start : restore the ledger and the parameter overrides
+//   1 Hz  : chart history; CheckpointPolicy decides when to save the ledger
+//   events: appended as the pump delivers them
+//   stop  : final checkpoint ("stop")
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "battery/ledger.h"
+#include "params/params.h"
+#include "runtime/handoffs.h"
+#include "store/checkpoint_policy.h"
+#include "store/store.h"
+
+namespace xr::app {
+
+std::int64_t unixMsNow();
+
+class StoreService {
+ public:
+  StoreService(const std::string& path, int checkpointIntervalS);
+  const OpenResult& openResult() const { return open_; }
+
+  std::optional<SavedLedger> loadLedger();
+  // fileParams with the stored overrides applied; problems go to errors.
+  Params applyOverrides(const Params& fileParams, std::vector<std::string>& errors);
+  // Persist the names whose values differ between before and after.
+  void saveOverrides(const Params& fileParams, const Params& before, const Params& after);
+
+  void appendEvent(const Event& e);
+  // Once a second from the supervisor.
+  void housekeeping(const rt::RuntimeSnapshot& s, const BatteryLedger& ledger, bool ledgerValid);
+  void stop(const BatteryLedger& ledger, bool ledgerValid);
+
+  std::vector<EventRecord> queryEvents(std::size_t limit, std::optional<std::int64_t> beforeId);
+  std::vector<HistoryPoint> queryHistory(const std::string& series, std::int64_t fromMs, std::int64_t toMs,
+                                         std::int64_t stepMs);
+  std::vector<std::string> series() const { return series_; }
+  std::string token();
+
+ private:
+  std::mutex m_;
+  Store store_;
+  OpenResult open_;
+  CheckpointPolicy policy_;
+  std::vector<std::string> series_;
+  std::int64_t lastHistoryS_ = -1;
+};
+
+}  // namespace xr::app

@@ -1,0 +1,171 @@
+#include "app/web_api.h"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "config/config.h"
+
+namespace xr::app {
+
+web::StatusSnapshot WebApi::toStatus(const rt::RuntimeSnapshot& s, bool sim, double periodUs) {
+  web::StatusSnapshot o;
+  o.seq = s.tick;
+  o.start = s.start;
+  o.wall_time_s = static_cast<double>(unixMsNow()) / 1000.0;
+  o.telemetry = s.telemetry;
+  o.loop.ticks = s.loop.ticks;
+  o.loop.overruns = s.loop.overruns;
+  o.loop.target_period_us = periodUs;
+  // Absolute-deadline loop: the measured period is the target plus the
+  // wake-up error, so the error quantiles are what the web shows.
+  o.loop.period_mean_us = periodUs + s.loop.periodErrP50Us;
+  o.loop.period_p99_us = periodUs + s.loop.periodErrP99Us;
+  o.loop.period_max_us = periodUs + s.loop.periodErrMaxUs;
+  o.loop.exec_mean_us = s.loop.computeP50Us + s.loop.ioP50Us;
+  o.loop.exec_p99_us = s.loop.computeP99Us + s.loop.ioP99Us;
+  o.loop.exec_max_us = s.loop.computeMaxUs + s.loop.ioMaxUs;
+  o.loop.sensor_errors = s.health.sensorReadErrors;
+  if (sim && s.sim.valid) {
+    web::SimTruth t;
+    t.battery_v = s.sim.sim_battery_v;
+    t.alt_a = s.sim.sim_alt_a;
+    t.alt_temp_f = s.sim.sim_alt_temp_f;
+    t.soc_pct = s.sim.sim_soc_pct;
+    t.bms_connected = s.sim.sim_bms_connected;
+    t.field_on = s.sim.sim_field_on;
+    o.sim = t;
+  }
+  auto add = [&](const char* section, const char* name, double v) { o.extras.push_back({section, name, v}); };
+  add("loop", "period_error_p50_us", s.loop.periodErrP50Us);
+  add("loop", "period_error_p99_us", s.loop.periodErrP99Us);
+  add("loop", "period_error_max_us", s.loop.periodErrMaxUs);
+  add("loop", "compute_p50_us", s.loop.computeP50Us);
+  add("loop", "compute_p99_us", s.loop.computeP99Us);
+  add("loop", "compute_max_us", s.loop.computeMaxUs);
+  add("loop", "io_p50_us", s.loop.ioP50Us);
+  add("loop", "io_p99_us", s.loop.ioP99Us);
+  add("loop", "io_max_us", s.loop.ioMaxUs);
+  add("loop", "ch1_sample_rate_hz", s.loop.ch1SampleRateHz);
+  for (int c = 0; c < 4; ++c) {
+    static const char* names[4] = {"ch0_sample_rate_hz", "ch1_rate_hz", "ch2_sample_rate_hz", "ch3_sample_rate_hz"};
+    if (c != 1) add("loop", names[c], s.loop.adsChannelRateHz[static_cast<std::size_t>(c)]);
+  }
+  add("loop", "ina_sample_rate_hz", s.loop.inaSampleRateHz);
+  add("runtime", "output_write_errors", static_cast<double>(s.health.outputWriteErrors));
+  add("runtime", "watchdog_feeds", static_cast<double>(s.health.watchdogFeeds));
+  add("runtime", "commands_applied", static_cast<double>(s.health.commandsApplied));
+  add("runtime", "commands_rejected", static_cast<double>(s.health.commandsRejected));
+  add("runtime", "events_dropped", static_cast<double>(s.health.eventsDropped));
+  return o;
+}
+
+bool WebApi::latestStatus(web::StatusSnapshot& out) {
+  const rt::RuntimeSnapshot s = ctx_.handoffs->latest();
+  if (s.tick == 0) return false;
+  out = toStatus(s, ctx_.sim, ctx_.controlPeriodUs);
+  return true;
+}
+
+Params WebApi::currentParams() { return ctx_.handoffs->acceptedParams(); }
+
+web::PatchResult WebApi::patchParams(const std::vector<web::ParamChange>& changes) {
+  web::PatchResult r;
+  std::lock_guard lock(patchMutex_);
+  const Params before = ctx_.handoffs->acceptedParams();
+  Params p = before;
+  for (const auto& c : changes) {
+    if (!c.spec) {
+      r.errors.push_back({"", "unknown parameter"});
+      continue;
+    }
+    const std::size_t idx = c.index < 0 ? 0 : static_cast<std::size_t>(c.index);
+    if (!valueFits(*c.spec, c.value)) {
+      r.errors.push_back({std::string(c.spec->name), "value out of range [" + std::to_string(c.spec->min) + ", " +
+                                                         std::to_string(c.spec->max) + "]"});
+      continue;
+    }
+    c.spec->set(p, idx, c.value);
+  }
+  if (r.errors.empty()) {
+    for (const auto& e : checkConsistency(p)) r.errors.push_back({e.key, e.message});
+  }
+  if (!r.errors.empty()) return r;  // nothing applied
+  ctx_.handoffs->submitParams(p);   // whole swap, between ticks
+  if (ctx_.store) ctx_.store->saveOverrides(ctx_.fileParams, before, p);
+  spdlog::info("parameters changed through the API ({} values)", changes.size());
+  return r;
+}
+
+web::CommandResult WebApi::command(const Command& cmd) {
+  web::CommandResult r;
+  r.accepted = ctx_.handoffs->submitCommand(cmd);
+  r.message = r.accepted ? "queued: " + std::string(toString(cmd.type)) : "command queue full, try again";
+  return r;
+}
+
+std::vector<web::EventRecord> WebApi::events(const web::EventQuery& q) {
+  std::vector<web::EventRecord> out;
+  if (!ctx_.events) return out;
+  for (auto& it : ctx_.events->query(q.limit, q.before.value_or(0))) {
+    web::EventRecord e;
+    e.id = it.id;
+    e.wall_time_s = it.wallTimeS;
+    e.event = it.event;
+    e.text = it.text;
+    out.push_back(std::move(e));
+  }
+  return out;
+}
+
+web::HistoryResult WebApi::history(const web::HistoryQuery& q) {
+  web::HistoryResult r;
+  if (!ctx_.store) {
+    r.error = "no history: the daemon runs without a state database (--state-db)";
+    return r;
+  }
+  const auto known = ctx_.store->series();
+  for (const auto& s : q.series) {
+    if (std::find(known.begin(), known.end(), s) == known.end()) {
+      r.error = "unknown series '" + s + "'";
+      return r;
+    }
+  }
+  const auto fromMs = static_cast<std::int64_t>(q.from_s * 1000.0);
+  const auto toMs = static_cast<std::int64_t>(q.to_s * 1000.0);
+  const auto stepMs = static_cast<std::int64_t>(std::max(1.0, q.step_s) * 1000.0);
+  for (std::int64_t t = fromMs; t <= toMs && r.t.size() < 100000; t += stepMs) r.t.push_back(t / 1000.0);
+  for (const auto& s : q.series) {
+    std::vector<double> col(r.t.size(), std::nan(""));
+    for (const auto& p : ctx_.store->queryHistory(s, fromMs, toMs, stepMs)) {
+      const auto i = (p.tMs - fromMs) / stepMs;
+      if (i >= 0 && static_cast<std::size_t>(i) < col.size()) col[static_cast<std::size_t>(i)] = p.value;
+    }
+    r.series.emplace_back(s, std::move(col));
+  }
+  return r;
+}
+
+std::vector<web::ProbeResult> WebApi::probeResults() {
+  if (ctx_.sim) return {{"simulated board (SimWorld)", true, "INA228 and ADS1115 chip models on a simulated I2C bus"}};
+  return {};
+}
+
+web::VersionMap WebApi::versions() {
+  return {{"xregulatord", XR_VERSION_STRING}, {"mode", ctx_.sim ? "sim" : "board"}};
+}
+
+web::Health WebApi::health() {
+  web::Health h;
+  const auto now = unixMsNow();
+  const auto last = ctx_.lastHeartbeatWallMs ? ctx_.lastHeartbeatWallMs->load() : 0;
+  const bool ticking = last > 0 && now - last < 2000;
+  const bool outputsOk = !(ctx_.fieldSafeFault && ctx_.fieldSafeFault->load());
+  h.ok = ticking && outputsOk;
+  h.detail = !ticking ? "control loop not ticking" : (!outputsOk ? "outputs cannot be driven" : "ok");
+  return h;
+}
+
+}  // namespace xr::app

@@ -1,0 +1,49 @@
+#pragma once
+// The daemon side of the web server (web/server/daemon_api.h). Every method
+// is a non-blocking hand-off for the control thread: status from the
+// seqlock, commands into the SPSC queue, a validated whole Params into the
+// triple buffer (then persisted as overrides), events from memory, history
+// from the store.
+#include <atomic>
+#include <mutex>
+
+#include "app/status_source.h"
+#include "app/store_service.h"
+#include "runtime/handoffs.h"
+#include "web/server/daemon_api.h"
+
+namespace xr::app {
+
+struct WebApiContext {
+  rt::Handoffs* handoffs = nullptr;
+  Params fileParams;
+  StoreService* store = nullptr;  // may be null (no --state-db in --sim)
+  RecentEvents* events = nullptr;
+  bool sim = false;
+  double controlPeriodUs = 2500;
+  std::atomic<std::int64_t>* lastHeartbeatWallMs = nullptr;  // set by the supervisor
+  std::atomic<bool>* fieldSafeFault = nullptr;               // outputs could not be driven
+};
+
+class WebApi final : public web::DaemonApi {
+ public:
+  explicit WebApi(WebApiContext ctx) : ctx_(std::move(ctx)) {}
+  bool latestStatus(web::StatusSnapshot& out) override;
+  Params currentParams() override;
+  Params fileParams() override { return ctx_.fileParams; }
+  web::PatchResult patchParams(const std::vector<web::ParamChange>& changes) override;
+  web::CommandResult command(const Command& cmd) override;
+  std::vector<web::EventRecord> events(const web::EventQuery& q) override;
+  web::HistoryResult history(const web::HistoryQuery& q) override;
+  std::vector<web::ProbeResult> probeResults() override;
+  web::VersionMap versions() override;
+  web::Health health() override;
+
+  static web::StatusSnapshot toStatus(const rt::RuntimeSnapshot& s, bool sim, double periodUs);
+
+ private:
+  WebApiContext ctx_;
+  std::mutex patchMutex_;  // read-modify-write of the whole Params
+};
+
+}  // namespace xr::app
