@@ -142,6 +142,29 @@ TEST(Alarms, MessagesThrottledTo30s) {
   EXPECT_EQ(n, 3u);  // t = 0, 30, 60 s
 }
 
+TEST(Alarms, TempAlarmLowZeroAndVoltageAlarmLowAtFloorAreOff) {
+  Params p = alarmParams();
+  p.TempAlarmLow = 0.0;
+  p.VoltageAlarmLow = 8.0;  // not above the 8 V floor: row disabled
+  Rig r(p);
+  r.manual = true;
+  r.warmUp();
+  r.tempF = -10.0;
+  r.ibv = r.batteryV = 7.0;
+  r.run(fromSec(1.0));
+  EXPECT_FALSE(r.buzzer);
+}
+
+TEST(Alarms, StoppedEngineIsNotAnAlarm) {
+  Rig r;
+  r.warmUp();
+  r.rpm = 0.0;
+  r.run(fromSec(2.0));
+  EXPECT_EQ(r.d.reason, Reason::REASON_RPM_LOW);
+  EXPECT_FALSE(r.sc.fieldEnable);
+  EXPECT_FALSE(r.buzzer);
+}
+
 TEST(Alarms, EvaluatedOnThe250msCadence) {
   Rig r(alarmParams());
   r.manual = true;
