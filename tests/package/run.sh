@@ -42,9 +42,13 @@ if [ $# -ge 1 ]; then
   deb=$(readlink -f "$1")
   changes=""
 else
-  echo "building the package from a copy of the tracked files (this takes minutes)"
+  echo "building the package from the committed tree (git HEAD; this takes minutes)"
   mkdir -p "$work/src"
-  (cd "$repo" && git ls-files -z | tar --null -T - -cf -) | tar -xf - -C "$work/src"
+  (cd "$repo" && git archive HEAD) | tar -xf - -C "$work/src"
+  # The dashboard's pinned uPlot comes from npm (`make deps`), not from git.
+  if [ -d "$repo/web/node_modules/uplot" ]; then
+    mkdir -p "$work/src/web/node_modules" && cp -a "$repo/web/node_modules/uplot" "$work/src/web/node_modules/"
+  fi
   start=$(date +%s)
   if ! (cd "$work/src" && dpkg-buildpackage -us -uc -b >"$work/build.log" 2>&1); then
     tail -40 "$work/build.log"; echo "FAIL: dpkg-buildpackage"; exit 1
@@ -84,6 +88,7 @@ check_file /lib/systemd/system/xregulatord.service root:root 644
 check_file /usr/lib/sysusers.d/xregulator.conf root:root 644
 check_file /lib/udev/rules.d/60-xregulator.rules root:root 644
 check_file /usr/share/xregulator/www root:root 755
+check_file /usr/share/xregulator/www/index.html root:root 644
 check_file /usr/share/man/man8/xregulatord.8.gz root:root 644
 check_file /usr/share/doc/xregulator/copyright root:root 644
 
