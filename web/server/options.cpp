@@ -7,6 +7,14 @@
 
 #include "web/server/web_server.h"
 
+// Set by web/CMakeLists.txt; empty in builds that never serve files (fuzzer).
+#ifndef XR_WWW_BUILD_DIR
+#define XR_WWW_BUILD_DIR ""
+#endif
+#ifndef XR_WWW_INSTALL_DIR
+#define XR_WWW_INSTALL_DIR ""
+#endif
+
 namespace xr::web {
 
 WebServerOptions WebServerOptions::fromSettings(const WebSettings& s, std::string token) {
