@@ -68,6 +68,7 @@ Store::Store(StoreOptions options) : opt_(std::move(options)) {}
 Store::~Store() { close(); }
 
 void Store::close() {
+  const std::lock_guard<std::recursive_mutex> lock(mu_);
   if (db_.isOpen()) {
     closeMinute();
     flushHistory();
@@ -119,6 +120,7 @@ int Store::configure() {
 }
 
 OpenResult Store::open(const std::string& path, std::int64_t nowUnixMs) {
+  const std::lock_guard<std::recursive_mutex> lock(mu_);
   close();
   OpenResult r;
   path_ = path;
@@ -212,6 +214,7 @@ OpenResult Store::open(const std::string& path, std::int64_t nowUnixMs) {
 // ---------------------------------------------------------------- ledger
 
 StoreStatus Store::checkpoint(const BatteryLedger& ledger, std::string_view reason, std::int64_t nowUnixMs) {
+  const std::lock_guard<std::recursive_mutex> lock(mu_);
   if (!db_.isOpen()) return status(SQLITE_MISUSE, "checkpoint");
   db_.exec("PRAGMA synchronous = FULL");
   int rc;
@@ -245,6 +248,7 @@ StoreStatus Store::checkpoint(const BatteryLedger& ledger, std::string_view reas
 }
 
 std::optional<SavedLedger> Store::loadLedger() {
+  const std::lock_guard<std::recursive_mutex> lock(mu_);
   if (!db_.isOpen()) return std::nullopt;
   SavedLedger out;
   std::map<std::string, double, std::less<>> values;
@@ -268,12 +272,14 @@ std::optional<SavedLedger> Store::loadLedger() {
 }
 
 StoreStatus Store::putBlob(std::string_view key, std::string_view value) {
+  const std::lock_guard<std::recursive_mutex> lock(mu_);
   sql::Stmt st(
       db_, "INSERT INTO kv(key, value) VALUES(?1, ?2) ON CONFLICT(key) DO UPDATE SET value = excluded.value");
   return status(st.bind(1, key).bind(2, value).step(), "putBlob");
 }
 
 std::optional<std::string> Store::getBlob(std::string_view key) {
+  const std::lock_guard<std::recursive_mutex> lock(mu_);
   sql::Stmt st(db_, "SELECT value FROM kv WHERE key = ?1");
   if (st.bind(1, key).step() == SQLITE_ROW) return st.colText(0);
   return std::nullopt;
@@ -283,6 +289,7 @@ std::optional<std::string> Store::getBlob(std::string_view key) {
 
 StoreStatus Store::setOverride(std::string_view name, std::string_view value, std::string_view fileValue,
                                std::int64_t nowUnixMs) {
+  const std::lock_guard<std::recursive_mutex> lock(mu_);
   sql::Stmt st(db_,
                "INSERT INTO overrides(name, value, file_value, changed_at_ms) VALUES(?1, ?2, ?3, ?4) "
                "ON CONFLICT(name) DO UPDATE SET value = excluded.value, file_value = excluded.file_value, "
@@ -291,6 +298,7 @@ StoreStatus Store::setOverride(std::string_view name, std::string_view value, st
 }
 
 std::vector<OverrideRow> Store::overrides() {
+  const std::lock_guard<std::recursive_mutex> lock(mu_);
   std::vector<OverrideRow> out;
   sql::Stmt st(db_, "SELECT name, value, file_value, changed_at_ms FROM overrides ORDER BY name");
   while (st.ok() && st.step() == SQLITE_ROW)
@@ -299,6 +307,7 @@ std::vector<OverrideRow> Store::overrides() {
 }
 
 std::optional<OverrideRow> Store::findOverride(std::string_view name) {
+  const std::lock_guard<std::recursive_mutex> lock(mu_);
   sql::Stmt st(db_, "SELECT name, value, file_value, changed_at_ms FROM overrides WHERE name = ?1");
   if (st.bind(1, name).step() == SQLITE_ROW)
     return OverrideRow{st.colText(0), st.colText(1), st.colText(2), st.colInt(3)};
@@ -306,6 +315,7 @@ std::optional<OverrideRow> Store::findOverride(std::string_view name) {
 }
 
 StoreStatus Store::resetOverride(std::string_view name) {
+  const std::lock_guard<std::recursive_mutex> lock(mu_);
   sql::Stmt st(db_, "DELETE FROM overrides WHERE name = ?1");
   return status(st.bind(1, name).step(), "resetOverride");
 }
@@ -313,6 +323,7 @@ StoreStatus Store::resetOverride(std::string_view name) {
 // ---------------------------------------------------------------- events
 
 StoreStatus Store::appendEvents(std::span<const EventRecord> events) {
+  const std::lock_guard<std::recursive_mutex> lock(mu_);
   if (events.empty()) return {};
   if (!db_.isOpen()) return status(SQLITE_MISUSE, "appendEvents");
   sql::Transaction tx(db_);
@@ -341,6 +352,7 @@ StoreStatus Store::appendEvents(std::span<const EventRecord> events) {
 }
 
 std::vector<EventRecord> Store::queryEvents(std::size_t limit, std::optional<std::int64_t> beforeMs) {
+  const std::lock_guard<std::recursive_mutex> lock(mu_);
   std::vector<EventRecord> out;
   sql::Stmt st(db_,
                "SELECT id, t_ms, level, code, reason, message, a, b FROM events WHERE t_ms < ?1 "
@@ -387,6 +399,7 @@ void Store::closeMinute() {
 }
 
 StoreStatus Store::appendHistory(std::int64_t tUnixMs, std::span<const double> values) {
+  const std::lock_guard<std::recursive_mutex> lock(mu_);
   const std::size_t n = opt_.historySeries.size();
   if (values.size() != n) return status(SQLITE_MISUSE, "appendHistory: wrong number of series");
   const std::int64_t sec = floorDiv(tUnixMs, 1000);
@@ -453,9 +466,13 @@ int Store::writeBuckets(std::string_view table, std::map<std::int64_t, Bucket>& 
   return SQLITE_OK;
 }
 
-StoreStatus Store::flushHistory() { return flushPending(true); }
+StoreStatus Store::flushHistory() {
+  const std::lock_guard<std::recursive_mutex> lock(mu_);
+  return flushPending(true);
+}
 
 StoreStatus Store::flushPending(bool all) {
+  const std::lock_guard<std::recursive_mutex> lock(mu_);
   // The periodic flush writes a 1 min row only once its hour is complete:
   // rewriting the open hour's rows every flush would cost pages for data the
   // 1 s table already holds. flushHistory()/close() write everything.
@@ -487,6 +504,7 @@ StoreStatus Store::flushPending(bool all) {
 }
 
 StoreStatus Store::compact(std::int64_t nowUnixMs) {
+  const std::lock_guard<std::recursive_mutex> lock(mu_);
   if (!db_.isOpen()) return status(SQLITE_MISUSE, "compact");
   const std::int64_t nowS = floorDiv(nowUnixMs, 1000);
   sql::Transaction tx(db_);
@@ -509,6 +527,7 @@ StoreStatus Store::compact(std::int64_t nowUnixMs) {
 
 std::vector<HistoryPoint> Store::queryHistory(std::string_view series, std::int64_t fromMs, std::int64_t toMs,
                                               std::int64_t stepMs) {
+  const std::lock_guard<std::recursive_mutex> lock(mu_);
   std::vector<HistoryPoint> out;
   const auto it = std::find(opt_.historySeries.begin(), opt_.historySeries.end(), series);
   if (it == opt_.historySeries.end() || toMs < fromMs || !db_.isOpen()) return out;
@@ -571,6 +590,7 @@ std::vector<HistoryPoint> Store::queryHistory(std::string_view series, std::int6
 // ---------------------------------------------------------------- token
 
 std::string Store::getOrCreateToken() {
+  const std::lock_guard<std::recursive_mutex> lock(mu_);
   if (auto t = getBlob("web_token"); t && !t->empty()) return *t;
   std::uint8_t bytes[32];
   bool got = false;
@@ -593,6 +613,7 @@ std::string Store::getOrCreateToken() {
 }
 
 std::string Store::integrityCheck() {
+  const std::lock_guard<std::recursive_mutex> lock(mu_);
   int rc = 0;
   std::string r = db_.queryText("PRAGMA integrity_check", &rc);
   return sql::isOk(rc) ? r : "error: " + db_.lastError();

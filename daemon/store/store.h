@@ -3,8 +3,9 @@
 // database file: battery ledger + regulator state, parameter overrides,
 // events, chart history, the web token.
 //
-// Threading: every method is called from ONE non-RT thread (the runtime's
-// store thread). Never from the RT thread: calls block on disk I/O.
+// Threading: never call from the RT thread (calls block on disk I/O). Any
+// number of non-RT threads may call (the store thread writes, HTTP threads
+// query): one internal mutex serialises the calls on the one connection.
 //
 // Failure policy: nothing throws and nothing aborts. A corrupt or unreadable
 // file is moved aside (`<path>.corrupt-<UTC time>`) and a fresh database is
@@ -14,6 +15,7 @@
 // full disk) come back as StoreStatus values.
 #include <cstdint>
 #include <map>
+#include <mutex>
 #include <optional>
 #include <span>
 #include <string>
@@ -159,6 +161,7 @@ class Store {
   void closeMinute();
   StoreStatus flushPending(bool all);
 
+  mutable std::recursive_mutex mu_;
   StoreOptions opt_;
   sql::Db db_;
   std::string path_;

@@ -1,7 +1,9 @@
 // Store: ledger, overrides, events, history, token (persistence issue).
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
+#include <thread>
 
 #include "store/param_overrides.h"
 #include "store/schema.h"
@@ -237,6 +239,42 @@ TEST(Store, BlobsForTuningLogs) {
   ASSERT_TRUE(s.putBlob("tuning_log", R"({"entries":[1,2]})").ok);
   ASSERT_TRUE(s.putBlob("tuning_log", R"({"entries":[3]})").ok);
   EXPECT_EQ(s.getBlob("tuning_log").value(), R"({"entries":[3]})");
+}
+
+}  // namespace
+}  // namespace xr
+
+namespace xr {
+namespace {
+
+TEST(Store, ConcurrentWriterAndReaders) {
+  test::TempDir d;
+  StoreOptions opt;
+  opt.historyFlushS = 10;
+  Store s(opt);
+  ASSERT_TRUE(s.open(d.file("x.db"), test::kT0).ok);
+  std::atomic<bool> done{false};
+  std::atomic<int> reads{0};
+  std::thread reader([&] {
+    while (!done.load()) {
+      s.queryEvents(20);
+      s.queryHistory("ibv_v", test::kT0, test::kT0 + 600000, 10000);
+      s.overrides();
+      ++reads;
+    }
+  });
+  std::vector<double> v(opt.historySeries.size(), 12.5);
+  for (int i = 0; i < 600; ++i) {
+    ASSERT_TRUE(s.appendHistory(test::kT0 + i * 1000LL, v).ok);
+    EventRecord e{0, test::kT0 + i, "info", "Message", "NONE", "m", 0, 0};
+    ASSERT_TRUE(s.appendEvents(std::span<const EventRecord>(&e, 1)).ok);
+  }
+  while (reads.load() == 0) std::this_thread::yield();  // at least one overlapping read pass
+  done = true;
+  reader.join();
+  EXPECT_EQ(s.queryEvents(1000).size(), 600u);
+  EXPECT_EQ(s.queryHistory("ibv_v", test::kT0, test::kT0 + 599000, 0).size(), 600u);
+  EXPECT_EQ(s.integrityCheck(), "ok");
 }
 
 }  // namespace
