@@ -37,9 +37,11 @@ Event makeEvent(TimeNs t, EventLevel level, EventCode code, double a = 0.0, doub
 }  // namespace
 
 BatteryMonitor::BatteryMonitor(const Params& p) : p_(p) {
-  // A fresh ledger starts at a full bank: the only safe assumption that does
-  // not block re-bulk logic forever, and the first full charge resyncs it.
-  ledger_.CoulombCount_Ah = p_.BatteryCapacity_Ah;
+  // A fresh ledger (first start, nothing restored) does not know the SoC.
+  // Assume half: below SOC_AllowRebulk_percent, so a guess never blocks a
+  // re-bulk (voltage regulation still prevents overcharge), and the first
+  // full-charge detection replaces the guess with a measurement.
+  ledger_.CoulombCount_Ah = p_.BatteryCapacity_Ah * kUnknownSocPercent / 100.0;
   ledger_.valid = true;
 }
 
@@ -408,7 +410,7 @@ void BatteryMonitor::restoreLedger(const BatteryLedger& in) {
   using namespace battery_k;
   BatteryLedger l = in;
   const double cap = p_.BatteryCapacity_Ah;
-  l.CoulombCount_Ah = clampFinite(l.CoulombCount_Ah, 0.0, cap, cap);
+  l.CoulombCount_Ah = clampFinite(l.CoulombCount_Ah, 0.0, cap, cap * kUnknownSocPercent / 100.0);
   l.coulombAccumulator_Ah = clampFinite(l.coulombAccumulator_Ah, -COULOMB_COMMIT_AH, COULOMB_COMMIT_AH, 0.0);
   l.DynamicShuntGainFactor =
       clampFinite(l.DynamicShuntGainFactor, MIN_DYNAMIC_GAIN_FACTOR, MAX_DYNAMIC_GAIN_FACTOR, 1.0);

@@ -70,6 +70,9 @@ inline constexpr std::int64_t INA_STALE_FOR_SOC_MS = 2000;
 inline constexpr std::int64_t SOLAR_STALE_MS = 10000;
 }  // namespace battery_k
 
+// SoC assumed before anything was restored or measured (see the constructor).
+inline constexpr double kUnknownSocPercent = 50.0;
+
 // Why an auto-gain correction was skipped (detail code of events/tests).
 enum class GainGuard {
   Applied = 0,

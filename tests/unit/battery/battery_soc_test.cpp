@@ -302,10 +302,16 @@ TEST(BatteryLedgerTest, RoundTripAndSanitising) {
   BatteryMonitor m3(baseParams());
   m3.restoreLedger(bad);
   const BatteryLedger s = m3.ledger();
-  EXPECT_DOUBLE_EQ(s.CoulombCount_Ah, 200.0);
+  EXPECT_DOUBLE_EQ(s.CoulombCount_Ah, 200.0 * kUnknownSocPercent / 100.0);  // NaN: unknown
   EXPECT_LE(s.DynamicShuntGainFactor, battery_k::MAX_DYNAMIC_GAIN_FACTOR);
   EXPECT_DOUBLE_EQ(s.ChargedEnergy_AllTime_Wh, 0.0);
   EXPECT_DOUBLE_EQ(s.DynamicAltCurrentZero, 0.0);
+}
+
+TEST(BatteryCommands, FreshMonitorAssumesHalfUntilMeasured) {
+  BatteryRig r(baseParams());
+  EXPECT_DOUBLE_EQ(r.mon.socPercent(), kUnknownSocPercent);
+  EXPECT_LT(r.mon.socPercent(), Params{}.SOC_AllowRebulk_percent);
 }
 
 TEST(BatteryCommands, SetSocRejectsOutOfRange) {
