@@ -1,7 +1,7 @@
 #pragma once
 // Deterministic noise: std::mt19937_64's output sequence is fixed by the
 // standard, but std::normal_distribution is not (it differs between library
-// versions), so the normal transform is our own (Box-Muller, both values used).
+// versions), so the normal transform is our own (Marsaglia polar method, both values used).
 #include <cmath>
 #include <cstdint>
 #include <random>
@@ -18,11 +18,17 @@ class Rng {
       hasSpare_ = false;
       return spare_;
     }
-    const double r = std::sqrt(-2.0 * std::log(uniform()));
-    const double a = 6.283185307179586 * uniform();
-    spare_ = r * std::sin(a);
+    // Marsaglia's polar method: no trigonometry, one log per two values.
+    double u, v, s;
+    do {
+      u = 2.0 * uniform() - 1.0;
+      v = 2.0 * uniform() - 1.0;
+      s = u * u + v * v;
+    } while (s >= 1.0 || s == 0.0);
+    const double m = std::sqrt(-2.0 * std::log(s) / s);
+    spare_ = v * m;
     hasSpare_ = true;
-    return r * std::cos(a);
+    return u * m;
   }
   double gauss(double sigma) noexcept { return sigma > 0.0 ? sigma * normal() : 0.0; }
 

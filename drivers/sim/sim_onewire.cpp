@@ -56,7 +56,7 @@ std::string SimOneWire::formatW1Slave(std::int16_t raw, bool corrupt) {
 
 void SimOneWire::writeFile(const std::string& content) {
   std::error_code ec;
-  fs::create_directories(root_ / id_, ec);
+  if (!written_) fs::create_directories(root_ / id_, ec);  // after a reconnect
   const fs::path tmp = root_ / id_ / ".w1_slave.tmp";
   {
     std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
