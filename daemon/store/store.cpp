@@ -45,6 +45,11 @@ bool isCorruption(int rc) {
          primary == SQLITE_FORMAT;
 }
 
+// SQLite stores NaN as NULL, which the NOT NULL value columns refuse: a
+// stale reading in an event's values (or a NaN ledger field) must not cost
+// the whole write.
+double finiteOr0(double v) { return std::isfinite(v) ? v : 0.0; }
+
 }  // namespace
 
 std::vector<std::string> defaultHistorySeries() {
@@ -227,7 +232,7 @@ StoreStatus Store::checkpoint(const BatteryLedger& ledger, std::string_view reas
                    "ON CONFLICT(name) DO UPDATE SET value = excluded.value");
       BatteryLedger copy = ledger;
       visitLedgerFields(copy, [&](const char* name, double& v) {
-        if (rc != SQLITE_OK) return;
+        if (rc != SQLITE_OK || !std::isfinite(v)) return;  // NaN: keep the last good value
         st.reset();
         const int s = st.bind(1, std::string_view(name)).bind(2, v).step();
         if (s != SQLITE_DONE) rc = s;
@@ -338,8 +343,8 @@ StoreStatus Store::appendEvents(std::span<const EventRecord> events) {
                         .bind(3, e.code)
                         .bind(4, e.reason)
                         .bind(5, e.message)
-                        .bind(6, e.a)
-                        .bind(7, e.b)
+                        .bind(6, finiteOr0(e.a))
+                        .bind(7, finiteOr0(e.b))
                         .step();
       if (s != SQLITE_DONE) {
         rc = s;

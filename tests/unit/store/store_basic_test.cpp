@@ -212,6 +212,25 @@ TEST(Store, EventsBounded) {
   EXPECT_EQ(all.front().tMs, kT0 + 249);
 }
 
+TEST(Store, NonFiniteValuesDoNotCostTheWrite) {
+  TempDir d;
+  Store s;
+  ASSERT_TRUE(s.open(d.file("x.db"), kT0).ok);
+  BatteryLedger l = sampleLedger();
+  ASSERT_TRUE(s.checkpoint(l, "interval", kT0).ok);
+  BatteryLedger bad = l;
+  bad.ChargedEnergy_AllTime_Wh += 10.0;
+  bad.CoulombCount_Ah = NAN;
+  ASSERT_TRUE(s.checkpoint(bad, "interval", kT0 + 1).ok);
+  const auto saved = s.loadLedger();
+  ASSERT_TRUE(saved.has_value());
+  EXPECT_DOUBLE_EQ(saved->ledger.ChargedEnergy_AllTime_Wh, bad.ChargedEnergy_AllTime_Wh);
+  EXPECT_DOUBLE_EQ(saved->ledger.CoulombCount_Ah, l.CoulombCount_Ah);  // last good value kept
+  EventRecord e{0, kT0, "warning", "ProtectionTrip", "NONE", "stale", NAN, INFINITY};
+  ASSERT_TRUE(s.appendEvents(std::span<const EventRecord>(&e, 1)).ok);
+  EXPECT_EQ(s.queryEvents(1).at(0).message, "stale");
+}
+
 TEST(Store, TokenCreatedOnceAndKept) {
   TempDir d;
   std::string tok;
