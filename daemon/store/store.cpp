@@ -356,13 +356,9 @@ StoreStatus Store::appendEvents(std::span<const EventRecord> events) {
   return status(rc, "appendEvents");
 }
 
-std::vector<EventRecord> Store::queryEvents(std::size_t limit, std::optional<std::int64_t> beforeMs) {
-  const std::lock_guard<std::recursive_mutex> lock(mu_);
+namespace {
+std::vector<EventRecord> readEvents(sql::Stmt& st) {
   std::vector<EventRecord> out;
-  sql::Stmt st(db_,
-               "SELECT id, t_ms, level, code, reason, message, a, b FROM events WHERE t_ms < ?1 "
-               "ORDER BY t_ms DESC, id DESC LIMIT ?2");
-  st.bind(1, beforeMs.value_or(INT64_MAX)).bind(2, static_cast<std::int64_t>(limit));
   while (st.ok() && st.step() == SQLITE_ROW) {
     EventRecord e;
     e.id = st.colInt(0);
@@ -376,6 +372,25 @@ std::vector<EventRecord> Store::queryEvents(std::size_t limit, std::optional<std
     out.push_back(std::move(e));
   }
   return out;
+}
+}  // namespace
+
+std::vector<EventRecord> Store::queryEvents(std::size_t limit, std::optional<std::int64_t> beforeMs) {
+  const std::lock_guard<std::recursive_mutex> lock(mu_);
+  sql::Stmt st(db_,
+               "SELECT id, t_ms, level, code, reason, message, a, b FROM events WHERE t_ms < ?1 "
+               "ORDER BY t_ms DESC, id DESC LIMIT ?2");
+  st.bind(1, beforeMs.value_or(INT64_MAX)).bind(2, static_cast<std::int64_t>(limit));
+  return readEvents(st);
+}
+
+std::vector<EventRecord> Store::queryEventsBeforeId(std::size_t limit, std::int64_t beforeId) {
+  const std::lock_guard<std::recursive_mutex> lock(mu_);
+  sql::Stmt st(db_,
+               "SELECT id, t_ms, level, code, reason, message, a, b FROM events WHERE id < ?1 "
+               "ORDER BY id DESC LIMIT ?2");
+  st.bind(1, beforeId).bind(2, static_cast<std::int64_t>(limit));
+  return readEvents(st);
 }
 
 // ---------------------------------------------------------------- history

@@ -128,6 +128,9 @@ class Store {
   StoreStatus appendEvents(std::span<const EventRecord> events);
   // Newest first; only events strictly before `beforeMs` when given.
   std::vector<EventRecord> queryEvents(std::size_t limit, std::optional<std::int64_t> beforeMs = {});
+  // Newest first by insertion order, only ids < beforeId (stable paging even
+  // when many events share a millisecond).
+  std::vector<EventRecord> queryEventsBeforeId(std::size_t limit, std::int64_t beforeId);
 
   // ---- chart history ---------------------------------------------------------
   // One sample: values in options.historySeries order (NaN = no value).

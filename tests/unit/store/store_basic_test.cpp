@@ -128,6 +128,11 @@ TEST(Store, EventsNewestFirstWithLimitAndBefore) {
   const auto page2 = s.queryEvents(10, last10.back().tMs);
   ASSERT_EQ(page2.size(), 10u);
   EXPECT_EQ(page2.front().tMs, kT0 + 19000);
+  const auto byId = s.queryEventsBeforeId(5, last10.back().id);
+  ASSERT_EQ(byId.size(), 5u);
+  EXPECT_EQ(byId.front().id, last10.back().id - 1);
+  EXPECT_EQ(byId.front().tMs, kT0 + 19000);
+  EXPECT_TRUE(s.queryEventsBeforeId(5, byId.back().id - 15).empty());
 }
 
 TEST(Store, HistoryOneSecondAndOneMinute) {
