@@ -18,13 +18,16 @@ class Rng {
       hasSpare_ = false;
       return spare_;
     }
-    // Marsaglia's polar method: no trigonometry, one log per two values.
+    // Marsaglia's polar method: no trigonometry, one log per two values;
+    // both coordinates come from one 64-bit draw (32 bits each is plenty for
+    // sensor noise).
     double u, v, s;
     do {
-      u = 2.0 * uniform() - 1.0;
-      v = 2.0 * uniform() - 1.0;
+      const std::uint64_t r = gen_();
+      u = (double(std::uint32_t(r)) + 0.5) * 0x1.0p-31 - 1.0;
+      v = (double(std::uint32_t(r >> 32)) + 0.5) * 0x1.0p-31 - 1.0;
       s = u * u + v * v;
-    } while (s >= 1.0 || s == 0.0);
+    } while (s >= 1.0);
     const double m = std::sqrt(-2.0 * std::log(s) / s);
     spare_ = v * m;
     hasSpare_ = true;

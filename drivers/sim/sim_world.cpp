@@ -91,19 +91,32 @@ void SimWorld::refreshAnalog(double dt) noexcept {
   const bool lost = faults_[int(Fault::rpm_signal_loss)];
   const double target = lost ? 0.0 : frontend::adcFromRpm(fe, std::max(0.0, plant_.rpm() + rng_.gauss(n.rpm)));
   const double tau = lost ? 2.0 : 0.05;
-  if (dt > 0.0)
-    lm2907V_ += (target - lm2907V_) * (1.0 - std::exp(-dt / tau));
-  else if (!lost)
+  if (dt > 0.0) {
+    if (dt != lagDt_ || tau != lagTau_) {
+      lagDt_ = dt;
+      lagTau_ = tau;
+      lagK_ = 1.0 - std::exp(-dt / tau);
+    }
+    lm2907V_ += (target - lm2907V_) * lagK_;
+  } else if (!lost) {
     lm2907V_ = target;
+  }
   ain[2] = lm2907V_;
-  double tempF = p.alt_temp_f + rng_.gauss(n.temp_f);
-  if (faults_[int(Fault::temp_value)]) tempF = faultValues_[int(Fault::temp_value)];
-  // Open thermistor: the divider node sits at the supply.
-  ain[3] = faults_[int(Fault::temp_sensor_disconnect)] ? fe.thermistor_supply_v : frontend::adcFromTempF(fe, tempF);
+  // Temperatures move over seconds: refresh the thermistor node and the
+  // 1-Wire reading every 50 ms of virtual time (and at once on a fault change).
+  if (dt == 0.0 || now_ >= nextSlowRefresh_) {
+    nextSlowRefresh_ = now_ + fromMs(50);
+    double tempF = p.alt_temp_f + rng_.gauss(n.temp_f);
+    if (faults_[int(Fault::temp_value)]) tempF = faultValues_[int(Fault::temp_value)];
+    tempSenseF_ = tempF;
+    // Open thermistor: the divider node sits at the supply.
+    ch3V_ = faults_[int(Fault::temp_sensor_disconnect)] ? fe.thermistor_supply_v : frontend::adcFromTempF(fe, tempF);
+  }
+  ain[3] = ch3V_;
   for (auto& v : ain) v = std::clamp(std::isfinite(v) ? v : 0.0, 0.0, kAdsVdd + 0.3);
   ads_.setInputs(ain);
 
-  if (w1_) w1_->update(now_, fToC(tempF));
+  if (w1_) w1_->update(now_, fToC(tempSenseF_));
 }
 
 void SimWorld::advanceTo(TimeNs t) noexcept {

@@ -122,6 +122,12 @@ class SimWorld {
   std::array<bool, kFaultCount> faults_{};
   std::array<double, kFaultCount> faultValues_{};
   double lm2907V_ = 0.0;
+  // Slow channels (temperatures) are refreshed at this cadence, not every step.
+  TimeNs nextSlowRefresh_ = 0;
+  double ch3V_ = 0.0;
+  double tempSenseF_ = 0.0;
+  // exp(-dt/tau) of the LM2907 lag for the last dt (dt is almost always the tick).
+  double lagDt_ = -1.0, lagTau_ = -1.0, lagK_ = 0.0;
 };
 
 }  // namespace xr::sim

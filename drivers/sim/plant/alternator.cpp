@@ -30,8 +30,11 @@ double AlternatorModel::coolingFactor(double rpm) const noexcept {
 
 void AlternatorModel::step(double fieldCmd, double rpm, double ambientF, double dt) noexcept {
   const double target = open_ ? 0.0 : std::clamp(fieldCmd, 0.0, 1.0);
-  const double tau = std::max(1e-4, cfg_.field_tau_s);
-  field_ += (target - field_) * (1.0 - std::exp(-dt / tau));
+  if (dt != lagDt_) {
+    lagDt_ = dt;
+    lagK_ = 1.0 - std::exp(-dt / std::max(1e-4, cfg_.field_tau_s));
+  }
+  field_ += (target - field_) * lagK_;
   amps_ = cfg_.rated_a * availableFraction(rpm) * field_;
   // Thermal: C dT/dt = P - G(rpm) (T - Ta), normalised so that at cruise
   // RPM, rated output: Tss - Ta = thermal_rise_f and tau = thermal_tau_s.

@@ -42,6 +42,7 @@ class AlternatorModel {
   double amps_ = 0.0;
   double tempF_;
   bool open_ = false;
+  double lagDt_ = -1.0, lagK_ = 0.0;  // cached 1 - exp(-dt/field_tau_s)
 };
 
 }  // namespace xr::sim

@@ -94,7 +94,11 @@ double BatteryModel::terminalVolts(double amps) const noexcept {
 }
 
 void BatteryModel::step(double amps, double dt) noexcept {
-  const double a = std::exp(-dt / tau1_);
+  if (dt != rcDt_) {
+    rcDt_ = dt;
+    rcA_ = std::exp(-dt / tau1_);
+  }
+  const double a = rcA_;
   vrc_ = vrc_ * a + amps * r1_ * (1.0 - a);
   const double ah = amps * dt / 3600.0 * (amps > 0.0 ? eff_ : 1.0);
   soc_ = std::clamp(soc_ + ah / std::max(1.0, cfg_.capacity_ah), 0.0, 1.0);

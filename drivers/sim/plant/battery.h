@@ -43,6 +43,7 @@ class BatteryModel {
   double tau1_;     // polarisation time constant, s
   double vrc_ = 0;  // polarisation voltage, V
   double eff_;      // coulombic efficiency when charging
+  double rcDt_ = -1.0, rcA_ = 0.0;  // cached exp(-dt/tau1)
 };
 
 }  // namespace xr::sim
