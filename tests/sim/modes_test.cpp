@@ -1,5 +1,6 @@
 // Closed-loop operating modes: Limp Home, MaintainMode, TargetVoltageMode,
 // Hall auto-zero, determinism.
+#include <filesystem>
 #include <sstream>
 
 #include "closed_loop.h"
@@ -170,6 +171,32 @@ TEST(ClosedLoopRuntime, WatchdogFedEveryTickWhileHealthy) {
   EXPECT_GE(res.watchdogKicks, res.ticks - 5);
   EXPECT_LE(res.watchdogLongestGap, fromUs(2 * 2500));
   EXPECT_EQ(res.i2cFailures, 0u);
+}
+
+}  // namespace
+}  // namespace xr::sim::test
+
+namespace xr::sim::test {
+namespace {
+
+TEST(ClosedLoopScenarios, ShippedExamplesRunTwoMinutesCleanly) {
+  int n = 0;
+  for (const auto& f : std::filesystem::directory_iterator(XR_SOURCE_DIR "/scenarios")) {
+    if (f.path().extension() != ".toml") continue;
+    SimRunOptions o;
+    o.scenario = loadScenario(f.path());
+    o.durationS = 120;
+    o.telemetryRateHz = 1;
+    SimRunner r(o);
+    const auto res = r.run();
+    EXPECT_EQ(res.inaProtocolErrors + res.adsProtocolErrors, 0u) << f.path();
+    EXPECT_FALSE(res.finalFieldEnable) << f.path();
+    EXPECT_EQ(res.finalDuty, 0.0) << f.path();
+    EXPECT_NEAR(res.simulatedS, 120.0, 0.01) << f.path();
+    EXPECT_EQ(res.rows.size(), 120u) << f.path();
+    ++n;
+  }
+  EXPECT_GE(n, 5);
 }
 
 }  // namespace

@@ -156,7 +156,12 @@ TEST(ClosedLoopFault, BmsDisconnectAtFullOutputCollapsesFieldAndBoundsPeak) {
   // The peak is bounded by the TVS clamp and recorded by the plant.
   EXPECT_LE(r.finalTruth.peak_disconnected_v, 30.0 + 1e-9);
   EXPECT_GT(r.finalTruth.peak_disconnected_v, 14.8);
-  EXPECT_NE(reasonAfter(r, 300.0), Reason::NONE);
+  // The INA228 ALERT (BOVL) pulled the gate-driver enable low within one
+  // 10 ms row, and the regulator named the hardware alert.
+  const double tAlert = firstTime(r, [](const SimRow& x) { return x.inaAlert; }, 299.9);
+  EXPECT_GE(tAlert, 300.0);
+  EXPECT_LE(tAlert, 300.02);
+  EXPECT_EQ(reasonAfter(r, 300.0), Reason::REASON_INA_OVERVOLTAGE);
   // And the regulator does not re-energise into the open bus.
   EXPECT_TRUE(all(r, [](const SimRow& x) { return !x.sim.sim_field_on; }, 301.0));
 }
