@@ -38,9 +38,10 @@ Event makeEvent(TimeNs t, EventLevel level, EventCode code, double a = 0.0, doub
 
 BatteryMonitor::BatteryMonitor(const Params& p) : p_(p) {
   // A fresh ledger (first start, nothing restored) does not know the SoC.
-  // Assume half: below SOC_AllowRebulk_percent, so a guess never blocks a
-  // re-bulk (voltage regulation still prevents overcharge), and the first
-  // full-charge detection replaces the guess with a measurement.
+  // Assume full: with SOC gating (charging_stage rebulkDue) a low guess would
+  // force re-bulk "regardless of voltage" until the first full charge, i.e.
+  // the charger would never rest; a full guess defers to voltage/current
+  // re-bulk once 5 % has been counted out. socKnown() says it is a guess.
   ledger_.CoulombCount_Ah = p_.BatteryCapacity_Ah * kUnknownSocPercent / 100.0;
   ledger_.valid = true;
 }
@@ -308,6 +309,7 @@ void BatteryMonitor::runSocBody(TimeNs now, double elapsed_s, EventBatch& ev) {
       ledger_.CoulombCount_Ah = cap;
       ledger_.coulombAccumulator_Ah = 0.0;
       FullChargeDetected_ = true;
+      socKnown_ = true;
       gainReferenceValid_ = true;
       unclampedCount_Ah_ = cap;
     }
@@ -390,6 +392,7 @@ bool BatteryMonitor::setSoc(double pct) {
   // The operator's figure is a reference point for the gain correction.
   gainReferenceValid_ = true;
   unclampedCount_Ah_ = ledger_.CoulombCount_Ah;
+  socKnown_ = true;
   return true;
 }
 
@@ -441,6 +444,7 @@ void BatteryMonitor::restoreLedger(const BatteryLedger& in) {
   l.valid = true;
   ledger_ = l;
   gainReferenceValid_ = false;
+  socKnown_ = std::isfinite(in.CoulombCount_Ah) && in.valid;
 }
 
 // ---------------------------------------------------------------- outputs

@@ -71,7 +71,7 @@ inline constexpr std::int64_t SOLAR_STALE_MS = 10000;
 }  // namespace battery_k
 
 // SoC assumed before anything was restored or measured (see the constructor).
-inline constexpr double kUnknownSocPercent = 50.0;
+inline constexpr double kUnknownSocPercent = 100.0;
 
 // Why an auto-gain correction was skipped (detail code of events/tests).
 enum class GainGuard {
@@ -133,6 +133,10 @@ class BatteryMonitor {
   // ---- outputs -------------------------------------------------------------
   void fillTelemetry(BatteryTelemetry& t) const;
   double socPercent() const;
+  // False while the SoC is the constructor's guess: no valid ledger restored,
+  // no setSoc, no full-charge detection yet. Control may ignore SOC gating
+  // (StageInputs::socValid) while this is false.
+  bool socKnown() const { return socKnown_; }
   bool fullChargeDetected() const { return FullChargeDetected_; }
   double chargedEnergyLifetimeWh() const;
   double alternatorChargedEnergyLifetimeWh() const;
@@ -177,7 +181,8 @@ class BatteryMonitor {
   double currentBatteryVoltage_ = 0.0;
   double batteryCurrentForSoC_ = 0.0;
   bool usingVictron_ = false;
-  bool socInputsValid_ = false;  // current and voltage samples live at the last tick
+  bool socInputsValid_ = false;
+  bool socKnown_ = false;  // current and voltage samples live at the last tick
   double lastValidVoltage_ = 0.0;
 
   // Session energies and figures.

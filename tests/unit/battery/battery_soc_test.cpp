@@ -308,10 +308,20 @@ TEST(BatteryLedgerTest, RoundTripAndSanitising) {
   EXPECT_DOUBLE_EQ(s.DynamicAltCurrentZero, 0.0);
 }
 
-TEST(BatteryCommands, FreshMonitorAssumesHalfUntilMeasured) {
+TEST(BatteryCommands, FreshMonitorGuessesFullUntilKnown) {
   BatteryRig r(baseParams());
   EXPECT_DOUBLE_EQ(r.mon.socPercent(), kUnknownSocPercent);
-  EXPECT_LT(r.mon.socPercent(), Params{}.SOC_AllowRebulk_percent);
+  EXPECT_FALSE(r.mon.socKnown());
+  r.mon.setSoc(60.0);
+  EXPECT_TRUE(r.mon.socKnown());
+  BatteryRig restored(baseParams());
+  restored.mon.restoreLedger(r.mon.ledger());
+  EXPECT_TRUE(restored.mon.socKnown());
+  BatteryRig detected(baseParams());
+  detected.ina(14.0, 1.0);
+  detected.run(70.0, 1.0);
+  EXPECT_TRUE(detected.mon.fullChargeDetected());
+  EXPECT_TRUE(detected.mon.socKnown());
 }
 
 TEST(BatteryCommands, SetSocRejectsOutOfRange) {
