@@ -281,6 +281,11 @@ int Daemon::run() {
         lastHeartbeatWallMs = unixMsNow();
         sd_notify(0, "WATCHDOG=1");  // only while the control thread ticks
       }
+      if (cli_.testFault == TestFault::Throw && simRig) {
+        const rt::RuntimeSnapshot s = handoffs->latest();
+        if (s.tick > 0 && toSec(s.telemetry.now - s.start) >= cli_.testFaultAtS)
+          throw std::runtime_error("test fault: exception on the main thread");
+      }
       if (now - lastHousekeeping >= std::chrono::seconds(1)) {
         lastHousekeeping = now;
         const rt::RuntimeSnapshot s = handoffs->latest();
@@ -288,9 +293,6 @@ int Daemon::run() {
         sd_notifyf(0, "STATUS=%s %s SoC %.0f%% duty %.1f%%", std::string(toString(s.telemetry.mode)).c_str(),
                    std::string(toString(s.telemetry.stage)).c_str(), s.telemetry.soc_pct, s.telemetry.duty_pct);
         if (store) store->housekeeping(s, handoffs->ledger.load(), s.tick > 100);
-        if (cli_.testFault == TestFault::Throw && simRig &&
-            toSec(s.telemetry.now - s.start) >= cli_.testFaultAtS && s.tick > 0)
-          throw std::runtime_error("test fault: exception on the main thread");
       }
       if (now - lastStatsLog >= std::chrono::minutes(1)) {
         lastStatsLog = now;

@@ -44,7 +44,10 @@ void StoreService::saveOverrides(const Params& fileParams, const Params& before,
 
 void StoreService::appendEvent(const Event& e) {
   std::lock_guard lock(m_);
-  const EventRecord r = toEventRecord(e, unixMsNow());
+  Event clean = e;  // the events table wants numbers: NaN/inf values (e.g. a stale reading) become 0
+  if (!std::isfinite(clean.a)) clean.a = 0.0;
+  if (!std::isfinite(clean.b)) clean.b = 0.0;
+  const EventRecord r = toEventRecord(clean, unixMsNow());
   const StoreStatus st = store_.appendEvents(std::span<const EventRecord>(&r, 1));
   if (!st) spdlog::warn("store: event not saved: {}", st.error);
 }

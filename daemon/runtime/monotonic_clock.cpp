@@ -29,6 +29,13 @@ TimeNs PacedClock::wallDeadline(TimeNs t) const noexcept {
 }
 
 void PacedClock::sleepUntil(TimeNs t) noexcept {
+  if (!anchored_) {
+    // Anchor at the loop's first deadline, not at construction: start-up
+    // time must not show up as lateness (and a catch-up burst).
+    anchored_ = true;
+    virtStart_ = t;
+    wallStart_ = wall_.now();
+  }
   inner_.sleepUntil(t);
   wall_.sleepUntil(wallDeadline(t));
 }

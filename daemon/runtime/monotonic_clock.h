@@ -29,6 +29,7 @@ class PacedClock final : public Clock {
   double speed_;
   TimeNs virtStart_;
   TimeNs wallStart_;
+  bool anchored_ = false;
 };
 
 }  // namespace xr::rt

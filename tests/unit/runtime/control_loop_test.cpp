@@ -1,5 +1,9 @@
 #include "runtime/control_loop.h"
 
+#include <stdexcept>
+
+#include "runtime/monotonic_clock.h"
+
 #include <gtest/gtest.h>
 
 #include "fakes.h"
@@ -154,6 +158,53 @@ TEST(ControlLoop, StopRequestedBeforeRunStillLeavesFieldSafe) {
   EXPECT_EQ(loop.run(), LoopExit::Stopped);
   EXPECT_FALSE(r.enable.level);
   EXPECT_DOUBLE_EQ(r.pwm.duty, 0.0);
+}
+
+}  // namespace
+}  // namespace xr::rt
+
+namespace xr::rt {
+namespace {
+
+TEST(PacedClock, AnchorsAtTheFirstDeadlineAndScalesBySpeed) {
+  test::FakeClock virt, wall;
+  PacedClock paced(virt, wall, 10.0);
+  wall.t += fromSec(5.0);  // start-up time before the loop: not lateness
+  const TimeNs v0 = virt.t + fromMs(1);
+  paced.sleepUntil(v0);
+  EXPECT_EQ(virt.t, v0);
+  const TimeNs w0 = wall.t;
+  paced.sleepUntil(v0 + fromSec(1.0));  // one virtual second = 100 ms of wall at 10x
+  EXPECT_EQ(wall.t, w0 + fromMs(100));
+  EXPECT_EQ(paced.wallDeadline(v0 + fromSec(2.0)), w0 + fromMs(200));
+}
+
+struct CountingHook final : TickHook {
+  void beforeTick(TimeNs now) override {
+    ++calls;
+    last = now;
+    if (throwAt > 0 && calls == throwAt) throw std::runtime_error("hook failure");
+  }
+  int calls = 0;
+  int throwAt = 0;
+  TimeNs last = 0;
+};
+
+TEST(ControlLoop, RunsTheTickHookFirstAndLetsItsExceptionOut) {
+  LoopRig r;
+  CountingHook hook;
+  hook.throwAt = 5;
+  r.dev.hook = &hook;
+  r.core.requestDuty = 30.0;
+  r.core.requestEnable = true;
+  r.cycle = std::make_unique<ControlCycle>(r.core, r.dev, r.handoffs, r.stats, r.clock, CycleConfig{});
+  ControlLoop loop(*r.cycle, r.clock, r.stats, LoopConfig{});
+  EXPECT_THROW(loop.run(), std::runtime_error);
+  EXPECT_EQ(hook.calls, 5);
+  EXPECT_EQ(r.core.steps, 4);  // the hook runs before the step of its tick
+  // The daemon drives the safe state on this path; the cycle can do it.
+  r.cycle->driveSafeState();
+  EXPECT_FALSE(r.enable.level);
 }
 
 }  // namespace

@@ -1,0 +1,112 @@
+#!/usr/bin/env bash
+# Whole-daemon tests (issue 7 "Runtime"): end xregulatord by each exit path
+# and read back the last PWM duty and field enable it left, from the
+# simulation's output mirror (--sim-outputs). Also the command line's exit
+# codes. Usage: exit_paths.sh XREGULATORD CASE [REPO_ROOT]
+# Nothing here asserts a duration: the daemon's own time is simulated.
+set -uo pipefail
+bin=$1
+case_name=$2
+root=${3:-$(cd "$(dirname "$0")/../.." && pwd)}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fail() { echo "FAIL [$case_name]: $*" >&2; [ -f "$tmp/log" ] && tail -20 "$tmp/log" >&2; exit 1; }
+
+# The mirror line: "duty_pct=  0.000 enable=0 buzzer=0 via=stop"
+field_of() { sed -n 's/.*enable=\([01]\).*/\1/p' "$1"; }
+duty_of() { sed -n 's/^duty_pct= *\([0-9.]*\).*/\1/p' "$1"; }
+via_of() { sed -n 's/.*via=\([a-z]*\).*/\1/p' "$1"; }
+
+expect_field_off() {  # file via
+  [ -s "$1" ] || fail "no sim outputs file"
+  [ "$(field_of "$1")" = 0 ] || fail "field enable left HIGH: $(cat "$1")"
+  [ "$(duty_of "$1")" = "0.000" ] || fail "duty left at $(duty_of "$1"): $(cat "$1")"
+  [ "$(via_of "$1")" = "$2" ] || fail "expected via=$2: $(cat "$1")"
+}
+
+# Waits (up to 120 s of wall time, a generous CI bound, not an assertion on
+# speed) until the mirror says the field is on.
+wait_field_on() {
+  for _ in $(seq 1 1200); do
+    [ "$(field_of "$1" 2>/dev/null)" = 1 ] && return 0
+    kill -0 "$2" 2>/dev/null || return 1
+    sleep 0.1
+  done
+  return 1
+}
+
+# A stop signal while the field is on: controlled ramp, then enable LOW and
+# duty 0, exit 0, mirror via=stop.
+stop_signal() {
+  local sig=$1
+  "$bin" --sim --speed 50 --sim-outputs "$tmp/out" --telemetry-csv "$tmp/t.csv" >"$tmp/log" 2>&1 &
+  local pid=$!
+  wait_field_on "$tmp/out" "$pid" || { kill -9 $pid 2>/dev/null; fail "field never came on"; }
+  kill -"$sig" "$pid"
+  wait "$pid"
+  local rc=$?
+  [ "$rc" = 0 ] || fail "exit code $rc after SIG$sig"
+  expect_field_off "$tmp/out" stop
+  grep -q "controlled ramp" "$tmp/log" || fail "no controlled-ramp log line"
+  grep -q "stopped cleanly" "$tmp/log" || fail "no clean-stop log line"
+}
+
+# A fault at simulated t = 60 s (or just after, for the main thread), when a reference run of the same seed has
+# the field on (the simulation is deterministic at --speed max).
+fault_path() {
+  local kind=$1 want_rc=$2 speed=${3:-max}
+  "$bin" --sim --speed max --duration 60 --seed 3 --telemetry-csv "$tmp/ref.csv" >"$tmp/reflog" 2>&1 ||
+    fail "reference run failed"
+  local col on
+  col=$(head -1 "$tmp/ref.csv" | tr ',' '\n' | grep -n '^field_enable$' | cut -d: -f1)
+  on=$(tail -1 "$tmp/ref.csv" | cut -d, -f"$col")
+  [ "$on" = 1 ] || fail "reference run does not have the field on at 60 s"
+  "$bin" --sim --speed "$speed" --duration 120 --seed 3 --sim-outputs "$tmp/out" \
+    --test-fault "$kind" --test-fault-at 60 >"$tmp/log" 2>&1
+  local rc=$?
+  [ "$rc" = "$want_rc" ] || fail "exit code $rc, expected $want_rc"
+  expect_field_off "$tmp/out" fatal
+}
+
+case "$case_name" in
+  sigterm) stop_signal TERM ;;
+  sigint) stop_signal INT ;;
+  segv) fault_path segv 139 ;;
+  abort) fault_path abort 134 ;;
+  terminate) fault_path terminate 134 ;;
+  throw_main) fault_path throw 70 50 ;;  # the main thread polls in wall time: pace the run
+  throw_control) fault_path throw-control 70 ;;
+  duration)
+    "$bin" --sim --speed max --duration 10 --telemetry-csv "$tmp/t.csv" --telemetry-rate 10 \
+      --sim-outputs "$tmp/out" >"$tmp/log" 2>&1 || fail "exit code $?"
+    expect_field_off "$tmp/out" stop
+    rows=$(($(wc -l <"$tmp/t.csv") - 1))
+    [ "$rows" -ge 99 ] && [ "$rows" -le 101 ] || fail "expected ~100 rows at 10 Hz for 10 s, got $rows"
+    for c in t_s mode stage reason ibv_v battery_v bcur_a alt_a rpm temp_f duty_pct field_enable setpoint_a \
+      target_a target_v thermal_penalty_a fast_ov_active soc_pct alarm charged_wh_lifetime \
+      alt_charged_wh_lifetime sim_battery_v sim_alt_a sim_alt_temp_f sim_soc_pct sim_bms_connected sim_field_on; do
+      head -1 "$tmp/t.csv" | tr ',' '\n' | grep -qx "$c" || fail "CSV column $c missing"
+    done
+    grep -q "^10," "$tmp/t.csv" || grep -q "^9.9," "$tmp/t.csv" || fail "CSV does not reach t_s = 10"
+    ;;
+  cli)
+    "$bin" --bogus >"$tmp/log" 2>&1; [ $? = 64 ] || fail "unknown option: exit code not 64"
+    grep -q "unknown option '--bogus'" "$tmp/log" || fail "unknown option not named"
+    "$bin" --speed fast --sim >"$tmp/log" 2>&1; [ $? = 64 ] || fail "bad --speed: not 64"
+    "$bin" --scenario x.toml >"$tmp/log" 2>&1; [ $? = 64 ] || fail "--scenario without --sim: not 64"
+    "$bin" --version | grep -q "^xregulatord [0-9]" || fail "--version"
+    "$bin" --print-default-config >"$tmp/default.toml" || fail "--print-default-config exit code"
+    cmp -s "$tmp/default.toml" "$root/config/xregulator.toml" || fail "--print-default-config differs from config/xregulator.toml"
+    "$bin" --config "$tmp/default.toml" --check-config >"$tmp/log" 2>&1 || fail "--check-config of the default: $?"
+    printf '[voltage]\nBulkVoltage = 99\n' >"$tmp/bad.toml"
+    "$bin" --config "$tmp/bad.toml" --check-config >"$tmp/log" 2>&1; [ $? = 78 ] || fail "bad config: not 78"
+    grep -q BulkVoltage "$tmp/log" || fail "bad config error does not name the key"
+    "$bin" --config "$tmp/bad.toml" --sim --duration 1 --speed max >"$tmp/log" 2>&1
+    [ $? = 78 ] || fail "daemon with a bad config: not 78"
+    printf 'name = "x"\nduration_s = -5\n' >"$tmp/bad-scenario.toml"
+    "$bin" --sim --scenario "$tmp/bad-scenario.toml" --speed max >"$tmp/log" 2>&1
+    [ $? = 78 ] || fail "bad scenario: not 78"
+    ;;
+  *) fail "unknown case" ;;
+esac
+echo "PASS [$case_name]"
