@@ -108,14 +108,14 @@ class FakeDaemonApi : public DaemonApi {
   HistoryResult history(const HistoryQuery& q) override {
     HistoryResult r;
     for (const auto& s : q.series)
-      if (s != "battery_v" && s != "alt_a" && s != "bcur_a" && s != "temp_f") {
+      if (s != "battery_v" && s != "ibv_v" && s != "alt_a" && s != "bcur_a" && s != "temp_f") {
         r.error = "unknown series '" + s + "'";
         return r;
       }
     for (double t = q.from_s; t < q.to_s; t += q.step_s) r.t.push_back(t);
     for (const auto& s : q.series) {
       std::vector<double> v;
-      for (double t : r.t) v.push_back(s == "battery_v" ? 13.0 + 0.5 * std::sin(t / 300.0) : 50.0 + 20.0 * std::sin(t / 200.0));
+      for (double t : r.t) v.push_back(s == "battery_v" || s == "ibv_v" ? 13.0 + 0.5 * std::sin(t / 300.0) : 50.0 + 20.0 * std::sin(t / 200.0));
       r.series.emplace_back(s, std::move(v));
     }
     std::lock_guard lock(m_);

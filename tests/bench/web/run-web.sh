@@ -20,6 +20,7 @@ port=$(python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1",0)); pr
 cat >"$tmp/xregulator.toml" <<TOML
 [web]
 token = "bench-token"
+max_connections = 256   # 50 WebSocket + 50 wrk connections fit under the cap
 www_root = "$build/web/www"
 TOML
 "$daemon" --sim --speed 1 --config "$tmp/xregulator.toml" --state-db "$tmp/state.db" \
@@ -51,6 +52,7 @@ rps=$(awk '/Requests\/sec/{print $2}' "$tmp/wrk.txt")
 lat99=$(awk '$1=="99%"{print $2}' "$tmp/wrk.txt")
 lat50=$(awk '$1=="50%"{print $2}' "$tmp/wrk.txt")
 errs=$(grep -E "Non-2xx|Socket errors" "$tmp/wrk.txt" | tr '\n' ' ' || true)
+[ -n "$errs" ] && errs="(WARNING: $errs)"
 
 {
   echo "web load: ${duration} s, ${clients} WebSocket clients + wrk -t2 -c50 on /api/status ($(nproc) CPUs)"

@@ -104,6 +104,14 @@ try {
     return n;
   });
   assert.ok(painted > 500, `live chart canvas painted ${painted} pixels`);
+  if (mode === "fake") {
+    // The fake has hours of history; a fresh daemon database has none yet.
+    await page.waitForFunction(() => window.xrDebug.historyPoints() > 100);
+    console.log("ok - history chart draws from /api/history");
+  } else {
+    await page.waitForFunction(() => document.getElementById("hist-msg").textContent !== "" || window.xrDebug.historyPoints() > 0);
+    assert.doesNotMatch(await page.textContent("#hist-msg"), /unknown series/);
+  }
   await page.screenshot({ path: path.join(artifacts, `dashboard-live-${mode}.png`), fullPage: true });
   console.log("ok - live chart draws");
 

@@ -91,9 +91,10 @@ function drawLive() {
 async function loadHistory() {
   const range = Number($("hist-range").value);
   try {
-    const h = await getJson(`/api/history?series=battery_v,alt_a,bcur_a&from=-${range}`);
+    // The store keeps ibv_v (INA228 battery voltage), not the fused battery_v.
+    const h = await getJson(`/api/history?series=ibv_v,alt_a,bcur_a&from=-${range}`);
     const s = h.series;
-    if (histChart) histChart.setData([h.t, s.battery_v, s.alt_a, s.bcur_a]);
+    if (histChart) histChart.setData([h.t, s.ibv_v, s.alt_a, s.bcur_a]);
     $("hist-msg").textContent = h.t.length ? "" : "no history stored yet";
   } catch (e) {
     $("hist-msg").textContent = "history: " + e.message;
