@@ -178,3 +178,38 @@ TEST(Ads1115Model, TraditionalComparatorWithQueue) {
 
 }  // namespace
 }  // namespace xr::sim
+
+namespace xr::sim {
+namespace {
+
+TEST(Ads1115Model, WindowComparatorLatchesUntilConversionRead) {
+  Rig r;
+  r.writeReg(3, 8000);
+  r.writeReg(2, 4000);
+  r.chip.setInputs({0.25, 0, 0, 0});                 // 2000: below the window
+  r.writeReg(1, cfg(0, 4, 1, 0, 7, 0) | 0x0010 | 0x0004);  // window, latching, assert after 1
+  r.advance(fromMs(2));
+  EXPECT_TRUE(r.chip.alertActive());
+  r.chip.setInputs({0.75, 0, 0, 0});  // back inside: latched, stays
+  r.advance(fromMs(5));
+  EXPECT_TRUE(r.chip.alertActive());
+  r.readReg(0);  // reading the conversion clears the latch
+  EXPECT_FALSE(r.chip.alertActive());
+  r.advance(fromMs(5));
+  EXPECT_FALSE(r.chip.alertActive());
+}
+
+TEST(Ads1115Model, SwitchingToSingleShotStopsAfterCurrentConversion) {
+  Rig r;
+  r.writeReg(1, cfg(0, 4, 1, 0, 7));
+  r.advance(fromMs(10));
+  const auto n = r.chip.conversions();
+  EXPECT_GE(n, 8u);
+  r.writeReg(1, cfg(0, 4, 1, 1, 7));  // MODE=1 without OS
+  r.advance(fromMs(10));
+  EXPECT_LE(r.chip.conversions(), n + 1);
+  EXPECT_FALSE(r.chip.converting());
+}
+
+}  // namespace
+}  // namespace xr::sim

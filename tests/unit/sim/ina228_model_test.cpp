@@ -291,3 +291,90 @@ TEST(Ina228Model, PointerIsRetainedBetweenReads) {
 
 }  // namespace
 }  // namespace xr::sim
+
+namespace xr::sim {
+namespace {
+using namespace ina228;
+
+TEST(Ina228Model, CnvrPutsConversionReadyOnTheAlertPin) {
+  Rig r;
+  r.writeReg(DIAG_ALRT, CNVR | ALATCH);
+  r.writeReg(ADC_CONFIG, (0x9 << 12));  // bus only, 50 us
+  r.chip.setAnalog({0.0, 12.0, 25.0});
+  EXPECT_FALSE(r.chip.alertActive());
+  r.advance(fromUs(60));
+  EXPECT_TRUE(r.chip.alertActive());
+  EXPECT_TRUE(r.readReg(DIAG_ALRT, 2) & CNVRF);
+  EXPECT_FALSE(r.chip.alertActive());  // the read cleared CNVRF
+}
+
+TEST(Ina228Model, PowerLimitAndShuntLimitsFlag) {
+  Rig r;
+  r.writeReg(SHUNT_CAL, 4096);
+  r.writeReg(ADC_CONFIG, (0xB << 12));  // bus + shunt, 50 us each
+  r.writeReg(SOVL, 200);                // 200 x 5 uV = 1 mV
+  r.writeReg(SUVL, std::uint16_t(-200));
+  r.writeReg(PWR_LIMIT, 1);
+  r.chip.setAnalog({0.002, 12.0, 25.0});
+  r.advance(fromUs(200));
+  auto d = r.readReg(DIAG_ALRT, 2);
+  EXPECT_TRUE(d & SHNTOL);
+  EXPECT_TRUE(d & POL);
+  EXPECT_FALSE(d & SHNTUL);
+  r.chip.setAnalog({-0.002, 12.0, 25.0});
+  r.advance(fromUs(200));
+  d = r.readReg(DIAG_ALRT, 2);
+  EXPECT_TRUE(d & SHNTUL);
+  EXPECT_FALSE(d & SHNTOL);
+}
+
+TEST(Ina228Model, TempLimitComparesDieTemperature) {
+  Rig r;
+  r.writeReg(ADC_CONFIG, (0xC << 12));  // temperature only
+  r.writeReg(TEMP_LIMIT, std::uint16_t(80.0 / 7.8125e-3));
+  r.chip.setAnalog({0.0, 0.0, 85.0});
+  r.advance(fromMs(3));
+  EXPECT_TRUE(r.readReg(DIAG_ALRT, 2) & TMPOL);
+  EXPECT_EQ(r.readReg(DIETEMP, 2), std::uint64_t(85.0 / 7.8125e-3));
+}
+
+TEST(Ina228Model, ZeroShuntCalReadsZeroCurrent) {
+  Rig r;
+  r.writeReg(SHUNT_CAL, 0);
+  r.chip.setAnalog({0.01, 12.0, 25.0});
+  r.writeReg(ADC_CONFIG, 0xFB68);
+  r.advance(fromMs(10));
+  EXPECT_NE(r.readReg(VSHUNT, 3), 0u);
+  EXPECT_EQ(r.readReg(CURRENT, 3), 0u);
+  EXPECT_EQ(r.readReg(POWER, 3), 0u);
+}
+
+TEST(Ina228Model, CurrentOverflowSetsMathof) {
+  Rig r;
+  r.writeReg(SHUNT_CAL, 1);  // absurdly small calibration: CURRENT overflows 20 bits
+  r.chip.setAnalog({0.1, 12.0, 25.0});
+  r.writeReg(ADC_CONFIG, 0xFB68);
+  r.advance(fromMs(10));
+  EXPECT_TRUE(r.readReg(DIAG_ALRT, 2) & MATHOF);
+  EXPECT_EQ(r.readReg(CURRENT, 3) >> 4, 0x7FFFFu);  // clamped at +full scale
+}
+
+TEST(Ina228Model, TempcoCompensationLowersCurrentWhenHot) {
+  Rig cold, hot;
+  for (Rig* r : {&cold, &hot}) {
+    r->writeReg(SHUNT_CAL, 4096);
+    r->writeReg(CONFIG, 0x0020);  // TEMPCOMP
+    r->writeReg(SHUNT_TEMPCO, 1000);
+  }
+  cold.chip.setAnalog({0.01, 12.0, 25.0});
+  hot.chip.setAnalog({0.01, 12.0, 125.0});
+  for (Rig* r : {&cold, &hot}) {
+    r->writeReg(ADC_CONFIG, 0xFB68);
+    r->advance(fromMs(10));
+  }
+  const double c = double(cold.readReg(CURRENT, 3) >> 4), h = double(hot.readReg(CURRENT, 3) >> 4);
+  EXPECT_NEAR(h / c, 1.0 / 1.1, 1e-3);  // +100 degC x 1000 ppm = +10 % R
+}
+
+}  // namespace
+}  // namespace xr::sim
