@@ -33,11 +33,21 @@ LoopExit ControlLoop::run() {
     heartbeat_.fetch_add(1, std::memory_order_relaxed);
 
     next += cfg_.period;
-    const TimeNs now = clock_.now();
-    if (now >= next + cfg_.period) {
-      // At least one whole deadline passed without a tick: an overrun.
-      // Skip the missed ones rather than bursting to catch up.
-      const TimeNs missed = (now - next) / cfg_.period;
+    // At least one whole deadline passed without a tick: an overrun. Judged
+    // on the wall clock when there is one (in a paced simulation the virtual
+    // clock does not move while the tick runs). Skip the missed deadlines
+    // rather than bursting to catch up.
+    TimeNs missed = 0;
+    if (cfg_.wallDeadlineOf && cfg_.wall) {
+      const TimeNs due = cfg_.wallDeadlineOf(next);
+      const TimeNs wallPeriod = cfg_.wallDeadlineOf(next + cfg_.period) - due;
+      const TimeNs late = cfg_.wall->now() - due;
+      if (wallPeriod > 0 && late >= wallPeriod) missed = late / wallPeriod;
+    } else {
+      const TimeNs now = clock_.now();
+      if (now >= next + cfg_.period) missed = (now - next) / cfg_.period;
+    }
+    if (missed > 0) {
       stats_.onOverrun(static_cast<std::uint64_t>(missed));
       next += missed * cfg_.period;
     }

@@ -209,3 +209,27 @@ TEST(ControlLoop, RunsTheTickHookFirstAndLetsItsExceptionOut) {
 
 }  // namespace
 }  // namespace xr::rt
+
+namespace xr::rt {
+namespace {
+
+TEST(ControlLoop, PacedSimulationJudgesOverrunsOnTheWallClock) {
+  LoopRig r;
+  FakeClock wall;
+  LoopConfig cfg;
+  cfg.duration = fromMs(100);  // 40 deadlines
+  cfg.wall = &wall;
+  const TimeNs virt0 = r.clock.t, wall0 = wall.t;
+  cfg.wallDeadlineOf = [&](TimeNs t) { return wall0 + (t - virt0); };  // speed 1
+  r.core.onStep = [&](const Inputs&) {
+    wall.t = cfg.wallDeadlineOf(r.clock.t);  // on time...
+    if (r.core.steps == 10) wall.t += fromUs(2500) * 3 + fromUs(100);  // ...except one 7.6 ms wall stall
+  };
+  ControlLoop loop(*r.cycle, r.clock, r.stats, cfg);
+  loop.run();
+  EXPECT_EQ(r.stats.summary().overruns, 2u);  // the virtual clock alone would see none
+  EXPECT_EQ(r.core.steps, 38);
+}
+
+}  // namespace
+}  // namespace xr::rt
