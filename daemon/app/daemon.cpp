@@ -326,7 +326,9 @@ int Daemon::run() {
     spdlog::info("stopped cleanly: field enable LOW, duty 0");
   }
   const rt::RuntimeSnapshot last = handoffs->latest();
-  logLoopStats(last.loop, last.health);
+  // The control thread has ended: its statistics can be read directly (the
+  // published summary is refreshed only every 64 ticks).
+  logLoopStats(stats.summary(), cycle.health());
   if (server) server->stop();
   pump.stop();
   if (csv) csv->stop();
