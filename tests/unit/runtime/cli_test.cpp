@@ -1,0 +1,104 @@
+#include "app/cli.h"
+
+#include <gtest/gtest.h>
+
+namespace xr::app {
+namespace {
+
+CliResult parse(std::vector<std::string> a) { return parseCommandLine(a); }
+
+TEST(Cli, EmptyCommandLineRunsTheBoardWithDefaults) {
+  const auto r = parse({});
+  ASSERT_TRUE(r.ok());
+  EXPECT_FALSE(r.options.sim);
+  EXPECT_DOUBLE_EQ(r.options.speed, 1.0);
+  EXPECT_DOUBLE_EQ(r.options.telemetryRateHz, 10.0);
+}
+
+TEST(Cli, ParsesEveryDesignOption) {
+  const auto r = parse({"--config", "a.toml", "--sim", "--scenario", "s.toml", "--speed", "max", "--duration", "90",
+                        "--telemetry-csv", "t.csv", "--telemetry-rate", "20", "--http", "127.0.0.1:9000",
+                        "--state-db", "x.db", "--seed", "7", "--log-level", "debug", "--sim-outputs", "o.txt"});
+  ASSERT_TRUE(r.ok()) << r.error;
+  const auto& o = r.options;
+  EXPECT_EQ(*o.config, "a.toml");
+  EXPECT_TRUE(o.sim);
+  EXPECT_EQ(*o.scenario, "s.toml");
+  EXPECT_DOUBLE_EQ(o.speed, 0.0);  // max
+  EXPECT_DOUBLE_EQ(*o.durationS, 90.0);
+  EXPECT_EQ(*o.telemetryCsv, "t.csv");
+  EXPECT_DOUBLE_EQ(o.telemetryRateHz, 20.0);
+  EXPECT_EQ(*o.http, "127.0.0.1:9000");
+  EXPECT_EQ(*o.stateDb, "x.db");
+  EXPECT_EQ(*o.seed, 7u);
+  EXPECT_EQ(*o.logLevel, "debug");
+  EXPECT_EQ(*o.simOutputs, "o.txt");
+}
+
+TEST(Cli, AcceptsEqualsForm) {
+  const auto r = parse({"--sim", "--speed=10", "--duration=5"});
+  ASSERT_TRUE(r.ok()) << r.error;
+  EXPECT_DOUBLE_EQ(r.options.speed, 10.0);
+  EXPECT_DOUBLE_EQ(*r.options.durationS, 5.0);
+}
+
+TEST(Cli, FlagsWithoutValues) {
+  for (const char* f : {"--check-config", "--print-default-config", "--probe", "--version"}) {
+    auto r = parse({f, "--config", "x"});
+    EXPECT_TRUE(r.ok()) << f << ": " << r.error;
+  }
+  EXPECT_FALSE(parse({"--version=1"}).ok());
+}
+
+TEST(Cli, RejectsBadValuesNamingTheOption) {
+  struct Case {
+    std::vector<std::string> args;
+    const char* mentions;
+  } cases[] = {
+      {{"--sim", "--speed", "fast"}, "--speed"},
+      {{"--sim", "--speed", "0"}, "--speed"},
+      {{"--sim", "--speed", "-2"}, "--speed"},
+      {{"--duration", "abc"}, "--duration"},
+      {{"--duration", "0"}, "--duration"},
+      {{"--telemetry-rate", "0"}, "--telemetry-rate"},
+      {{"--telemetry-rate", "1e9"}, "--telemetry-rate"},
+      {{"--sim", "--seed", "-1"}, "--seed"},
+      {{"--sim", "--seed", "1.5"}, "--seed"},
+      {{"--config"}, "--config"},
+      {{"--frobnicate"}, "--frobnicate"},
+      {{"stray"}, "stray"},
+      {{"--sim", "--test-fault", "melt"}, "--test-fault"},
+  };
+  for (const auto& c : cases) {
+    const auto r = parse(c.args);
+    EXPECT_FALSE(r.ok()) << c.args[0];
+    EXPECT_NE(r.error.find(c.mentions), std::string::npos) << r.error;
+  }
+}
+
+TEST(Cli, SimulationOnlyOptionsNeedSim) {
+  EXPECT_FALSE(parse({"--scenario", "s.toml"}).ok());
+  EXPECT_FALSE(parse({"--speed", "2"}).ok());
+  EXPECT_FALSE(parse({"--sim-outputs", "o"}).ok());
+  EXPECT_FALSE(parse({"--seed", "3"}).ok());
+  EXPECT_FALSE(parse({"--test-fault", "segv"}).ok());  // never on a real board
+  EXPECT_TRUE(parse({"--sim", "--test-fault", "segv", "--test-fault-at", "2"}).ok());
+  EXPECT_FALSE(parse({"--sim", "--test-fault-at", "2"}).ok());
+}
+
+TEST(Cli, CheckConfigNeedsAFile) {
+  EXPECT_FALSE(parse({"--check-config"}).ok());
+  EXPECT_TRUE(parse({"--check-config", "--config", "x.toml"}).ok());
+}
+
+TEST(Cli, UsageListsTheDesignOptions) {
+  const std::string u = usageText();
+  for (const char* o : {"--config", "--sim", "--scenario", "--speed", "--duration", "--telemetry-csv",
+                        "--telemetry-rate", "--http", "--state-db", "--check-config", "--print-default-config",
+                        "--probe", "--version", "--seed", "--log-level", "--sim-outputs"})
+    EXPECT_NE(u.find(o), std::string::npos) << o;
+  EXPECT_EQ(u.find("--test-fault"), std::string::npos);  // hidden
+}
+
+}  // namespace
+}  // namespace xr::app
