@@ -89,6 +89,25 @@ void ControlLaw::updateChargingStage(const ControlSensors& s, const Params& p, b
 
   voltageControlActive_ = stages_.voltageControlActive();
   ChargingVoltageTarget_ = stages_.ChargingVoltageTarget(p);
+  // Bulk voltage ceiling (ours; the legacy seed's "voltage soft limiter (bulk
+  // only)" recast as a setpoint ceiling, as that seed's cap chain asks). The
+  // newer seed runs BULK as pure CC with the hold timer, so a small or
+  // high-resistance bank can climb from BulkVoltage to the hard-shutdown trip
+  // (Bulk + 0.3 V) before bulkVoltageHoldMs elapses and cycle through warning
+  // ramps and lockouts forever, never charging (seen in the simulator with a
+  // 40 Ah AGM bank at 50 A). Once IBV reaches BulkVoltage in BULK, the CV loop
+  // engages at the bulk target (bumpless seed, Groups 1-3 armed) until IBV
+  // falls BULK_V_BAND_EXIT below it; the stage machine is untouched.
+  const bool overrideTargets = p.MaintainMode || p.TargetVoltageMode || p.CVTuningMode || p.TuningMode;
+  if (stages_.inBulkStage() && !overrideTargets && finite(s.IBV)) {
+    if (!bulkVoltageLimitActive_ && s.IBV >= p.BulkVoltage)
+      bulkVoltageLimitActive_ = true;
+    else if (bulkVoltageLimitActive_ && s.IBV < p.BulkVoltage - k::BULK_V_BAND_EXIT)
+      bulkVoltageLimitActive_ = false;
+  } else {
+    bulkVoltageLimitActive_ = false;
+  }
+  if (bulkVoltageLimitActive_) voltageControlActive_ = true;
   if (p.CVTuningMode) {
     ChargingVoltageTarget_ = cvTuning_.target(s.now, ChargingVoltageTarget_, p);
     voltageControlActive_ = true;
@@ -411,6 +430,7 @@ void ControlLaw::fillTelemetry(ControlTelemetry& t) const {
   t.inStartupRamp = inStartupRamp_;
   t.fastRiseActive = fastRiseActive_;
   t.warmupActive = warmupActive_;
+  t.bulkVoltageLimitActive = bulkVoltageLimitActive_;
   t.fastOvClampActive = fastOvClampActive_;
   t.cvOvershootBypass = cvOvershootBypass_;
   t.inBulkStage = stages_.inBulkStage();

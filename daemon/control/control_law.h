@@ -119,6 +119,7 @@ class ControlLaw {
   const CvTuningModeRunner& cvTuning() const { return cvTuning_; }
   const SystemId& systemId() const { return sysId_; }
   double controlDtSec() const { return controlDt_; }
+  bool bulkVoltageLimitActive() const { return bulkVoltageLimitActive_; }
   GovMode govMode() const { return govMode_; }
   double dutyRequest() const { return dutyRequest_; }
   double setpointCommand() const { return setpointCommand_; }
@@ -171,6 +172,7 @@ class ControlLaw {
   bool cvOvershootBypass_ = false;
   bool fastRiseActive_ = false;
   bool warmupActive_ = false;
+  bool bulkVoltageLimitActive_ = false;
   bool overrideWasActive_ = false;
   double sysIdDutyOut_ = 0.0;
 };

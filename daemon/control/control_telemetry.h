@@ -34,8 +34,9 @@ struct ControlTelemetry {
   double MeasuredAmps = 0.0, MeasuredAmps_filtered = 0.0, g_pidI_filtered = 0.0, g_pidMA_N = 0.0;
   double IBV_filtered = 0.0;
   bool inStartupRamp = false;
-  bool fastRiseActive = false;  // FastSetpointRiseRate window
-  bool warmupActive = false;    // warm-up ceiling applying
+  bool fastRiseActive = false;          // FastSetpointRiseRate window
+  bool warmupActive = false;            // warm-up ceiling applying
+  bool bulkVoltageLimitActive = false;  // CV engaged at BulkVoltage inside BULK (ours)
   bool fastOvClampActive = false;
   bool cvOvershootBypass = false;  // GOV_BYPASS_SLEW latch (CV overshoot)
   bool inBulkStage = true, inAbsorptionStage = false, inFloatStage = false, inIdleStage = false;

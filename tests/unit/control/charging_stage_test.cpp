@@ -264,6 +264,33 @@ TEST(ChargingStage, SuppressedInOverrideModesThroughTheControlLaw) {
   }
 }
 
+TEST(ChargingStage, BulkVoltageCeilingHoldsBulkTargetWhileTheHoldTimerRuns) {
+  test::LawRig rig;
+  rig.p.bulkVoltageHoldMs = 600000;  // stays in BULK for the whole test
+  rig.plant.Vocv = 14.3;
+  rig.plant.R = 0.008;
+  rig.plant.voltsPerAmpSec = 0.002;  // a small bank: 50 A would reach 14.8 V in seconds
+  rig.start();
+  double vmax = 0.0;
+  for (int i = 0; i < 60 * 400; ++i) {
+    rig.tick();
+    vmax = std::max(vmax, rig.plant.V());
+  }
+  EXPECT_EQ(rig.law.stages().stage(), ChargeStage::BULK);
+  EXPECT_TRUE(rig.law.bulkVoltageLimitActive());
+  EXPECT_TRUE(rig.law.voltageControlActive());
+  EXPECT_LT(vmax, rig.p.BulkVoltage + 0.1);  // never near the 14.8 V hard shutdown
+  EXPECT_NEAR(rig.plant.V(), rig.p.BulkVoltage, 0.05);
+}
+
+TEST(ChargingStage, BulkVoltageCeilingIdleFarBelowBulk) {
+  test::LawRig rig;
+  rig.start();
+  rig.run(5.0);
+  EXPECT_FALSE(rig.law.bulkVoltageLimitActive());
+  EXPECT_FALSE(rig.law.voltageControlActive());
+}
+
 TEST(ChargingStage, EnterSysAutoAlwaysStartsInBulk) {
   test::LawRig rig;
   rig.p.bulkVoltageHoldMs = 1000;
