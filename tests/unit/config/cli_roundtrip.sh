@@ -1,0 +1,37 @@
+#!/bin/sh
+# End to end through the real binary (issue 2 acceptance): the printed default
+# configuration is exactly config/xregulator.toml, it passes --check-config
+# (exit 0), and a bad file exits 78 with its errors on stderr.
+#   cli_roundtrip.sh XREGULATORD SOURCE_ROOT
+set -u
+exe=$1
+root=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fail=0
+
+"$exe" --print-default-config >"$tmp/default.toml" || { echo "FAIL: --print-default-config exited $?"; fail=1; }
+cmp -s "$tmp/default.toml" "$root/config/xregulator.toml" && echo "ok: printed default == config/xregulator.toml" \
+  || { echo "FAIL: --print-default-config differs from config/xregulator.toml"; fail=1; }
+
+"$exe" --config "$tmp/default.toml" --check-config >"$tmp/out" 2>"$tmp/err"
+rc=$?
+[ $rc = 0 ] && echo "ok: printed default passes --check-config" \
+  || { cat "$tmp/out" "$tmp/err"; echo "FAIL: --check-config on the printed default exited $rc"; fail=1; }
+
+printf '[voltage]\nBulkVoltag = 14.5\nFloatVoltage = 99\n[web]\nport = "x"\n' >"$tmp/bad.toml"
+"$exe" --config "$tmp/bad.toml" --check-config >"$tmp/out" 2>"$tmp/err"
+rc=$?
+[ $rc = 78 ] && echo "ok: bad file exits 78" || { echo "FAIL: bad file exited $rc, want 78"; fail=1; }
+for want in "bad.toml:2:1: voltage.BulkVoltag: unknown parameter (did you mean BulkVoltage?)" \
+  "bad.toml:3:1: voltage.FloatVoltage: 99 is out of range: allowed 8 to 64 V" \
+  "bad.toml:5:1: web.port: expected a whole number"; do
+  grep -qF "$want" "$tmp/err" && echo "ok: stderr has: $want" || { echo "FAIL: stderr lacks: $want"; cat "$tmp/err"; fail=1; }
+done
+
+printf '[voltage\n' >"$tmp/syntax.toml"
+"$exe" --config "$tmp/syntax.toml" --check-config >/dev/null 2>"$tmp/err"
+rc=$?
+[ $rc = 78 ] && grep -q "syntax.toml:1:" "$tmp/err" && echo "ok: syntax error exits 78 with file:line" \
+  || { cat "$tmp/err"; echo "FAIL: syntax error: exit $rc"; fail=1; }
+exit $fail
