@@ -86,9 +86,11 @@ class FakeDaemonApi : public DaemonApi {
     std::lock_guard lock(m_);
     ++patchCalls_;
     Params next = current_;
-    for (const auto& c : changes) c.spec->set(next, c.index < 0 ? 0 : static_cast<std::size_t>(c.index), c.value);
+    for (const auto& c : changes)
+      c.spec->set(next, c.index < 0 ? 0 : static_cast<std::size_t>(c.index), c.value);
     PatchResult r;
-    if (next.FloatVoltage > next.BulkVoltage) r.errors.push_back({"FloatVoltage", "must not exceed BulkVoltage"});
+    if (next.FloatVoltage > next.BulkVoltage)
+      r.errors.push_back({"FloatVoltage", "must not exceed BulkVoltage"});
     if (r.errors.empty()) current_ = next;
     return r;
   }
@@ -115,7 +117,9 @@ class FakeDaemonApi : public DaemonApi {
     for (double t = q.from_s; t < q.to_s; t += q.step_s) r.t.push_back(t);
     for (const auto& s : q.series) {
       std::vector<double> v;
-      for (double t : r.t) v.push_back(s == "battery_v" || s == "ibv_v" ? 13.0 + 0.5 * std::sin(t / 300.0) : 50.0 + 20.0 * std::sin(t / 200.0));
+      for (double t : r.t)
+        v.push_back(s == "battery_v" || s == "ibv_v" ? 13.0 + 0.5 * std::sin(t / 300.0)
+                                                     : 50.0 + 20.0 * std::sin(t / 200.0));
       r.series.emplace_back(s, std::move(v));
     }
     std::lock_guard lock(m_);

@@ -2,13 +2,12 @@
 // Minimal synchronous Beast HTTP/WebSocket clients for the API tests. Every
 // socket carries a generous deadline so a broken server fails a test instead
 // of hanging it (a safety net, never an assertion about speed).
-#include <map>
-#include <string>
-
 #include <boost/asio.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
 #include <boost/beast/websocket.hpp>
+#include <map>
+#include <string>
 
 namespace xr::web::test {
 

@@ -17,10 +17,14 @@ int main(int argc, char** argv) {
   o.token = "test-token";
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string k = argv[i], v = argv[i + 1];
-    if (k == "--port") o.port = static_cast<std::uint16_t>(std::stoi(v));
-    else if (k == "--www") o.www_root = v;
-    else if (k == "--token") o.token = v;
-    else if (k == "--rate") o.telemetry_rate_hz = std::stod(v);
+    if (k == "--port")
+      o.port = static_cast<std::uint16_t>(std::stoi(v));
+    else if (k == "--www")
+      o.www_root = v;
+    else if (k == "--token")
+      o.token = v;
+    else if (k == "--rate")
+      o.telemetry_rate_hz = std::stod(v);
     else {
       std::fprintf(stderr, "unknown option %s\n", k.c_str());
       return 2;

@@ -4,11 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <boost/json.hpp>
 #include <filesystem>
 #include <fstream>
 #include <thread>
-
-#include <boost/json.hpp>
 
 #include "params/params.h"
 #include "tests/web/fake_daemon_api.h"
@@ -82,11 +81,33 @@ TEST_F(WebApiTest, Status_HasEveryDesignCsvColumnWithFakeValues) {
   ASSERT_EQ(r.status, 200);
   EXPECT_EQ(r.headers["Content-Type"], "application/json");
   const auto o = obj(r);
-  for (const char* col :
-       {"t_s", "mode", "stage", "reason", "ibv_v", "battery_v", "bcur_a", "alt_a", "rpm", "temp_f", "duty_pct",
-        "field_enable", "setpoint_a", "target_a", "target_v", "thermal_penalty_a", "fast_ov_active", "soc_pct",
-        "alarm", "charged_wh_lifetime", "alt_charged_wh_lifetime", "sim_battery_v", "sim_alt_a", "sim_alt_temp_f",
-        "sim_soc_pct", "sim_bms_connected", "sim_field_on"})
+  for (const char* col : {"t_s",
+                          "mode",
+                          "stage",
+                          "reason",
+                          "ibv_v",
+                          "battery_v",
+                          "bcur_a",
+                          "alt_a",
+                          "rpm",
+                          "temp_f",
+                          "duty_pct",
+                          "field_enable",
+                          "setpoint_a",
+                          "target_a",
+                          "target_v",
+                          "thermal_penalty_a",
+                          "fast_ov_active",
+                          "soc_pct",
+                          "alarm",
+                          "charged_wh_lifetime",
+                          "alt_charged_wh_lifetime",
+                          "sim_battery_v",
+                          "sim_alt_a",
+                          "sim_alt_temp_f",
+                          "sim_soc_pct",
+                          "sim_bms_connected",
+                          "sim_field_on"})
     EXPECT_TRUE(o.contains(col)) << col;
   StatusSnapshot s;
   ASSERT_TRUE(api_.latestStatus(s));
@@ -121,7 +142,8 @@ TEST_F(WebApiTest, Params_ListsEveryCatalogueEntryWithMetadata) {
   ASSERT_EQ(list.size(), catalogue().size());
   for (const auto& p : list) {
     const auto& e = p.as_object();
-    for (const char* k : {"name", "group", "kind", "unit", "min", "max", "help", "value", "default", "file", "changed"})
+    for (const char* k :
+         {"name", "group", "kind", "unit", "min", "max", "help", "value", "default", "file", "changed"})
       EXPECT_TRUE(e.contains(k)) << k;
     EXPECT_FALSE(e.at("changed").as_bool()) << e.at("name");
   }
@@ -180,7 +202,8 @@ TEST_F(WebApiTest, Patch_401WithoutToken403WithWrongToken) {
 
 TEST_F(WebApiTest, Patch_OneBadFieldAppliesNothingAndNamesEachBadField) {
   start();
-  const auto r = patch(R"({"BulkVoltage": 14.2, "FloatVoltage": 999, "NoSuchParam": 1, "PidSampleDivisor": 1.5,
+  const auto r =
+      patch(R"({"BulkVoltage": 14.2, "FloatVoltage": 999, "NoSuchParam": 1, "PidSampleDivisor": 1.5,
                           "TuningMode": "yes", "AbsorptionVoltage": null})");
   ASSERT_EQ(r.status, 400);
   const auto errors = obj(r).at("errors").as_object();
@@ -250,11 +273,12 @@ TEST_F(WebApiTest, Commands_EveryCommandReachesTheDaemon) {
 
 TEST_F(WebApiTest, Commands_BadRequestsGet400AndNeverReachTheDaemon) {
   start();
-  for (const char* body : {R"({"command":"manual"})", R"({"command":"manual","duty":"30"})",
-                           R"({"command":"manual","duty":101})", R"({"command":"manual","duty":-1})",
-                           R"({"command":"set_soc","soc_pct":null})", R"({"command":"weather_mode","active":1})",
-                           R"({"command":"explode"})", R"({"command":42})", R"({"cmd":"auto"})",
-                           R"({"command":"auto","duty":10})", R"(["auto"])", "{"}) {
+  for (const char* body :
+       {R"({"command":"manual"})", R"({"command":"manual","duty":"30"})",
+        R"({"command":"manual","duty":101})", R"({"command":"manual","duty":-1})",
+        R"({"command":"set_soc","soc_pct":null})", R"({"command":"weather_mode","active":1})",
+        R"({"command":"explode"})", R"({"command":42})", R"({"cmd":"auto"})",
+        R"({"command":"auto","duty":10})", R"(["auto"])", "{"}) {
     const auto r = command(body);
     EXPECT_EQ(r.status, 400) << body;
     EXPECT_TRUE(obj(r).contains("error")) << body;
@@ -285,7 +309,7 @@ TEST_F(WebApiTest, Events_LimitAndBeforePage) {
   const auto page = obj(get("/api/events?limit=3&before=100")).at("events").as_array();
   ASSERT_EQ(page.size(), 3u);
   EXPECT_EQ(page[0].at("id").to_number<int>(), 99);
-  EXPECT_EQ(obj(get("/api/events")).at("events").as_array().size(), 100u);  // default limit
+  EXPECT_EQ(obj(get("/api/events")).at("events").as_array().size(), 100u);               // default limit
   EXPECT_EQ(obj(get("/api/events?limit=100000")).at("events").as_array().size(), 250u);  // clamped, all there
   EXPECT_EQ(get("/api/events?limit=0").status, 400);
   EXPECT_EQ(get("/api/events?limit=abc").status, 400);
@@ -380,7 +404,9 @@ TEST_F(WebApiTest, Static_ServesFilesWithMimeTypesAndNoTraversal) {
 TEST_F(WebApiTest, Routing_UnknownAndWrongMethods) {
   start();
   EXPECT_EQ(get("/api/nothing").status, 404);
-  EXPECT_EQ(httpRequest(port_, bhttp::verb::delete_, "/api/params", "", {{"Authorization", "Bearer x"}}).status, 405);
+  EXPECT_EQ(
+      httpRequest(port_, bhttp::verb::delete_, "/api/params", "", {{"Authorization", "Bearer x"}}).status,
+      405);
   EXPECT_EQ(httpRequest(port_, bhttp::verb::post, "/api/status", "{}").status, 405);
   EXPECT_EQ(httpRequest(port_, bhttp::verb::put, "/index.html", "x").status, 405);
   EXPECT_EQ(get("/ws").status, 426);

@@ -3,13 +3,12 @@
 #include "web/server/api_handler.h"
 
 #include <array>
+#include <boost/json.hpp>
 #include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <string_view>
-
-#include <boost/json.hpp>
 
 #include "web/server/auth.h"
 #include "web/server/json_format.h"
@@ -45,13 +44,15 @@ Response error(const Request& req, http::status status, std::string_view message
   json::object o;
   o["error"] = message;
   auto res = jsonReply(req, status, o);
-  if (status == http::status::unauthorized) res.set(http::field::www_authenticate, "Bearer realm=\"xregulator\"");
+  if (status == http::status::unauthorized)
+    res.set(http::field::www_authenticate, "Bearer realm=\"xregulator\"");
   return res;
 }
 
 Response authError(const Request& req, unsigned code) {
-  return code == 401 ? error(req, http::status::unauthorized, "missing token: send Authorization: Bearer <token>")
-                     : error(req, http::status::forbidden, "invalid token");
+  return code == 401
+             ? error(req, http::status::unauthorized, "missing token: send Authorization: Bearer <token>")
+             : error(req, http::status::forbidden, "invalid token");
 }
 
 double nowEpochS() {
@@ -97,8 +98,10 @@ std::string rangeText(const ParamSpec& spec) {
 // One scalar value for spec, or an error message.
 std::optional<double> scalarFor(const ParamSpec& spec, const json::value& v, std::string& err) {
   std::optional<double> d;
-  if (spec.kind == ParamKind::Bool && v.is_bool()) d = v.get_bool() ? 1.0 : 0.0;
-  else d = jsonNumber(v);
+  if (spec.kind == ParamKind::Bool && v.is_bool())
+    d = v.get_bool() ? 1.0 : 0.0;
+  else
+    d = jsonNumber(v);
   if (!d) {
     err = spec.kind == ParamKind::Bool ? "expected true/false (or 0/1)" : "expected a number";
     return std::nullopt;
@@ -141,11 +144,20 @@ std::optional<json::value> parseBody(const Request& req, std::string& err) {
 }
 
 constexpr std::array kAllCommands{
-    CommandType::Auto,          CommandType::Manual,          CommandType::Off,
-    CommandType::LimpHome,      CommandType::LimpHomeOff,     CommandType::ReenableField,
-    CommandType::ResetAlarmLatch, CommandType::ResetSocGain,  CommandType::ResetAltZero,
-    CommandType::SetSoc,        CommandType::SystemIdStart,   CommandType::TuningCommit,
-    CommandType::CvTuningCommit, CommandType::WeatherMode,
+    CommandType::Auto,
+    CommandType::Manual,
+    CommandType::Off,
+    CommandType::LimpHome,
+    CommandType::LimpHomeOff,
+    CommandType::ReenableField,
+    CommandType::ResetAlarmLatch,
+    CommandType::ResetSocGain,
+    CommandType::ResetAltZero,
+    CommandType::SetSoc,
+    CommandType::SystemIdStart,
+    CommandType::TuningCommit,
+    CommandType::CvTuningCommit,
+    CommandType::WeatherMode,
 };
 
 }  // namespace
@@ -189,7 +201,8 @@ std::optional<std::string> queryParam(std::string_view query, std::string_view k
     const std::string_view pair = query.substr(0, amp);
     const auto eq = pair.find('=');
     const std::string_view k = pair.substr(0, eq);
-    if (k == key) return percentDecode(eq == std::string_view::npos ? std::string_view{} : pair.substr(eq + 1));
+    if (k == key)
+      return percentDecode(eq == std::string_view::npos ? std::string_view{} : pair.substr(eq + 1));
     if (amp == std::string_view::npos) break;
     query.remove_prefix(amp + 1);
   }
@@ -202,9 +215,12 @@ ApiHandler::ApiHandler(DaemonApi& api, const WebServerOptions& opts, std::functi
 unsigned ApiHandler::checkRead(std::string_view authorization, std::string_view queryToken) const {
   if (!opts_.reads_require_token) return 0;
   switch (checkBearer(authorization, queryToken, opts_.token)) {
-    case AuthResult::Ok: return 0;
-    case AuthResult::Missing: return 401;
-    case AuthResult::Forbidden: return 403;
+    case AuthResult::Ok:
+      return 0;
+    case AuthResult::Missing:
+      return 401;
+    case AuthResult::Forbidden:
+      return 403;
   }
   return 403;
 }
@@ -242,7 +258,8 @@ Response ApiHandler::route(const Request& req) {
   const std::string_view target = req.target();
   const auto qpos = target.find('?');
   const std::string_view path = target.substr(0, qpos);
-  const std::string_view query = qpos == std::string_view::npos ? std::string_view{} : target.substr(qpos + 1);
+  const std::string_view query =
+      qpos == std::string_view::npos ? std::string_view{} : target.substr(qpos + 1);
   const auto method = req.method();
   const bool isGet = method == http::verb::get || method == http::verb::head;
 
@@ -278,9 +295,12 @@ Response ApiHandler::route(const Request& req) {
     }
     // Every write needs the token, whatever reads_require_token says.
     switch (checkBearer(req[http::field::authorization], "", opts_.token)) {
-      case AuthResult::Missing: return authError(req, 401);
-      case AuthResult::Forbidden: return authError(req, 403);
-      case AuthResult::Ok: break;
+      case AuthResult::Missing:
+        return authError(req, 401);
+      case AuthResult::Forbidden:
+        return authError(req, 403);
+      case AuthResult::Ok:
+        break;
     }
     return isParams ? patchParams(req) : postCommand(req);
   }
@@ -327,15 +347,19 @@ Response ApiHandler::patchParams(const Request& req) {
       std::string e;
       for (std::size_t i = 0; i < arr.size() && e.empty(); ++i) {
         auto d = scalarFor(*spec, arr[i], e);
-        if (d) changes.push_back({spec, static_cast<int>(i), *d});
-        else e = "element " + std::to_string(i) + ": " + e;
+        if (d)
+          changes.push_back({spec, static_cast<int>(i), *d});
+        else
+          e = "element " + std::to_string(i) + ": " + e;
       }
       if (!e.empty()) errors.push_back({name, e});
       continue;
     }
     std::string e;
-    if (auto d = scalarFor(*spec, kv.value(), e)) changes.push_back({spec, -1, *d});
-    else errors.push_back({name, e});
+    if (auto d = scalarFor(*spec, kv.value(), e))
+      changes.push_back({spec, -1, *d});
+    else
+      errors.push_back({name, e});
   }
   if (!errors.empty()) return patchErrors(req, errors);
 
@@ -353,31 +377,38 @@ Response ApiHandler::postCommand(const Request& req) {
   std::string err;
   auto body = parseBody(req, err);
   if (!body) return error(req, http::status::bad_request, err);
-  if (!body->is_object()) return error(req, http::status::bad_request, "expected a JSON object {\"command\": ...}");
+  if (!body->is_object())
+    return error(req, http::status::bad_request, "expected a JSON object {\"command\": ...}");
   const auto& obj = body->get_object();
   const auto* name = obj.if_contains("command");
-  if (!name || !name->is_string()) return error(req, http::status::bad_request, "\"command\" must be a string");
+  if (!name || !name->is_string())
+    return error(req, http::status::bad_request, "\"command\" must be a string");
   const auto type = parseCommandType(std::string_view(name->get_string()));
-  if (!type) return error(req, http::status::bad_request, "unknown command '" + std::string(name->get_string()) + "'");
+  if (!type)
+    return error(req, http::status::bad_request, "unknown command '" + std::string(name->get_string()) + "'");
   const std::string_view arg = commandArgument(*type);
   for (const auto& kv : obj)
     if (kv.key() != "command" && kv.key() != arg)
-      return error(req, http::status::bad_request, "unknown field '" + std::string(kv.key()) + "' for command '" +
-                                                       std::string(toString(*type)) + "'");
+      return error(
+          req, http::status::bad_request,
+          "unknown field '" + std::string(kv.key()) + "' for command '" + std::string(toString(*type)) + "'");
   Command cmd;
   cmd.type = *type;
   if (!arg.empty()) {
     const auto* v = obj.if_contains(arg);
-    if (!v) return error(req, http::status::bad_request, "command '" + std::string(toString(*type)) + "' needs '" +
-                                                             std::string(arg) + "'");
+    if (!v)
+      return error(req, http::status::bad_request,
+                   "command '" + std::string(toString(*type)) + "' needs '" + std::string(arg) + "'");
     if (arg == "active") {
       if (!v->is_bool()) return error(req, http::status::bad_request, "'active' must be true or false");
       cmd.flag = v->get_bool();
     } else {
       auto d = jsonNumber(*v);
-      if (!d || !std::isfinite(*d)) return error(req, http::status::bad_request, "'" + std::string(arg) + "' must be a number");
+      if (!d || !std::isfinite(*d))
+        return error(req, http::status::bad_request, "'" + std::string(arg) + "' must be a number");
       if (*d < 0.0 || *d > 100.0)
-        return error(req, http::status::bad_request, "'" + std::string(arg) + "' must be between 0 and 100 %");
+        return error(req, http::status::bad_request,
+                     "'" + std::string(arg) + "' must be between 0 and 100 %");
       cmd.value = *d;
     }
   }
@@ -458,7 +489,8 @@ Response ApiHandler::getHistory(const Request& req, std::string_view query) {
   q.step_s = std::max(1.0, (q.to_s - q.from_s) / 600.0);
   if (auto s = queryParam(query, "step")) {
     const auto v = parseDouble(*s);
-    if (!v || *v <= 0.0) return error(req, http::status::bad_request, "step must be a positive number of seconds");
+    if (!v || *v <= 0.0)
+      return error(req, http::status::bad_request, "step must be a positive number of seconds");
     q.step_s = *v;
   }
   if ((q.to_s - q.from_s) / q.step_s > kMaxHistoryPoints)
@@ -513,7 +545,8 @@ Response ApiHandler::getMetrics(const Request& req) {
   StatusSnapshot snap;
   const bool have = api_.latestStatus(snap) && snap.seq != 0;
   const WebServerStats s = stats_ ? stats_() : WebServerStats{};
-  return reply(req, http::status::ok, metricsText(have ? &snap : nullptr, s), "text/plain; version=0.0.4; charset=utf-8");
+  return reply(req, http::status::ok, metricsText(have ? &snap : nullptr, s),
+               "text/plain; version=0.0.4; charset=utf-8");
 }
 
 Response ApiHandler::getHealth(const Request& req) {

@@ -3,13 +3,12 @@
 // API tests, the fuzz target and the Beast sessions share exactly this code.
 // Thread-safe: the server's Asio threads call handle() concurrently.
 #include <atomic>
+#include <boost/beast/http.hpp>
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
-
-#include <boost/beast/http.hpp>
 
 #include "web/server/daemon_api.h"
 #include "web/server/web_server.h"

@@ -22,7 +22,8 @@ AuthResult checkBearer(std::string_view authorization, std::string_view queryTok
     constexpr std::string_view kScheme = "bearer ";
     if (authorization.size() < kScheme.size()) return AuthResult::Forbidden;
     for (std::size_t i = 0; i < kScheme.size(); ++i)
-      if (std::tolower(static_cast<unsigned char>(authorization[i])) != kScheme[i]) return AuthResult::Forbidden;
+      if (std::tolower(static_cast<unsigned char>(authorization[i])) != kScheme[i])
+        return AuthResult::Forbidden;
     token = authorization.substr(kScheme.size());
     while (!token.empty() && token.front() == ' ') token.remove_prefix(1);
     while (!token.empty() && token.back() == ' ') token.remove_suffix(1);

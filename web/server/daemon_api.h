@@ -27,13 +27,13 @@ namespace xr::web {
 
 // Control-loop timing measured by the runtime (DESIGN.md thread model).
 struct LoopStats {
-  std::uint64_t ticks = 0;         // ticks since start
-  std::uint64_t overruns = 0;      // ticks whose period exceeded the target by > 50 %
-  double target_period_us = 0.0;   // [runtime] control_period_us
-  double period_mean_us = 0.0;     // measured tick-to-tick period
+  std::uint64_t ticks = 0;        // ticks since start
+  std::uint64_t overruns = 0;     // ticks whose period exceeded the target by > 50 %
+  double target_period_us = 0.0;  // [runtime] control_period_us
+  double period_mean_us = 0.0;    // measured tick-to-tick period
   double period_p99_us = 0.0;
   double period_max_us = 0.0;
-  double exec_mean_us = 0.0;       // time spent inside one tick (read, step, write)
+  double exec_mean_us = 0.0;  // time spent inside one tick (read, step, write)
   double exec_p99_us = 0.0;
   double exec_max_us = 0.0;
   std::uint64_t sensor_errors = 0;  // failed I2C reads since start
@@ -61,9 +61,9 @@ struct ExtraValue {
 
 // One status snapshot: the latest published tick plus what surrounds it.
 struct StatusSnapshot {
-  std::uint64_t seq = 0;      // increments with every published telemetry; 0 = none yet
-  TimeNs start = 0;           // t_s = telemetry.now - start (simulated time in sim)
-  double wall_time_s = 0.0;   // Unix epoch seconds when this tick was published
+  std::uint64_t seq = 0;     // increments with every published telemetry; 0 = none yet
+  TimeNs start = 0;          // t_s = telemetry.now - start (simulated time in sim)
+  double wall_time_s = 0.0;  // Unix epoch seconds when this tick was published
   Telemetry telemetry;
   LoopStats loop;
   std::optional<SimTruth> sim;  // present in simulation
@@ -110,15 +110,15 @@ struct CommandResult {
 
 // One stored event (from the store, newest first).
 struct EventRecord {
-  std::int64_t id = 0;        // store row id, increasing; `before` pages on it
-  double wall_time_s = 0.0;   // Unix epoch seconds
-  Event event;                // core/events.h
-  std::string text;           // describe(event), formatted off the RT thread
+  std::int64_t id = 0;       // store row id, increasing; `before` pages on it
+  double wall_time_s = 0.0;  // Unix epoch seconds
+  Event event;               // core/events.h
+  std::string text;          // describe(event), formatted off the RT thread
 };
 
 struct EventQuery {
-  std::size_t limit = 100;               // server clamps to [1, 1000]
-  std::optional<std::int64_t> before;    // only ids < before
+  std::size_t limit = 100;             // server clamps to [1, 1000]
+  std::optional<std::int64_t> before;  // only ids < before
 };
 
 // History: numeric telemetry columns (DESIGN.md CSV names) averaged over
@@ -131,8 +131,8 @@ struct HistoryQuery {
 };
 
 struct HistoryResult {
-  std::string error;                 // non-empty: 400 with this message (unknown series...)
-  std::vector<double> t;             // bucket start times
+  std::string error;      // non-empty: 400 with this message (unknown series...)
+  std::vector<double> t;  // bucket start times
   std::vector<std::pair<std::string, std::vector<double>>> series;  // same length as t; NaN = no data
 };
 

@@ -2,10 +2,9 @@
 // JSON (Boost.JSON) and Prometheus text for the web API. Pure functions of the
 // daemon's plain structs: the same status text goes to GET /api/status and to
 // every WebSocket client (serialised once per tick).
+#include <boost/json.hpp>
 #include <string>
 #include <vector>
-
-#include <boost/json.hpp>
 
 #include "web/server/daemon_api.h"
 #include "web/server/web_server.h"

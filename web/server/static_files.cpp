@@ -51,7 +51,8 @@ std::optional<std::string> resolveStaticPath(const std::string& root, std::strin
   // Symlinks must not lead out of the root either.
   const auto rs = real.native();
   const auto bs = base.native();
-  if (rs.size() <= bs.size() || rs.compare(0, bs.size(), bs) != 0 || rs[bs.size()] != '/') return std::nullopt;
+  if (rs.size() <= bs.size() || rs.compare(0, bs.size(), bs) != 0 || rs[bs.size()] != '/')
+    return std::nullopt;
   if (!fs::is_regular_file(real, ec)) return std::nullopt;
   return real.string();
 }

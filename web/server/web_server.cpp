@@ -10,14 +10,13 @@
 
 #include <algorithm>
 #include <atomic>
-#include <mutex>
-#include <stdexcept>
-#include <thread>
-
 #include <boost/asio.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
 #include <boost/beast/websocket.hpp>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
 
 #include "web/server/api_handler.h"
 
@@ -159,7 +158,9 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
     doRead();
   }
 
-  void doRead() { ws_.async_read(buffer_, beast::bind_front_handler(&WsSession::onRead, shared_from_this())); }
+  void doRead() {
+    ws_.async_read(buffer_, beast::bind_front_handler(&WsSession::onRead, shared_from_this()));
+  }
 
   void onRead(beast::error_code ec, std::size_t) {
     if (ec) {
@@ -175,7 +176,8 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
     writing_ = true;
     current_ = std::move(msg);
     ws_.text(true);
-    ws_.async_write(asio::buffer(*current_), beast::bind_front_handler(&WsSession::onWrite, shared_from_this()));
+    ws_.async_write(asio::buffer(*current_),
+                    beast::bind_front_handler(&WsSession::onWrite, shared_from_this()));
   }
 
   void onWrite(beast::error_code ec, std::size_t) {
@@ -208,7 +210,8 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
       : stream_(std::move(socket)), impl_(impl), guard_(impl.connections) {}
 
   void run() {
-    asio::dispatch(stream_.get_executor(), beast::bind_front_handler(&HttpSession::doRead, shared_from_this()));
+    asio::dispatch(stream_.get_executor(),
+                   beast::bind_front_handler(&HttpSession::doRead, shared_from_this()));
   }
 
  private:
@@ -219,12 +222,14 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     // One deadline for the whole request: a client dripping bytes is cut off.
     stream_.expires_after(first_ ? impl_.opts.request_timeout : impl_.opts.keepalive_timeout);
     first_ = false;
-    http::async_read(stream_, buffer_, *parser_, beast::bind_front_handler(&HttpSession::onRead, shared_from_this()));
+    http::async_read(stream_, buffer_, *parser_,
+                     beast::bind_front_handler(&HttpSession::onRead, shared_from_this()));
   }
 
   void onRead(beast::error_code ec, std::size_t) {
     if (ec == http::error::end_of_stream) return close();
-    if (ec == http::error::body_limit) return sendError(http::status::payload_too_large, "request body too large");
+    if (ec == http::error::body_limit)
+      return sendError(http::status::payload_too_large, "request body too large");
     if (ec == http::error::header_limit)
       return sendError(http::status::request_header_fields_too_large, "request headers too large");
     if (ec && ec.category() == beast::http::make_error_code(http::error::bad_target).category() &&
@@ -240,7 +245,8 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
       if (!originAllowed(req, impl_.opts))
         return sendResponse(makeError(req, http::status::forbidden, "Origin not allowed"));
       const auto q = target.find('?');
-      const auto token = q == std::string_view::npos ? std::nullopt : queryParam(target.substr(q + 1), "token");
+      const auto token =
+          q == std::string_view::npos ? std::nullopt : queryParam(target.substr(q + 1), "token");
       if (auto code = impl_.handler.checkRead(req[http::field::authorization], token.value_or(""))) {
         return sendResponse(makeError(req, code == 401 ? http::status::unauthorized : http::status::forbidden,
                                       code == 401 ? "missing token" : "invalid token"));
@@ -358,7 +364,8 @@ void WebServer::start() {
   if (m.running) return;
   if (m.opts.token.empty()) throw std::runtime_error("web: refusing to start without a token");
   const double rate = std::clamp(m.opts.telemetry_rate_hz, 0.2, 20.0);
-  m.period = std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(1.0 / rate));
+  m.period = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+      std::chrono::duration<double>(1.0 / rate));
   const int threads = std::max(1, m.opts.threads);
   m.ioc = std::make_unique<asio::io_context>(threads);
   beast::error_code ec;
@@ -373,8 +380,8 @@ void WebServer::start() {
   if (ec) {
     m.acceptor.reset();
     m.ioc.reset();
-    throw std::runtime_error("web: cannot listen on " + m.opts.listen + ":" + std::to_string(m.opts.port) + ": " +
-                             ec.message());
+    throw std::runtime_error("web: cannot listen on " + m.opts.listen + ":" + std::to_string(m.opts.port) +
+                             ": " + ec.message());
   }
   m.boundPort = m.acceptor->local_endpoint().port();
   m.doAccept();

@@ -38,7 +38,7 @@ struct WebServerOptions {
   std::chrono::milliseconds request_timeout{10000};  // whole request read / response write
   std::chrono::milliseconds keepalive_timeout{30000};
   std::chrono::milliseconds ws_idle_timeout{30000};  // no pong within this: close
-  std::vector<std::string> allowed_origins;  // extra Origins allowed on /ws (same host always ok)
+  std::vector<std::string> allowed_origins;          // extra Origins allowed on /ws (same host always ok)
 
   static WebServerOptions fromSettings(const WebSettings& s, std::string token);
 };
@@ -59,8 +59,8 @@ std::string defaultWwwRoot();
 // Counters exported on /metrics (and readable by tests).
 struct WebServerStats {
   std::uint64_t http_requests = 0;
-  std::uint64_t http_errors = 0;        // 4xx + 5xx responses
-  std::uint64_t ws_clients = 0;         // connected now
+  std::uint64_t http_errors = 0;  // 4xx + 5xx responses
+  std::uint64_t ws_clients = 0;   // connected now
   std::uint64_t ws_frames_sent = 0;
   std::uint64_t ws_frames_dropped = 0;  // replaced by a newer snapshot before sending
   std::uint64_t connections = 0;        // open now

@@ -1,15 +1,14 @@
 // xr_ws_clients: N WebSocket clients on one Asio thread, each reading
 // telemetry frames for D seconds. Prints "clients=N frames=F bytes=B errors=E".
 // Used by run-web.sh beside wrk; never a test.
+#include <boost/asio.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/websocket.hpp>
 #include <chrono>
 #include <cstdio>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <boost/asio.hpp>
-#include <boost/beast/core.hpp>
-#include <boost/beast/websocket.hpp>
 
 namespace asio = boost::asio;
 namespace beast = boost::beast;
@@ -69,7 +68,8 @@ int main(int argc, char** argv) {
   asio::steady_timer stop(ioc, std::chrono::seconds(seconds));
   stop.async_wait([&](beast::error_code) { ioc.stop(); });
   ioc.run();
-  std::printf("clients=%d frames=%llu bytes=%llu errors=%llu\n", n, static_cast<unsigned long long>(totals.frames),
-              static_cast<unsigned long long>(totals.bytes), static_cast<unsigned long long>(totals.errors));
+  std::printf("clients=%d frames=%llu bytes=%llu errors=%llu\n", n,
+              static_cast<unsigned long long>(totals.frames), static_cast<unsigned long long>(totals.bytes),
+              static_cast<unsigned long long>(totals.errors));
   return 0;
 }

@@ -4,12 +4,11 @@
 //   1: PATCH /api/params body   2: POST /api/commands body
 //   3: GET target (query parsing of /api/events, /api/history, static paths)
 // Any crash, sanitizer report or uncaught exception is a finding.
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
 #include <cstddef>
 #include <cstdint>
 #include <string>
-
-#include <boost/beast/core.hpp>
-#include <boost/beast/http.hpp>
 
 #include "tests/web/fake_daemon_api.h"
 #include "web/server/api_handler.h"
