@@ -63,7 +63,11 @@ int Ina228Driver::start(TimeNs now) noexcept {
   }
   present_ = true;
   stats_.consecutiveFailures = 0;
-  nextRead_ = now;
+  // The result registers hold reset values (VBUS = 0 V) or the previous
+  // mode's data until the first conversion of the new configuration ends:
+  // reading them earlier would report a dead sensor (< 0.1 V = critical
+  // disagreement) at every start.
+  nextRead_ = now + conversionCycle();
   nextHousekeeping_ = now;
   housekeepingPhase_ = 0;
   return 0;
@@ -87,8 +91,9 @@ int Ina228Driver::setFastMode(bool fast) noexcept {
     stats_.lastError = rc;
     return rc;
   }
-  // A new cycle starts at the write; read as soon as the first result is due.
-  nextRead_ = 0;
+  // A new cycle starts at the write: the first result of the new mode is due
+  // one conversion cycle later (poll() re-arms nextRead_ from its `now`).
+  conversionRestarted_ = true;
   return rc;
 }
 
@@ -140,6 +145,7 @@ int Ina228Driver::housekeepingStep() noexcept {
   if (!ok) {
     ++stats_.reconfigures;
     housekeepingPhase_ = 0;
+    conversionRestarted_ = true;
     return configure();
   }
   return 0;
@@ -168,6 +174,10 @@ const Ina228Sample& Ina228Driver::poll(TimeNs now) noexcept {
   sample_.busOvervoltage = (diag & DIAG_BUSOL) != 0;
   sample_.diagStamp = now;
 
+  if (conversionRestarted_) {
+    conversionRestarted_ = false;
+    nextRead_ = now + conversionCycle();
+  }
   if (now >= nextRead_) {
     std::uint64_t vbus = 0, cur = 0;
     rc = readReg(VBUS, 3, &vbus);

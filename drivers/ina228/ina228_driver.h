@@ -101,6 +101,7 @@ class Ina228Driver {
   bool present_ = false;
   double bovlVolts_ = 0.0;  // 0 = not programmed (chip default 0x7FFF = never)
   TimeNs nextRead_ = 0;
+  bool conversionRestarted_ = false;  // ADC_CONFIG written: wait a full cycle before reading
   TimeNs nextHousekeeping_ = 0;
   unsigned housekeepingPhase_ = 0;
   TimeNs nextRedetect_ = 0;

@@ -73,6 +73,30 @@ TEST_F(Ina228DriverTest, ReadsBusVoltageCurrentAndDieTemperature) {
   EXPECT_EQ(chip.protocolErrors(), 0u);
 }
 
+TEST_F(Ina228DriverTest, FreshChipIsNotReadBeforeItsFirstConversion) {
+  // A just-configured INA228 still holds its reset VBUS of 0 V: reading it
+  // would look like a dead sensor (critical disagreement) at every start.
+  ASSERT_EQ(drv.start(t.now), 0);
+  const auto& first = drv.poll(t.now);
+  EXPECT_FALSE(first.fresh);
+  EXPECT_EQ(first.stamp, 0);
+  const auto& later = runFor(drv.conversionCycle() + 5'000'000);
+  EXPECT_GT(later.stamp, 0);
+  EXPECT_NEAR(later.busVolts, 13.2, 0.002);
+}
+
+TEST_F(Ina228DriverTest, ModeChangeWaitsForTheNewModesFirstResult) {
+  ASSERT_EQ(drv.start(t.now), 0);
+  runFor(3'000'000'000);
+  const TimeNs before = drv.sample().stamp;
+  ASSERT_EQ(drv.setFastMode(true), 0);
+  t.now += 1'000'000;  // 1 ms: shorter than one fast conversion cycle
+  EXPECT_FALSE(drv.poll(t.now).fresh);
+  EXPECT_EQ(drv.sample().stamp, before);
+  const auto& s = runFor(drv.conversionCycle() + 2'500'000, 500'000);
+  EXPECT_GT(s.stamp, before);
+}
+
 TEST_F(Ina228DriverTest, NegativeCurrentAndInversion) {
   setPins(12.6, -30.0);
   ASSERT_EQ(drv.start(t.now), 0);
