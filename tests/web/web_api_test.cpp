@@ -463,6 +463,29 @@ TEST_F(WebApiTest, WebSocket_StreamsSharedFramesWithIncreasingSeq) {
   EXPECT_EQ(server_->stats().ws_clients, 2u);
 }
 
+TEST_F(WebApiTest, WebSocket_SlowClientKeepsOnlyTheNewestFrame) {
+  api_.publish();
+  start();
+  // A client with a tiny receive buffer that upgrades and then never reads.
+  asio::io_context ioc;
+  websocket::stream<tcp::socket> slow(ioc);
+  slow.next_layer().open(tcp::v4());
+  slow.next_layer().set_option(asio::socket_base::receive_buffer_size(4096));
+  slow.next_layer().connect(tcp::endpoint(asio::ip::make_address("127.0.0.1"), port_));
+  slow.handshake("127.0.0.1:" + std::to_string(port_), "/ws");
+  // Publish until the server has had to replace a pending frame (bounded loop;
+  // the frames come at 20 Hz, so this is a few seconds).
+  for (int i = 0; i < 2000 && server_->stats().ws_frames_dropped == 0; ++i) {
+    api_.publish();
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  EXPECT_GT(server_->stats().ws_frames_dropped, 0u);
+  // Other clients and the API are unaffected.
+  WsClient fast(port_);
+  EXPECT_NE(fast.read().find("battery_v"), std::string::npos);
+  EXPECT_EQ(get("/healthz").status, 200);
+}
+
 TEST_F(WebApiTest, WebSocket_OriginMustMatchHost) {
   api_.publish();
   start();

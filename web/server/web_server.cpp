@@ -124,6 +124,11 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
 
   void start(const Request& req) {
     beast::get_lowest_layer(ws_).expires_never();  // the websocket timeout takes over
+    if (impl_.opts.ws_send_buffer > 0) {
+      beast::error_code ec;
+      beast::get_lowest_layer(ws_).socket().set_option(
+          asio::socket_base::send_buffer_size(impl_.opts.ws_send_buffer), ec);
+    }
     websocket::stream_base::timeout to{};
     to.handshake_timeout = impl_.opts.request_timeout;
     to.idle_timeout = impl_.opts.ws_idle_timeout;  // ping at half, close when no reply

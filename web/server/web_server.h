@@ -38,7 +38,10 @@ struct WebServerOptions {
   std::chrono::milliseconds request_timeout{10000};  // whole request read / response write
   std::chrono::milliseconds keepalive_timeout{30000};
   std::chrono::milliseconds ws_idle_timeout{30000};  // no pong within this: close
-  std::vector<std::string> allowed_origins;          // extra Origins allowed on /ws (same host always ok)
+  // Kernel send buffer of each WebSocket: bounds what a slow client can hold
+  // in the kernel, as the one-pending-frame rule bounds it in the server.
+  int ws_send_buffer = 64 * 1024;
+  std::vector<std::string> allowed_origins;  // extra Origins allowed on /ws (same host always ok)
 
   static WebServerOptions fromSettings(const WebSettings& s, std::string token);
 };
