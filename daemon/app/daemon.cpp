@@ -303,7 +303,7 @@ int Daemon::run() {
   } catch (const std::exception& e) {
     // Safe state first, then tell.
     rt::fatal::driveSafeNow();
-    loop.requestStop();
+    loop.requestAbort();
     spdlog::critical("fatal: {}: field enable LOW, duty 0", e.what());
     exitCode = kExitSoftware;
     control.join();

@@ -16,6 +16,7 @@ LoopExit ControlLoop::run() {
   LoopExit exit = LoopExit::Stopped;
 
   for (;;) {
+    if (abort_.load(std::memory_order_relaxed)) break;
     if (!ramping && stopRequested()) {
       ramping = true;
       rampStart = clock_.now();

@@ -37,6 +37,12 @@ class ControlLoop {
   LoopExit run();
 
   void requestStop() noexcept { stop_.store(true, std::memory_order_relaxed); }
+  // Fault path: end at the next iteration without the ramp (the caller has
+  // already driven the safe state).
+  void requestAbort() noexcept {
+    abort_.store(true, std::memory_order_relaxed);
+    stop_.store(true, std::memory_order_relaxed);
+  }
   bool stopRequested() const noexcept { return stop_.load(std::memory_order_relaxed); }
   // Grows by one per tick: the supervisor's proof of life (sd_notify WATCHDOG=1).
   std::uint64_t heartbeat() const noexcept { return heartbeat_.load(std::memory_order_relaxed); }
@@ -48,6 +54,7 @@ class ControlLoop {
   LoopStats& stats_;
   LoopConfig cfg_;
   std::atomic<bool> stop_{false};
+  std::atomic<bool> abort_{false};
   std::atomic<std::uint64_t> heartbeat_{0};
   std::atomic<bool> finished_{false};
 };

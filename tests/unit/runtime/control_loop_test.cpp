@@ -233,3 +233,24 @@ TEST(ControlLoop, PacedSimulationJudgesOverrunsOnTheWallClock) {
 
 }  // namespace
 }  // namespace xr::rt
+
+namespace xr::rt {
+namespace {
+
+TEST(ControlLoop, AbortEndsWithoutTheRampAndLeavesTheFieldSafe) {
+  LoopRig r;
+  r.core.requestDuty = 50.0;
+  r.core.requestEnable = true;
+  ControlLoop loop(*r.cycle, r.clock, r.stats, LoopConfig{});
+  r.core.onStep = [&](const Inputs&) {
+    if (r.core.steps == 10) loop.requestAbort();
+  };
+  loop.run();
+  EXPECT_EQ(r.core.steps, 10);  // no ramp ticks
+  EXPECT_TRUE(r.core.commands.empty());
+  EXPECT_FALSE(r.enable.level);
+  EXPECT_DOUBLE_EQ(r.pwm.duty, 0.0);
+}
+
+}  // namespace
+}  // namespace xr::rt
