@@ -57,10 +57,22 @@ bool ProtectionSupervisor::checkAlarms(bool effAnomalyAlarmActive, EventBatch& e
   if (p_.AlarmLatchEnabled && cond) alarmLatched_ = true;
   if (!p_.AlarmLatchEnabled) alarmLatched_ = false;
   buzzer_ = cond || alarmLatched_;
-  if (buzzer_ != lastBuzzerEvent_) {
-    lastBuzzerEvent_ = buzzer_;
-    push(ev, buzzer_ ? EventCode::AlarmOn : EventCode::AlarmOff,
-         buzzer_ ? EventLevel::Warning : EventLevel::Info, Reason::NONE);
+  // Log the buzzer's edges, but an alarm hovering on its threshold (the
+  // buzzer follows it check by check) is one alarm: "Alarm OFF" only after
+  // the buzzer stayed off for kEventClearHold.
+  if (buzzer_) {
+    buzzerOffSince_ = -1;
+    if (!lastBuzzerEvent_) {
+      lastBuzzerEvent_ = true;
+      push(ev, EventCode::AlarmOn, EventLevel::Warning, Reason::NONE);
+    }
+  } else if (lastBuzzerEvent_) {
+    if (buzzerOffSince_ < 0) buzzerOffSince_ = now_;
+    if (now_ - buzzerOffSince_ >= fromMs(k::ALARM_MESSAGE_THROTTLE_MS)) {
+      lastBuzzerEvent_ = false;
+      buzzerOffSince_ = -1;
+      push(ev, EventCode::AlarmOff, EventLevel::Info, Reason::NONE);
+    }
   }
   return buzzer_;
 }

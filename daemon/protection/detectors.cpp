@@ -127,7 +127,7 @@ void ProtectionSupervisor::updateVoltageSensors(const Inputs& in, EventBatch& ev
     disagreeCritT_.since = -1;
   }
   // Seed console wording for either level.
-  if ((disW && !evDisW_) || (disC && !evDisC_))
+  if ((disW && !evDisW_.logged) || (disC && !evDisC_.logged))
     push(ev, EventCode::VoltageDisagreement, disC ? EventLevel::Critical : EventLevel::Error,
          disC ? Reason::REASON_VOLTAGE_DISAGREE_CRITICAL : Reason::REASON_VOLTAGE_DISAGREE_WARNING, BatteryV_,
          IBV_);
@@ -169,15 +169,15 @@ void ProtectionSupervisor::updateTemperature(const Inputs& in, EventBatch& ev) {
   flags_.tempWarning = t1;
   flags_.tempCritical = t3;
 
-  if (stale && !evT5_) push(ev, EventCode::TempSensorStale, EventLevel::Error, Reason::REASON_TEMP_STALE, t);
+  if (stale && !evT5_.logged) push(ev, EventCode::TempSensorStale, EventLevel::Error, Reason::REASON_TEMP_STALE, t);
   edge(evT5_, stale, Reason::REASON_TEMP_STALE, t, 0.0, ev, EventLevel::Error, false);
   flags_.tempStale = stale;
 
   // T4: TempTask heartbeat (buzzer only). Uptime counts as a heartbeat at boot.
   const TimeNs hb = std::max(in.tempTaskHeartbeat, boot_);
   const bool hung = now_ - hb > fromMs(k::TEMP_TASK_TIMEOUT);
-  if (hung && !evT4_) push(ev, EventCode::TempTaskHung, EventLevel::Critical, Reason::NONE, toSec(now_ - hb));
-  evT4_ = hung;
+  if (hung && !evT4_.logged) push(ev, EventCode::TempTaskHung, EventLevel::Critical, Reason::NONE, toSec(now_ - hb));
+  evT4_.logged = hung;
   flags_.tempTaskAlarm = hung;
 }
 

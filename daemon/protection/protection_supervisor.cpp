@@ -25,18 +25,26 @@ void ProtectionSupervisor::push(EventBatch& ev, EventCode c, EventLevel l, Reaso
   ev.push(e);
 }
 
-// Trip / clear events of one detector, on its edges only.
-void ProtectionSupervisor::edge(bool& prev, bool now, Reason r, double a, double b, EventBatch& ev,
+// Trip / clear events of one detector: the trip on its rising edge, the
+// clear once the condition has stayed false for kEventClearHold (a re-trip
+// inside that window is the same event, not a new one).
+void ProtectionSupervisor::edge(EventEdge& e, bool now, Reason r, double a, double b, EventBatch& ev,
                                 EventLevel level, bool logTrip) {
-  if (now == prev) return;
-  prev = now;
   if (now) {
+    e.falseSince = -1;
+    if (e.logged) return;
+    e.logged = true;
     lastTripReason_ = r;
     lastTripTime_ = now_;
     if (logTrip) push(ev, EventCode::ProtectionTrip, level, r, a, b);
-  } else {
-    push(ev, EventCode::ProtectionClear, EventLevel::Info, r, a, b);
+    return;
   }
+  if (!e.logged) return;
+  if (e.falseSince < 0) e.falseSince = now_;
+  if (now_ - e.falseSince < kEventClearHold) return;
+  e.logged = false;
+  e.falseSince = -1;
+  push(ev, EventCode::ProtectionClear, EventLevel::Info, r, a, b);
 }
 
 // "T2 ... No auto-restart — field stays off until manual re-enable or reboot."

@@ -144,7 +144,16 @@ class ProtectionSupervisor {
   void updateCurrent(const Inputs& in, double MeasuredAmps, EventBatch& ev);
   void updateFastSamples(const Inputs& in);
   // logTrip = false when a dedicated event (seed wording) already reports the trip.
-  void edge(bool& prev, bool now, Reason r, double a, double b, EventBatch& ev,
+  // Trip/clear logging memory of one detector. A detector sitting on its
+  // threshold (noise, or a ramp that brings the value back to exactly the
+  // limit) must not write a trip/clear pair every tick: the clear is logged
+  // only after the condition stayed false for kEventClearHold.
+  struct EventEdge {
+    bool logged = false;
+    TimeNs falseSince = -1;
+  };
+  static constexpr TimeNs kEventClearHold = 1'000'000'000;
+  void edge(EventEdge& e, bool now, Reason r, double a, double b, EventBatch& ev,
             EventLevel level = EventLevel::Warning, bool logTrip = true);
   void push(EventBatch& ev, EventCode c, EventLevel l, Reason r, double a = 0.0, double b = 0.0,
             int detail = 0) const;
@@ -174,8 +183,7 @@ class ProtectionSupervisor {
   // Sustained timers.
   TimerState disagreeWarnT_, disagreeCritT_, hardOcT_, t1T_;
   // Edge memories for trip/clear events.
-  bool evHardOc_ = false, evT3_ = false, evT1_ = false, evRpm_ = false, evAltHs_ = false, evDisW_ = false,
-       evDisC_ = false, evImpl_ = false, evT5_ = false, evCur_ = false, evT4_ = false;
+  EventEdge evHardOc_, evT3_, evT1_, evRpm_, evAltHs_, evDisW_, evDisC_, evImpl_, evT5_, evCur_, evT4_;
 
   // Shutdown sequencer.
   FieldControlMode lastMode_ = FieldControlMode::MODE_DISABLED_RAMP;
@@ -220,6 +228,7 @@ class ProtectionSupervisor {
   std::array<TimeNs, 11> alarmMsgAt_{};  // kAlarmRowCount
   std::array<bool, 11> alarmRowOn_{};
   bool lastBuzzerEvent_ = false;
+  TimeNs buzzerOffSince_ = -1;  // buzzer off since (AlarmOff logging hold)
 
   Reason lastTripReason_ = Reason::NONE;
   TimeNs lastTripTime_ = 0;

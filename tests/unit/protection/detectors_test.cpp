@@ -217,3 +217,53 @@ TEST(AutoZero, LockoutRampWithoutAlarmOrLockout) {
 
 }  // namespace
 }  // namespace xr::test
+
+namespace xr::test {
+namespace {
+
+// A value hovering on a threshold is one event, not a trip/clear pair per
+// tick; the clear is logged once the condition stayed false for the hold.
+TEST(EventLogging, DetectorHoveringOnItsThresholdLogsOneTripAndOneClear) {
+  Params p;
+  p.MinRPMForField = 200.0;
+  Rig r(p);
+  r.warmUp();
+  for (int i = 0; i < 200; ++i) {  // 0.5 s of flapping around the RPM gate
+    r.rpm = (i % 2) ? 199.0 : 201.0;
+    r.tick(kTick);
+  }
+  EXPECT_EQ(r.count(EventCode::ProtectionTrip, Reason::REASON_RPM_LOW), 1u);
+  EXPECT_EQ(r.count(EventCode::ProtectionClear, Reason::REASON_RPM_LOW), 0u);
+  r.rpm = 1500.0;
+  r.run(fromMs(900));
+  EXPECT_EQ(r.count(EventCode::ProtectionClear, Reason::REASON_RPM_LOW), 0u) << "cleared before the hold";
+  r.run(fromMs(200));
+  EXPECT_EQ(r.count(EventCode::ProtectionClear, Reason::REASON_RPM_LOW), 1u);
+  r.rpm = 100.0;  // a new trip after the clear is a new event
+  r.run(fromMs(50));
+  EXPECT_EQ(r.count(EventCode::ProtectionTrip, Reason::REASON_RPM_LOW), 2u);
+}
+
+TEST(EventLogging, BuzzerFollowingAFlappingAlarmLogsOneAlarmOn) {
+  Params p;
+  p.IgnoreTemperature = true;
+  p.MaxTableValue = 200.0;
+  Rig r(p);
+  r.manual = true;
+  r.warmUp();
+  for (int i = 0; i < 40; ++i) {  // alternator current toggling across 100 A every 250 ms
+    r.altAmps = (i % 2) ? 99.0 : 101.0;
+    r.run(fromMs(250));
+  }
+  EXPECT_EQ(r.count(EventCode::AlarmOn), 1u);
+  EXPECT_EQ(r.count(EventCode::AlarmOff), 0u);
+  r.altAmps = 20.0;
+  r.run(fromSec(29.0));
+  EXPECT_FALSE(r.buzzer);
+  EXPECT_EQ(r.count(EventCode::AlarmOff), 0u) << "logged before the 30 s throttle";
+  r.run(fromSec(1.5));
+  EXPECT_EQ(r.count(EventCode::AlarmOff), 1u);
+}
+
+}  // namespace
+}  // namespace xr::test
