@@ -1,5 +1,7 @@
 #include "core/events.h"
 
+#include "core/commands.h"
+
 #include <cstdio>
 
 namespace xr {
@@ -148,6 +150,32 @@ std::string describe(const Event& e) {
     case EventCode::AlarmOff: return "Alarm OFF";
     case EventCode::AlarmCondition:
       std::snprintf(buf, sizeof buf, "ALARM: %s (%.2f, limit %.2f)", alarmRowText(e.detail), e.a, e.b);
+      return buf;
+    case EventCode::FieldOn: return "Field enabled (GPIO4 HIGH)";
+    case EventCode::FieldOff:
+      return e.reason == Reason::NONE ? std::string("Field disabled (GPIO4 LOW)")
+                                      : "Field disabled (GPIO4 LOW): " + reason;
+    case EventCode::LimpHomeActive:
+      std::snprintf(buf, sizeof buf, "LIMP HOME active: fixed %.0f %% duty, only the INA228 latch protects", e.a);
+      return buf;
+    case EventCode::CommandApplied:
+    case EventCode::CommandRejected:
+    case EventCode::TuningCommitted:
+      std::snprintf(buf, sizeof buf, "Command %s %s", std::string(toString(static_cast<CommandType>(e.detail))).c_str(),
+                    e.code == EventCode::CommandRejected ? "rejected (not allowed now)" : "applied");
+      return buf;
+    case EventCode::FullChargeDetected:
+      std::snprintf(buf, sizeof buf, "Full charge detected: SoC set to 100 %% (%.1f Ah)", e.b);
+      return buf;
+    case EventCode::ShuntGainCorrected:
+      std::snprintf(buf, sizeof buf, "Shunt gain factor %.4f (was %.4f)", e.a, e.b);
+      return buf;
+    case EventCode::AutoZeroStarted:
+      return e.detail ? "Auto-zero of alternator current started (temperature shift): field off"
+                      : "Auto-zero of alternator current started (scheduled): field off";
+    case EventCode::AutoZeroDone:
+      std::snprintf(buf, sizeof buf, "Auto-zero done: DynamicAltCurrentZero %.3f A from %.0f samples%s", e.a, e.b,
+                    e.detail ? " (rejected, offset kept)" : "");
       return buf;
     default:
       std::snprintf(buf, sizeof buf, "%s %s a=%.3f b=%.3f", std::string(toString(e.code)).c_str(), reason.c_str(),
