@@ -70,7 +70,7 @@ void ControlLaw::updateChargingStage(const ControlSensors& s, const Params& p, b
   si.thermalPenaltyAmps = thermal_.thermalPenaltyAmps();
   si.uTargetAmps = uTargetAmps_;
   si.SOC_percent = s.SOC_percent;
-  si.socValid = finite(s.SOC_percent);
+  si.socValid = finite(s.SOC_percent) && s.socKnown;
   si.suppressed = overrideNow || manualMode || !running || !finite(s.IBV);
   const ChargeStage before = stages_.stage();
   stages_.updateChargingStage(si, p);

@@ -42,6 +42,7 @@ struct ControlSensors {
   double TempToUse = kNoValue;  // per TempSource
   TimeNs tempStamp = 0;
   double SOC_percent = kNoValue;
+  bool socKnown = true;  // false while the battery monitor's SoC is only a guess (no SOC gating then)
 };
 
 // What the fast-OV supervisors (Groups 1/2/3, load dump) decided this tick.

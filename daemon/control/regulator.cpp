@@ -173,6 +173,7 @@ const Outputs& Regulator::step(const Inputs& in) {
   cs.TempToUse = temp.value;
   cs.tempStamp = temp.stamp;
   cs.SOC_percent = s.bat.socPercent();
+  cs.socKnown = s.bat.socKnown();
   s.law.updateFilters(cs, p);
 
   // 3. Protection detectors and sustained timers.
