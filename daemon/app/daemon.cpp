@@ -210,7 +210,8 @@ int Daemon::run() {
       return kExitUnavailable;
     }
     spdlog::info("dashboard at http://{}:{}/ (www root '{}')", opts.listen, server->port(), opts.www_root);
-    if (settings.web.token.empty() && !store) spdlog::info("API write token for this run: {}", token);
+    if (settings.web.token.empty())
+      spdlog::info("API write token ({}): {}", store ? "kept in the state database" : "this run only", token);
   }
 
   // ---- the control thread ----
