@@ -396,6 +396,11 @@ TEST_F(WebApiTest, Static_ServesFilesWithMimeTypesAndNoTraversal) {
     EXPECT_EQ(r.status, 404) << bad;
     EXPECT_EQ(r.body.find("TOP SECRET"), std::string::npos) << bad;
   }
+  // vendor/ (uPlot from npm) falls back to the assembled build/install assets.
+  const auto uplot = get("/vendor/uPlot.iife.min.js");
+  EXPECT_EQ(uplot.status, 200);
+  EXPECT_NE(uplot.body.find("uPlot"), std::string::npos);
+  EXPECT_EQ(get("/vendor/../../secret.txt").status, 404);
   const auto head = httpRequest(port_, bhttp::verb::head, "/js/app.js");
   EXPECT_EQ(head.status, 200);
   EXPECT_EQ(head.headers["Content-Length"], "15");

@@ -558,7 +558,10 @@ Response ApiHandler::getHealth(const Request& req) {
 }
 
 Response ApiHandler::getStatic(const Request& req, std::string_view path) {
-  const auto file = resolveStaticPath(opts_.www_root, path);
+  auto file = resolveStaticPath(opts_.www_root, path);
+  // uPlot is copied from npm into the build/installed assets, not the source
+  // tree: when www_root is the source web/www, take vendor/ from there.
+  if (!file && path.starts_with("/vendor/")) file = resolveStaticPath(defaultWwwRoot(), path);
   if (!file) return error(req, http::status::not_found, "not found");
   auto content = readFile(*file);
   if (!content) return error(req, http::status::not_found, "not found");
