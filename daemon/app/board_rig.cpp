@@ -19,7 +19,7 @@ BoardRig::BoardRig(const Settings& settings) {
                              " (enable it with dtparam=i2c_arm=on in /boot/config.txt; run xregulatord --probe)");
   ina_ = std::make_unique<Ina228Driver>(bus_, hw.ina228_address, hw.shunt_resistance_ohm, hw.shunt_max_current_a);
   ads_ = std::make_unique<Ads1115Driver>(bus_, hw.ads1115_address, hw.ads_channel_sequence, hw.frontend, clock_,
-                                         AdsPacing::Timed);
+                                         AdsPacing::SingleShot);
   sensors_ = std::make_unique<DriverSensors>(*ina_, *ads_);
   if (!watchdog_.open(hw.watchdog_device, hw.watchdog_timeout_s)) {
     watchdogWarning_ = "watchdog " + hw.watchdog_device + " not available: " + watchdog_.error();

@@ -35,7 +35,7 @@ SimRig::SimRig(const sim::Scenario& scenario, const Settings& settings, const Cl
       ina_(world_.i2c(), settings.hardware.ina228_address, settings.hardware.shunt_resistance_ohm,
            settings.hardware.shunt_max_current_a),
       ads_(world_.i2c(), settings.hardware.ads1115_address, settings.hardware.ads_channel_sequence,
-           settings.hardware.frontend, simClock_, AdsPacing::Timed),
+           settings.hardware.frontend, simClock_, AdsPacing::SingleShot),
       sensors_(ina_, ads_),
       player_(scenario) {
   if (cli.speed > 0.0) paced_ = std::make_unique<rt::PacedClock>(simClock_, wall_, cli.speed);

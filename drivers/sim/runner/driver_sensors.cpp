@@ -7,7 +7,7 @@ namespace xr::sim {
 
 DriverFastSensors::DriverFastSensors(I2cBus& bus, const HardwareSettings& hw, const Clock& clock)
     : ina_(bus, hw.ina228_address, hw.shunt_resistance_ohm, hw.shunt_max_current_a),
-      ads_(bus, hw.ads1115_address, hw.ads_channel_sequence, hw.frontend, clock, AdsPacing::Timed) {}
+      ads_(bus, hw.ads1115_address, hw.ads_channel_sequence, hw.frontend, clock, AdsPacing::SingleShot) {}
 
 void DriverFastSensors::start(TimeNs now) noexcept {
   ina_.start(now);
