@@ -23,15 +23,9 @@ double clampFinite(double v, double lo, double hi, double fallback) {
   return std::clamp(v, lo, hi);
 }
 
+// Battery events carry no protection reason.
 Event makeEvent(TimeNs t, EventLevel level, EventCode code, double a = 0.0, double b = 0.0, int detail = 0) {
-  Event e;
-  e.t = t;
-  e.level = level;
-  e.code = code;
-  e.a = a;
-  e.b = b;
-  e.detail = detail;
-  return e;
+  return xr::makeEvent(t, level, code, Reason::NONE, a, b, detail);
 }
 
 }  // namespace

@@ -69,6 +69,23 @@ struct EventBatch {
   }
 };
 
+// The one way the core builds an event (battery, protection and control all
+// emit them).
+inline Event makeEvent(TimeNs t, EventLevel level, EventCode code, Reason reason = Reason::NONE,
+                       double a = 0.0, double b = 0.0, int detail = 0,
+                       FieldControlMode mode = FieldControlMode::MODE_NORMAL_AUTO_PID) {
+  Event e;
+  e.t = t;
+  e.level = level;
+  e.code = code;
+  e.reason = reason;
+  e.mode = mode;
+  e.a = a;
+  e.b = b;
+  e.detail = detail;
+  return e;
+}
+
 std::string_view toString(EventLevel l);
 std::string_view toString(EventCode c);
 // Human text with the seeds' console wording. Allocates: never call on the RT thread.

@@ -13,16 +13,7 @@ void ProtectionSupervisor::setParams(const Params& p) { p_ = p; }
 
 void ProtectionSupervisor::push(EventBatch& ev, EventCode c, EventLevel l, Reason r, double a, double b,
                                 int detail) const {
-  Event e;
-  e.t = now_;
-  e.level = l;
-  e.code = c;
-  e.reason = r;
-  e.mode = lastMode_;
-  e.a = a;
-  e.b = b;
-  e.detail = detail;
-  ev.push(e);
+  ev.push(makeEvent(now_, l, c, r, a, b, detail, lastMode_));
 }
 
 // Trip / clear events of one detector: the trip on its rising edge, the
