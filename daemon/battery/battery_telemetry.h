@@ -26,4 +26,38 @@ struct BatteryTelemetry {
   bool usingVictronCurrent = false;  // BatteryCurrentSource = 3 and VE.Direct fresh
 };
 
+// Visits every field as f("name", value) — the one list the status JSON
+// and any other exporter use, so a new field is exported by adding it here.
+template <typename T, typename F>
+void visitBatteryTelemetry(T& t, F&& f) {
+  f("SOC_percent", t.SOC_percent);
+  f("CoulombCount_Ah", t.CoulombCount_Ah);
+  f("batteryCurrentForSoC", t.batteryCurrentForSoC);
+  f("FullChargeDetected", t.FullChargeDetected);
+  f("ChargedEnergy_Wh", t.ChargedEnergy_Wh);
+  f("DischargedEnergy_Wh", t.DischargedEnergy_Wh);
+  f("AlternatorChargedEnergy_Wh", t.AlternatorChargedEnergy_Wh);
+  f("SolarChargedEnergy_Wh", t.SolarChargedEnergy_Wh);
+  f("AlternatorOnTime_s", t.AlternatorOnTime_s);
+  f("AlternatorFuelUsed_L", t.AlternatorFuelUsed_L);
+  f("ChargeCycles", t.ChargeCycles);
+  f("ChargeCycles_AllTime", t.ChargeCycles_AllTime);
+  f("AvgSOC", t.AvgSOC);
+  f("AvgSOC_AllTime", t.AvgSOC_AllTime);
+  f("AvgVoltage_AllTime", t.AvgVoltage_AllTime);
+  f("timeToFullChargeMin", t.timeToFullChargeMin);
+  f("timeToFullDischargeMin", t.timeToFullDischargeMin);
+  f("DynamicShuntGainFactor", t.DynamicShuntGainFactor);
+  f("DynamicAltCurrentZero", t.DynamicAltCurrentZero);
+  f("autoZeroActive", t.autoZeroActive);
+  f("ChargedEnergy_AllTime_Wh", t.ChargedEnergy_AllTime_Wh);
+  f("DischargedEnergy_AllTime_Wh", t.DischargedEnergy_AllTime_Wh);
+  f("AlternatorChargedEnergy_AllTime_Wh", t.AlternatorChargedEnergy_AllTime_Wh);
+  f("SolarChargedEnergy_AllTime_Wh", t.SolarChargedEnergy_AllTime_Wh);
+  f("AlternatorFuelUsed_AllTime_L", t.AlternatorFuelUsed_AllTime_L);
+  f("AlternatorOnTime_AllTime_s", t.AlternatorOnTime_AllTime_s);
+  f("nominalVoltage", t.nominalVoltage);
+  f("usingVictronCurrent", t.usingVictronCurrent);
+}
+
 }  // namespace xr

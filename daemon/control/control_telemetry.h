@@ -55,4 +55,74 @@ struct ControlTelemetry {
   double sysIDDutyOut = 0.0, sysIDDeadTimeMs = 0.0, sysIDRiseTimeMs = 0.0, sysIDSlopeAps = 0.0;
 };
 
+// Visits every field as f("name", value) — the one list the status JSON
+// and any other exporter use, so a new field is exported by adding it here.
+template <typename T, typename F>
+void visitControlTelemetry(T& t, F&& f) {
+  f("sysMode", t.sysMode);
+  f("govMode", t.govMode);
+  f("I_cap", t.I_cap);
+  f("I_cmd", t.I_cmd);
+  f("uTargetRaw", t.uTargetRaw);
+  f("uTargetAmps", t.uTargetAmps);
+  f("setpointCommand", t.setpointCommand);
+  f("setpointLimited", t.setpointLimited);
+  f("pidInput", t.pidInput);
+  f("pidOutput", t.pidOutput);
+  f("innerTermP", t.innerTermP);
+  f("innerTermI", t.innerTermI);
+  f("innerTermD", t.innerTermD);
+  f("dutyRequest", t.dutyRequest);
+  f("lastAppliedDuty", t.lastAppliedDuty);
+  f("rpmMinDuty", t.rpmMinDuty);
+  f("voltageControlActive", t.voltageControlActive);
+  f("ChargingVoltageTarget", t.ChargingVoltageTarget);
+  f("voltageTargetSlewed", t.voltageTargetSlewed);
+  f("cv_I", t.cv_I);
+  f("Icv", t.Icv);
+  f("cv_I_track", t.cv_I_track);
+  f("cv_I_aw_cap", t.cv_I_aw_cap);
+  f("g_awState", t.g_awState);
+  f("cvDSlope", t.cvDSlope);
+  f("g_voltLoopActualIntervalMs", t.g_voltLoopActualIntervalMs);
+  f("tempFiltered", t.tempFiltered);
+  f("projectedTempF", t.projectedTempF);
+  f("thermalSlopeFPerSec", t.thermalSlopeFPerSec);
+  f("thermalPenaltyAmps", t.thermalPenaltyAmps);
+  f("thermalPenaltyAmps_d", t.thermalPenaltyAmps_d);
+  f("thermalHolding", t.thermalHolding);
+  f("MeasuredAmps", t.MeasuredAmps);
+  f("MeasuredAmps_filtered", t.MeasuredAmps_filtered);
+  f("g_pidI_filtered", t.g_pidI_filtered);
+  f("g_pidMA_N", t.g_pidMA_N);
+  f("IBV_filtered", t.IBV_filtered);
+  f("inStartupRamp", t.inStartupRamp);
+  f("fastRiseActive", t.fastRiseActive);
+  f("warmupActive", t.warmupActive);
+  f("bulkVoltageLimitActive", t.bulkVoltageLimitActive);
+  f("fastOvClampActive", t.fastOvClampActive);
+  f("cvOvershootBypass", t.cvOvershootBypass);
+  f("inBulkStage", t.inBulkStage);
+  f("inAbsorptionStage", t.inAbsorptionStage);
+  f("inFloatStage", t.inFloatStage);
+  f("inIdleStage", t.inIdleStage);
+  f("tailSuppressedByThermal", t.tailSuppressedByThermal);
+  f("rebulkBlockedBySoc", t.rebulkBlockedBySoc);
+  f("limpHome", t.limpHome);
+  f("tuningRunning", t.tuningRunning);
+  f("tuningHighPhase", t.tuningHighPhase);
+  f("tuningScore", t.tuningScore);
+  f("tuningLogCount", t.tuningLogCount);
+  f("cvTuningRunning", t.cvTuningRunning);
+  f("cvTuningScore", t.cvTuningScore);
+  f("cvTuningSettleSec", t.cvTuningSettleSec);
+  f("cvTuningLogCount", t.cvTuningLogCount);
+  f("sysIDRunning", t.sysIDRunning);
+  f("sysIDValid", t.sysIDValid);
+  f("sysIDDutyOut", t.sysIDDutyOut);
+  f("sysIDDeadTimeMs", t.sysIDDeadTimeMs);
+  f("sysIDRiseTimeMs", t.sysIDRiseTimeMs);
+  f("sysIDSlopeAps", t.sysIDSlopeAps);
+}
+
 }  // namespace xr

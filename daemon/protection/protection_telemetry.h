@@ -32,4 +32,42 @@ struct ProtectionTelemetry {
   bool alarmLatched = false;
 };
 
+// Visits every field as f("name", value) — the one list the status JSON
+// and any other exporter use, so a new field is exported by adding it here.
+template <typename T, typename F>
+void visitProtectionTelemetry(T& t, F&& f) {
+  f("shutdownPhase", t.shutdownPhase);
+  f("nearBulk", t.nearBulk);
+  f("fastOvCurrentCap", t.fastOvCurrentCap);
+  f("fastOvClampActive", t.fastOvClampActive);
+  f("inaOvervoltageLatched", t.inaOvervoltageLatched);
+  f("lockoutActive", t.lockoutActive);
+  f("lockoutRemainingS", t.lockoutRemainingS);
+  f("tempTaskAlarm", t.tempTaskAlarm);
+  f("buzzer", t.buzzer);
+  f("lastTripReason", t.lastTripReason);
+  f("lastTripTimeS", t.lastTripTimeS);
+  f("group1Active", t.group1Active);
+  f("group2Active", t.group2Active);
+  f("group3Active", t.group3Active);
+  f("loadDumpActive", t.loadDumpActive);
+  f("Vpred", t.Vpred);
+  f("dvdt", t.dvdt);
+  f("dBcurDt", t.dBcurDt);
+  f("govBypassLatched", t.govBypassLatched);
+  f("hardOvercurrent", t.hardOvercurrent);
+  f("tempCritical", t.tempCritical);
+  f("rpmBelowMin", t.rpmBelowMin);
+  f("altHardShutdown", t.altHardShutdown);
+  f("voltageDisagreeWarning", t.voltageDisagreeWarning);
+  f("voltageDisagreeCritical", t.voltageDisagreeCritical);
+  f("voltageImplausible", t.voltageImplausible);
+  f("tempWarning", t.tempWarning);
+  f("tempSustained", t.tempSustained);
+  f("tempStale", t.tempStale);
+  f("currentStale", t.currentStale);
+  f("fieldCut", t.fieldCut);
+  f("alarmLatched", t.alarmLatched);
+}
+
 }  // namespace xr

@@ -122,6 +122,22 @@ TEST_F(WebApiTest, Status_HasEveryDesignCsvColumnWithFakeValues) {
   EXPECT_EQ(o.at("loop").at("ticks").to_number<int>(), 40);
   EXPECT_DOUBLE_EQ(o.at("tuning").at("score").to_number<double>(), 0.8);
   EXPECT_EQ(o.at("control").at("sysMode").as_string(), "SYS_MODE_AUTO");
+  // Every field of the per-module structs is exported (the lists beside the
+  // structs drive the JSON), including the detector states the Protections
+  // page shows.
+  std::size_t n = 0;
+  visitProtectionTelemetry(s.telemetry.protection, [&](const char* name, const auto&) {
+    EXPECT_TRUE(o.at("protection").as_object().contains(name)) << name;
+    ++n;
+  });
+  EXPECT_GE(n, 30u);
+  visitControlTelemetry(s.telemetry.control, [&](const char* name, const auto&) {
+    EXPECT_TRUE(o.at("control").as_object().contains(name)) << name;
+  });
+  visitBatteryTelemetry(s.telemetry.battery, [&](const char* name, const auto&) {
+    EXPECT_TRUE(o.at("battery").as_object().contains(name)) << name;
+  });
+  EXPECT_EQ(o.at("protection").at("hardOvercurrent").as_bool(), s.telemetry.protection.hardOvercurrent);
 }
 
 TEST_F(WebApiTest, Status_FollowsNewTicks) {

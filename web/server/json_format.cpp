@@ -17,83 +17,28 @@ json::value number(double v) {
 
 namespace {
 
-json::object controlToJson(const ControlTelemetry& c) {
-  json::object o;
-  o["sysMode"] = toString(c.sysMode);
-  o["govMode"] = toString(c.govMode);
-  o["I_cap"] = number(c.I_cap);
-  o["uTargetAmps"] = number(c.uTargetAmps);
-  o["setpointCommand"] = number(c.setpointCommand);
-  o["setpointLimited"] = number(c.setpointLimited);
-  o["pidInput"] = number(c.pidInput);
-  o["pidOutput"] = number(c.pidOutput);
-  o["innerTermP"] = number(c.innerTermP);
-  o["innerTermI"] = number(c.innerTermI);
-  o["innerTermD"] = number(c.innerTermD);
-  o["dutyRequest"] = number(c.dutyRequest);
-  o["lastAppliedDuty"] = number(c.lastAppliedDuty);
-  o["rpmMinDuty"] = number(c.rpmMinDuty);
-  o["voltageControlActive"] = c.voltageControlActive;
-  o["ChargingVoltageTarget"] = number(c.ChargingVoltageTarget);
-  o["voltageTargetSlewed"] = number(c.voltageTargetSlewed);
-  o["cv_I"] = number(c.cv_I);
-  o["Icv"] = number(c.Icv);
-  o["cv_I_track"] = number(c.cv_I_track);
-  o["cv_I_aw_cap"] = number(c.cv_I_aw_cap);
-  o["g_awState"] = c.g_awState;
-  o["cvDSlope"] = number(c.cvDSlope);
-  o["g_voltLoopActualIntervalMs"] = number(c.g_voltLoopActualIntervalMs);
-  o["tempFiltered"] = number(c.tempFiltered);
-  o["projectedTempF"] = number(c.projectedTempF);
-  o["thermalSlopeFPerSec"] = number(c.thermalSlopeFPerSec);
-  o["thermalPenaltyAmps"] = number(c.thermalPenaltyAmps);
-  o["MeasuredAmps"] = number(c.MeasuredAmps);
-  o["MeasuredAmps_filtered"] = number(c.MeasuredAmps_filtered);
-  o["g_pidI_filtered"] = number(c.g_pidI_filtered);
-  o["g_pidMA_N"] = number(c.g_pidMA_N);
-  o["IBV_filtered"] = number(c.IBV_filtered);
-  o["inStartupRamp"] = c.inStartupRamp;
-  return o;
-}
+// One field of a telemetry struct: numbers (NaN -> null), flags, and the
+// seeds' enums by name.
+struct FieldToJson {
+  json::object& o;
+  template <typename V>
+  void operator()(const char* name, const V& v) const {
+    if constexpr (std::is_same_v<V, bool>) {
+      o[name] = v;
+    } else if constexpr (std::is_enum_v<V>) {
+      o[name] = toString(v);
+    } else {
+      o[name] = number(static_cast<double>(v));
+    }
+  }
+};
 
-json::object protectionToJson(const ProtectionTelemetry& p) {
+// The field lists live beside the structs (visit*Telemetry), so every field
+// a module adds is exported without a second list here.
+template <typename T, typename Visit>
+json::object telemetryToJson(const T& t, Visit visit) {
   json::object o;
-  o["shutdownPhase"] = toString(p.shutdownPhase);
-  o["nearBulk"] = p.nearBulk;
-  o["fastOvCurrentCap"] = number(p.fastOvCurrentCap);
-  o["fastOvClampActive"] = p.fastOvClampActive;
-  o["inaOvervoltageLatched"] = p.inaOvervoltageLatched;
-  o["lockoutActive"] = p.lockoutActive;
-  o["lockoutRemainingS"] = number(p.lockoutRemainingS);
-  o["tempTaskAlarm"] = p.tempTaskAlarm;
-  o["buzzer"] = p.buzzer;
-  o["lastTripReason"] = toString(p.lastTripReason);
-  o["lastTripTimeS"] = number(p.lastTripTimeS);
-  return o;
-}
-
-json::object batteryToJson(const BatteryTelemetry& b) {
-  json::object o;
-  o["SOC_percent"] = number(b.SOC_percent);
-  o["CoulombCount_Ah"] = number(b.CoulombCount_Ah);
-  o["batteryCurrentForSoC"] = number(b.batteryCurrentForSoC);
-  o["FullChargeDetected"] = b.FullChargeDetected;
-  o["ChargedEnergy_Wh"] = number(b.ChargedEnergy_Wh);
-  o["DischargedEnergy_Wh"] = number(b.DischargedEnergy_Wh);
-  o["AlternatorChargedEnergy_Wh"] = number(b.AlternatorChargedEnergy_Wh);
-  o["SolarChargedEnergy_Wh"] = number(b.SolarChargedEnergy_Wh);
-  o["AlternatorOnTime_s"] = number(b.AlternatorOnTime_s);
-  o["AlternatorFuelUsed_L"] = number(b.AlternatorFuelUsed_L);
-  o["ChargeCycles"] = number(b.ChargeCycles);
-  o["ChargeCycles_AllTime"] = number(b.ChargeCycles_AllTime);
-  o["AvgSOC"] = number(b.AvgSOC);
-  o["AvgSOC_AllTime"] = number(b.AvgSOC_AllTime);
-  o["AvgVoltage_AllTime"] = number(b.AvgVoltage_AllTime);
-  o["timeToFullChargeMin"] = number(b.timeToFullChargeMin);
-  o["timeToFullDischargeMin"] = number(b.timeToFullDischargeMin);
-  o["DynamicShuntGainFactor"] = number(b.DynamicShuntGainFactor);
-  o["DynamicAltCurrentZero"] = number(b.DynamicAltCurrentZero);
-  o["autoZeroActive"] = b.autoZeroActive;
+  visit(t, FieldToJson{o});
   return o;
 }
 
@@ -195,9 +140,12 @@ json::object statusToJson(const StatusSnapshot& s) {
   o["seq"] = s.seq;
   o["wall_time_s"] = number(s.wall_time_s);
   o["simulated"] = s.sim.has_value();
-  o["control"] = controlToJson(s.telemetry.control);
-  o["protection"] = protectionToJson(s.telemetry.protection);
-  o["battery"] = batteryToJson(s.telemetry.battery);
+  o["control"] =
+      telemetryToJson(s.telemetry.control, [](const auto& t, auto f) { visitControlTelemetry(t, f); });
+  o["protection"] =
+      telemetryToJson(s.telemetry.protection, [](const auto& t, auto f) { visitProtectionTelemetry(t, f); });
+  o["battery"] =
+      telemetryToJson(s.telemetry.battery, [](const auto& t, auto f) { visitBatteryTelemetry(t, f); });
   o["loop"] = loopToJson(s.loop);
   for (const auto& e : s.extras) {
     // Never let an extra replace a column or a core section.
