@@ -79,12 +79,8 @@ void ControlLaw::updateChargingStage(const ControlSensors& s, const Params& p, b
   if (overrideWasActive_ && !overrideNow) stages_.resetToBulk(s.now);
   overrideWasActive_ = overrideNow;
   if (stages_.stage() != before) {
-    Event e;
-    e.t = s.now;
-    e.code = EventCode::StageChanged;
-    e.a = static_cast<double>(before);
-    e.b = static_cast<double>(stages_.stage());
-    ev.push(e);
+    ev.push(makeEvent(s.now, EventLevel::Info, EventCode::StageChanged, Reason::NONE, static_cast<double>(before),
+                      static_cast<double>(stages_.stage())));
   }
 
   voltageControlActive_ = stages_.voltageControlActive();
@@ -212,13 +208,8 @@ double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const Fa
       configurePid(p);
       currentPID_.SetMode(Pid::AUTOMATIC);  // re-seeded to lastAppliedDuty (bumpless)
       const SystemIdResult& r = sysId_.result();
-      Event e;
-      e.t = s.now;
-      e.code = EventCode::SystemIdDone;
-      e.a = r.deadTimeMs;
-      e.b = r.riseTimeMs;
-      e.detail = r.valid ? 1 : 0;
-      ev.push(e);
+      ev.push(makeEvent(s.now, EventLevel::Info, EventCode::SystemIdDone, Reason::NONE, r.deadTimeMs, r.riseTimeMs,
+                        r.valid ? 1 : 0));
     }
     return duty;
   }

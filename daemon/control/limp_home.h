@@ -15,14 +15,8 @@ class LimpHome {
   double handleLimpHome(TimeNs now, double lastApplied, double rpmMinDuty, double dtSec,
                         const GovernorLimits& lim, EventBatch& ev) {
     if (!logged_ || now - lastLog_ >= fromMs(k::LIMP_HOME_LOG_MS)) {
-      Event e;
-      e.t = now;
-      e.level = EventLevel::Warning;
-      e.code = EventCode::LimpHomeActive;
-      e.reason = Reason::REASON_LIMP_HOME;
-      e.mode = FieldControlMode::MODE_LIMP_HOME;
-      e.a = k::LIMP_HOME_DUTY;
-      ev.push(e);
+      ev.push(makeEvent(now, EventLevel::Warning, EventCode::LimpHomeActive, Reason::REASON_LIMP_HOME,
+                        k::LIMP_HOME_DUTY, 0.0, 0, FieldControlMode::MODE_LIMP_HOME));
       lastLog_ = now;
       logged_ = true;
     }

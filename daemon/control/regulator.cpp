@@ -131,15 +131,11 @@ bool Regulator::command(const Command& cmd) {
       s.currentWeatherMode = cmd.flag;
       break;
   }
-  Event e;
-  e.t = s.now;
-  e.level = ok ? EventLevel::Info : EventLevel::Warning;
-  e.code = ok ? EventCode::CommandApplied : EventCode::CommandRejected;
-  e.detail = static_cast<int>(cmd.type);
-  e.a = cmd.value;
+  EventCode code = ok ? EventCode::CommandApplied : EventCode::CommandRejected;
   if (ok && (cmd.type == CommandType::TuningCommit || cmd.type == CommandType::CvTuningCommit))
-    e.code = EventCode::TuningCommitted;
-  s.queue(e);
+    code = EventCode::TuningCommitted;
+  s.queue(makeEvent(s.now, ok ? EventLevel::Info : EventLevel::Warning, code, Reason::NONE, cmd.value, 0.0,
+                    static_cast<int>(cmd.type)));
   return ok;
 }
 
@@ -216,14 +212,8 @@ const Outputs& Regulator::step(const Inputs& in) {
         s.law.enter_sys_fault();
         break;
     }
-    Event e;
-    e.t = in.now;
-    e.level = isNormalMode(d.mode) ? EventLevel::Info : EventLevel::Warning;
-    e.code = EventCode::ModeChanged;
-    e.mode = d.mode;
-    e.reason = d.reason;
-    e.a = static_cast<double>(s.lastMode);
-    ev.push(e);
+    ev.push(makeEvent(in.now, isNormalMode(d.mode) ? EventLevel::Info : EventLevel::Warning, EventCode::ModeChanged,
+                      d.reason, static_cast<double>(s.lastMode), 0.0, 0, d.mode));
   }
   s.firstTick = false;
   s.lastMode = d.mode;
@@ -291,18 +281,9 @@ const Outputs& Regulator::step(const Inputs& in) {
   // Field enable edges.
   if (field && !s.lastField) {
     s.law.onFieldTurnOn(in.now);
-    Event e;
-    e.t = in.now;
-    e.code = EventCode::FieldOn;
-    e.mode = d.mode;
-    ev.push(e);
+    ev.push(makeEvent(in.now, EventLevel::Info, EventCode::FieldOn, Reason::NONE, 0.0, 0.0, 0, d.mode));
   } else if (!field && s.lastField) {
-    Event e;
-    e.t = in.now;
-    e.code = EventCode::FieldOff;
-    e.mode = d.mode;
-    e.reason = d.reason;
-    ev.push(e);
+    ev.push(makeEvent(in.now, EventLevel::Info, EventCode::FieldOff, d.reason, 0.0, 0.0, 0, d.mode));
   }
   s.lastField = field;
 
