@@ -38,6 +38,13 @@ class Ads1115Model final : public SimI2cDevice {
   std::uint64_t conversions() const noexcept { return conversions_; }
   std::uint64_t readyPulses() const noexcept { return readyPulses_; }
   bool converting() const noexcept { return converting_; }
+  // When the ALERT/RDY pin next pulses (end of the running conversion in
+  // continuous conversion-ready mode), or -1 when it will not pulse on its
+  // own. The simulated board's ALERT/RDY GPIO edges come from here.
+  TimeNs nextReadyEdge() const noexcept {
+    const bool pulses = converting_ && readyMode() && (config_ & 3) != 3 && !(config_ & 0x0100);
+    return pulses ? convEnd_ : -1;
+  }
   // Data period of a data-rate code under this chip's oscillator.
   TimeNs period(int dr) const noexcept;
 
