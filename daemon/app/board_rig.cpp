@@ -7,6 +7,31 @@
 
 namespace xr::app {
 
+namespace {
+// ALERT/RDY as libgpiod line events, waited for on the control thread.
+class LineReadyEdges final : public rt::ReadyEdgeSource {
+ public:
+  LineReadyEdges(AdsReadyLine& line, const Clock& clock) : line_(line), clock_(clock) {}
+  int waitEdge(TimeNs deadline, TimeNs* stamp) noexcept override {
+    const TimeNs remaining = deadline - clock_.now();
+    if (remaining <= 0) return 0;
+    long long s = 0;
+    const int rc = line_.wait(static_cast<long>(remaining), &s);
+    if (rc != 1) return rc;
+    // The kernel stamps events with CLOCK_MONOTONIC since Linux 5.7, the
+    // loop clock's base. An older kernel stamps CLOCK_REALTIME: use the
+    // wake-up time then (later than the edge by the wake-up latency).
+    const TimeNs now = clock_.now();
+    *stamp = (s > now || now - s > 1'000'000'000) ? now : static_cast<TimeNs>(s);
+    return 1;
+  }
+
+ private:
+  AdsReadyLine& line_;
+  const Clock& clock_;
+};
+}  // namespace
+
 BoardRig::BoardRig(const Settings& settings) {
   const HardwareSettings& hw = settings.hardware;
   // GPIO first: the field enable is requested LOW before anything else.
@@ -17,10 +42,18 @@ BoardRig::BoardRig(const Settings& settings) {
   if (int e = bus_.open(hw.i2c_bus); e != 0)
     throw std::runtime_error("I2C: cannot open " + hw.i2c_bus + ": " + std::strerror(e) +
                              " (enable it with dtparam=i2c_arm=on in /boot/config.txt; run xregulatord --probe)");
-  ina_ = std::make_unique<Ina228Driver>(bus_, hw.ina228_address, hw.shunt_resistance_ohm, hw.shunt_max_current_a);
-  ads_ = std::make_unique<Ads1115Driver>(bus_, hw.ads1115_address, hw.ads_channel_sequence, hw.frontend, clock_,
-                                         AdsPacing::SingleShot);
-  sensors_ = std::make_unique<DriverSensors>(*ina_, *ads_);
+  // ADS1115 ALERT/RDY: ready-edge pacing (every conversion used) when the
+  // line is configured and can be requested; single-shot pacing otherwise.
+  bool readyEdges = false;
+  if (hw.ads_alert_rdy_line >= 0) {
+    if (readyLine_.open(hw.gpio_chip, hw.ads_alert_rdy_line)) {
+      readyEdges = true;
+      readyEdges_ = std::make_unique<LineReadyEdges>(readyLine_, clock_);
+    } else {
+      readyLineWarning_ = readyLine_.error() + ": ADS1115 falls back to single-shot pacing (CH1 ~200 Hz)";
+    }
+  }
+  sensors_ = std::make_unique<DriverSensors>(bus_, hw, clock_, readyEdges);
   if (!watchdog_.open(hw.watchdog_device, hw.watchdog_timeout_s)) {
     watchdogWarning_ = "watchdog " + hw.watchdog_device + " not available: " + watchdog_.error();
   } else if (!watchdog_.warning().empty()) {
@@ -49,6 +82,7 @@ rt::CycleDevices BoardRig::devices() {
   d.ignition = gpio_.ignition();
   d.watchdog = watchdog_.isOpen() ? &watchdog_ : nullptr;
   d.hook = this;
+  d.adsReady = readyEdges_.get();
   return d;
 }
 

@@ -5,7 +5,7 @@
 // std::runtime_error naming what to fix when a required device is missing.
 #include <memory>
 
-#include "app/driver_sensors.h"
+#include "drivers/fast_sensors/driver_sensors.h"
 #include "config/settings.h"
 #include "drivers/gpio/gpio_libgpiod.h"
 #include "drivers/i2c/linux_i2c_bus.h"
@@ -31,19 +31,21 @@ class BoardRig final : public rt::TickHook {
   // pre-opened sysfs descriptors, GPIO4 LOW via its requested line.
   void registerFatalActions();
   const std::string& watchdogWarning() const { return watchdogWarning_; }
+  const std::string& readyLineWarning() const { return readyLineWarning_; }
   void beforeTick(TimeNs now) override;
 
  private:
   rt::MonotonicClock clock_;
   LinuxI2cBus bus_;
-  std::unique_ptr<Ina228Driver> ina_;
-  std::unique_ptr<Ads1115Driver> ads_;
   std::unique_ptr<DriverSensors> sensors_;
+  AdsReadyLine readyLine_;
+  std::unique_ptr<rt::ReadyEdgeSource> readyEdges_;
   PwmSysfs pwm_;
   PwmSafeStateWriter pwmSafe_;
   GpioLibgpiod gpio_;
   LinuxWatchdog watchdog_;
   std::string watchdogWarning_;
+  std::string readyLineWarning_;
   std::unique_ptr<Ds18b20Reader> ds18b20_;
   std::unique_ptr<VeDirectReader> vedirect_;
   rt::Handoffs* handoffs_ = nullptr;

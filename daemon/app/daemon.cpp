@@ -123,6 +123,7 @@ int Daemon::run() {
       wallDeadlineOf = [](TimeNs t) { return t; };
       boardRig->registerFatalActions();
       if (!boardRig->watchdogWarning().empty()) spdlog::warn("{}", boardRig->watchdogWarning());
+      if (!boardRig->readyLineWarning().empty()) spdlog::warn("{}", boardRig->readyLineWarning());
     }
   } catch (const std::exception& e) {
     rt::fatal::driveSafeNow();

@@ -32,11 +32,11 @@ SimRig::SimRig(const sim::Scenario& scenario, const Settings& settings, const Cl
       tmpDir_(makeTempDir()),
       world_(worldConfig(scenario, cli, tmpDir_), settings.hardware),
       simClock_(world_, 0.0),  // pacing is ours (PacedClock) so period error is measured
-      ina_(world_.i2c(), settings.hardware.ina228_address, settings.hardware.shunt_resistance_ohm,
-           settings.hardware.shunt_max_current_a),
-      ads_(world_.i2c(), settings.hardware.ads1115_address, settings.hardware.ads_channel_sequence,
-           settings.hardware.frontend, simClock_, AdsPacing::SingleShot),
-      sensors_(ina_, ads_),
+      // The simulated board has ALERT/RDY wired: ready-edge pacing when the
+      // configuration names a line, as on the board.
+      sensors_(world_.i2c(), settings.hardware, simClock_, settings.hardware.ads_alert_rdy_line >= 0),
+      readyEdges_(world_),
+      readyWired_(settings.hardware.ads_alert_rdy_line >= 0),
       player_(scenario) {
   if (cli.speed > 0.0) paced_ = std::make_unique<rt::PacedClock>(simClock_, wall_, cli.speed);
   ds18b20_ = std::make_unique<Ds18b20Reader>((tmpDir_ / "w1").string(), settings.hardware.onewire_sensor_id,
@@ -67,6 +67,7 @@ rt::CycleDevices SimRig::devices() {
   d.watchdog = &world_.watchdog();
   d.truth = this;
   d.hook = this;
+  d.adsReady = readyWired_ ? &readyEdges_ : nullptr;
   return d;
 }
 

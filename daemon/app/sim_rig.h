@@ -8,9 +8,10 @@
 #include <optional>
 
 #include "app/cli.h"
-#include "app/driver_sensors.h"
+#include "drivers/fast_sensors/driver_sensors.h"
 #include "config/settings.h"
 #include "drivers/onewire/ds18b20_reader.h"
+#include "drivers/sim/runner/sim_ready_edges.h"
 #include "drivers/sim/scenario.h"
 #include "drivers/sim/sim_clock.h"
 #include "drivers/sim/sim_world.h"
@@ -52,9 +53,9 @@ class SimRig final : public rt::TickHook, public rt::TruthSource {
   sim::SimClock simClock_;
   rt::MonotonicClock wall_;
   std::unique_ptr<rt::PacedClock> paced_;
-  Ina228Driver ina_;
-  Ads1115Driver ads_;
   DriverSensors sensors_;
+  sim::SimReadyEdges readyEdges_;
+  bool readyWired_;
   std::unique_ptr<Ds18b20Reader> ds18b20_;
   sim::ScenarioPlayer player_;
   std::unique_ptr<rt::OutputMirror> mirror_;

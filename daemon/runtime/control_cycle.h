@@ -39,6 +39,10 @@ class ControlCycle {
   // the TickHook throws.
   bool tick(TimeNs now);
 
+  // Between ticks: service ADS1115 ALERT/RDY edges until `deadline` (loop
+  // clock). Returns at once when no ready line is wired.
+  void serviceEdges(TimeNs deadline) noexcept;
+
   // Stop path: ask the core for its controlled ramp (SYS_MODE_OFF →
   // MODE_DISABLED_RAMP); the loop keeps ticking until fieldIsOff().
   void beginShutdown() noexcept;
@@ -52,6 +56,7 @@ class ControlCycle {
   std::uint64_t ticks() const noexcept { return tick_; }
 
  private:
+  static constexpr int kMaxEdgesPerPeriod = 16;
   void applyBetweenTicks() noexcept;
   void mergeSlowInputs() noexcept;
   void readDiscreteInputs() noexcept;
@@ -76,6 +81,7 @@ class ControlCycle {
   TimeNs lastTempStamp_ = 0, lastVictronStamp_ = 0;
   TimeNs lastAdsStamp_[4] = {0, 0, 0, 0};
   TimeNs lastInaStamp_ = 0;
+  SampleCounts lastCounts_{};
 
   // What the outputs are known to be (written successfully).
   bool outputsKnown_ = false;

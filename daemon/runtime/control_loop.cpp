@@ -28,6 +28,7 @@ LoopExit ControlLoop::run() {
       break;
     }
 
+    cycle_.serviceEdges(next);  // ADS1115 ready edges until the deadline (if wired)
     clock_.sleepUntil(next);
     if (cfg_.wallDeadlineOf && cfg_.wall) stats_.onPeriodError(cfg_.wall->now() - cfg_.wallDeadlineOf(next));
     cycle_.tick(clock_.now());

@@ -3,12 +3,21 @@
 // (i2c-dev drivers, sysfs PWM, libgpiod, /dev/watchdog) and in simulation
 // (the same drivers on the simulated I2C bus, simulated outputs).
 #include <array>
+#include <cstdint>
 
 #include "core/inputs.h"
 #include "core/outputs.h"
 #include "drivers/hal/outputs.h"
 
 namespace xr::rt {
+
+// Cumulative ADS1115 results per channel since start (several may arrive in
+// one tick with ready-edge pacing, so the per-tick fresh flags undercount).
+struct SampleCounts {
+  std::array<std::uint32_t, 4> ads{};
+  bool valid = false;  // false: the sensors do not count; use the fresh flags
+  bool readyEdgeFallback = false;  // ALERT/RDY configured but silent: single-shot pacing
+};
 
 // The fast sensors read on the RT thread: INA228 + ADS1115 through their
 // drivers. Implementations fill only their own fields of Inputs (values,
@@ -21,6 +30,20 @@ class FastSensors {
   virtual bool read(TimeNs now, Inputs& in) noexcept = 0;
   // The regulator's requests to the INA228: conversion mode, BOVL.
   virtual void apply(const Outputs& out) noexcept = 0;
+  // One ADS1115 ALERT/RDY edge (ready-edge pacing), `edge` = its timestamp
+  // on the loop clock. Called between ticks on the control thread.
+  virtual void onReadyEdge(TimeNs edge) noexcept { (void)edge; }
+  virtual void sampleCounts(SampleCounts& c) const noexcept { c.valid = false; }
+};
+
+// ADS1115 ALERT/RDY edges: libgpiod line events on the board, the chip
+// model's conversion-ready pulses in simulation.
+class ReadyEdgeSource {
+ public:
+  virtual ~ReadyEdgeSource() = default;
+  // Wait for the next edge, but not past `deadline` (loop clock). 1 and its
+  // stamp when an edge came, 0 when the deadline came first, -1 on error.
+  virtual int waitEdge(TimeNs deadline, TimeNs* stamp) noexcept = 0;
 };
 
 // Supplies the simulator's truth for the sim_* columns (simulation only).
@@ -51,6 +74,7 @@ struct CycleDevices {
   Watchdog* watchdog = nullptr;          // optional: fed after healthy cycles only
   TruthSource* truth = nullptr;          // simulation only
   TickHook* hook = nullptr;              // optional
+  ReadyEdgeSource* adsReady = nullptr;   // optional: ADS1115 ALERT/RDY wired
 };
 
 }  // namespace xr::rt

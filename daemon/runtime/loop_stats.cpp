@@ -38,9 +38,9 @@ void LoopStats::onPeriodError(TimeNs lateness) noexcept {
   periodErr_.add(lateness);
 }
 
-void LoopStats::onSamples(TimeNs now, const std::array<bool, 4>& adsFresh, bool inaFresh) noexcept {
+void LoopStats::onSamples(TimeNs now, const std::array<std::uint32_t, 4>& adsNew, bool inaFresh) noexcept {
   if (windowStart_ < 0) windowStart_ = now;
-  for (std::size_t c = 0; c < 4; ++c) adsCount_[c] += adsFresh[c] ? 1 : 0;
+  for (std::size_t c = 0; c < 4; ++c) adsCount_[c] += adsNew[c];
   inaCount_ += inaFresh ? 1 : 0;
   const TimeNs elapsed = now - windowStart_;
   if (elapsed >= fromSec(1.0)) {
@@ -81,6 +81,9 @@ LoopStatsSummary LoopStats::summary() const noexcept {
   s.ch1SampleRateHz = adsRate_[1];
   s.inaSampleRateHz = inaRate_;
   s.windowS = windowS_;
+  s.adsEdges = edges_;
+  s.edgeIoP99Us = us(edgeIo_.quantile(0.99));
+  s.edgeIoMaxUs = us(edgeIo_.max());
   return s;
 }
 

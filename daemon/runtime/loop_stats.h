@@ -51,6 +51,8 @@ struct LoopStatsSummary {
   std::array<double, 4> adsChannelRateHz{};    // every ADS channel
   double inaSampleRateHz = 0;
   double windowS = 0;                          // the rate window length
+  std::uint64_t adsEdges = 0;                  // ALERT/RDY edges serviced (ready-edge pacing)
+  double edgeIoP99Us = 0, edgeIoMaxUs = 0;     // I2C time per edge
 };
 
 class LoopStats {
@@ -61,15 +63,21 @@ class LoopStats {
   void onCompute(TimeNs dt) noexcept { compute_.add(dt); }
   void onTick() noexcept { ++ticks_; }
   void onOverrun(std::uint64_t missed) noexcept { overruns_ += missed; }
-  // Fresh samples seen this tick; rates are computed over 1 s windows of
-  // loop time (virtual time in simulation).
-  void onSamples(TimeNs now, const std::array<bool, 4>& adsFresh, bool inaFresh) noexcept;
+  // New samples seen this tick (per ADS channel: how many results arrived;
+  // with ready-edge pacing a tick may bring two); rates are computed over 1 s
+  // windows of loop time (virtual time in simulation).
+  void onSamples(TimeNs now, const std::array<std::uint32_t, 4>& adsNew, bool inaFresh) noexcept;
+  // ADS1115 ready edges serviced between ticks, and the I/O time they took.
+  void onEdge(TimeNs io) noexcept {
+    ++edges_;
+    edgeIo_.add(io);
+  }
 
   LoopStatsSummary summary() const noexcept;
 
  private:
-  LatencyHistogram periodErr_, compute_, io_;
-  std::uint64_t ticks_ = 0, overruns_ = 0;
+  LatencyHistogram periodErr_, compute_, io_, edgeIo_;
+  std::uint64_t ticks_ = 0, overruns_ = 0, edges_ = 0;
   bool periodMeasured_ = false;
   TimeNs windowStart_ = -1;
   std::array<std::uint32_t, 4> adsCount_{};

@@ -113,6 +113,13 @@ int Ads1115Driver::start(TimeNs now) noexcept {
   return 0;
 }
 
+int Ads1115Driver::setPacing(AdsPacing pacing, TimeNs now) noexcept {
+  pacing_ = pacing;
+  const int rc = start(now);
+  if (rc != 0) noteFailure(rc, now);
+  return rc;
+}
+
 void Ads1115Driver::noteFailure(int err, TimeNs now) noexcept {
   ++stats_.failedReads;
   ++stats_.consecutiveFailures;

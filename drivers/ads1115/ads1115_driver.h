@@ -93,6 +93,9 @@ class Ads1115Driver {
   Ads1115Samples poll(TimeNs now) noexcept;
   // ReadyEdge pacing: one call per ALERT/RDY edge, `edge` = its timestamp.
   void onReadyEdge(TimeNs edge) noexcept;
+  // Change pacing at run time (e.g. ReadyEdge → SingleShot when no edges
+  // arrive) and restart the chip with it. 0 or errno (as start()).
+  int setPacing(AdsPacing pacing, TimeNs now) noexcept;
 
   bool present() const noexcept { return present_; }
   bool configError() const noexcept { return configError_; }

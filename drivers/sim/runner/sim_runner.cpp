@@ -8,8 +8,10 @@
 #include <ostream>
 
 #include "control/regulator.h"
+#include "params/derived.h"
 #include "drivers/onewire/ds18b20_reader.h"
-#include "drivers/sim/runner/driver_sensors.h"
+#include "drivers/fast_sensors/driver_sensors.h"
+#include "drivers/sim/runner/sim_ready_edges.h"
 #include "drivers/sim/sim_clock.h"
 #include "runtime/control_cycle.h"
 #include "runtime/control_loop.h"
@@ -98,7 +100,8 @@ struct SimRunner::Impl {
   SimWorld world;
   SimClock simClock;
   rt::Handoffs handoffs;
-  DriverFastSensors sensors;
+  DriverSensors sensors;
+  SimReadyEdges readyEdges;
   RegulatorCore core;
   WorldTruth truth;
   rt::LoopStats stats;
@@ -121,7 +124,8 @@ struct SimRunner::Impl {
         world(worldConfigOf(opts, w1Dir), opts.settings.hardware),
         simClock(world, opts.speed),
         handoffs(params),
-        sensors(world.i2c(), opts.settings.hardware, simClock),
+        sensors(world.i2c(), opts.settings.hardware, simClock, opts.settings.hardware.ads_alert_rdy_line >= 0),
+        readyEdges(world),
         core(params),
         truth(world),
         player(opts.scenario) {}
@@ -171,6 +175,7 @@ SimRunResult SimRunner::run() {
   dev.ignition = &d.world.ignition();
   dev.watchdog = &d.world.watchdog();
   dev.truth = &d.truth;
+  if (d.opts.settings.hardware.ads_alert_rdy_line >= 0) dev.adsReady = &d.readyEdges;
   d.cycle = std::make_unique<rt::ControlCycle>(d.core, dev, d.handoffs, d.stats, d.simClock, cc);
 
   if (!d.w1Dir.empty()) {
@@ -224,7 +229,7 @@ SimRunResult SimRunner::run() {
   };
   HookedClock clock(d.simClock, before);
 
-  d.sensors.start(start);
+  d.sensors.start(start, voltageHardwareLimit(d.params));
   rt::LoopConfig lc;
   lc.period = fromUs(d.opts.settings.runtime.control_period_us);
   lc.duration = fromSec(d.opts.durationS.value_or(d.opts.scenario.duration_s));

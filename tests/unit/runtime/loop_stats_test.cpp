@@ -60,7 +60,7 @@ TEST(LoopStats, ChannelRatesUseOneSecondWindows) {
   TimeNs t = 0;
   for (int i = 0; i <= 1000; ++i, t += fromMs(1)) {
     // CH1 every ms, CH0 every 10 ms, CH2/CH3 never
-    s.onSamples(t, {i % 10 == 0, true, false, false}, i % 2 == 0);
+    s.onSamples(t, {i % 10 == 0 ? 1u : 0u, 1u, 0u, 0u}, i % 2 == 0);
   }
   const auto sum = s.summary();
   EXPECT_NEAR(sum.ch1SampleRateHz, 1000.0, 2.0);
