@@ -27,14 +27,14 @@ std::uint16_t Ads1115Model::peekConfig() const noexcept {
   return static_cast<std::uint16_t>((config_ & ~OS) | (converting_ ? 0 : OS));
 }
 
-std::int16_t Ads1115Model::sample(std::uint16_t cfg) const noexcept {
+std::int16_t Ads1115Model::sample(std::uint16_t cfg) noexcept {
   double v = 0.0;
   switch (muxOf(cfg)) {
-    case 0: v = ain_[0] - ain_[1]; break;
-    case 1: v = ain_[0] - ain_[3]; break;
-    case 2: v = ain_[1] - ain_[3]; break;
-    case 3: v = ain_[2] - ain_[3]; break;
-    default: v = ain_[muxOf(cfg) - 4]; break;
+    case 0: v = pin(0) - pin(1); break;
+    case 1: v = pin(0) - pin(3); break;
+    case 2: v = pin(1) - pin(3); break;
+    case 3: v = pin(2) - pin(3); break;
+    default: v = pin(muxOf(cfg) - 4); break;
   }
   const double fs = kFsrVolts[pgaOf(cfg)];
   const double code = std::nearbyint(v / fs * 32768.0);

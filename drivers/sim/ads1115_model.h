@@ -27,6 +27,15 @@ class Ads1115Model final : public SimI2cDevice {
 
   // Input pin voltages AIN0..AIN3 (to GND), set by the plant before update().
   void setInputs(const std::array<double, 4>& ain) noexcept { ain_ = ain; }
+  // Or pulled at the instant a conversion samples them: only the pins the
+  // MUX of that conversion selects are asked for (so a simulated board draws
+  // sensor noise per conversion, not per plant step). Overrides setInputs()
+  // while set; nullptr goes back to the set values.
+  using InputSource = double (*)(void* ctx, int ain) noexcept;
+  void setInputSource(InputSource fn, void* ctx) noexcept {
+    src_ = fn;
+    srcCtx_ = ctx;
+  }
   void update(TimeNs t) noexcept override;
   int write(const std::uint8_t* buf, std::size_t len) noexcept override;
   int read(std::uint8_t* buf, std::size_t len) noexcept override;
@@ -52,9 +61,12 @@ class Ads1115Model final : public SimI2cDevice {
   void startConversion(TimeNs at) noexcept;
   void finishConversion() noexcept;
   bool readyMode() const noexcept { return (hiThresh_ & 0x8000) && !(loThresh_ & 0x8000); }
-  std::int16_t sample(std::uint16_t cfg) const noexcept;
+  std::int16_t sample(std::uint16_t cfg) noexcept;
+  double pin(int ain) noexcept { return src_ ? src_(srcCtx_, ain) : ain_[ain]; }
 
   std::array<double, 4> ain_{};
+  InputSource src_ = nullptr;
+  void* srcCtx_ = nullptr;
   double clockScale_;
   TimeNs now_ = 0;
   std::uint8_t ptr_ = 0;

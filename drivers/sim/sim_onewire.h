@@ -26,12 +26,18 @@ class SimOneWire {
   // Bring the sensor to time t with the true temperature (degC).
   void update(TimeNs t, double tempC);
   void setPresent(bool present);
+  // The next update() converts at once (what the sensor sees changed: a
+  // fault), instead of waiting for the running 750 ms conversion.
+  void convertNow() { nextConversion_ = 0; }
   // Next files carry a scratchpad whose CRC does not match ("crc=.. NO").
   void setCorrupt(bool corrupt) { corrupt_ = corrupt; }
   const std::filesystem::path& root() const { return root_; }
   std::filesystem::path slavePath() const { return root_ / id_ / "w1_slave"; }
   const std::string& deviceId() const { return id_; }
   std::uint64_t writes() const { return writes_; }
+  // update() before this time is a no-op (the sensor is still converting);
+  // lets the caller skip computing the temperature.
+  TimeNs nextConversion() const { return present_ ? nextConversion_ : INT64_MAX; }
 
   // The two lines for a raw 12-bit reading (1/16 degC); exposed for tests.
   static std::string formatW1Slave(std::int16_t raw, bool corrupt);

@@ -14,6 +14,7 @@ double fToC(double f) { return (f - 32.0) * 5.0 / 9.0; }
 SimWorld::SimWorld(const WorldConfig& cfg, const HardwareSettings& hw)
     : cfg_(cfg),
       hw_(hw),
+      grid_(std::max<TimeNs>(cfg.maxStep, fromUs(1))),
       rng_(cfg.seed),
       plant_(cfg.plant),
       bus_(&now_),
@@ -23,6 +24,13 @@ SimWorld::SimWorld(const WorldConfig& cfg, const HardwareSettings& hw)
       buzzer_(&now_),
       ignition_(true),
       watchdog_(&now_, fromSec(hw.watchdog_timeout_s)) {
+  const auto& fe = hw_.frontend;
+  ch0Gain_ = (fe.divider_r_top_ohm + fe.divider_r_bottom_ohm) / fe.divider_r_bottom_ohm;
+  rpmScale_ = fe.rpm_per_volt / (fe.pulley_ratio > 0.0 ? fe.pulley_ratio : 1.0);
+  // Noise at the ADS pins, in ADC volts, per conversion.
+  pinSigma_ = {cfg_.noise.battery_v / ch0Gain_, cfg_.noise.alt_a * fe.hall_sensitivity_v_per_a,
+               cfg_.noise.rpm / rpmScale_, 0.0};
+  ads_.setInputSource(&SimWorld::adsPin, this);
   bus_.attach(hw.ina228_address, &ina_);
   bus_.attach(hw.ads1115_address, &ads_);
   if (!cfg.w1Root.empty()) w1_ = std::make_unique<SimOneWire>(cfg.w1Root);
@@ -44,6 +52,9 @@ void SimWorld::setFault(Fault f, bool active, double value) {
     case Fault::field_open: plant_.setFieldOpen(active); break;
     case Fault::temp_sensor_disconnect:
       if (w1_) w1_->setPresent(!active);
+      break;
+    case Fault::temp_value:
+      if (w1_) w1_->convertNow();  // the file follows the fault at once, not at the next 750 ms
       break;
     default: break;
   }
@@ -79,17 +90,18 @@ void SimWorld::refreshAnalog(double dt) noexcept {
   a.dietemp_c = cfg_.inaDieTempC;
   ina_.setAnalog(a);
 
-  // ADS1115 channels through the analog front end.
-  std::array<double, 4> ain{};
-  ain[0] = faults_[int(Fault::battery_v_zero)]
-               ? 0.0
-               : frontend::adcFromBatteryVolts(
-                     fe, p.battery_v + faultValues_[int(Fault::battery_v_offset)] + rng_.gauss(n.battery_v));
-  ain[1] = frontend::adcFromAltAmps(fe, p.alt_a + faultValues_[int(Fault::alt_current_offset)] + rng_.gauss(n.alt_a));
+  // ADS1115 pins, noise-free here: adsPin() adds the noise when a conversion
+  // actually samples a pin (one channel per conversion), instead of drawing
+  // noise for all four every step. (frontend::adcFromBatteryVolts /
+  // adcFromAltAmps / adcFromRpm inlined, same arithmetic.)
+  pins_[0] = faults_[int(Fault::battery_v_zero)] ? 0.0
+                                                 : (p.battery_v + faultValues_[int(Fault::battery_v_offset)]) / ch0Gain_;
+  const double hallA = p.alt_a + faultValues_[int(Fault::alt_current_offset)];
+  pins_[1] = fe.hall_zero_v + (fe.hall_invert ? -hallA : hallA) * fe.hall_sensitivity_v_per_a;
   // LM2907: tracks the tach frequency with a short ripple filter; when the
   // signal is lost its output decays through the 2 s coupling time constant.
   const bool lost = faults_[int(Fault::rpm_signal_loss)];
-  const double target = lost ? 0.0 : frontend::adcFromRpm(fe, std::max(0.0, plant_.rpm() + rng_.gauss(n.rpm)));
+  const double target = lost ? 0.0 : std::max(0.0, plant_.rpm()) / rpmScale_;
   const double tau = lost ? 2.0 : 0.05;
   if (dt > 0.0) {
     if (dt != lagDt_ || tau != lagTau_) {
@@ -101,7 +113,7 @@ void SimWorld::refreshAnalog(double dt) noexcept {
   } else if (!lost) {
     lm2907V_ = target;
   }
-  ain[2] = lm2907V_;
+  pins_[2] = lm2907V_;
   // Temperatures move over seconds: refresh the thermistor node and the
   // 1-Wire reading every 50 ms of virtual time (and at once on a fault change).
   if (dt == 0.0 || now_ >= nextSlowRefresh_) {
@@ -112,25 +124,56 @@ void SimWorld::refreshAnalog(double dt) noexcept {
     // Open thermistor: the divider node sits at the supply.
     ch3V_ = faults_[int(Fault::temp_sensor_disconnect)] ? fe.thermistor_supply_v : frontend::adcFromTempF(fe, tempF);
   }
-  ain[3] = ch3V_;
-  for (auto& v : ain) v = std::clamp(std::isfinite(v) ? v : 0.0, 0.0, kAdsVdd + 0.3);
-  ads_.setInputs(ain);
+  pins_[3] = ch3V_;
 
-  if (w1_) w1_->update(now_, fToC(tempSenseF_));
+  if (w1_ && now_ >= w1_->nextConversion()) w1_->update(now_, fToC(tempSenseF_));
+}
+
+double SimWorld::adsPin(void* ctx, int ain) noexcept {
+  SimWorld& w = *static_cast<SimWorld*>(ctx);
+  double v = w.pins_[ain & 3];
+  switch (ain & 3) {
+    case 0:  // a broken sense wire reads exactly 0 V
+      if (!w.faults_[int(Fault::battery_v_zero)]) v += w.rng_.gauss(w.pinSigma_[0]);
+      break;
+    case 2:  // the tach ripple is noise only while there is a tach signal
+      if (!w.faults_[int(Fault::rpm_signal_loss)]) v += w.rng_.gauss(w.pinSigma_[2]);
+      break;
+    case 1: v += w.rng_.gauss(w.pinSigma_[1]); break;
+    default: break;  // CH3: the thermistor node carries the temperature noise (slow refresh)
+  }
+  return std::clamp(std::isfinite(v) ? v : 0.0, 0.0, kAdsVdd + 0.3);
+}
+
+void SimWorld::stepPlant(TimeNs to) noexcept {
+  const double dt = toSec(to - plantNow_);
+  plant_.step(fieldCommand(), dt);
+  plantNow_ = to;
+  // (A grid point can lie before now() only when the battery left the bus
+  // after an advance between grid points: the plant catches up, time does
+  // not go back.)
+  now_ = std::max(now_, to);
+  refreshAnalog(dt);
+  ina_.update(now_);  // the ALERT pin acts on the enable without any software
+  ads_.update(now_);
 }
 
 void SimWorld::advanceTo(TimeNs t) noexcept {
-  while (now_ < t) {
+  if (t <= now_) return;
+  for (;;) {
     // Finer steps while the battery is off the bus, so the INA228 ALERT
-    // (BOVL) can act on the fast rise.
-    const TimeNs maxStep = plant_.truth().bms_connected ? cfg_.maxStep : std::min<TimeNs>(cfg_.maxStep, fromUs(250));
-    const TimeNs step = std::min(maxStep, t - now_);
-    const double dt = toSec(step);
-    plant_.step(fieldCommand(), dt);
-    now_ += step;
-    refreshAnalog(dt);
-    ina_.update(now_);  // the ALERT pin acts on the enable without any software
-    ads_.update(now_);
+    // (BOVL) can act on the fast rise; a finer step never straddles a grid
+    // point, so the grid is kept when the battery comes back.
+    TimeNs next = plantNow_ + grid_ - plantNow_ % grid_;
+    if (!plant_.truth().bms_connected) next = std::min(next, plantNow_ + fromUs(250));
+    if (next > t) break;
+    stepPlant(next);
+  }
+  if (now_ < t) {
+    // Between grid points: only the chips move, on the last plant step's inputs.
+    now_ = t;
+    ina_.update(t);
+    ads_.update(t);
   }
 }
 

@@ -28,7 +28,11 @@
 
 namespace xr::sim {
 
-// Sensor noise, one sigma per measured quantity (0 = none).
+// Sensor noise, one sigma per measured quantity (0 = none), as seen in one
+// reading: the ADS1115 channels draw it per conversion (RPM at the LM2907
+// output, while there is a tach signal), the INA228 pins per plant step (the
+// chip averages the raw samples of its window), the temperatures every 50 ms.
+// Distribution: see prng.h (bounded near-Gaussian).
 struct NoiseConfig {
   double ibv_v = 0.002;      // INA228 VBUS
   double bcur_a = 0.05;      // shunt current
@@ -65,8 +69,16 @@ class SimWorld {
   SimWorld& operator=(const SimWorld&) = delete;
 
   TimeNs now() const noexcept { return now_; }
-  // Advance virtual time to t (no-op if t <= now).
+  // Advance virtual time to t (no-op if t <= now). The plant steps on its own
+  // grid (multiples of cfg.maxStep from time 0; 250 us while the BMS has the
+  // battery off the bus); the chips convert up to t at any instant, between
+  // grid points with the analog inputs of the last plant step (the plant
+  // moves negligibly in a millisecond). So an advance to an ADS1115 ready
+  // edge between two control ticks costs no plant step, and a run that only
+  // advances on the grid steps exactly as it always did.
   void advanceTo(TimeNs t) noexcept;
+  // Time of the last plant step (<= now()).
+  TimeNs plantTime() const noexcept { return plantNow_; }
 
   // The hal seams the drivers and runtime use.
   I2cBus& i2c() noexcept { return bus_; }
@@ -102,11 +114,21 @@ class SimWorld {
 
  private:
   void refreshAnalog(double dt) noexcept;
+  // The ADS1115 model's input source: pin voltage plus noise at the instant
+  // a conversion samples it.
+  static double adsPin(void* ctx, int ain) noexcept;
+  void stepPlant(TimeNs to) noexcept;
   double fieldCommand() const noexcept;
 
   WorldConfig cfg_;
   HardwareSettings hw_;
   TimeNs now_ = 0;
+  TimeNs plantNow_ = 0;
+  TimeNs grid_;  // cfg.maxStep, at least 1 us
+  // Linear front-end scalings (frontend::adcFrom*, same arithmetic), hoisted
+  // out of the per-step path.
+  double ch0Gain_ = 1.0;  // battery volts per ADC volt
+  double rpmScale_ = 1.0;  // engine RPM per ADC volt
   Rng rng_;
   Plant plant_;
   SimI2cBus bus_;
@@ -121,6 +143,8 @@ class SimWorld {
   SimWatchdog watchdog_;
   std::array<bool, kFaultCount> faults_{};
   std::array<double, kFaultCount> faultValues_{};
+  std::array<double, 4> pins_{};      // ADS1115 AIN0..3, noise-free, at the last plant step
+  std::array<double, 4> pinSigma_{};  // noise per conversion, ADC volts
   double lm2907V_ = 0.0;
   // Slow channels (temperatures) are refreshed at this cadence, not every step.
   TimeNs nextSlowRefresh_ = 0;

@@ -7,21 +7,22 @@ namespace xr::sim {
 
 AlternatorModel::AlternatorModel(const AlternatorConfig& c) : cfg_(c), tempF_(c.temp_f) {}
 
-double AlternatorModel::availableFraction(double rpm) const noexcept {
+double AlternatorModel::rpmCurve(double rpm) const noexcept {
   if (rpm <= cfg_.cut_in_rpm) return 0.0;
   const double x = std::min(1.0, (rpm - cfg_.cut_in_rpm) / std::max(1.0, cfg_.full_rpm - cfg_.cut_in_rpm));
   // The typical concave output curve: most of the output by mid-range.
   const double curve = std::sqrt(x) * (1.0 + 0.05 * std::min(1.0, (rpm - cfg_.full_rpm) / cfg_.full_rpm));
-  // Hot derating: a cold machine gives ~15 % more, rated at 200 degF, less above.
-  double hot;
-  if (tempF_ <= 77.0)
-    hot = 1.15;
-  else if (tempF_ <= 200.0)
-    hot = 1.15 - 0.15 * (tempF_ - 77.0) / 123.0;
-  else
-    hot = std::max(0.6, 1.0 - 0.002 * (tempF_ - 200.0));
-  return std::max(0.0, curve) * hot;
+  return std::max(0.0, curve);
 }
+
+double AlternatorModel::hotFactor() const noexcept {
+  // Hot derating: a cold machine gives ~15 % more, rated at 200 degF, less above.
+  if (tempF_ <= 77.0) return 1.15;
+  if (tempF_ <= 200.0) return 1.15 - 0.15 * (tempF_ - 77.0) / 123.0;
+  return std::max(0.6, 1.0 - 0.002 * (tempF_ - 200.0));
+}
+
+double AlternatorModel::availableFraction(double rpm) const noexcept { return rpmCurve(rpm) * hotFactor(); }
 
 double AlternatorModel::coolingFactor(double rpm) const noexcept {
   // Fan cooling improves with speed; some convection when stopped.
@@ -35,10 +36,15 @@ void AlternatorModel::step(double fieldCmd, double rpm, double ambientF, double 
     lagK_ = 1.0 - std::exp(-dt / std::max(1e-4, cfg_.field_tau_s));
   }
   field_ += (target - field_) * lagK_;
-  amps_ = cfg_.rated_a * availableFraction(rpm) * field_;
+  if (rpm != curveRpm_) {
+    curveRpm_ = rpm;
+    curve_ = rpmCurve(rpm);
+    coolRel_ = coolingFactor(rpm) / coolingFactor(cfg_.cruise_rpm);
+  }
+  amps_ = cfg_.rated_a * (curve_ * hotFactor()) * field_;
   // Thermal: C dT/dt = P - G(rpm) (T - Ta), normalised so that at cruise
   // RPM, rated output: Tss - Ta = thermal_rise_f and tau = thermal_tau_s.
-  const double g = coolingFactor(rpm) / coolingFactor(cfg_.cruise_rpm);
+  const double g = coolRel_;
   const double iRel = amps_ / std::max(1.0, cfg_.rated_a);
   const double heat = cfg_.thermal_rise_f * (0.9 * iRel * iRel + 0.1 * field_);
   const double dT = (heat - g * (tempF_ - ambientF)) / cfg_.thermal_tau_s;

@@ -37,12 +37,17 @@ class AlternatorModel {
 
  private:
   double coolingFactor(double engineRpm) const noexcept;
+  double rpmCurve(double engineRpm) const noexcept;  // the RPM part of availableFraction (>= 0)
+  double hotFactor() const noexcept;                 // the temperature part
   AlternatorConfig cfg_;
   double field_ = 0.0;
   double amps_ = 0.0;
   double tempF_;
   bool open_ = false;
   double lagDt_ = -1.0, lagK_ = 0.0;  // cached 1 - exp(-dt/field_tau_s)
+  // RPM changes only on scenario events: its curve value and relative
+  // cooling are cached per RPM instead of recomputed (sqrt, divisions) every step.
+  double curveRpm_ = -1.0, curve_ = 0.0, coolRel_ = 1.0;
 };
 
 }  // namespace xr::sim

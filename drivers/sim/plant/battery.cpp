@@ -20,16 +20,20 @@ constexpr std::array<Pt, 6> kFlooded{
     {{0.0, 11.5}, {0.2, 11.8}, {0.4, 12.05}, {0.6, 12.3}, {0.8, 12.5}, {1.0, 12.7}}};
 constexpr std::array<Pt, 6> kGel{{{0.0, 11.7}, {0.2, 12.0}, {0.4, 12.25}, {0.6, 12.5}, {0.8, 12.7}, {1.0, 12.95}}};
 
+// Linear interpolation in the OCV table. `hint` is the segment found last
+// time: SoC moves by parts per million per step, so the search almost always
+// ends where it starts. Returns the same segment (hence the same value) as a
+// scan from the start: the first i with s <= t[i].soc.
 template <std::size_t N>
-double interp(const std::array<Pt, N>& t, double s) {
+double interp(const std::array<Pt, N>& t, double s, int& hint) {
   if (s <= t[0].soc) return t[0].v;
-  for (std::size_t i = 1; i < N; ++i) {
-    if (s <= t[i].soc) {
-      const double f = (s - t[i - 1].soc) / (t[i].soc - t[i - 1].soc);
-      return t[i - 1].v + f * (t[i].v - t[i - 1].v);
-    }
-  }
-  return t[N - 1].v;
+  if (s > t[N - 1].soc) return t[N - 1].v;
+  std::size_t i = std::clamp<std::size_t>(std::size_t(hint), 1, N - 1);
+  while (i > 1 && s <= t[i - 1].soc) --i;
+  while (s > t[i].soc) ++i;
+  hint = int(i);
+  const double f = (s - t[i - 1].soc) / (t[i].soc - t[i - 1].soc);
+  return t[i - 1].v + f * (t[i].v - t[i - 1].v);
 }
 bool isLead(Chemistry c) { return c != Chemistry::lifepo4; }
 }  // namespace
@@ -66,31 +70,35 @@ BatteryModel::BatteryModel(const BatteryConfig& c) : cfg_(c) {
   setSocPct(c.soc_pct);
 }
 
-void BatteryModel::setSocPct(double p) noexcept { soc_ = std::clamp(p / 100.0, 0.0, 1.0); }
+void BatteryModel::setSocPct(double p) noexcept {
+  soc_ = std::clamp(p / 100.0, 0.0, 1.0);
+  refreshOcv();
+}
 
-double BatteryModel::ocv() const noexcept {
+void BatteryModel::refreshOcv() noexcept {
   double v = 0.0;
   switch (cfg_.chemistry) {
-    case Chemistry::lifepo4: v = interp(kLfp, soc_); break;
-    case Chemistry::agm: v = interp(kAgm, soc_); break;
-    case Chemistry::flooded: v = interp(kFlooded, soc_); break;
-    case Chemistry::gel: v = interp(kGel, soc_); break;
+    case Chemistry::lifepo4: v = interp(kLfp, soc_, seg_); break;
+    case Chemistry::agm: v = interp(kAgm, soc_, seg_); break;
+    case Chemistry::flooded: v = interp(kFlooded, soc_, seg_); break;
+    case Chemistry::gel: v = interp(kGel, soc_, seg_); break;
   }
-  return v * cfg_.nominal_v / 12.0;
+  ocv_ = v * cfg_.nominal_v / 12.0;
+  leadX_ = isLead(cfg_.chemistry) ? std::clamp((soc_ - 0.75) / 0.25, 0.0, 1.0) : 0.0;
 }
 
 double BatteryModel::chargeOverpotential(double amps) const noexcept {
   // Lead chemistries stop accepting charge near full: an overpotential that
   // grows with SoC above 75 % and saturates with current (continuous through
   // 0 A), so at a fixed absorption voltage the current tapers to a tail.
-  if (!isLead(cfg_.chemistry) || amps <= 0.0) return 0.0;
-  const double x = std::clamp((soc_ - 0.75) / 0.25, 0.0, 1.0);
+  // (leadX_ is 0 for LiFePO4 and below 75 %: no exp() on those steps.)
+  if (leadX_ == 0.0 || amps <= 0.0) return 0.0;
   const double i0 = 0.01 * cfg_.capacity_ah;
-  return 1.9 * x * x * (1.0 - std::exp(-amps / i0)) * cfg_.nominal_v / 12.0;
+  return 1.9 * leadX_ * leadX_ * (1.0 - std::exp(-amps / i0)) * cfg_.nominal_v / 12.0;
 }
 
 double BatteryModel::terminalVolts(double amps) const noexcept {
-  return ocv() + vrc_ + r_ * amps + chargeOverpotential(amps);
+  return ocv_ + vrc_ + r_ * amps + chargeOverpotential(amps);
 }
 
 void BatteryModel::step(double amps, double dt) noexcept {
@@ -101,7 +109,11 @@ void BatteryModel::step(double amps, double dt) noexcept {
   const double a = rcA_;
   vrc_ = vrc_ * a + amps * r1_ * (1.0 - a);
   const double ah = amps * dt / 3600.0 * (amps > 0.0 ? eff_ : 1.0);
-  soc_ = std::clamp(soc_ + ah / std::max(1.0, cfg_.capacity_ah), 0.0, 1.0);
+  const double soc = std::clamp(soc_ + ah / std::max(1.0, cfg_.capacity_ah), 0.0, 1.0);
+  if (soc != soc_) {
+    soc_ = soc;
+    refreshOcv();
+  }
 }
 
 }  // namespace xr::sim

@@ -30,12 +30,14 @@ class BatteryModel {
   void step(double amps, double dt) noexcept;
   double socPct() const noexcept { return soc_ * 100.0; }
   void setSocPct(double p) noexcept;
-  double ocv() const noexcept;
+  // Rest voltage at the present SoC (cached: recomputed only when SoC moves).
+  double ocv() const noexcept { return ocv_; }
   double seriesR() const noexcept { return r_; }
   const BatteryConfig& config() const noexcept { return cfg_; }
 
  private:
   double chargeOverpotential(double amps) const noexcept;
+  void refreshOcv() noexcept;  // after every SoC change
   BatteryConfig cfg_;
   double soc_;      // 0..1
   double r_;        // series resistance, ohm
@@ -44,6 +46,9 @@ class BatteryModel {
   double vrc_ = 0;  // polarisation voltage, V
   double eff_;      // coulombic efficiency when charging
   double rcDt_ = -1.0, rcA_ = 0.0;  // cached exp(-dt/tau1)
+  double ocv_ = 0.0;                // OCV(soc_), see refreshOcv()
+  double leadX_ = 0.0;              // lead charge-acceptance factor at soc_ (0 below 75 % and for LFP)
+  int seg_ = 1;                     // OCV-curve segment soc_ was last found in
 };
 
 }  // namespace xr::sim

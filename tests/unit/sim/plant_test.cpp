@@ -1,6 +1,9 @@
 // Physics plant: alternator, battery per chemistry, bus with BMS disconnect.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "drivers/sim/plant/plant.h"
 #include "drivers/sim/prng.h"
 
@@ -169,6 +172,41 @@ TEST(Rng, SameSeedSameSequenceAndRoughlyNormal) {
   EXPECT_TRUE(differs);
   EXPECT_NEAR(sum / 20000, 0.0, 0.05);
   EXPECT_NEAR(sq / 20000, 1.0, 0.05);
+}
+
+// The bounded near-Gaussian of prng.h: its documented shape.
+TEST(Rng, NormalShapeIsCloseToGaussianAndBounded) {
+  Rng r(7);
+  constexpr int kN = 200000;
+  int in1 = 0, in2 = 0;
+  double lo = 0, hi = 0, sq = 0, q = 0;
+  for (int i = 0; i < kN; ++i) {
+    const double x = r.normal();
+    in1 += std::fabs(x) < 1.0;
+    in2 += std::fabs(x) < 2.0;
+    lo = std::min(lo, x);
+    hi = std::max(hi, x);
+    sq += x * x;
+    q += x * x * x * x;
+  }
+  EXPECT_NEAR(double(in1) / kN, 0.668, 0.01);  // Gaussian: 0.683
+  EXPECT_NEAR(double(in2) / kN, 0.957, 0.01);  // Gaussian: 0.954
+  EXPECT_NEAR(q / kN / ((sq / kN) * (sq / kN)) - 3.0, -0.3, 0.05);  // excess kurtosis
+  EXPECT_GE(lo, -3.4642);
+  EXPECT_LE(hi, 3.4642);
+  EXPECT_LT(lo, -2.5);  // the tails are there, just bounded
+  EXPECT_GT(hi, 2.5);
+  // Uniform draws cover (0, 1].
+  double umin = 1, umax = 0;
+  for (int i = 0; i < 10000; ++i) {
+    const double u = r.uniform();
+    umin = std::min(umin, u);
+    umax = std::max(umax, u);
+  }
+  EXPECT_GT(umin, 0.0);
+  EXPECT_LT(umin, 0.01);
+  EXPECT_LE(umax, 1.0);
+  EXPECT_GT(umax, 0.99);
 }
 
 }  // namespace

@@ -2,10 +2,16 @@
 #include <gtest/gtest.h>
 
 #include <cerrno>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
 
 #include "drivers/frontend/analog_frontend.h"
 #include "drivers/sim/ina228_model.h"
 #include "drivers/sim/sim_clock.h"
+#include "drivers/sim/sim_onewire.h"
 #include "drivers/sim/sim_world.h"
 
 namespace xr::sim {
@@ -154,6 +160,107 @@ TEST(SimWorld, SameSeedSameNoise) {
     b.advanceTo(fromMs(3 * i));
     EXPECT_EQ(readReg(a, hw.ina228_address, ina228::VSHUNT, 3), readReg(b, hw.ina228_address, ina228::VSHUNT, 3));
   }
+}
+
+// Ready-edge pacing advances the world to ADS1115 conversion-ready edges
+// between control ticks: those advances move the chips, not the plant, so a
+// run with them sees exactly the plant of a run without them at every grid
+// point (no software acts in between here).
+TEST(SimWorld, AdvancesBetweenGridPointsDoNotStepThePlant) {
+  HardwareSettings hw;
+  WorldConfig c;  // with noise: the extra conversions draw extra noise, the plant must not care
+  SimWorld grid(c, hw), edges(c, hw);
+  for (SimWorld* w : {&grid, &edges}) {
+    w->simPwm().setDutyPercent(70);
+    w->fieldEnable().set(true);
+  }
+  // Conversion-ready mode (Hi_thresh MSB 1, Lo_thresh MSB 0), continuous AIN1, 860 SPS.
+  ASSERT_EQ(writeReg(edges, hw.ads1115_address, 3, 0x8000), 0);
+  ASSERT_EQ(writeReg(edges, hw.ads1115_address, 2, 0x0000), 0);
+  ASSERT_EQ(writeReg(edges, hw.ads1115_address, 1, std::uint16_t((5 << 12) | (1 << 9) | (7 << 5))), 0);
+  int intermediate = 0;
+  for (int i = 1; i <= 2000; ++i) {
+    const TimeNs t = fromUs(2500) * i;
+    if (i == 800) {  // the fine grid while the battery is off the bus, and back
+      grid.plant().setBmsConnected(false);
+      edges.plant().setBmsConnected(false);
+    }
+    if (i == 820) {
+      grid.plant().setBmsConnected(true);
+      edges.plant().setBmsConnected(true);
+    }
+    for (TimeNs e = edges.ads().nextReadyEdge(); e >= 0 && e < t; e = edges.ads().nextReadyEdge()) {
+      edges.advanceTo(e);
+      EXPECT_EQ(edges.now(), e);
+      // The plant stays at the last grid point: the control grid, or the
+      // 250 us grid while the battery is off the bus (the plant's truth
+      // switches grids from the step after a BMS change: 800 and 820 are
+      // transitions).
+      if (i == 800 || i == 820) {
+        EXPECT_LE(edges.plantTime(), e);
+      } else {
+        const bool fine = i > 800 && i < 820;
+        EXPECT_EQ(edges.plantTime(), fine ? e - e % fromUs(250) : t - fromUs(2500));
+      }
+      ++intermediate;
+    }
+    grid.advanceTo(t);
+    edges.advanceTo(t);
+    ASSERT_EQ(edges.plantTime(), t);
+    ASSERT_EQ(grid.truth().plant.battery_v, edges.truth().plant.battery_v) << "at step " << i;
+    ASSERT_EQ(grid.truth().plant.alt_a, edges.truth().plant.alt_a) << "at step " << i;
+    ASSERT_EQ(grid.truth().plant.soc_pct, edges.truth().plant.soc_pct) << "at step " << i;
+  }
+  EXPECT_GT(intermediate, 3000);  // ~2 ready edges per 2.5 ms
+  EXPECT_GT(edges.ads().conversions(), 4000u);
+  EXPECT_EQ(edges.ads().protocolErrors(), 0u);
+}
+
+// Noise is drawn per ADS1115 conversion (two conversions inside one plant
+// step differ), never on a broken sense wire (exactly 0 V).
+TEST(SimWorld, AdsNoiseIsPerConversion) {
+  HardwareSettings hw;
+  WorldConfig c;
+  c.noise.alt_a = 2.0;  // 40 mV at the Hall output: hundreds of codes at +-4.096 V
+  SimWorld w(c, hw);
+  auto convert = [&](int mux) {
+    writeReg(w, hw.ads1115_address, 1, std::uint16_t(0x8000 | (mux << 12) | (1 << 9) | 0x100 | (7 << 5) | 3));
+    w.advanceTo(w.now() + fromUs(1200));  // one 860 SPS conversion, inside one plant step
+    return std::int16_t(readReg(w, hw.ads1115_address, 0, 2));
+  };
+  w.advanceTo(fromUs(2500));
+  const auto a = convert(5), b = convert(5);
+  EXPECT_EQ(w.plantTime(), fromUs(2500));
+  EXPECT_NE(a, b);
+  w.setFault(Fault::battery_v_zero, true);
+  EXPECT_EQ(convert(4), 0);
+  EXPECT_EQ(convert(4), 0);
+}
+
+// The simulated DS18B20 file: at most one rewrite per 750 ms conversion, and
+// a temperature fault reaches it at once.
+TEST(SimWorld, OneWireFileRewrittenAtMostOncePerConversion) {
+  HardwareSettings hw;
+  WorldConfig c;
+  c.noise.temp_f = 5.0;  // the value changes at every conversion
+  c.w1Root = std::filesystem::temp_directory_path() / ("xr-world-w1-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(c.w1Root);
+  {
+    SimWorld w(c, hw);
+    ASSERT_NE(w.onewire(), nullptr);
+    const auto w0 = w.onewire()->writes();
+    w.advanceTo(fromSec(60));
+    const auto n = w.onewire()->writes() - w0;
+    EXPECT_LE(n, 81u);  // 60 s / 750 ms, plus the one at t = 0
+    EXPECT_GE(n, 60u);
+    w.advanceTo(fromSec(60) + fromMs(100));
+    w.setFault(Fault::temp_value, true, 212.0);  // 100 degC
+    std::ifstream f(w.onewire()->slavePath());
+    std::stringstream ss;
+    ss << f.rdbuf();
+    EXPECT_NE(ss.str().find("t=100000"), std::string::npos) << ss.str();
+  }
+  std::filesystem::remove_all(c.w1Root);
 }
 
 TEST(SimClock, MaxSpeedAdvancesVirtualTime) {
