@@ -264,6 +264,7 @@ int Daemon::run() {
   auto lastStatsLog = std::chrono::steady_clock::now();
   auto lastHousekeeping = lastStatsLog;
   bool stopRequested = false;
+  bool edgeFallbackLogged = false;
   try {
     while (!loop.finished() && !controlFailed) {
       timespec ts{0, 100'000'000};
@@ -295,6 +296,13 @@ int Daemon::run() {
         sd_notifyf(0, "STATUS=%s %s SoC %.0f%% duty %.1f%%", std::string(toString(s.telemetry.mode)).c_str(),
                    std::string(toString(s.telemetry.stage)).c_str(), s.telemetry.soc_pct, s.telemetry.duty_pct);
         if (store) store->housekeeping(s, handoffs->ledger.load(), s.tick > 100);
+        if (s.health.adsEdgeFallback && !edgeFallbackLogged) {
+          edgeFallbackLogged = true;
+          spdlog::error(
+              "ADS1115 ALERT/RDY: no conversion-ready edges on GPIO line {}: single-shot pacing instead (CH1 "
+              "~200 Hz). Wire ALERT/RDY to that line (10 kOhm pull-up) or set ads_alert_rdy_line = -1",
+              settings.hardware.ads_alert_rdy_line);
+        }
       }
       if (now - lastStatsLog >= std::chrono::minutes(1)) {
         lastStatsLog = now;

@@ -59,6 +59,8 @@ web::StatusSnapshot WebApi::toStatus(const rt::RuntimeSnapshot& s, bool sim, dou
   add("runtime", "commands_applied", static_cast<double>(s.health.commandsApplied));
   add("runtime", "commands_rejected", static_cast<double>(s.health.commandsRejected));
   add("runtime", "events_dropped", static_cast<double>(s.health.eventsDropped));
+  add("runtime", "ads_ready_edges", static_cast<double>(s.loop.adsEdges));
+  add("runtime", "ads_edge_fallback", s.health.adsEdgeFallback ? 1.0 : 0.0);
   return o;
 }
 

@@ -35,7 +35,7 @@ struct HardwareSettings {
   double shunt_max_current_a = 200.0;    // sets CURRENT_LSB = max / 2^19
   AnalogFrontEndSettings frontend;
   std::vector<int> ads_channel_sequence{1, 0, 1, 2, 1, 3};  // favours CH1 (alternator current)
-  int ads_alert_rdy_line = -1;            // GPIO line of ALERT/RDY (-1: timed pacing)
+  int ads_alert_rdy_line = 27;            // GPIO line of ALERT/RDY (-1: not wired, single-shot pacing)
   std::string pwm_sysfs_root = "/sys/class/pwm";
   int pwm_chip = 0;
   int pwm_channel = 0;

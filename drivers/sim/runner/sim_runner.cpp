@@ -240,6 +240,7 @@ SimRunResult SimRunner::run() {
 
   res.finalTruth = d.world.truth().plant;
   res.health = d.cycle->health();
+  res.loop = d.stats.summary();
   res.ticks = d.cycle->ticks();
   res.i2cTransfers = d.world.bus().transfers();
   res.i2cFailures = d.world.bus().failedTransfers();

@@ -53,6 +53,7 @@ struct SimRunResult {
   std::vector<Event> events;
   PlantTruth finalTruth;
   rt::RuntimeHealth health;
+  rt::LoopStatsSummary loop;  // the control loop's statistics at the end (rates on virtual time)
   std::uint64_t ticks = 0;
   std::uint64_t i2cTransfers = 0, i2cFailures = 0;
   std::uint64_t inaProtocolErrors = 0, adsProtocolErrors = 0;  // driver bugs the models refused

@@ -284,5 +284,59 @@ TEST(ControlCycle, SampleRatesCountFreshSamples) {
   EXPECT_NEAR(s.inaSampleRateHz, 400.0, 1.0);
 }
 
+TEST(ControlCycle, ServicesReadyEdgesUntilTheDeadlineAndCountsEverySample) {
+  CycleRig r;
+  test::FakeEdges edges(r.clock.t);
+  r.dev.adsReady = &edges;
+  r.sensors.counting = true;
+  r.cycle = std::make_unique<ControlCycle>(r.core, r.dev, r.handoffs, r.stats, r.timing, r.cfg);
+  TimeNs next = r.clock.t;
+  for (int i = 0; i < 801; ++i) {  // 2 s at 400 Hz, as ControlLoop does it
+    next += fromUs(2500);
+    r.cycle->serviceEdges(next);
+    r.clock.t = next;
+    r.cycle->tick(next);
+  }
+  // 860 edges per second, each handed to the sensors with its own stamp, all
+  // before the deadline they were waited against.
+  ASSERT_GE(r.sensors.edges.size(), 1715u);
+  EXPECT_LE(r.sensors.edges.size(), 1722u);
+  for (std::size_t i = 1; i < r.sensors.edges.size(); ++i)
+    EXPECT_EQ(r.sensors.edges[i] - r.sensors.edges[i - 1], edges.period);
+  const LoopStatsSummary s = r.stats.summary();
+  // Two results in one tick count twice: the rate is the chip's, not the tick's.
+  EXPECT_NEAR(s.ch1SampleRateHz, 860.0, 3.0);
+  EXPECT_EQ(s.adsEdges, r.sensors.edges.size());
+}
+
+TEST(ControlCycle, WithoutAReadyLineNoEdgeIsWaitedFor) {
+  CycleRig r;
+  r.cycle->serviceEdges(r.clock.t + fromUs(2500));
+  EXPECT_TRUE(r.sensors.edges.empty());
+  EXPECT_EQ(r.stats.summary().adsEdges, 0u);
+}
+
+TEST(ControlCycle, EdgeErrorsAreCountedAndDoNotBlockTheTick) {
+  CycleRig r;
+  test::FakeEdges edges(r.clock.t);
+  edges.fail = true;
+  r.dev.adsReady = &edges;
+  r.cycle = std::make_unique<ControlCycle>(r.core, r.dev, r.handoffs, r.stats, r.timing, r.cfg);
+  r.cycle->serviceEdges(r.clock.t + fromUs(2500));
+  EXPECT_EQ(edges.waits, 1);
+  EXPECT_EQ(r.cycle->health().edgeErrors, 1u);
+  EXPECT_TRUE(r.tick());
+}
+
+TEST(ControlCycle, AnEdgeStormCannotStarveTheTick) {
+  CycleRig r;
+  test::FakeEdges edges(r.clock.t);
+  edges.period = 1;  // a noisy line: an edge every nanosecond
+  r.dev.adsReady = &edges;
+  r.cycle = std::make_unique<ControlCycle>(r.core, r.dev, r.handoffs, r.stats, r.timing, r.cfg);
+  r.cycle->serviceEdges(r.clock.t + fromUs(2500));
+  EXPECT_EQ(r.sensors.edges.size(), 16u);  // bounded per period
+}
+
 }  // namespace
 }  // namespace xr::rt

@@ -91,10 +91,42 @@ struct FakeSensors final : FastSensors {
     lastFast = out.inaFastMode;
     ++applies;
   }
+  // Ready-edge pacing: each edge is one CH1 result (when counting).
+  void onReadyEdge(TimeNs edge) noexcept override {
+    edges.push_back(edge);
+    ++counts.ads[1];
+  }
+  void sampleCounts(SampleCounts& c) const noexcept override {
+    c = counts;
+    c.valid = counting;
+  }
   double ibv = 13.2;
   bool ok = true;
+  bool counting = false;
+  SampleCounts counts{};
+  std::vector<TimeNs> edges;
   int reads = 0, applies = 0;
   bool lastFast = false;
+};
+
+// ALERT/RDY edges every `period` on the test's clock, up to each deadline.
+struct FakeEdges final : ReadyEdgeSource {
+  explicit FakeEdges(TimeNs& clockTime) : t(clockTime) {}
+  int waitEdge(TimeNs deadline, TimeNs* stamp) noexcept override {
+    ++waits;
+    if (fail) return -1;
+    if (next == 0) next = t + period;
+    if (next >= deadline) return 0;
+    t = next;
+    *stamp = next;
+    next += period;
+    return 1;
+  }
+  TimeNs& t;
+  TimeNs period = 1'162'791;  // 860 SPS
+  TimeNs next = 0;
+  bool fail = false;
+  int waits = 0;
 };
 
 // Records every write in order, to check sequencing (enable LOW first...).
