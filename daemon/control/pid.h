@@ -12,6 +12,14 @@
 // Unlike the library, Compute() takes the real dt of this compute, so the
 // same gains give the same response at any tick rate (the library assumes its
 // nominal SampleTime). Plain state, no allocation.
+//
+// The setters, the clamp and the trackers are defined here, inline: the
+// control law re-applies its tunings and limits on every AUTO tick (the
+// parameters may change between any two ticks), and as out-of-line calls
+// they were a measurable share of Regulator::step.
+#include <algorithm>
+#include <cmath>
+
 namespace xr {
 
 class Pid {
@@ -21,8 +29,19 @@ class Pid {
 
   Pid(double kp, double ki, double kd, Direction dir);
 
-  void SetTunings(double kp, double ki, double kd);
-  void SetOutputLimits(double min, double max);
+  void SetTunings(double kp, double ki, double kd) {
+    if (kp < 0 || ki < 0 || kd < 0) return;  // library contract: gains are magnitudes
+    kp_ = kp;
+    ki_ = ki;
+    kd_ = kd;
+  }
+  void SetOutputLimits(double min, double max) {
+    if (!(min < max)) return;
+    outMin_ = min;
+    outMax_ = max;
+    output = clampOut(output);
+    outputSum_ = clampOut(outputSum_);
+  }
   void SetControllerDirection(Direction dir) { direction_ = dir; }
   void SetTrackingGain(double perSecond) { trackingGain_ = perSecond; }
   void SetMode(Mode mode);  // bumpless on MANUAL -> AUTOMATIC
@@ -34,13 +53,27 @@ class Pid {
 
   // Anti-windup (back-calculation): outputSum += min(1, Kt*dt) *
   // ((applied - P - D) - outputSum). Neutral while the output is not clamped.
-  void TrackAppliedOutput(double applied, double dtSec);
+  void TrackAppliedOutput(double applied, double dtSec) {
+    if (!(dtSec > 0.0) || !std::isfinite(applied)) return;
+    // Back-calculation: pulls outputSum toward the value that, with the present
+    // P and D terms, reproduces what the actuator actually applied. Zero effect
+    // while the output is not clamped downstream (applied == output), so the
+    // linear loop keeps exactly its Kp/Ki/Kd.
+    const double a = std::min(1.0, trackingGain_ * dtSec);
+    const double wanted = applied - pTerm_ - dTerm_;
+    outputSum_ = clampOut(outputSum_ + a * (wanted - outputSum_));
+  }
   // Parks the integrator itself toward `target` at Kt per second (T0's
   // implied-penalty anti-windup: "parks it near where the constraints already
   // imply", without making the penalty act while the temperature is low).
   void TrackIntegratorTo(double target, double dtSec);
   // Pins the integrator (and the output) to v, e.g. every MANUAL tick.
-  void ResetIntegratorTo(double v);
+  void ResetIntegratorTo(double v) {
+    if (!std::isfinite(v)) return;
+    outputSum_ = clampOut(v);
+    output = outputSum_;
+    lastInput_ = std::isfinite(input) ? input : lastInput_;
+  }
 
   double GetPterm() const { return pTerm_; }
   double GetIterm() const { return outputSum_; }
@@ -53,7 +86,7 @@ class Pid {
   double setpoint = 0.0;
 
  private:
-  double clampOut(double v) const;
+  double clampOut(double v) const { return std::clamp(v, outMin_, outMax_); }
   double kp_, ki_, kd_;
   Direction direction_;
   Mode mode_ = MANUAL;

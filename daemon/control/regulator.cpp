@@ -36,6 +36,7 @@ struct Regulator::State {
   explicit State(const Params& params) : p(params), law(params), prot(params), bat(params) {}
 
   Params p;
+  double inaBovlVolts = 0.0;  // voltageHardwareLimit(p), computed at setParams (not per tick)
   ControlLaw law;
   ProtectionSupervisor prot;
   BatteryMonitor bat;
@@ -63,12 +64,14 @@ struct Regulator::State {
 };
 
 Regulator::Regulator(const Params& params) : s_(std::make_unique<State>(params)) {
-  s_->out.inaBovlVolts = voltageHardwareLimit(params);
+  s_->inaBovlVolts = voltageHardwareLimit(params);
+  s_->out.inaBovlVolts = s_->inaBovlVolts;
 }
 Regulator::~Regulator() = default;
 
 void Regulator::setParams(const Params& params) {
   s_->p = params;
+  s_->inaBovlVolts = voltageHardwareLimit(params);
   s_->prot.setParams(params);
   s_->bat.setParams(params);
 }
@@ -290,7 +293,7 @@ const Outputs& Regulator::step(const Inputs& in) {
   out.dutyPct = field ? std::clamp(duty, 0.0, 100.0) : 0.0;
   out.fieldEnable = field;
   out.inaFastMode = field;  // fast conversions while the field is on (Group 1 dv/dt, ALERT speed)
-  out.inaBovlVolts = voltageHardwareLimit(p);
+  out.inaBovlVolts = s.inaBovlVolts;
 
   // 8. SoC and energy.
   s.bat.UpdateBatterySOC(in, MeasuredAmps, ev);
@@ -303,7 +306,7 @@ const Outputs& Regulator::step(const Inputs& in) {
   s.law.fillTelemetry(t.control);
   t.control.govMode = govMode;
   t.control.limpHome = d.mode == FieldControlMode::MODE_LIMP_HOME;
-  t.protection = s.prot.telemetry();
+  s.prot.fillTelemetry(t.protection);
   s.bat.fillTelemetry(t.battery);
   t.now = in.now;
   t.mode = d.mode;

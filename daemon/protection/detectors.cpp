@@ -5,7 +5,6 @@
 #include <cmath>
 
 #include "params/constants.h"
-#include "params/derived.h"
 #include "protection/protection_supervisor.h"
 
 namespace xr {
@@ -76,8 +75,7 @@ void ProtectionSupervisor::updateInaLatch(const Inputs& in, EventBatch& ev) {
       inaNextRelease_ = now_ + fromMs(k::INA_LATCH_RELEASE_CHECK_MS);
       lastTripReason_ = Reason::REASON_INA_OVERVOLTAGE;
       lastTripTime_ = now_;
-      push(ev, EventCode::InaLatchSet, EventLevel::Critical, Reason::REASON_INA_OVERVOLTAGE, IBV_,
-           voltageHardwareLimit(p_));
+      push(ev, EventCode::InaLatchSet, EventLevel::Critical, Reason::REASON_INA_OVERVOLTAGE, IBV_, d_.hwLimitV);
     }
   } else if (now_ >= inaNextRelease_) {
     if (!in.inaBusOvervoltage) {
@@ -94,7 +92,7 @@ void ProtectionSupervisor::updateInaLatch(const Inputs& in, EventBatch& ev) {
 // Alternator hard shutdown, disagreement warning/critical, implausibility.
 void ProtectionSupervisor::updateVoltageSensors(const Inputs& in, EventBatch& ev) {
   // Alternator Hard Shutdown: IBV > AlternatorHardShutdownV.
-  const double hs = alternatorHardShutdownV(p_);
+  const double hs = d_.hardShutdownV;
   flags_.altHardShutdown = finite(IBV_) && IBV_ > hs;
   // Co-firing with the INA228 alert: one log line (InaLatchSet), not two.
   if (!(flags_.altHardShutdown && flags_.inaOvervoltageLatched))
@@ -112,14 +110,13 @@ void ProtectionSupervisor::updateVoltageSensors(const Inputs& in, EventBatch& ev
           !finite(BatteryV_) || !finite(IBV_) || BatteryV_ < k::SENSOR_DEAD_V || IBV_ < k::SENSOR_DEAD_V;
       const double diff = dead ? 0.0 : std::fabs(BatteryV_ - IBV_);
       // NaN / < 0.1 V: critical at once, no debounce.
-      disC = sustained(disagreeCritT_, !dead && diff > criticalDisagreementThreshold(p_),
+      disC = sustained(disagreeCritT_, !dead && diff > d_.criticalDisagreeV,
                        fromMs(k::VoltageDisagreeCriticalTimeoutMs)) ||
              dead;
       disW = sustained(disagreeWarnT_, !dead && diff > p_.VoltageDisagreeThreshold,
                        fromSec(p_.VoltageDisagreeTimeout));
     }
-    const VoltageRange r = plausibleVoltageRange(p_);
-    auto outside = [&](double v) { return !finite(v) || v < r.min || v > r.max; };
+    auto outside = [&](double v) { return !finite(v) || v < d_.plausibleMin || v > d_.plausibleMax; };
     impl = outside(IBV_) && outside(BatteryV_);  // single-sensor implausibility passes
   }
   if (!inaUsable || notReadYet || suppress) {
@@ -183,7 +180,7 @@ void ProtectionSupervisor::updateTemperature(const Inputs& in, EventBatch& ev) {
 
 // Hard overcurrent, RPM gate, current data stale.
 void ProtectionSupervisor::updateCurrent(const Inputs& in, double MeasuredAmps, EventBatch& ev) {
-  const double trip = hardOCTripAmps(p_);
+  const double trip = d_.hardOcTripA;
   flags_.hardOvercurrent =
       sustained(hardOcT_, finite(MeasuredAmps) && MeasuredAmps > trip, fromMs(p_.HardOCDebounceMs));
   edge(evHardOc_, flags_.hardOvercurrent, Reason::REASON_HARD_OVERCURRENT, MeasuredAmps, trip, ev,

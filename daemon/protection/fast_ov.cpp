@@ -81,9 +81,11 @@ FastOvAction ProtectionSupervisor::runFastOvSupervisors(const FastOvInputs& x) {
     const int n = std::min(maN, maCount_);
     if (n > 0) {
       double sum = 0.0;
-      for (int i = 1; i <= n; ++i)
-        sum += maBuf_[static_cast<std::size_t>((maHead_ - i + static_cast<int>(maBuf_.size())) %
-                                               static_cast<int>(maBuf_.size()))];
+      // Newest to oldest, as before; the ring size is a power of two, so the
+      // wrap is a mask instead of a signed modulo (same index, same sum).
+      static_assert((std::tuple_size_v<decltype(maBuf_)> & (std::tuple_size_v<decltype(maBuf_)> - 1)) == 0);
+      constexpr int kMask = static_cast<int>(std::tuple_size_v<decltype(maBuf_)>) - 1;
+      for (int i = 1; i <= n; ++i) sum += maBuf_[static_cast<std::size_t>((maHead_ - i) & kMask)];
       sig = sum / n;
     }
   } else if (p_.IExcessSigSrc == 1) {

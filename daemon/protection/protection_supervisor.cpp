@@ -5,11 +5,29 @@
 
 #include <algorithm>
 
+#include "params/derived.h"
+
 namespace xr {
 
-ProtectionSupervisor::ProtectionSupervisor(const Params& p) : p_(p) { alarmMsgAt_.fill(-1); }
+ProtectionSupervisor::ProtectionSupervisor(const Params& p) : p_(p) {
+  alarmMsgAt_.fill(-1);
+  computeDerived();
+}
 
-void ProtectionSupervisor::setParams(const Params& p) { p_ = p; }
+void ProtectionSupervisor::setParams(const Params& p) {
+  p_ = p;
+  computeDerived();
+}
+
+void ProtectionSupervisor::computeDerived() {
+  d_.hardShutdownV = alternatorHardShutdownV(p_);
+  d_.hwLimitV = voltageHardwareLimit(p_);
+  d_.criticalDisagreeV = criticalDisagreementThreshold(p_);
+  const VoltageRange r = plausibleVoltageRange(p_);
+  d_.plausibleMin = r.min;
+  d_.plausibleMax = r.max;
+  d_.hardOcTripA = hardOCTripAmps(p_);
+}
 
 void ProtectionSupervisor::push(EventBatch& ev, EventCode c, EventLevel l, Reason r, double a, double b,
                                 int detail) const {
@@ -19,8 +37,8 @@ void ProtectionSupervisor::push(EventBatch& ev, EventCode c, EventLevel l, Reaso
 // Trip / clear events of one detector: the trip on its rising edge, the
 // clear once the condition has stayed false for kEventClearHold (a re-trip
 // inside that window is the same event, not a new one).
-void ProtectionSupervisor::edge(EventEdge& e, bool now, Reason r, double a, double b, EventBatch& ev,
-                                EventLevel level, bool logTrip) {
+void ProtectionSupervisor::edgeChanged(EventEdge& e, bool now, Reason r, double a, double b, EventBatch& ev,
+                                       EventLevel level, bool logTrip) {
   if (now) {
     e.falseSince = -1;
     if (e.logged) return;
@@ -50,6 +68,11 @@ void ProtectionSupervisor::resetAlarmLatch() { alarmLatched_ = false; }
 
 ProtectionTelemetry ProtectionSupervisor::telemetry() const {
   ProtectionTelemetry t;
+  fillTelemetry(t);
+  return t;
+}
+
+void ProtectionSupervisor::fillTelemetry(ProtectionTelemetry& t) const {
   t.shutdownPhase = phase_;
   t.nearBulk = lastFastOv_.nearBulk;
   t.fastOvCurrentCap = lastFastOv_.fastOvCurrentCap;
@@ -82,7 +105,6 @@ ProtectionTelemetry ProtectionSupervisor::telemetry() const {
   t.currentStale = flags_.currentStale;
   t.fieldCut = fieldCut_;
   t.alarmLatched = alarmLatched_;
-  return t;
 }
 
 }  // namespace xr

@@ -132,6 +132,9 @@ class ProtectionSupervisor {
   void resetAlarmLatch();  // ResetAlarmLatch
 
   ProtectionTelemetry telemetry() const;
+  // Same, written in place (Regulator::step fills its persistent Outputs
+  // without building and copying a temporary every tick).
+  void fillTelemetry(ProtectionTelemetry& t) const;
 
  private:
   struct TimerState {
@@ -153,14 +156,36 @@ class ProtectionSupervisor {
     TimeNs falseSince = -1;
   };
   static constexpr TimeNs kEventClearHold = 1'000'000'000;
+  // Inline hot path: nearly every tick every detector is idle (or still
+  // holding an already logged trip), which needs no event and no call.
   void edge(EventEdge& e, bool now, Reason r, double a, double b, EventBatch& ev,
-            EventLevel level = EventLevel::Warning, bool logTrip = true);
+            EventLevel level = EventLevel::Warning, bool logTrip = true) {
+    if (now && e.logged) {
+      e.falseSince = -1;
+      return;
+    }
+    if (!now && !e.logged) return;
+    edgeChanged(e, now, r, a, b, ev, level, logTrip);
+  }
+  void edgeChanged(EventEdge& e, bool now, Reason r, double a, double b, EventBatch& ev, EventLevel level,
+                   bool logTrip);
+  // Parameter-derived values (params/derived.h), computed once per
+  // setParams() instead of on every tick by the detectors.
+  struct Derived {
+    double hardShutdownV = 0.0;       // alternatorHardShutdownV
+    double hwLimitV = 0.0;            // voltageHardwareLimit
+    double criticalDisagreeV = 0.0;   // criticalDisagreementThreshold
+    double plausibleMin = 0.0, plausibleMax = 0.0;  // plausibleVoltageRange
+    double hardOcTripA = 0.0;         // hardOCTripAmps
+  };
+  void computeDerived();
   void push(EventBatch& ev, EventCode c, EventLevel l, Reason r, double a = 0.0, double b = 0.0,
             int detail = 0) const;
   void startLockout(EventBatch& ev);
   void resetFastOv();
 
   Params p_;
+  Derived d_;
   ProtectionFlags flags_;
   TimeNs now_ = 0;
   TimeNs boot_ = -1;

@@ -14,7 +14,6 @@
 #include <cmath>
 
 #include "params/constants.h"
-#include "params/derived.h"
 #include "protection/protection_supervisor.h"
 
 namespace xr {
@@ -126,7 +125,7 @@ ShutdownCommand ProtectionSupervisor::runShutdownPath(const ModeDecision& d, dou
   }
   // Slew-bypass accelerator: far above the hard-shutdown threshold phase 1 is instant.
   const bool accel = d.reason == Reason::REASON_ALT_HARD_SHUTDOWN && std::isfinite(IBV_) &&
-                     IBV_ > alternatorHardShutdownV(p_) + k::HARD_SHUTDOWN_BYPASS_OFFSET_V;
+                     IBV_ > d_.hardShutdownV + k::HARD_SHUTDOWN_BYPASS_OFFSET_V;
   c.govMode = (critical || accel) ? GovMode::GOV_BYPASS_SLEW : GovMode::GOV_NORMAL_SLEW;
   const double floorDuty = std::max(0.0, rpmMinDuty);
 
