@@ -42,6 +42,7 @@ BatteryMonitor::BatteryMonitor(const Params& p) : p_(p) {
 
 void BatteryMonitor::setParams(const Params& p) {
   p_ = p;
+  telemetryStale_ = true;
   ledger_.CoulombCount_Ah = std::clamp(ledger_.CoulombCount_Ah, 0.0, p_.BatteryCapacity_Ah);
 }
 
@@ -85,6 +86,7 @@ void BatteryMonitor::checkAutoZeroTriggers(const Inputs& in, EventBatch& ev) {
       haveAutoZeroTemp_ && finite(temp) && std::fabs(temp - lastAutoZeroTemp_) >= k::AUTO_ZERO_TEMP_DELTA;
   if (!intervalDue && !tempShift) return;
   autoZeroActive_ = true;
+  telemetryStale_ = true;
   autoZeroStartTime_ = in.now;
   autoZeroAccumulator_ = 0.0;
   autoZeroSampleCount_ = 0;
@@ -117,6 +119,7 @@ bool BatteryMonitor::processAutoZero(const Inputs& in, EventBatch& ev) {
       zero = mean;
   }
   ledger_.DynamicAltCurrentZero = zero;
+  telemetryStale_ = true;
   lastAutoZeroTime_ = in.now;
   const double temp = temperatureF(in);
   if (finite(temp)) {
@@ -157,7 +160,8 @@ void BatteryMonitor::UpdateBatterySOC(const Inputs& in, double measuredAltAmps, 
   const bool vOk = finite(V) && in.IBV.stamp != 0;
   double I = 0.0;
   bool iOk = false;
-  if (usingVictronCurrent(in)) {
+  const bool victron = usingVictronCurrent(in);
+  if (victron) {
     I = in.VictronCurrent.value;
     iOk = true;
   } else if (usable(in.Bcur, in.now, battery_k::INA_STALE_FOR_SOC_MS)) {
@@ -170,7 +174,7 @@ void BatteryMonitor::UpdateBatterySOC(const Inputs& in, double measuredAltAmps, 
   }
   batteryCurrentForSoC_ = iOk ? I : 0.0;
   socInputsValid_ = iOk && vOk;
-  usingVictron_ = usingVictronCurrent(in);
+  usingVictron_ = victron;
 
   if (dt > 0.0) {
     if (iOk) intAh_ += I * dt / 3600.0;
@@ -221,6 +225,7 @@ void BatteryMonitor::commitEnergy(Energy& e, double& lifetimeWhole, double delta
 }
 
 void BatteryMonitor::runSocBody(TimeNs now, double elapsed_s, EventBatch& ev) {
+  telemetryStale_ = true;
   const double cap = p_.BatteryCapacity_Ah;
 
   // ---- coulomb counting
@@ -358,6 +363,7 @@ void BatteryMonitor::applySocGainCorrection(TimeNs now, EventBatch& ev) {
 }
 
 void BatteryMonitor::calculateChargeTimes(const Inputs& in) {
+  telemetryStale_ = true;
   const double currentAmps = getBatteryCurrent(in);
   const double currentSoC = socPercent();
   const double cap = p_.BatteryCapacity_Ah;
@@ -375,14 +381,21 @@ void BatteryMonitor::calculateChargeTimes(const Inputs& in) {
 
 // ---------------------------------------------------------------- commands
 
-void BatteryMonitor::resetSocGain() { ledger_.DynamicShuntGainFactor = 1.0; }
+void BatteryMonitor::resetSocGain() {
+  ledger_.DynamicShuntGainFactor = 1.0;
+  telemetryStale_ = true;
+}
 
-void BatteryMonitor::resetAltZero() { ledger_.DynamicAltCurrentZero = 0.0; }
+void BatteryMonitor::resetAltZero() {
+  ledger_.DynamicAltCurrentZero = 0.0;
+  telemetryStale_ = true;
+}
 
 bool BatteryMonitor::setSoc(double pct) {
   if (!finite(pct) || pct < 0.0 || pct > 100.0) return false;
   ledger_.CoulombCount_Ah = p_.BatteryCapacity_Ah * pct / 100.0;
   ledger_.coulombAccumulator_Ah = 0.0;
+  telemetryStale_ = true;
   // The operator's figure is a reference point for the gain correction.
   gainReferenceValid_ = true;
   unclampedCount_Ah_ = ledger_.CoulombCount_Ah;
@@ -437,6 +450,7 @@ void BatteryMonitor::restoreLedger(const BatteryLedger& in) {
   split(l.SolarChargedEnergy_AllTime_Wh, solar_);
   l.valid = true;
   ledger_ = l;
+  telemetryStale_ = true;
   gainReferenceValid_ = false;
   socKnown_ = std::isfinite(in.CoulombCount_Ah) && in.valid;
 }
@@ -455,6 +469,17 @@ double BatteryMonitor::chargedEnergyLifetimeWh() const {
 
 double BatteryMonitor::alternatorChargedEnergyLifetimeWh() const {
   return ledger_.AlternatorChargedEnergy_AllTime_Wh + altCharged_.lifetimeFraction_Wh;
+}
+
+void BatteryMonitor::updateTelemetry(BatteryTelemetry& t) {
+  if (telemetryStale_) {
+    fillTelemetry(t);
+    telemetryStale_ = false;
+    return;
+  }
+  // The two fields UpdateBatterySOC() rewrites on every tick.
+  t.batteryCurrentForSoC = batteryCurrentForSoC_;
+  t.usingVictronCurrent = usingVictron_;
 }
 
 void BatteryMonitor::fillTelemetry(BatteryTelemetry& t) const {

@@ -132,6 +132,13 @@ class BatteryMonitor {
 
   // ---- outputs -------------------------------------------------------------
   void fillTelemetry(BatteryTelemetry& t) const;
+  // Per-tick telemetry for a struct that lives from tick to tick and that
+  // only this call writes (Regulator's Outputs): nearly every field changes
+  // only when the SoC body, the charge-time prediction, an auto-zero, a
+  // command, setParams or restoreLedger runs, so the whole struct is
+  // refilled only then; otherwise only the per-tick fields are written.
+  // The result is always equal to fillTelemetry() (battery_test checks it).
+  void updateTelemetry(BatteryTelemetry& t);
   double socPercent() const;
   // False while the SoC is the constructor's guess: no valid ledger restored,
   // no setSoc, no full-charge detection yet. Control may ignore SOC gating
@@ -161,6 +168,9 @@ class BatteryMonitor {
 
   Params p_;
   BatteryLedger ledger_;
+  // Something behind a slow telemetry field changed since the last
+  // updateTelemetry() (see there).
+  bool telemetryStale_ = true;
 
   // Per-interval integrals (zero-order hold, reset each SOC body run).
   bool started_ = false;

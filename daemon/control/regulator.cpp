@@ -307,7 +307,7 @@ const Outputs& Regulator::step(const Inputs& in) {
   t.control.govMode = govMode;
   t.control.limpHome = d.mode == FieldControlMode::MODE_LIMP_HOME;
   s.prot.fillTelemetry(t.protection);
-  s.bat.fillTelemetry(t.battery);
+  s.bat.updateTelemetry(t.battery);
   t.now = in.now;
   t.mode = d.mode;
   t.stage = s.law.stages().stage();
@@ -325,10 +325,10 @@ const Outputs& Regulator::step(const Inputs& in) {
   t.target_v = s.law.ChargingVoltageTarget();
   t.thermal_penalty_a = s.law.thermalPenaltyAmps();
   t.fast_ov_active = fastOvActive;
-  t.soc_pct = s.bat.socPercent();
+  t.soc_pct = t.battery.SOC_percent;  // the same socPercent(), already in the battery telemetry
   t.alarm = out.buzzer;
-  t.charged_wh_lifetime = s.bat.chargedEnergyLifetimeWh();
-  t.alt_charged_wh_lifetime = s.bat.alternatorChargedEnergyLifetimeWh();
+  t.charged_wh_lifetime = t.battery.ChargedEnergy_AllTime_Wh;  // chargedEnergyLifetimeWh()
+  t.alt_charged_wh_lifetime = t.battery.AlternatorChargedEnergy_AllTime_Wh;  // alternatorChargedEnergyLifetimeWh()
   return out;
 }
 
