@@ -107,8 +107,8 @@ void ControlLaw::updateChargingStage(const ControlSensors& s, const Params& p, b
   if (p.CVTuningMode) {
     ChargingVoltageTarget_ = cvTuning_.target(s.now, ChargingVoltageTarget_, p);
     voltageControlActive_ = true;
-  } else {
-    cvTuning_.reset();
+  } else if (cvTuning_.running()) {
+    cvTuning_.reset();  // nothing to clear unless a run is in progress (score/commit need one)
   }
   if (p.TargetVoltageMode) {
     ChargingVoltageTarget_ = p.TargetVoltageSetpoint;
@@ -151,8 +151,8 @@ double ControlLaw::computeUTarget(const ControlSensors& s, const Params& p) {
   double u = I_cmd;
   if (p.TuningMode) {
     u = std::min(tuning_.waveTarget(s.now, p), I_cmd);  // every cap still applies
-  } else {
-    tuning_.reset();
+  } else if (tuning_.running()) {
+    tuning_.reset();  // nothing to clear unless a run is in progress (score/commit need one)
   }
   if (p.MaintainMode) u = 0.0;  // ceiling enforcer: Icv -> 0 (clamp [0, 0])
   uTargetRaw_ = u;

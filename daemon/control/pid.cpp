@@ -16,19 +16,6 @@ void Pid::SetMode(Mode mode) {
   mode_ = mode;
 }
 
-bool Pid::Compute(double dtSec) {
-  if (mode_ != AUTOMATIC || !(dtSec > 0.0) || !std::isfinite(input) || !std::isfinite(setpoint)) return false;
-  const double sign = direction_ == DIRECT ? 1.0 : -1.0;
-  const double error = setpoint - input;
-  const double dInput = input - lastInput_;
-  outputSum_ = clampOut(outputSum_ + sign * ki_ * error * dtSec);
-  pTerm_ = sign * kp_ * error;
-  dTerm_ = -sign * kd_ * dInput / dtSec;  // on measurement: no kick on setpoint steps
-  output = clampOut(pTerm_ + outputSum_ + dTerm_);
-  lastInput_ = input;
-  return true;
-}
-
 void Pid::TrackIntegratorTo(double target, double dtSec) {
   if (!(dtSec > 0.0) || !std::isfinite(target)) return;
   const double a = std::min(1.0, trackingGain_ * dtSec);

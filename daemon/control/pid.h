@@ -49,7 +49,18 @@ class Pid {
 
   // Runs one compute with the real elapsed time. Returns false (and changes
   // nothing) in MANUAL or when dtSec <= 0 or the input is not finite.
-  bool Compute(double dtSec);
+  bool Compute(double dtSec) {
+    if (mode_ != AUTOMATIC || !(dtSec > 0.0) || !std::isfinite(input) || !std::isfinite(setpoint)) return false;
+    const double sign = direction_ == DIRECT ? 1.0 : -1.0;
+    const double error = setpoint - input;
+    const double dInput = input - lastInput_;
+    outputSum_ = clampOut(outputSum_ + sign * ki_ * error * dtSec);
+    pTerm_ = sign * kp_ * error;
+    dTerm_ = -sign * kd_ * dInput / dtSec;  // on measurement: no kick on setpoint steps
+    output = clampOut(pTerm_ + outputSum_ + dTerm_);
+    lastInput_ = input;
+    return true;
+  }
 
   // Anti-windup (back-calculation): outputSum += min(1, Kt*dt) *
   // ((applied - P - D) - outputSum). Neutral while the output is not clamped.

@@ -19,7 +19,10 @@ bool finite(double v) { return std::isfinite(v); }
 
 }  // namespace
 
-bool ProtectionSupervisor::sustained(TimerState& t, bool cond, TimeNs hold) const {
+// The detector steps below are `inline` (defined and used only in this file)
+// so they fold into updateDetectors(): one call per tick instead of six.
+
+inline bool ProtectionSupervisor::sustained(TimerState& t, bool cond, TimeNs hold) const {
   if (!cond) {
     t.since = -1;
     return false;
@@ -61,7 +64,7 @@ void ProtectionSupervisor::updateDetectors(const Inputs& in, double MeasuredAmps
 // release check 3 s after latching, then a definitive recheck every 10 s.
 // The seed's 5 s new-event poll is tightened to every 250 ms check (the
 // hardware has already cut GPIO4; the sooner the software agrees the better).
-void ProtectionSupervisor::updateInaLatch(const Inputs& in, EventBatch& ev) {
+inline void ProtectionSupervisor::updateInaLatch(const Inputs& in, EventBatch& ev) {
   if (p_.INADisconnected) {
     flags_.inaOvervoltageLatched = false;
     return;
@@ -90,7 +93,7 @@ void ProtectionSupervisor::updateInaLatch(const Inputs& in, EventBatch& ev) {
 }
 
 // Alternator hard shutdown, disagreement warning/critical, implausibility.
-void ProtectionSupervisor::updateVoltageSensors(const Inputs& in, EventBatch& ev) {
+inline void ProtectionSupervisor::updateVoltageSensors(const Inputs& in, EventBatch& ev) {
   // Alternator Hard Shutdown: IBV > AlternatorHardShutdownV.
   const double hs = d_.hardShutdownV;
   flags_.altHardShutdown = finite(IBV_) && IBV_ > hs;
@@ -138,7 +141,7 @@ void ProtectionSupervisor::updateVoltageSensors(const Inputs& in, EventBatch& ev
 }
 
 // T1, T2, T3 (IgnoreTemperature), T4 and T5 (not ignorable, see docs).
-void ProtectionSupervisor::updateTemperature(const Inputs& in, EventBatch& ev) {
+inline void ProtectionSupervisor::updateTemperature(const Inputs& in, EventBatch& ev) {
   const Reading& tr = p_.TempSource == 0 ? in.AlternatorTemperatureF : in.thermistorF;
   TempToUse_ = tr.value;
   const bool inRange = finite(tr.value) && tr.value >= k::TEMP_VALID_MIN_F && tr.value <= k::TEMP_VALID_MAX_F;
@@ -179,7 +182,7 @@ void ProtectionSupervisor::updateTemperature(const Inputs& in, EventBatch& ev) {
 }
 
 // Hard overcurrent, RPM gate, current data stale.
-void ProtectionSupervisor::updateCurrent(const Inputs& in, double MeasuredAmps, EventBatch& ev) {
+inline void ProtectionSupervisor::updateCurrent(const Inputs& in, double MeasuredAmps, EventBatch& ev) {
   const double trip = d_.hardOcTripA;
   flags_.hardOvercurrent =
       sustained(hardOcT_, finite(MeasuredAmps) && MeasuredAmps > trip, fromMs(p_.HardOCDebounceMs));
@@ -209,7 +212,7 @@ void ProtectionSupervisor::updateCurrent(const Inputs& in, double MeasuredAmps, 
 // Fresh INA228 samples feed the Group 1 dv/dt EMA and the load-dump dBcur/dt.
 // "dvdt sample window: 1–100 ms between INA samples ... slow mode rejected —
 // dvdt holds last value."
-void ProtectionSupervisor::updateFastSamples(const Inputs& in) {
+inline void ProtectionSupervisor::updateFastSamples(const Inputs& in) {
   if (in.IBV.fresh && in.IBV.stamp != lastIbvStamp_ && finite(in.IBV.value)) {
     if (lastIbvStamp_ != 0 && finite(lastIbvSample_)) {
       const double dt = toSec(in.IBV.stamp - lastIbvStamp_);
