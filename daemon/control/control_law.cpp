@@ -369,6 +369,7 @@ void ControlLaw::onFieldTurnOn(TimeNs now) {
 }
 
 bool ControlLaw::startSystemId(TimeNs now, bool autoRunning) {
+  slowTelemetryStale_ = true;
   SystemIdSnapshot pre;
   pre.autoRunning = autoRunning && sysMode_ == SysMode::SYS_MODE_AUTO;
   pre.setpointLimited = setpointLimited_;
@@ -381,6 +382,20 @@ bool ControlLaw::startSystemId(TimeNs now, bool autoRunning) {
 }
 
 void ControlLaw::fillTelemetry(ControlTelemetry& t) const {
+  fillLoopTelemetry(t);
+  fillTuningTelemetry(t);
+}
+
+void ControlLaw::updateTelemetry(ControlTelemetry& t) {
+  fillLoopTelemetry(t);
+  const bool active = tuningActive();
+  if (active || slowTelemetryStale_) fillTuningTelemetry(t);
+  // Still active: the next tick rewrites them anyway; just stopped: this
+  // tick wrote the final values.
+  slowTelemetryStale_ = active;
+}
+
+void ControlLaw::fillLoopTelemetry(ControlTelemetry& t) const {
   t.sysMode = sysMode_;
   t.govMode = govMode_;
   t.I_cap = I_cap_;
@@ -430,6 +445,9 @@ void ControlLaw::fillTelemetry(ControlTelemetry& t) const {
   t.inIdleStage = stages_.inIdleStage();
   t.tailSuppressedByThermal = stages_.tailSuppressedByThermal();
   t.rebulkBlockedBySoc = stages_.rebulkBlockedBySoc();
+}
+
+void ControlLaw::fillTuningTelemetry(ControlTelemetry& t) const {
   t.tuningRunning = tuning_.running();
   t.tuningHighPhase = tuning_.highPhase();
   t.tuningScore = tuning_.currentScore();

@@ -95,8 +95,14 @@ class ControlLaw {
 
   // ---- commands ----------------------------------------------------------
   bool startSystemId(TimeNs now, bool autoRunning);
-  bool commitTuning(TimeNs now, const Params& p) { return tuning_.commit(now, p); }
-  bool commitCvTuning(TimeNs now, const Params& p) { return cvTuning_.commit(now, p); }
+  bool commitTuning(TimeNs now, const Params& p) {
+    slowTelemetryStale_ = true;
+    return tuning_.commit(now, p);
+  }
+  bool commitCvTuning(TimeNs now, const Params& p) {
+    slowTelemetryStale_ = true;
+    return cvTuning_.commit(now, p);
+  }
 
   // ---- read-back -----------------------------------------------------------
   SysMode sysMode() const { return sysMode_; }
@@ -125,6 +131,12 @@ class ControlLaw {
   double dutyRequest() const { return dutyRequest_; }
   double setpointCommand() const { return setpointCommand_; }
   void fillTelemetry(ControlTelemetry& t) const;
+  // Per-tick telemetry for a struct that lives from tick to tick and that
+  // only this call writes (Regulator's Outputs). The TuningMode, CVTuningMode
+  // and SystemID fields only move while one of those runs (or by a command),
+  // so they are rewritten only then and on the tick after; the result always
+  // equals fillTelemetry() (control_test checks it).
+  void updateTelemetry(ControlTelemetry& t);
 
  private:
   void configurePid(const Params& p);
@@ -132,6 +144,9 @@ class ControlLaw {
   double governorStep(const Params& p, double request, GovMode mode, double dt);
   void enterManualLike(SysMode m);
   void updateGovMode(const ControlSensors& s, const Params& p, const FastOvApply& fa);
+  void fillLoopTelemetry(ControlTelemetry& t) const;
+  void fillTuningTelemetry(ControlTelemetry& t) const;
+  bool tuningActive() const { return tuning_.running() || cvTuning_.running() || sysId_.sysIDRunning(); }
 
   // Loops.
   Pid currentPID_;
@@ -176,6 +191,9 @@ class ControlLaw {
   bool bulkVoltageLimitActive_ = false;
   bool overrideWasActive_ = false;
   double sysIdDutyOut_ = 0.0;
+  // A tuning/SystemID telemetry field may have moved since the last
+  // updateTelemetry() (see there).
+  bool slowTelemetryStale_ = true;
 };
 
 }  // namespace xr

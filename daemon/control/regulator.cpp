@@ -303,7 +303,7 @@ const Outputs& Regulator::step(const Inputs& in) {
 
   // 10. Telemetry.
   Telemetry& t = out.telemetry;
-  s.law.fillTelemetry(t.control);
+  s.law.updateTelemetry(t.control);
   t.control.govMode = govMode;
   t.control.limpHome = d.mode == FieldControlMode::MODE_LIMP_HOME;
   s.prot.fillTelemetry(t.protection);
