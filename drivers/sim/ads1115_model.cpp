@@ -16,10 +16,8 @@ int drOf(std::uint16_t c) { return (c >> 5) & 7; }
 int queOf(std::uint16_t c) { return c & 3; }
 }  // namespace
 
-Ads1115Model::Ads1115Model(double clockScale) : clockScale_(clockScale > 0.0 ? clockScale : 1.0) {}
-
-TimeNs Ads1115Model::period(int dr) const noexcept {
-  return static_cast<TimeNs>(1e9 / kDataRateSps[dr & 7] * clockScale_);
+Ads1115Model::Ads1115Model(double clockScale) : clockScale_(clockScale > 0.0 ? clockScale : 1.0) {
+  for (int dr = 0; dr < 8; ++dr) period_[dr] = static_cast<TimeNs>(1e9 / kDataRateSps[dr] * clockScale_);
 }
 
 std::uint16_t Ads1115Model::peekConfig() const noexcept {

@@ -55,7 +55,7 @@ class Ads1115Model final : public SimI2cDevice {
     return pulses ? convEnd_ : -1;
   }
   // Data period of a data-rate code under this chip's oscillator.
-  TimeNs period(int dr) const noexcept;
+  TimeNs period(int dr) const noexcept { return period_[dr & 7]; }
 
  private:
   void startConversion(TimeNs at) noexcept;
@@ -68,6 +68,7 @@ class Ads1115Model final : public SimI2cDevice {
   InputSource src_ = nullptr;
   void* srcCtx_ = nullptr;
   double clockScale_;
+  std::array<TimeNs, 8> period_{};  // period(dr), computed once
   TimeNs now_ = 0;
   std::uint8_t ptr_ = 0;
   std::uint16_t config_ = 0x8583;  // reset value (OS bit read back as "idle")

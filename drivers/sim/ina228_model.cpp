@@ -4,6 +4,8 @@
 #include <cerrno>
 #include <cmath>
 
+#include "drivers/sim/fast_math.h"
+
 namespace xr::sim {
 namespace ina228 {
 int regSize(std::uint8_t reg) noexcept {
@@ -30,9 +32,10 @@ constexpr std::int32_t kMin20 = -(1 << 19);
 constexpr double kVbusLsb = 195.3125e-6;      // V
 constexpr double kTempLsb = 7.8125e-3;        // °C
 constexpr std::uint64_t kMask40 = (std::uint64_t{1} << 40) - 1;
+constexpr double kInvAvg[8] = {1.0, 1.0 / 4, 1.0 / 16, 1.0 / 64, 1.0 / 128, 1.0 / 256, 1.0 / 512, 1.0 / 1024};
 
 std::int32_t quantise20(double v, double lsb) {
-  const double c = std::nearbyint(v / lsb);
+  const double c = roundEven(v / lsb);
   if (!(c == c)) return 0;  // NaN input: the ADC reads 0
   return static_cast<std::int32_t>(std::clamp(c, double(kMin20), double(kMax20)));
 }
@@ -45,15 +48,14 @@ Ina228Model::Ina228Model() { reset(); }
 
 void Ina228Model::reset() noexcept {
   config_ = 0x0000;
+  codesValid_ = false;
   adcConfig_ = 0xFB68;
   shuntCal_ = 0x1000;
   tempco_ = 0;
   vshunt_ = vbus_ = current_ = 0;
   dietemp_ = 0;
   power_ = 0;
-  energy_ = 0;
-  charge_ = 0;
-  energyFrac_ = chargeFrac_ = 0.0;
+  energyAcc_ = chargeAcc_ = 0.0;
   diag_ = MEMSTAT;
   sovl_ = 0x7FFF;
   suvl_ = 0x8000;
@@ -92,8 +94,9 @@ void Ina228Model::restartConversions() noexcept {
   }
   if (!continuous()) diag_ &= ~CNVRF;  // a new triggered conversion clears CNVRF
   running_ = true;
+  sampleTime_ = sampleTime();
   const TimeNs delay = fromMs(2 * ((config_ >> 6) & 0xFF));
-  nextSample_ = now_ + delay + sampleTime();
+  nextSample_ = now_ + delay + sampleTime_;
 }
 
 void Ina228Model::update(TimeNs t) noexcept {
@@ -101,17 +104,27 @@ void Ina228Model::update(TimeNs t) noexcept {
   // The analog inputs are constant between two updates (the plant changes
   // them only between steps), so every raw sample in [now_, t] sees the same
   // values: batch them instead of looping per sample.
+  if (running_ && nextSample_ <= t && !codesValid_) {
+    codesValid_ = true;
+    vshCode_ = quantise20(analog_.vshunt_v, (config_ & 0x10) ? 78.125e-9 : 312.5e-9);
+    vbusCode_ = quantise20(analog_.vbus_v, kVbusLsb);
+    const double tc = roundEven(analog_.dietemp_c / kTempLsb);
+    tcode_ = static_cast<std::int32_t>(std::clamp(tc == tc ? tc : 0.0, -32768.0, 32767.0));
+    // The raw power the SLOWALERT = 0 comparison uses.
+    const double curCode = shuntCal_ ? double(vshCode_) * 4096.0 / shuntCal_ : 0.0;
+    const double pw = std::fabs(curCode) * double(vbusCode_) / 16384.0;
+    rawPower_ = static_cast<std::uint32_t>(std::min(pw, double(0xFFFFFF)));
+  }
   while (running_ && nextSample_ <= t) {
-    const TimeNs st = sampleTime();
+    const TimeNs st = sampleTime_;
     const int avg = kAvgSamples[adcConfig_ & 7];
-    const std::int64_t due = (t - nextSample_) / st + 1;
+    // Samples due by t (the common case, a step shorter than one sample
+    // pass, without the 64-bit division).
+    const TimeNs late = t - nextSample_;
+    const std::int64_t due = late < st ? 1 : late / st + 1;
     const std::int64_t k = std::min<std::int64_t>(due, avg - samplesInWindow_);
     now_ = nextSample_ + (k - 1) * st;
-    const double vshLsb = (config_ & 0x10) ? 78.125e-9 : 312.5e-9;
-    const std::int32_t vsh = quantise20(analog_.vshunt_v, vshLsb);
-    const std::int32_t vb = quantise20(analog_.vbus_v, kVbusLsb);
-    const double tc = std::nearbyint(analog_.dietemp_c / kTempLsb);
-    const std::int32_t tcode = static_cast<std::int32_t>(std::clamp(tc == tc ? tc : 0.0, -32768.0, 32767.0));
+    const std::int32_t vsh = vshCode_, vb = vbusCode_, tcode = tcode_;
     sumVsh_ += double(vsh) * k;
     sumVbus_ += double(vb) * k;
     sumTemp_ += double(tcode) * k;
@@ -119,9 +132,7 @@ void Ina228Model::update(TimeNs t) noexcept {
     nextSample_ += k * st;
     if (!(diag_ & SLOWALERT)) {
       // Limits against each raw result (SLOWALERT = 0).
-      const double curCode = shuntCal_ ? double(vsh) * 4096.0 / shuntCal_ : 0.0;
-      const double pw = std::fabs(curCode) * double(vb) / 16384.0;
-      compareLimits(vsh, vb, tcode, static_cast<std::uint32_t>(std::min(pw, double(0xFFFFFF))));
+      compareLimits(vsh, vb, tcode, rawPower_);
     }
     if (samplesInWindow_ >= avg) {
       publish(toSec(st * avg));
@@ -132,12 +143,15 @@ void Ina228Model::update(TimeNs t) noexcept {
 }
 
 void Ina228Model::publish(double dt) noexcept {
+  // The window holds exactly AVG samples (update() never overfills it), and
+  // AVG is a power of two: multiplying by 1/n is exact, no division.
   const int n = samplesInWindow_;
+  const double inv = n == kAvgSamples[adcConfig_ & 7] ? kInvAvg[adcConfig_ & 7] : 1.0 / n;
   samplesInWindow_ = 0;
   diag_ &= ~MATHOF;
-  if (shuntActive()) vshunt_ = static_cast<std::int32_t>(std::nearbyint(sumVsh_ / n));
-  if (busActive()) vbus_ = static_cast<std::int32_t>(std::nearbyint(sumVbus_ / n));
-  if (tempActive()) dietemp_ = static_cast<std::int16_t>(std::nearbyint(sumTemp_ / n));
+  if (shuntActive()) vshunt_ = static_cast<std::int32_t>(roundEven(sumVsh_ * inv));
+  if (busActive()) vbus_ = static_cast<std::int32_t>(roundEven(sumVbus_ * inv));
+  if (tempActive()) dietemp_ = static_cast<std::int16_t>(roundEven(sumTemp_ * inv));
   sumVsh_ = sumVbus_ = sumTemp_ = 0.0;
   ++conversions_;
 
@@ -146,14 +160,22 @@ void Ina228Model::publish(double dt) noexcept {
   // in both ranges. SHUNT_CAL = 0 reads CURRENT/POWER/ENERGY/CHARGE as 0.
   double cur = 0.0;
   if (shuntCal_ != 0) {
-    cur = double(vshunt_) * 4096.0 / shuntCal_;
+    // x (4096 / SHUNT_CAL), cached: the product is within a few ulps of the
+    // quotient, so it rounds to the same code unless the quotient is (next
+    // to) an exact half, where the division decides.
+    if (curScaleCal_ != shuntCal_) {
+      curScaleCal_ = shuntCal_;
+      curScale_ = 4096.0 / shuntCal_;
+    }
+    cur = double(vshunt_) * curScale_;
+    if (std::fabs(std::fabs(cur - roundEven(cur)) - 0.5) < 1e-6) cur = double(vshunt_) * 4096.0 / shuntCal_;
     if (config_ & 0x20) {
       // TEMPCOMP: R_adj = R (1 + (DIETEMP - 25) x TEMPCO / 1e6).
       const double dieC = dietemp_ * kTempLsb;
       cur /= 1.0 + (dieC - 25.0) * double(tempco_) * 1e-6;
     }
   }
-  double curQ = std::nearbyint(cur);
+  double curQ = roundEven(cur);
   if (curQ > kMax20 || curQ < kMin20) {
     diag_ |= MATHOF;
     curQ = std::clamp(curQ, double(kMin20), double(kMax20));
@@ -165,24 +187,21 @@ void Ina228Model::publish(double dt) noexcept {
     diag_ |= MATHOF;
     pw = double(0xFFFFFF);
   }
-  power_ = shuntCal_ ? static_cast<std::uint32_t>(std::max(0.0, std::nearbyint(pw))) : 0;
+  power_ = shuntCal_ ? static_cast<std::uint32_t>(std::max(0.0, roundEven(pw))) : 0;
   // ENERGY LSB = 16 x power LSB; CHARGE LSB = CURRENT_LSB (per second).
   if (shuntCal_) {
-    energyFrac_ += double(power_) * dt / 16.0;
-    const double eInc = std::floor(energyFrac_);
-    energyFrac_ -= eInc;
-    energy_ += static_cast<std::uint64_t>(eInc);
-    if (energy_ > kMask40) {
-      energy_ &= kMask40;
+    // Accumulated as doubles: up to the 40-bit register range they keep
+    // 13+ fractional bits, and the registers (integer parts) are taken only
+    // when read, so a publish costs two multiply-adds, not a float->int
+    // round trip per accumulator.
+    energyAcc_ += double(power_) * dt * (1.0 / 16.0);
+    if (energyAcc_ >= 0x1.0p40) {
+      energyAcc_ -= 0x1.0p40;
       diag_ |= ENERGYOF;
     }
-    chargeFrac_ += double(current_) * dt;
-    const double qInc = std::trunc(chargeFrac_);
-    chargeFrac_ -= qInc;
-    charge_ += static_cast<std::int64_t>(qInc);
-    const std::int64_t lim = std::int64_t{1} << 39;
-    if (charge_ >= lim || charge_ < -lim) {
-      charge_ = 0;  // rolls over to 0 and flags it (datasheet-facts 1.4)
+    chargeAcc_ += double(current_) * dt;
+    if (chargeAcc_ >= 0x1.0p39 || chargeAcc_ <= -0x1.0p39 - 1.0) {
+      chargeAcc_ = 0.0;  // rolls over to 0 and flags it (datasheet-facts 1.4)
       diag_ |= CHARGEOF;
     }
   }
@@ -230,8 +249,8 @@ std::uint64_t Ina228Model::peek(std::uint8_t reg) const noexcept {
     case DIETEMP: return std::uint16_t(dietemp_);
     case CURRENT: return r20(current_);
     case POWER: return power_;
-    case ENERGY: return energy_ & kMask40;
-    case CHARGE: return std::uint64_t(charge_) & kMask40;
+    case ENERGY: return std::uint64_t(energyAcc_) & kMask40;          // integer part (>= 0)
+    case CHARGE: return std::uint64_t(std::int64_t(chargeAcc_)) & kMask40;  // truncated toward 0
     case DIAG_ALRT: return diag_;
     case SOVL: return sovl_;
     case SUVL: return suvl_;
@@ -294,18 +313,20 @@ int Ina228Model::write(const std::uint8_t* buf, std::size_t len) noexcept {
         return 0;
       }
       if (v & 0x4000) {  // RSTACC
-        energy_ = 0;
-        charge_ = 0;
-        energyFrac_ = chargeFrac_ = 0.0;
+        energyAcc_ = chargeAcc_ = 0.0;
         diag_ &= ~(ENERGYOF | CHARGEOF | MATHOF);
       }
       config_ = v & 0x3FF0;  // RST/RSTACC self-clear; bits 3:0 reserved
+      codesValid_ = false;   // ADCRANGE sets the shunt LSB
       break;
     case ADC_CONFIG:
       adcConfig_ = v;
       restartConversions();
       break;
-    case SHUNT_CAL: shuntCal_ = v & 0x7FFF; break;
+    case SHUNT_CAL:
+      shuntCal_ = v & 0x7FFF;
+      codesValid_ = false;  // the raw power code depends on it
+      break;
     case SHUNT_TEMPCO: tempco_ = v & 0x3FFF; break;
     case DIAG_ALRT:
       // Only the four control bits are writable; the rest are status.

@@ -15,6 +15,7 @@ SimWorld::SimWorld(const WorldConfig& cfg, const HardwareSettings& hw)
     : cfg_(cfg),
       hw_(hw),
       grid_(std::max<TimeNs>(cfg.maxStep, fromUs(1))),
+      gridNext_(grid_),
       rng_(cfg.seed),
       plant_(cfg.plant),
       bus_(&now_),
@@ -149,6 +150,7 @@ void SimWorld::stepPlant(TimeNs to) noexcept {
   const double dt = toSec(to - plantNow_);
   plant_.step(fieldCommand(), dt);
   plantNow_ = to;
+  if (to == gridNext_) gridNext_ += grid_;
   // (A grid point can lie before now() only when the battery left the bus
   // after an advance between grid points: the plant catches up, time does
   // not go back.)
@@ -164,7 +166,7 @@ void SimWorld::advanceTo(TimeNs t) noexcept {
     // Finer steps while the battery is off the bus, so the INA228 ALERT
     // (BOVL) can act on the fast rise; a finer step never straddles a grid
     // point, so the grid is kept when the battery comes back.
-    TimeNs next = plantNow_ + grid_ - plantNow_ % grid_;
+    TimeNs next = gridNext_;
     if (!plant_.truth().bms_connected) next = std::min(next, plantNow_ + fromUs(250));
     if (next > t) break;
     stepPlant(next);

@@ -124,7 +124,8 @@ class SimWorld {
   HardwareSettings hw_;
   TimeNs now_ = 0;
   TimeNs plantNow_ = 0;
-  TimeNs grid_;  // cfg.maxStep, at least 1 us
+  TimeNs grid_;      // cfg.maxStep, at least 1 us
+  TimeNs gridNext_;  // the first multiple of grid_ after plantNow_
   // Linear front-end scalings (frontend::adcFrom*, same arithmetic), hoisted
   // out of the per-step path.
   double ch0Gain_ = 1.0;  // battery volts per ADC volt

@@ -5,7 +5,11 @@
 
 namespace xr::sim {
 
-AlternatorModel::AlternatorModel(const AlternatorConfig& c) : cfg_(c), tempF_(c.temp_f) {}
+AlternatorModel::AlternatorModel(const AlternatorConfig& c)
+    : cfg_(c),
+      tempF_(c.temp_f),
+      invRated_(1.0 / std::max(1.0, c.rated_a)),
+      invThermalTau_(1.0 / std::max(1e-3, c.thermal_tau_s)) {}
 
 double AlternatorModel::rpmCurve(double rpm) const noexcept {
   if (rpm <= cfg_.cut_in_rpm) return 0.0;
@@ -18,7 +22,7 @@ double AlternatorModel::rpmCurve(double rpm) const noexcept {
 double AlternatorModel::hotFactor() const noexcept {
   // Hot derating: a cold machine gives ~15 % more, rated at 200 degF, less above.
   if (tempF_ <= 77.0) return 1.15;
-  if (tempF_ <= 200.0) return 1.15 - 0.15 * (tempF_ - 77.0) / 123.0;
+  if (tempF_ <= 200.0) return 1.15 - (0.15 / 123.0) * (tempF_ - 77.0);
   return std::max(0.6, 1.0 - 0.002 * (tempF_ - 200.0));
 }
 
@@ -45,9 +49,9 @@ void AlternatorModel::step(double fieldCmd, double rpm, double ambientF, double 
   // Thermal: C dT/dt = P - G(rpm) (T - Ta), normalised so that at cruise
   // RPM, rated output: Tss - Ta = thermal_rise_f and tau = thermal_tau_s.
   const double g = coolRel_;
-  const double iRel = amps_ / std::max(1.0, cfg_.rated_a);
+  const double iRel = amps_ * invRated_;
   const double heat = cfg_.thermal_rise_f * (0.9 * iRel * iRel + 0.1 * field_);
-  const double dT = (heat - g * (tempF_ - ambientF)) / cfg_.thermal_tau_s;
+  const double dT = (heat - g * (tempF_ - ambientF)) * invThermalTau_;
   tempF_ += dT * dt;
 }
 

@@ -48,6 +48,7 @@ class AlternatorModel {
   // RPM changes only on scenario events: its curve value and relative
   // cooling are cached per RPM instead of recomputed (sqrt, divisions) every step.
   double curveRpm_ = -1.0, curve_ = 0.0, coolRel_ = 1.0;
+  double invRated_, invThermalTau_;  // reciprocals: no divisions per step
 };
 
 }  // namespace xr::sim

@@ -20,21 +20,6 @@ constexpr std::array<Pt, 6> kFlooded{
     {{0.0, 11.5}, {0.2, 11.8}, {0.4, 12.05}, {0.6, 12.3}, {0.8, 12.5}, {1.0, 12.7}}};
 constexpr std::array<Pt, 6> kGel{{{0.0, 11.7}, {0.2, 12.0}, {0.4, 12.25}, {0.6, 12.5}, {0.8, 12.7}, {1.0, 12.95}}};
 
-// Linear interpolation in the OCV table. `hint` is the segment found last
-// time: SoC moves by parts per million per step, so the search almost always
-// ends where it starts. Returns the same segment (hence the same value) as a
-// scan from the start: the first i with s <= t[i].soc.
-template <std::size_t N>
-double interp(const std::array<Pt, N>& t, double s, int& hint) {
-  if (s <= t[0].soc) return t[0].v;
-  if (s > t[N - 1].soc) return t[N - 1].v;
-  std::size_t i = std::clamp<std::size_t>(std::size_t(hint), 1, N - 1);
-  while (i > 1 && s <= t[i - 1].soc) --i;
-  while (s > t[i].soc) ++i;
-  hint = int(i);
-  const double f = (s - t[i - 1].soc) / (t[i].soc - t[i - 1].soc);
-  return t[i - 1].v + f * (t[i].v - t[i - 1].v);
-}
 bool isLead(Chemistry c) { return c != Chemistry::lifepo4; }
 }  // namespace
 
@@ -67,6 +52,7 @@ BatteryModel::BatteryModel(const BatteryConfig& c) : cfg_(c) {
     case Chemistry::flooded: eff_ = 0.90; break;
     case Chemistry::gel: eff_ = 0.93; break;
   }
+  socPerAmpSecond_ = 1.0 / (3600.0 * cap);
   setSocPct(c.soc_pct);
 }
 
@@ -76,29 +62,43 @@ void BatteryModel::setSocPct(double p) noexcept {
 }
 
 void BatteryModel::refreshOcv() noexcept {
-  double v = 0.0;
-  switch (cfg_.chemistry) {
-    case Chemistry::lifepo4: v = interp(kLfp, soc_, seg_); break;
-    case Chemistry::agm: v = interp(kAgm, soc_, seg_); break;
-    case Chemistry::flooded: v = interp(kFlooded, soc_, seg_); break;
-    case Chemistry::gel: v = interp(kGel, soc_, seg_); break;
+  if (!(soc_ > segLo_ && soc_ <= segHi_)) {
+    // Left the cached segment: find the one holding soc_ (linear
+    // interpolation between the table points; flat outside the table).
+    const Pt* t = kLfp.data();
+    std::size_t n = kLfp.size();
+    switch (cfg_.chemistry) {
+      case Chemistry::lifepo4: break;
+      case Chemistry::agm: t = kAgm.data(), n = kAgm.size(); break;
+      case Chemistry::flooded: t = kFlooded.data(), n = kFlooded.size(); break;
+      case Chemistry::gel: t = kGel.data(), n = kGel.size(); break;
+    }
+    const double scale = cfg_.nominal_v / 12.0;
+    if (soc_ <= t[0].soc) {
+      segLo_ = -1e300, segHi_ = t[0].soc, segS0_ = 0.0, segV0_ = t[0].v * scale, segSlope_ = 0.0;
+    } else if (soc_ > t[n - 1].soc) {
+      segLo_ = t[n - 1].soc, segHi_ = 1e300, segS0_ = 0.0, segV0_ = t[n - 1].v * scale, segSlope_ = 0.0;
+    } else {
+      std::size_t i = 1;
+      while (soc_ > t[i].soc) ++i;
+      segLo_ = segS0_ = t[i - 1].soc;
+      segHi_ = t[i].soc;
+      segV0_ = t[i - 1].v * scale;
+      segSlope_ = (t[i].v - t[i - 1].v) / (t[i].soc - t[i - 1].soc) * scale;
+    }
   }
-  ocv_ = v * cfg_.nominal_v / 12.0;
-  leadX_ = isLead(cfg_.chemistry) ? std::clamp((soc_ - 0.75) / 0.25, 0.0, 1.0) : 0.0;
+  ocv_ = segV0_ + (soc_ - segS0_) * segSlope_;
+  leadX_ = isLead(cfg_.chemistry) ? std::clamp((soc_ - 0.75) * 4.0, 0.0, 1.0) : 0.0;  // 0 at 75 %, 1 at full
 }
 
 double BatteryModel::chargeOverpotential(double amps) const noexcept {
   // Lead chemistries stop accepting charge near full: an overpotential that
   // grows with SoC above 75 % and saturates with current (continuous through
   // 0 A), so at a fixed absorption voltage the current tapers to a tail.
-  // (leadX_ is 0 for LiFePO4 and below 75 %: no exp() on those steps.)
+  // (terminalVolts() skips the call when leadX_ is 0: LiFePO4, below 75 %.)
   if (leadX_ == 0.0 || amps <= 0.0) return 0.0;
   const double i0 = 0.01 * cfg_.capacity_ah;
   return 1.9 * leadX_ * leadX_ * (1.0 - std::exp(-amps / i0)) * cfg_.nominal_v / 12.0;
-}
-
-double BatteryModel::terminalVolts(double amps) const noexcept {
-  return ocv_ + vrc_ + r_ * amps + chargeOverpotential(amps);
 }
 
 void BatteryModel::step(double amps, double dt) noexcept {
@@ -108,8 +108,7 @@ void BatteryModel::step(double amps, double dt) noexcept {
   }
   const double a = rcA_;
   vrc_ = vrc_ * a + amps * r1_ * (1.0 - a);
-  const double ah = amps * dt / 3600.0 * (amps > 0.0 ? eff_ : 1.0);
-  const double soc = std::clamp(soc_ + ah / std::max(1.0, cfg_.capacity_ah), 0.0, 1.0);
+  const double soc = std::clamp(soc_ + amps * dt * (amps > 0.0 ? eff_ : 1.0) * socPerAmpSecond_, 0.0, 1.0);
   if (soc != soc_) {
     soc_ = soc;
     refreshOcv();

@@ -25,9 +25,14 @@ class BatteryModel {
  public:
   explicit BatteryModel(const BatteryConfig& c);
   // Terminal voltage while `amps` flow into the battery (+ = charging).
-  double terminalVolts(double amps) const noexcept;
+  double terminalVolts(double amps) const noexcept {
+    return ocv_ + vrc_ + r_ * amps + (leadX_ == 0.0 || amps <= 0.0 ? 0.0 : chargeOverpotential(amps));
+  }
   // Advance by dt with `amps` into the battery.
   void step(double amps, double dt) noexcept;
+  // False when terminalVolts() is linear in the current (LiFePO4; lead below
+  // 75 % SoC): the plant's node solve is then exact without refinement.
+  bool hasOverpotential() const noexcept { return leadX_ != 0.0; }
   double socPct() const noexcept { return soc_ * 100.0; }
   void setSocPct(double p) noexcept;
   // Rest voltage at the present SoC (cached: recomputed only when SoC moves).
@@ -46,9 +51,14 @@ class BatteryModel {
   double vrc_ = 0;  // polarisation voltage, V
   double eff_;      // coulombic efficiency when charging
   double rcDt_ = -1.0, rcA_ = 0.0;  // cached exp(-dt/tau1)
+  double socPerAmpSecond_;          // 1 / (3600 x capacity)
   double ocv_ = 0.0;                // OCV(soc_), see refreshOcv()
   double leadX_ = 0.0;              // lead charge-acceptance factor at soc_ (0 below 75 % and for LFP)
-  int seg_ = 1;                     // OCV-curve segment soc_ was last found in
+  // The OCV-curve segment soc_ lies in, (segLo_, segHi_], as a line in volts
+  // already scaled to the bank: SoC moves by parts per million per step, so
+  // refreshOcv() is a compare and a multiply-add almost every time.
+  double segLo_ = 1.0, segHi_ = 0.0;               // empty until the first refreshOcv()
+  double segS0_ = 0.0, segV0_ = 0.0, segSlope_ = 0.0;  // ocv = V0 + (soc - S0) x slope
 };
 
 }  // namespace xr::sim

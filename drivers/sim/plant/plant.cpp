@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 namespace xr::sim {
 
@@ -22,7 +21,7 @@ Plant::Plant(const PlantConfig& c)
 void Plant::setHouseAmps(double a) noexcept {
   // Resistive at the nominal charging-system voltage (12.8 V per 12 V).
   const double vn = 12.8 * cfg_.battery.nominal_v / 12.0;
-  houseR_ = a > 0.0 ? vn / a : std::numeric_limits<double>::infinity();
+  houseG_ = a > 0.0 ? a / vn : 0.0;
 }
 
 void Plant::setBmsConnected(bool c) noexcept { bmsConnected_ = c; }
@@ -47,19 +46,20 @@ void Plant::subStep(double fieldCmd, double dt) noexcept {
     // The house load is resistive, so solve V = E + R (Ia - V/Rh) for V.
     const double e0 = bat_.terminalVolts(0.0);
     const double r = bat_.seriesR();
-    double v = (e0 + r * ia) / (1.0 + r / houseR_);
-    // One refinement so the charge overpotential sees the real current.
-    for (int k = 0; k < 2; ++k) {
-      const double ib = ia - v / houseR_;
+    double v = (e0 + r * ia) / (1.0 + r * houseG_);
+    // Refinement so the charge overpotential sees the real current (the
+    // linear solve above is already exact without one).
+    for (int k = 0; k < 2 && bat_.hasOverpotential(); ++k) {
+      const double ib = ia - v * houseG_;
       v = bat_.terminalVolts(ib);
     }
-    batA_ = ia - v / houseR_;
+    batA_ = ia - v * houseG_;
     busV_ = v;
     bat_.step(batA_, dt);
   } else {
     batA_ = 0.0;
     bat_.step(0.0, dt);
-    const double ih = busV_ / houseR_;
+    const double ih = busV_ * houseG_;
     busV_ += (ia - ih) * dt / std::max(1e-6, cfg_.bus_capacitance_f);
     busV_ = std::clamp(busV_, 0.0, tvs_);  // the TVS absorbs the rest
     truth_.peak_disconnected_v = std::max(truth_.peak_disconnected_v, busV_);
@@ -73,7 +73,7 @@ void Plant::refreshTruth() noexcept {
   truth_.alt_a = alt_.amps();
   truth_.alt_terminal_v = busV_ + alt_.amps() * cfg_.alternator.wiring_ohm;
   truth_.alt_temp_f = alt_.tempF();
-  truth_.house_a = busV_ / houseR_;
+  truth_.house_a = busV_ * houseG_;
   truth_.soc_pct = bat_.socPct();
   truth_.field = alt_.field();
   truth_.bms_connected = bmsConnected_;

@@ -60,7 +60,7 @@ class Plant {
   AlternatorModel alt_;
   double rpm_;
   double ambientF_;
-  double houseR_;  // ohm; infinity when no load
+  double houseG_;  // house load conductance, S (0 = no load); G, not R, so the node solve has no divisions
   double tvs_;
   bool bmsConnected_ = true;
   double busV_;
