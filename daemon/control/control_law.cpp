@@ -123,8 +123,10 @@ void ControlLaw::updateChargingStage(const ControlSensors& s, const Params& p, b
 }
 
 double ControlLaw::computeUTarget(const ControlSensors& s, const Params& p) {
-  rpmMinDuty_ = getMinDutyForRPM(p, s.rpm);
-  I_cap_ = getCapCurrentForRPM(p, s.rpm, s.IBV);
+  // getMinDutyForRPM + getCapCurrentForRPM, sharing one breakpoint search.
+  const RpmPosition at = locateRpm(p.rpmTableRPMPoints, s.rpm);
+  rpmMinDuty_ = rpmTableValue(activeMinDutyTable(p), at);
+  I_cap_ = capCurrentAt(p, at, s.IBV);
 
   // T0 on its own cadence; the penalty holds on stale input.
   ThermalInputs ti;

@@ -10,21 +10,35 @@
 
 namespace xr {
 
-inline double interpolateRpmTable(const RpmTable& pts, const RpmTable& v, double rpm) {
-  if (!std::isfinite(rpm) || rpm <= pts[0]) return v[0];
+// Where `rpm` falls on the breakpoints: everything interpolateRpmTable()
+// needs except the values, so two tables over the same breakpoints (min
+// duty and cap, every AUTO tick) share one search. Same arithmetic, same bits.
+struct RpmPosition {
+  std::size_t i = 0;  // segment end (1..), or the entry to return as is
+  double f = 0.0;     // fraction inside the segment
+  bool exact = true;  // true: return values[i] (outside the table or a malformed span)
+};
+
+inline RpmPosition locateRpm(const RpmTable& pts, double rpm) {
+  if (!std::isfinite(rpm) || rpm <= pts[0]) return {0, 0.0, true};
   for (std::size_t i = 1; i < RPM_TABLE_SIZE; ++i) {
     if (rpm <= pts[i]) {
       const double span = pts[i] - pts[i - 1];
-      if (span <= 0.0) return v[i];  // malformed (non-ascending) table: no division by zero
-      const double f = (rpm - pts[i - 1]) / span;
-      return v[i - 1] + f * (v[i] - v[i - 1]);
+      if (span <= 0.0) return {i, 0.0, true};  // malformed (non-ascending) table: no division by zero
+      return {i, (rpm - pts[i - 1]) / span, false};
     }
   }
-  return v[RPM_TABLE_SIZE - 1];
+  return {RPM_TABLE_SIZE - 1, 0.0, true};
 }
 
-// HiLow == 0 selects the Low-charge-rate tables (loadCapTablesForMode(0));
-// never a runtime halving of the Normal ones.
+inline double rpmTableValue(const RpmTable& v, const RpmPosition& at) {
+  return at.exact ? v[at.i] : v[at.i - 1] + at.f * (v[at.i] - v[at.i - 1]);
+}
+
+inline double interpolateRpmTable(const RpmTable& pts, const RpmTable& v, double rpm) {
+  return rpmTableValue(v, locateRpm(pts, rpm));
+}
+
 inline const RpmTable& activeCapCurrentTable(const Params& p) {
   return p.HiLow ? p.rpmCapCurrentTable : p.rpmCapCurrentTableLo;
 }
@@ -38,13 +52,16 @@ inline const RpmTable& activeMinDutyTable(const Params& p) {
 // I_cap in amps. capLimitMode 0: rpmCapCurrentTable. capLimitMode 1:
 // rpmCapPowerTable (kW) converted through the live IBV; with no usable IBV the
 // cap is 0 A (safe: no current can be commanded without knowing the voltage).
-inline double getCapCurrentForRPM(const Params& p, double rpm, double ibv) {
+inline double capCurrentAt(const Params& p, const RpmPosition& at, double ibv) {
   if (p.capLimitMode == 1) {
-    const double kw = interpolateRpmTable(p.rpmTableRPMPoints, activeCapPowerTable(p), rpm);
+    const double kw = rpmTableValue(activeCapPowerTable(p), at);
     if (!std::isfinite(ibv) || ibv < 1.0) return 0.0;
     return std::max(0.0, kw * 1000.0 / ibv);
   }
-  return std::max(0.0, interpolateRpmTable(p.rpmTableRPMPoints, activeCapCurrentTable(p), rpm));
+  return std::max(0.0, rpmTableValue(activeCapCurrentTable(p), at));
+}
+inline double getCapCurrentForRPM(const Params& p, double rpm, double ibv) {
+  return capCurrentAt(p, locateRpm(p.rpmTableRPMPoints, rpm), ibv);
 }
 
 // rpmMinDuty (%), applied inside governor_apply().
