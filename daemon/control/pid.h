@@ -50,7 +50,8 @@ class Pid {
   // Runs one compute with the real elapsed time. Returns false (and changes
   // nothing) in MANUAL or when dtSec <= 0 or the input is not finite.
   bool Compute(double dtSec) {
-    if (mode_ != AUTOMATIC || !(dtSec > 0.0) || !std::isfinite(input) || !std::isfinite(setpoint)) return false;
+    if (mode_ != AUTOMATIC || !(dtSec > 0.0) || !std::isfinite(input) || !std::isfinite(setpoint))
+      return false;
     const double sign = direction_ == DIRECT ? 1.0 : -1.0;
     const double error = setpoint - input;
     const double dInput = input - lastInput_;

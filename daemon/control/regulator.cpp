@@ -327,8 +327,9 @@ const Outputs& Regulator::step(const Inputs& in) {
   t.fast_ov_active = fastOvActive;
   t.soc_pct = t.battery.SOC_percent;  // the same socPercent(), already in the battery telemetry
   t.alarm = out.buzzer;
-  t.charged_wh_lifetime = t.battery.ChargedEnergy_AllTime_Wh;  // chargedEnergyLifetimeWh()
-  t.alt_charged_wh_lifetime = t.battery.AlternatorChargedEnergy_AllTime_Wh;  // alternatorChargedEnergyLifetimeWh()
+  // chargedEnergyLifetimeWh() and alternatorChargedEnergyLifetimeWh(), as filled just above.
+  t.charged_wh_lifetime = t.battery.ChargedEnergy_AllTime_Wh;
+  t.alt_charged_wh_lifetime = t.battery.AlternatorChargedEnergy_AllTime_Wh;
   return out;
 }
 

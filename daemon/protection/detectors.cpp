@@ -78,7 +78,8 @@ inline void ProtectionSupervisor::updateInaLatch(const Inputs& in, EventBatch& e
       inaNextRelease_ = now_ + fromMs(k::INA_LATCH_RELEASE_CHECK_MS);
       lastTripReason_ = Reason::REASON_INA_OVERVOLTAGE;
       lastTripTime_ = now_;
-      push(ev, EventCode::InaLatchSet, EventLevel::Critical, Reason::REASON_INA_OVERVOLTAGE, IBV_, d_.hwLimitV);
+      push(ev, EventCode::InaLatchSet, EventLevel::Critical, Reason::REASON_INA_OVERVOLTAGE, IBV_,
+           d_.hwLimitV);
     }
   } else if (now_ >= inaNextRelease_) {
     if (!in.inaBusOvervoltage) {

@@ -172,11 +172,11 @@ class ProtectionSupervisor {
   // Parameter-derived values (params/derived.h), computed once per
   // setParams() instead of on every tick by the detectors.
   struct Derived {
-    double hardShutdownV = 0.0;       // alternatorHardShutdownV
-    double hwLimitV = 0.0;            // voltageHardwareLimit
-    double criticalDisagreeV = 0.0;   // criticalDisagreementThreshold
+    double hardShutdownV = 0.0;                     // alternatorHardShutdownV
+    double hwLimitV = 0.0;                          // voltageHardwareLimit
+    double criticalDisagreeV = 0.0;                 // criticalDisagreementThreshold
     double plausibleMin = 0.0, plausibleMax = 0.0;  // plausibleVoltageRange
-    double hardOcTripA = 0.0;         // hardOCTripAmps
+    double hardOcTripA = 0.0;                       // hardOCTripAmps
   };
   void computeDerived();
   void push(EventBatch& ev, EventCode c, EventLevel l, Reason r, double a = 0.0, double b = 0.0,
