@@ -213,3 +213,50 @@ TEST(Ads1115Model, SwitchingToSingleShotStopsAfterCurrentConversion) {
 
 }  // namespace
 }  // namespace xr::sim
+
+namespace xr::sim {
+namespace {
+
+// The input source is asked, at the instant a conversion samples, for the
+// pins its MUX selects and no others; setInputs() values are ignored while a
+// source is set.
+struct PinProbe {
+  int asked[4] = {0, 0, 0, 0};
+  double v[4] = {0.5, 0.25, 1.0, 0.125};
+  static double get(void* ctx, int ain) noexcept {
+    auto* p = static_cast<PinProbe*>(ctx);
+    ++p->asked[ain];
+    return p->v[ain];
+  }
+};
+
+TEST(Ads1115Model, InputSourceIsAskedOnlyForTheMuxPinsAtEachConversion) {
+  Rig r;
+  PinProbe probe;
+  r.chip.setInputs({3.0, 3.0, 3.0, 3.0});
+  r.chip.setInputSource(&PinProbe::get, &probe);
+  ASSERT_EQ(r.writeReg(1, cfg(1, 6, 1, 1, 7)), 0);  // AIN2-GND, ±4.096 V, single-shot 860 SPS
+  EXPECT_EQ(probe.asked[2], 0) << "nothing sampled before the conversion ends";
+  r.advance(fromMs(2));
+  EXPECT_EQ(probe.asked[0] + probe.asked[1] + probe.asked[3], 0);
+  EXPECT_EQ(probe.asked[2], 1);
+  EXPECT_EQ(r.readReg(0), 8000);  // 1 V / 125 uV, from the source, not setInputs()
+  ASSERT_EQ(r.writeReg(1, cfg(1, 0, 1, 1, 7)), 0);  // AIN0-AIN1 differential
+  r.advance(fromMs(2));
+  EXPECT_EQ(probe.asked[0], 1);
+  EXPECT_EQ(probe.asked[1], 1);
+  EXPECT_EQ(probe.asked[3], 0);
+  EXPECT_EQ(r.readReg(0), 2000);  // 0.25 V
+  // Continuous: one request per conversion.
+  ASSERT_EQ(r.writeReg(1, cfg(0, 7, 1, 0, 7)), 0);  // AIN3-GND continuous
+  r.advance(fromMs(100));
+  EXPECT_EQ(std::uint64_t(probe.asked[3]), r.chip.conversions() - 2);
+  EXPECT_EQ(r.readReg(0), 1000);  // 0.125 V
+  // Back to the set values.
+  r.chip.setInputSource(nullptr, nullptr);
+  r.advance(fromMs(5));
+  EXPECT_EQ(r.readReg(0), 24000);  // 3 V
+}
+
+}  // namespace
+}  // namespace xr::sim

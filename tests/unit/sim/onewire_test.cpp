@@ -65,6 +65,23 @@ TEST(SimOneWire, WritesOncePerConversionAndOnlyOnChange) {
   EXPECT_EQ(w.writes(), 2u);
 }
 
+TEST(SimOneWire, ConvertNowRewritesAtTheNextUpdate) {
+  TempDir d;
+  SimOneWire w(d.p);
+  w.update(0, 30.0);
+  EXPECT_EQ(w.nextConversion(), fromMs(750));
+  w.update(fromMs(100), 50.0);  // still converting: no new value
+  EXPECT_NE(slurp(w.slavePath()).find("t=30000"), std::string::npos);
+  w.convertNow();  // a fault changed what the sensor sees
+  EXPECT_EQ(w.nextConversion(), 0);
+  w.update(fromMs(200), 50.0);
+  EXPECT_NE(slurp(w.slavePath()).find("t=50000"), std::string::npos);
+  EXPECT_EQ(w.writes(), 2u);
+  EXPECT_EQ(w.nextConversion(), fromMs(950));
+  w.setPresent(false);
+  EXPECT_GT(w.nextConversion(), fromSec(1e6)) << "absent: never due";
+}
+
 TEST(SimOneWire, DisconnectRemovesTheDevice) {
   TempDir d;
   SimOneWire w(d.p);
