@@ -21,6 +21,8 @@ int SimI2cBus::transfer(std::span<I2cMsg> msgs) noexcept {
     ++failed_;
     return EINVAL;
   }
+  const TimeNs t = now_ ? *now_ : 0;
+  SimI2cDevice* upToDate = nullptr;  // a combined write+read brings its chip up to t once
   for (auto& m : msgs) {
     // i2c-dev rejects 10-bit addresses unless I2C_TEN is set; we have none.
     if (m.addr >= devs_.size() || devs_[m.addr] == nullptr || nack_[m.addr]) {
@@ -32,7 +34,10 @@ int SimI2cBus::transfer(std::span<I2cMsg> msgs) noexcept {
       return EFAULT;
     }
     SimI2cDevice* d = devs_[m.addr];
-    d->update(now_ ? *now_ : 0);
+    if (d != upToDate) {
+      d->update(t);
+      upToDate = d;
+    }
     const int rc = m.read ? d->read(m.buf, m.len) : d->write(m.buf, m.len);
     if (rc != 0) {
       ++failed_;
