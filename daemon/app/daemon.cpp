@@ -137,6 +137,11 @@ int Daemon::run() {
   rt::CycleConfig cycleCfg;
   cycleCfg.rowPeriod = cli_.telemetryCsv ? fromSec(1.0 / cli_.telemetryRateHz) : 0;
   cycleCfg.blockOnFullRows = cli_.sim && cli_.speed <= 0.0;
+  if (cli_.sim && cli_.speed <= 0.0) {
+    // --speed max: the dashboard still sees ~10 snapshots per simulated second.
+    cycleCfg.publishEveryTicks = 40;
+    cycleCfg.timeEveryTicks = 16;
+  }
   rt::ControlCycle cycle(core, devices, *handoffs, stats, *wall, cycleCfg);
   cycle.driveSafeState();  // field known LOW before anything runs
 

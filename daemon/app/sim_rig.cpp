@@ -7,13 +7,15 @@
 #include <exception>
 #include <stdexcept>
 
+#include "drivers/sim/runner/scratch_dir.h"
+
 namespace xr::app {
 
 namespace {
 std::filesystem::path makeTempDir() {
-  std::string tmpl = (std::filesystem::temp_directory_path() / "xregulatord-sim-XXXXXX").string();
-  if (!mkdtemp(tmpl.data())) throw std::runtime_error("cannot create a temporary directory for the simulated 1-Wire tree");
-  return tmpl;
+  auto dir = sim::makeScratchDir("xregulatord-sim-");
+  if (dir.empty()) throw std::runtime_error("cannot create a temporary directory for the simulated 1-Wire tree");
+  return dir;
 }
 }  // namespace
 

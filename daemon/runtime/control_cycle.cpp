@@ -86,23 +86,25 @@ bool ControlCycle::tick(TimeNs now) {
   if (dev_.hook) dev_.hook->beforeTick(now);
   applyBetweenTicks();
 
-  const TimeNs t0 = timing_.now();
+  const bool timed = cfg_.timeEveryTicks <= 1 || (tick_ % static_cast<std::uint64_t>(cfg_.timeEveryTicks)) == 0;
+  const TimeNs t0 = timed ? timing_.now() : 0;
   in_.now = now;
   const bool sensorsOk = dev_.sensors->read(now, in_);
   if (!sensorsOk) ++health_.sensorReadErrors;
   mergeSlowInputs();
   readDiscreteInputs();
-  const TimeNs t1 = timing_.now();
+  const TimeNs t1 = timed ? timing_.now() : 0;
 
   const Outputs& out = core_.step(in_);
-  const TimeNs t2 = timing_.now();
+  const TimeNs t2 = timed ? timing_.now() : 0;
 
   bool healthy = writeOutputs(out);
   dev_.sensors->apply(out);
-  const TimeNs t3 = timing_.now();
-
-  stats_.onIo((t1 - t0) + (t3 - t2));
-  stats_.onCompute(t2 - t1);
+  if (timed) {
+    const TimeNs t3 = timing_.now();
+    stats_.onIo((t1 - t0) + (t3 - t2));
+    stats_.onCompute(t2 - t1);
+  }
   stats_.onTick();
   SampleCounts counts;
   dev_.sensors->sampleCounts(counts);
@@ -130,13 +132,11 @@ bool ControlCycle::tick(TimeNs now) {
   return healthy && sensorsOk;
 }
 
-void ControlCycle::publish(const Outputs& out, TimeNs now) noexcept {
-  if ((tick_ & 63) == 1) summary_ = stats_.summary();  // quantiles are not free: ~6 Hz at 400 Hz
+void ControlCycle::storeSnapshot(const Outputs& out, TimeNs now) noexcept {
   if (dev_.truth) dev_.truth->fill(truth_);
   health_.eventsDropped = h_.events.dropped();
   health_.stopping = stopping_;
-
-  RuntimeSnapshot snap;
+  RuntimeSnapshot& snap = scratch_;
   snap.tick = tick_;
   snap.start = start_;
   snap.telemetry = out.telemetry;
@@ -145,11 +145,27 @@ void ControlCycle::publish(const Outputs& out, TimeNs now) noexcept {
   snap.health = health_;
   snap.sim = truth_;
   h_.snapshot.store(snap);
+}
+
+void ControlCycle::publishLatest() noexcept {
+  if (!lastOut_) return;
+  summary_ = stats_.summary();
+  storeSnapshot(*lastOut_, lastNow_);
+}
+
+void ControlCycle::publish(const Outputs& out, TimeNs now) noexcept {
+  lastOut_ = &out;
+  lastNow_ = now;
+  if ((tick_ & 63) == 1) summary_ = stats_.summary();  // quantiles are not free: ~6 Hz at 400 Hz
+  const bool every = cfg_.publishEveryTicks <= 1;
+  if (every || stopping_ || (tick_ % static_cast<std::uint64_t>(cfg_.publishEveryTicks)) == 1) storeSnapshot(out, now);
 
   if (cfg_.rowPeriod > 0 && (!rowsStarted_ || now - lastRow_ >= cfg_.rowPeriod)) {
     // Rows sit on the grid start + k·rowPeriod so t_s is regular.
     lastRow_ = rowsStarted_ ? lastRow_ + cfg_.rowPeriod * ((now - lastRow_) / cfg_.rowPeriod) : now;
     rowsStarted_ = true;
+    if (!every) storeSnapshot(out, now);  // the row carries this tick's state
+    RuntimeSnapshot snap = scratch_;
     snap.loop = stats_.summary();
     while (!h_.rows.push(snap)) {
       if (!cfg_.blockOnFullRows) {
@@ -163,6 +179,7 @@ void ControlCycle::publish(const Outputs& out, TimeNs now) noexcept {
 
 void ControlCycle::serviceEdges(TimeNs deadline) noexcept {
   if (!dev_.adsReady) return;
+  const bool timed = cfg_.timeEveryTicks <= 1 || (tick_ % static_cast<std::uint64_t>(cfg_.timeEveryTicks)) == 0;
   // Bounded: at 860 SPS a 2.5 ms period holds 2-3 edges; a storm of
   // spurious edges must not starve the tick.
   for (int i = 0; i < kMaxEdgesPerPeriod; ++i) {
@@ -170,9 +187,14 @@ void ControlCycle::serviceEdges(TimeNs deadline) noexcept {
     const int rc = dev_.adsReady->waitEdge(deadline, &stamp);
     if (rc < 0) ++health_.edgeErrors;
     if (rc != 1) return;
-    const TimeNs t0 = timing_.now();
-    dev_.sensors->onReadyEdge(stamp);
-    stats_.onEdge(timing_.now() - t0);
+    stats_.onEdge();
+    if (timed) {
+      const TimeNs t0 = timing_.now();
+      dev_.sensors->onReadyEdge(stamp);
+      stats_.onEdgeIo(timing_.now() - t0);
+    } else {
+      dev_.sensors->onReadyEdge(stamp);
+    }
   }
 }
 

@@ -22,6 +22,12 @@ struct CycleConfig {
   TimeNs rowPeriod = fromMs(100);  // telemetry rows for the CSV (0 = none)
   bool blockOnFullRows = false;    // --speed max: wait for the CSV writer instead of dropping
   int maxCommandsPerTick = 8;
+  // --speed max only (no deadlines, nobody watching in real time): store the
+  // whole snapshot every Nth tick and time compute/I-O every Mth tick. Both
+  // cost more than the control law itself when done every tick. Rows, events
+  // and the final state are never thinned.
+  int publishEveryTicks = 1;
+  int timeEveryTicks = 1;
 };
 
 class ControlCycle {
@@ -47,6 +53,9 @@ class ControlCycle {
   // MODE_DISABLED_RAMP); the loop keeps ticking until fieldIsOff().
   void beginShutdown() noexcept;
   bool fieldIsOff() const noexcept { return !lastEnable_ && lastDuty_ <= 0.0; }
+  // Publish the latest state now (the loop calls it when it ends, so a
+  // thinned publish never hides the final state).
+  void publishLatest() noexcept;
 
   // Field enable LOW first, then duty 0, buzzer off. Safe to call any time
   // on the control thread; also publishes the final state.
@@ -62,6 +71,7 @@ class ControlCycle {
   void readDiscreteInputs() noexcept;
   bool writeOutputs(const Outputs& out) noexcept;
   void publish(const Outputs& out, TimeNs now) noexcept;
+  void storeSnapshot(const Outputs& out, TimeNs now) noexcept;
 
   ControlCore& core_;
   CycleDevices dev_;
@@ -74,10 +84,13 @@ class ControlCycle {
   RuntimeHealth health_{};
   LoopStatsSummary summary_{};
   SimTruth truth_{};
+  RuntimeSnapshot scratch_{};  // built in place: the snapshot is large
   TimeNs start_ = 0;
   TimeNs lastRow_ = 0;
   bool rowsStarted_ = false;
   std::uint64_t tick_ = 0;
+  const Outputs* lastOut_ = nullptr;
+  TimeNs lastNow_ = 0;
   TimeNs lastTempStamp_ = 0, lastVictronStamp_ = 0;
   TimeNs lastAdsStamp_[4] = {0, 0, 0, 0};
   TimeNs lastInaStamp_ = 0;

@@ -55,6 +55,7 @@ LoopExit ControlLoop::run() {
     }
   }
   cycle_.driveSafeState();
+  cycle_.publishLatest();
   finished_.store(true, std::memory_order_release);
   return exit;
 }

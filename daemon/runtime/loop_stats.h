@@ -67,11 +67,10 @@ class LoopStats {
   // with ready-edge pacing a tick may bring two); rates are computed over 1 s
   // windows of loop time (virtual time in simulation).
   void onSamples(TimeNs now, const std::array<std::uint32_t, 4>& adsNew, bool inaFresh) noexcept;
-  // ADS1115 ready edges serviced between ticks, and the I/O time they took.
-  void onEdge(TimeNs io) noexcept {
-    ++edges_;
-    edgeIo_.add(io);
-  }
+  // An ADS1115 ready edge serviced between ticks, and (when timed) the I/O
+  // time it took.
+  void onEdge() noexcept { ++edges_; }
+  void onEdgeIo(TimeNs io) noexcept { edgeIo_.add(io); }
 
   LoopStatsSummary summary() const noexcept;
 

@@ -11,6 +11,7 @@
 #include "params/derived.h"
 #include "drivers/onewire/ds18b20_reader.h"
 #include "drivers/fast_sensors/driver_sensors.h"
+#include "drivers/sim/runner/scratch_dir.h"
 #include "drivers/sim/runner/sim_ready_edges.h"
 #include "drivers/sim/sim_clock.h"
 #include "runtime/control_cycle.h"
@@ -70,17 +71,6 @@ class HookedClock final : public Clock {
   std::function<void(TimeNs)> before_;
 };
 
-fs::path makeTempDir() {
-  // tmpfs when there is one: on ext4 each atomic replace of w1_slave (rename
-  // over an existing file) forces a data writeback, which dominated the
-  // profile of long runs.
-  std::error_code ec;
-  const fs::path base = fs::is_directory("/dev/shm", ec) ? fs::path("/dev/shm") : fs::temp_directory_path();
-  std::string tmpl = (base / "xr-sim-w1-XXXXXX").string();
-  if (::mkdtemp(tmpl.data()) == nullptr) return {};
-  return tmpl;
-}
-
 WorldConfig worldConfigOf(const SimRunOptions& o, const fs::path& w1) {
   WorldConfig c;
   c.plant = o.scenario.plant;
@@ -132,7 +122,7 @@ struct SimRunner::Impl {
 };
 
 SimRunner::SimRunner(SimRunOptions opts) {
-  fs::path w1 = makeTempDir();
+  fs::path w1 = makeScratchDir("xr-sim-w1-");
   d_ = std::make_unique<Impl>(std::move(opts), w1);
 }
 
@@ -166,6 +156,10 @@ SimRunResult SimRunner::run() {
   rt::CycleConfig cc;
   cc.rowPeriod = d.opts.telemetryRateHz > 0 ? fromSec(1.0 / d.opts.telemetryRateHz) : 0;
   cc.blockOnFullRows = false;  // drained every tick below, never full
+  if (d.opts.speed <= 0.0) {
+    cc.publishEveryTicks = 40;  // nobody watches the snapshot in real time
+    cc.timeEveryTicks = 16;
+  }
   rt::CycleDevices dev;
   dev.sensors = &d.sensors;
   dev.pwm = &d.world.pwm();
