@@ -12,6 +12,10 @@ clients=${4:-20}
 here=$(cd "$(dirname "$0")" && pwd)
 bin=$build/daemon/app/xregulatord
 mkdir -p "$out"
+# First what the platform allows: a bare SCHED_FIFO thread sleeping to the
+# same 2.5 ms deadlines, under the same load (the WebSocket clients are not
+# running yet, so this is the quiet baseline).
+baseline=$("$build/bench-tools/xr_timer_baseline" 20 2500 || echo "timer baseline: not available")
 port=$((20000 + RANDOM % 20000))
 log=$out/control-loop.log
 "$bin" --sim --speed 1 --duration "$secs" --http 127.0.0.1:$port >"$log" 2>&1 &
@@ -25,6 +29,7 @@ wait "$pid"
 line=$(grep "control loop:" "$log" | tail -1)
 {
   echo "run: --sim --speed 1, ${secs} s, $clients WebSocket clients, $(nproc) CPUs, kernel $(uname -r)"
+  echo "$baseline"
   echo "${line#*info  }"
   cat "$out/control-loop-ws.txt"
 } | tee "$out/control-loop.txt"
