@@ -40,8 +40,9 @@ BoardRig::BoardRig(const Settings& settings) {
     throw std::runtime_error("PWM: " + pwm_.error());
   pwmSafe_ = pwm_.safeStateWriter();
   if (int e = bus_.open(hw.i2c_bus); e != 0)
-    throw std::runtime_error("I2C: cannot open " + hw.i2c_bus + ": " + std::strerror(e) +
-                             " (enable it with dtparam=i2c_arm=on in /boot/config.txt; run xregulatord --probe)");
+    throw std::runtime_error(
+        "I2C: cannot open " + hw.i2c_bus + ": " + std::strerror(e) +
+        " (enable it with dtparam=i2c_arm=on in /boot/config.txt; run xregulatord --probe)");
   // ADS1115 ALERT/RDY: ready-edge pacing (every conversion used) when the
   // line is configured and can be requested; single-shot pacing otherwise.
   bool readyEdges = false;

@@ -5,8 +5,8 @@
 // std::runtime_error naming what to fix when a required device is missing.
 #include <memory>
 
-#include "drivers/fast_sensors/driver_sensors.h"
 #include "config/settings.h"
+#include "drivers/fast_sensors/driver_sensors.h"
 #include "drivers/gpio/gpio_libgpiod.h"
 #include "drivers/i2c/linux_i2c_bus.h"
 #include "drivers/onewire/ds18b20_reader.h"

@@ -40,12 +40,13 @@ namespace {
 void logLoopStats(const rt::LoopStatsSummary& s, const rt::RuntimeHealth& h) {
   spdlog::info(
       "control loop: {} ticks, {} overruns, period error p50/p99/max {:.0f}/{:.0f}/{:.0f} us, compute "
-      "p50/p99/max {:.0f}/{:.0f}/{:.0f} us, I/O p50/p99/max {:.0f}/{:.0f}/{:.0f} us, CH1 {:.0f} Hz (CH0 {:.0f}, "
+      "p50/p99/max {:.0f}/{:.0f}/{:.0f} us, I/O p50/p99/max {:.0f}/{:.0f}/{:.0f} us, CH1 {:.0f} Hz (CH0 "
+      "{:.0f}, "
       "CH2 {:.0f}, CH3 {:.0f}), INA {:.0f} Hz, sensor errors {}, output errors {}, events dropped {}",
-      s.ticks, s.overruns, s.periodErrP50Us, s.periodErrP99Us, s.periodErrMaxUs, s.computeP50Us, s.computeP99Us,
-      s.computeMaxUs, s.ioP50Us, s.ioP99Us, s.ioMaxUs, s.ch1SampleRateHz, s.adsChannelRateHz[0],
-      s.adsChannelRateHz[2], s.adsChannelRateHz[3], s.inaSampleRateHz, h.sensorReadErrors, h.outputWriteErrors,
-      h.eventsDropped);
+      s.ticks, s.overruns, s.periodErrP50Us, s.periodErrP99Us, s.periodErrMaxUs, s.computeP50Us,
+      s.computeP99Us, s.computeMaxUs, s.ioP50Us, s.ioP99Us, s.ioMaxUs, s.ch1SampleRateHz,
+      s.adsChannelRateHz[0], s.adsChannelRateHz[2], s.adsChannelRateHz[3], s.inaSampleRateHz,
+      h.sensorReadErrors, h.outputWriteErrors, h.eventsDropped);
 }
 
 double wallSecondsNow() { return static_cast<double>(unixMsNow()) / 1000.0; }
@@ -56,7 +57,8 @@ int Daemon::run() {
   const Settings& settings = config_.settings;
   const auto kernel = rt::detectPreemptRt();
   spdlog::info("xregulatord {} starting ({}), kernel {}: PREEMPT_RT {} ({})", XR_VERSION_STRING,
-               cli_.sim ? "simulation" : "board", kernel.release, kernel.preemptRt ? "yes" : "no", kernel.how);
+               cli_.sim ? "simulation" : "board", kernel.release, kernel.preemptRt ? "yes" : "no",
+               kernel.how);
 
   // ---- parameters: file, then scenario [config], then stored overrides ----
   Params fileParams = config_.params;
@@ -81,8 +83,10 @@ int Daemon::run() {
   if (!dbPath.empty()) {
     store = std::make_unique<StoreService>(dbPath, settings.store.checkpoint_interval_s);
     const OpenResult& o = store->openResult();
-    if (o.alarm()) spdlog::error("store: {}", o.message);
-    else spdlog::info("store: {} ({})", dbPath, o.message);
+    if (o.alarm())
+      spdlog::error("store: {}", o.message);
+    else
+      spdlog::info("store: {} ({})", dbPath, o.message);
     if (auto saved = store->loadLedger()) {
       restored = saved->ledger;
       spdlog::info("store: ledger restored (saved for '{}')", saved->reason);
@@ -145,10 +149,12 @@ int Daemon::run() {
   rt::ControlCycle cycle(core, devices, *handoffs, stats, *wall, cycleCfg);
   cycle.driveSafeState();  // field known LOW before anything runs
 
-  const auto sensorsStart =
-      simRig ? simRig->startSensors(voltageHardwareLimit(params)) : boardRig->startSensors(voltageHardwareLimit(params));
-  if (sensorsStart.inaError) spdlog::error("INA228 not answering at start (errno {}): will re-detect", sensorsStart.inaError);
-  if (sensorsStart.adsError) spdlog::error("ADS1115 not answering at start (errno {}): will re-detect", sensorsStart.adsError);
+  const auto sensorsStart = simRig ? simRig->startSensors(voltageHardwareLimit(params))
+                                   : boardRig->startSensors(voltageHardwareLimit(params));
+  if (sensorsStart.inaError)
+    spdlog::error("INA228 not answering at start (errno {}): will re-detect", sensorsStart.inaError);
+  if (sensorsStart.adsError)
+    spdlog::error("ADS1115 not answering at start (errno {}): will re-detect", sensorsStart.adsError);
 
   // ---- non-RT services ----
   RecentEvents recent;
@@ -191,8 +197,8 @@ int Daemon::run() {
     if (token.empty()) token = store ? store->token() : web::generateToken();
     auto opts = web::WebServerOptions::fromSettings(settings.web, token);
     if (opts.www_root.empty()) {
-      for (const char* p : {"web/www/dist", "web/www", XR_SOURCE_DIR "/web/www/dist", XR_SOURCE_DIR "/web/www",
-                            "/usr/share/xregulator/www"}) {
+      for (const char* p : {"web/www/dist", "web/www", XR_SOURCE_DIR "/web/www/dist",
+                            XR_SOURCE_DIR "/web/www", "/usr/share/xregulator/www"}) {
         if (std::filesystem::exists(std::string(p) + "/index.html")) {
           opts.www_root = p;
           break;
@@ -223,8 +229,10 @@ int Daemon::run() {
   // ---- the control thread ----
   rt::LoopConfig loopCfg;
   loopCfg.period = fromUs(settings.runtime.control_period_us);
-  if (cli_.durationS) loopCfg.duration = fromSec(*cli_.durationS);
-  else if (cli_.sim && cli_.speed <= 0.0) loopCfg.duration = fromSec(scenario->duration_s);
+  if (cli_.durationS)
+    loopCfg.duration = fromSec(*cli_.durationS);
+  else if (cli_.sim && cli_.speed <= 0.0)
+    loopCfg.duration = fromSec(scenario->duration_s);
   loopCfg.wallDeadlineOf = wallDeadlineOf;
   loopCfg.wall = wall;
   rt::ControlLoop loop(cycle, *loopClock, stats, loopCfg);
@@ -299,7 +307,8 @@ int Daemon::run() {
         const rt::RuntimeSnapshot s = handoffs->latest();
         outputsFault = s.health.outputWriteErrors > 0 && !s.telemetry.field_enable && s.health.stopping;
         sd_notifyf(0, "STATUS=%s %s SoC %.0f%% duty %.1f%%", std::string(toString(s.telemetry.mode)).c_str(),
-                   std::string(toString(s.telemetry.stage)).c_str(), s.telemetry.soc_pct, s.telemetry.duty_pct);
+                   std::string(toString(s.telemetry.stage)).c_str(), s.telemetry.soc_pct,
+                   s.telemetry.duty_pct);
         if (store) store->housekeeping(s, handoffs->ledger.load(), s.tick > 100);
         if (s.health.adsEdgeFallback && !edgeFallbackLogged) {
           edgeFallbackLogged = true;

@@ -14,12 +14,14 @@ namespace xr::app {
 namespace {
 std::filesystem::path makeTempDir() {
   auto dir = sim::makeScratchDir("xregulatord-sim-");
-  if (dir.empty()) throw std::runtime_error("cannot create a temporary directory for the simulated 1-Wire tree");
+  if (dir.empty())
+    throw std::runtime_error("cannot create a temporary directory for the simulated 1-Wire tree");
   return dir;
 }
 }  // namespace
 
-sim::WorldConfig SimRig::worldConfig(const sim::Scenario& s, const CliOptions& cli, const std::filesystem::path& w1) {
+sim::WorldConfig SimRig::worldConfig(const sim::Scenario& s, const CliOptions& cli,
+                                     const std::filesystem::path& w1) {
   sim::WorldConfig c;
   c.plant = s.plant;
   c.noise = s.noise;

@@ -8,8 +8,8 @@
 #include <optional>
 
 #include "app/cli.h"
-#include "drivers/fast_sensors/driver_sensors.h"
 #include "config/settings.h"
+#include "drivers/fast_sensors/driver_sensors.h"
 #include "drivers/onewire/ds18b20_reader.h"
 #include "drivers/sim/runner/sim_ready_edges.h"
 #include "drivers/sim/scenario.h"
@@ -44,7 +44,8 @@ class SimRig final : public rt::TickHook, public rt::TruthSource {
   void fill(rt::SimTruth& t) noexcept override;
 
  private:
-  static sim::WorldConfig worldConfig(const sim::Scenario& s, const CliOptions& cli, const std::filesystem::path& w1);
+  static sim::WorldConfig worldConfig(const sim::Scenario& s, const CliOptions& cli,
+                                      const std::filesystem::path& w1);
 
   const sim::Scenario& scenario_;
   CliOptions cli_;

@@ -50,7 +50,8 @@ web::StatusSnapshot WebApi::toStatus(const rt::RuntimeSnapshot& s, bool sim, dou
   add("loop", "io_max_us", s.loop.ioMaxUs);
   add("loop", "ch1_sample_rate_hz", s.loop.ch1SampleRateHz);
   for (int c = 0; c < 4; ++c) {
-    static const char* names[4] = {"ch0_sample_rate_hz", "ch1_rate_hz", "ch2_sample_rate_hz", "ch3_sample_rate_hz"};
+    static const char* names[4] = {"ch0_sample_rate_hz", "ch1_rate_hz", "ch2_sample_rate_hz",
+                                   "ch3_sample_rate_hz"};
     if (c != 1) add("loop", names[c], s.loop.adsChannelRateHz[static_cast<std::size_t>(c)]);
   }
   add("loop", "ina_sample_rate_hz", s.loop.inaSampleRateHz);
@@ -85,8 +86,8 @@ web::PatchResult WebApi::patchParams(const std::vector<web::ParamChange>& change
     }
     const std::size_t idx = c.index < 0 ? 0 : static_cast<std::size_t>(c.index);
     if (!valueFits(*c.spec, c.value)) {
-      r.errors.push_back({std::string(c.spec->name), "value out of range [" + std::to_string(c.spec->min) + ", " +
-                                                         std::to_string(c.spec->max) + "]"});
+      r.errors.push_back({std::string(c.spec->name), "value out of range [" + std::to_string(c.spec->min) +
+                                                         ", " + std::to_string(c.spec->max) + "]"});
       continue;
     }
     c.spec->set(p, idx, c.value);
@@ -151,7 +152,8 @@ web::HistoryResult WebApi::history(const web::HistoryQuery& q) {
 }
 
 std::vector<web::ProbeResult> WebApi::probeResults() {
-  if (ctx_.sim) return {{"simulated board (SimWorld)", true, "INA228 and ADS1115 chip models on a simulated I2C bus"}};
+  if (ctx_.sim)
+    return {{"simulated board (SimWorld)", true, "INA228 and ADS1115 chip models on a simulated I2C bus"}};
   return {};
 }
 

@@ -12,15 +12,15 @@ namespace xr {
 // Analog front end of the upstream board (ADS1115 channels). The drivers and
 // the simulator both scale through drivers/frontend with these values.
 struct AnalogFrontEndSettings {
-  double divider_r_top_ohm = 1.0e6;      // CH0 battery voltage divider
+  double divider_r_top_ohm = 1.0e6;  // CH0 battery voltage divider
   double divider_r_bottom_ohm = 75.0e3;
-  double hall_zero_v = 2.5;              // CH1 Hall output at 0 A
+  double hall_zero_v = 2.5;                // CH1 Hall output at 0 A
   double hall_sensitivity_v_per_a = 0.02;  // 20 mV/A (a 100 A-class sensor)
   bool hall_invert = false;
-  double rpm_per_volt = 1000.0;          // CH2 LM2907 output scaling (engine RPM per V at the crank)
-  double pulley_ratio = 1.0;             // alternator/crank ratio folded into rpm_per_volt if 1
-  double rpm_low_floor = 50.0;           // below this the reading is 0 RPM (LM2907 offset)
-  double thermistor_beta = 3950.0;       // CH3
+  double rpm_per_volt = 1000.0;     // CH2 LM2907 output scaling (engine RPM per V at the crank)
+  double pulley_ratio = 1.0;        // alternator/crank ratio folded into rpm_per_volt if 1
+  double rpm_low_floor = 50.0;      // below this the reading is 0 RPM (LM2907 offset)
+  double thermistor_beta = 3950.0;  // CH3
   double thermistor_r0_ohm = 10000.0;
   double thermistor_t0_c = 25.0;
   double thermistor_series_r_ohm = 10000.0;
@@ -35,7 +35,7 @@ struct HardwareSettings {
   double shunt_max_current_a = 200.0;    // sets CURRENT_LSB = max / 2^19
   AnalogFrontEndSettings frontend;
   std::vector<int> ads_channel_sequence{1, 0, 1, 2, 1, 3};  // favours CH1 (alternator current)
-  int ads_alert_rdy_line = 27;            // GPIO line of ALERT/RDY (-1: not wired, single-shot pacing)
+  int ads_alert_rdy_line = 27;  // GPIO line of ALERT/RDY (-1: not wired, single-shot pacing)
   std::string pwm_sysfs_root = "/sys/class/pwm";
   int pwm_chip = 0;
   int pwm_channel = 0;
@@ -45,15 +45,15 @@ struct HardwareSettings {
   int field_enable_line = 4;
   bool field_enable_active_high = true;
   int buzzer_line = 21;
-  int bms_line = -1;                      // -1: not wired
-  bool bms_active_low = false;            // level that means "charge disabled"
-  int ignition_line = -1;                 // -1: not wired (treated as on)
+  int bms_line = -1;            // -1: not wired
+  bool bms_active_low = false;  // level that means "charge disabled"
+  int ignition_line = -1;       // -1: not wired (treated as on)
   bool ignition_active_low = false;
   std::string watchdog_device = "/dev/watchdog";
   int watchdog_timeout_s = 16;
   std::string w1_root = "/sys/bus/w1/devices";
-  std::string onewire_sensor_id;          // "28-..." or empty for the first found
-  std::string vedirect_port;              // e.g. /dev/ttyUSB0, empty = none
+  std::string onewire_sensor_id;  // "28-..." or empty for the first found
+  std::string vedirect_port;      // e.g. /dev/ttyUSB0, empty = none
 };
 
 struct RuntimeSettings {
@@ -65,11 +65,11 @@ struct RuntimeSettings {
 struct WebSettings {
   std::string listen = "127.0.0.1";
   int port = 8080;
-  std::string token;             // empty: generated at first start, stored with the state
+  std::string token;  // empty: generated at first start, stored with the state
   double telemetry_rate_hz = 10.0;
   bool reads_require_token = false;
   int max_connections = 64;
-  std::string www_root;          // dashboard assets; empty = built-in default path
+  std::string www_root;  // dashboard assets; empty = built-in default path
 };
 
 struct StoreSettings {

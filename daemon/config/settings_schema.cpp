@@ -10,24 +10,32 @@ namespace {
 
 // One entry per Settings field. The member expression appears once; the
 // lambdas convert between the field's C++ type and a SettingValue.
-#define XR_S_STR(tbl, member, key, choices, help)                                                   \
-  SettingSpec{tbl, key, SettingKind::String, "", 0, 0, choices, false, help,                        \
-              [](const Settings& s) -> SettingValue { return s.member; },                           \
-              [](Settings& s, const SettingValue& v) { s.member = std::get<std::string>(v); }}
-#define XR_S_INT(tbl, member, key, unit, lo, hi, hex, help)                                         \
-  SettingSpec{tbl, key, SettingKind::Int, unit, lo, hi, "", hex, help,                              \
-              [](const Settings& s) -> SettingValue { return static_cast<std::int64_t>(s.member); }, \
-              [](Settings& s, const SettingValue& v) {                                               \
-                s.member = static_cast<decltype(s.member)>(std::get<std::int64_t>(v));               \
-              }}
-#define XR_S_FLT(tbl, member, key, unit, lo, hi, help)                                              \
-  SettingSpec{tbl, key, SettingKind::Float, unit, lo, hi, "", false, help,                          \
-              [](const Settings& s) -> SettingValue { return static_cast<double>(s.member); },      \
-              [](Settings& s, const SettingValue& v) { s.member = std::get<double>(v); }}
-#define XR_S_BOOL(tbl, member, key, help)                                                           \
-  SettingSpec{tbl, key, SettingKind::Bool, "", 0, 1, "", false, help,                               \
-              [](const Settings& s) -> SettingValue { return s.member; },                           \
-              [](Settings& s, const SettingValue& v) { s.member = std::get<bool>(v); }}
+#define XR_S_STR(tbl, member, key, choices, help)                                       \
+  SettingSpec {                                                                         \
+    tbl, key, SettingKind::String, "", 0, 0, choices, false, help,                      \
+        [](const Settings& s) -> SettingValue { return s.member; },                     \
+        [](Settings& s, const SettingValue& v) { s.member = std::get<std::string>(v); } \
+  }
+#define XR_S_INT(tbl, member, key, unit, lo, hi, hex, help)                                    \
+  SettingSpec {                                                                                \
+    tbl, key, SettingKind::Int, unit, lo, hi, "", hex, help,                                   \
+        [](const Settings& s) -> SettingValue { return static_cast<std::int64_t>(s.member); }, \
+        [](Settings& s, const SettingValue& v) {                                               \
+          s.member = static_cast<decltype(s.member)>(std::get<std::int64_t>(v));               \
+        }                                                                                      \
+  }
+#define XR_S_FLT(tbl, member, key, unit, lo, hi, help)                                   \
+  SettingSpec {                                                                          \
+    tbl, key, SettingKind::Float, unit, lo, hi, "", false, help,                         \
+        [](const Settings& s) -> SettingValue { return static_cast<double>(s.member); }, \
+        [](Settings& s, const SettingValue& v) { s.member = std::get<double>(v); }       \
+  }
+#define XR_S_BOOL(tbl, member, key, help)                                        \
+  SettingSpec {                                                                  \
+    tbl, key, SettingKind::Bool, "", 0, 1, "", false, help,                      \
+        [](const Settings& s) -> SettingValue { return s.member; },              \
+        [](Settings& s, const SettingValue& v) { s.member = std::get<bool>(v); } \
+  }
 
 const SettingSpec kSchema[] = {
     // [hardware]
@@ -51,15 +59,18 @@ const SettingSpec kSchema[] = {
                   const auto& l = std::get<std::vector<std::int64_t>>(v);
                   s.hardware.ads_channel_sequence.assign(l.begin(), l.end());
                 }},
-    XR_S_INT("hardware", hardware.ads_alert_rdy_line, "ads_alert_rdy_line", "", -1, 1023, false,
-             "GPIO line of the ADS1115 ALERT/RDY pin: every conversion is used, CH1 ~430 Hz (-1 = not wired: single-shot, ~200 Hz; a configured line with no edges falls back to single-shot after 250 ms)."),
+    XR_S_INT(
+        "hardware", hardware.ads_alert_rdy_line, "ads_alert_rdy_line", "", -1, 1023, false,
+        "GPIO line of the ADS1115 ALERT/RDY pin: every conversion is used, CH1 ~430 Hz (-1 = not wired: "
+        "single-shot, ~200 Hz; a configured line with no edges falls back to single-shot after 250 ms)."),
     XR_S_STR("hardware", hardware.pwm_sysfs_root, "pwm_sysfs_root", "", "sysfs PWM class directory."),
     XR_S_INT("hardware", hardware.pwm_chip, "pwm_chip", "", 0, 63, false,
              "pwmchipN driving the field (dtoverlay=pwm,pin=18,func=2 gives pwmchip0)."),
     XR_S_INT("hardware", hardware.pwm_channel, "pwm_channel", "", 0, 15, false, "PWM channel on that chip."),
     XR_S_FLT("hardware", hardware.pwm_frequency_hz, "pwm_frequency_hz", "Hz", 1.0, 100000.0,
              "Field PWM frequency."),
-    XR_S_BOOL("hardware", hardware.pwm_inverted, "pwm_inverted", "Invert the PWM polarity (driver stage inverts)."),
+    XR_S_BOOL("hardware", hardware.pwm_inverted, "pwm_inverted",
+              "Invert the PWM polarity (driver stage inverts)."),
     XR_S_STR("hardware", hardware.gpio_chip, "gpio_chip", "", "GPIO chip (libgpiod name or /dev path)."),
     XR_S_INT("hardware", hardware.field_enable_line, "field_enable_line", "", 0, 1023, false,
              "Field driver hard enable (GPIO4 on the upstream board). Also wire the INA228 ALERT to it."),
@@ -73,7 +84,8 @@ const SettingSpec kSchema[] = {
               "true: a LOW BMS input means charging is disabled (seed: bmsLogicLevelOff)."),
     XR_S_INT("hardware", hardware.ignition_line, "ignition_line", "", -1, 1023, false,
              "Ignition input (-1 = not wired, treated as on)."),
-    XR_S_BOOL("hardware", hardware.ignition_active_low, "ignition_active_low", "true: LOW means ignition on."),
+    XR_S_BOOL("hardware", hardware.ignition_active_low, "ignition_active_low",
+              "true: LOW means ignition on."),
     XR_S_STR("hardware", hardware.watchdog_device, "watchdog_device", "",
              "Hardware watchdog device (empty = do not use the hardware watchdog)."),
     XR_S_INT("hardware", hardware.watchdog_timeout_s, "watchdog_timeout_s", "s", 1, 255, false,
@@ -86,12 +98,12 @@ const SettingSpec kSchema[] = {
     // [hardware.frontend]
     XR_S_FLT("hardware.frontend", hardware.frontend.divider_r_top_ohm, "divider_r_top_ohm", "ohm", 1.0, 1e9,
              "CH0 battery voltage divider, upper resistor."),
-    XR_S_FLT("hardware.frontend", hardware.frontend.divider_r_bottom_ohm, "divider_r_bottom_ohm", "ohm", 1.0, 1e9,
-             "CH0 battery voltage divider, lower resistor."),
+    XR_S_FLT("hardware.frontend", hardware.frontend.divider_r_bottom_ohm, "divider_r_bottom_ohm", "ohm", 1.0,
+             1e9, "CH0 battery voltage divider, lower resistor."),
     XR_S_FLT("hardware.frontend", hardware.frontend.hall_zero_v, "hall_zero_v", "V", 0.0, 5.0,
              "CH1 Hall sensor output at 0 A."),
-    XR_S_FLT("hardware.frontend", hardware.frontend.hall_sensitivity_v_per_a, "hall_sensitivity_v_per_a", "V/A",
-             1e-5, 10.0, "CH1 Hall sensor sensitivity."),
+    XR_S_FLT("hardware.frontend", hardware.frontend.hall_sensitivity_v_per_a, "hall_sensitivity_v_per_a",
+             "V/A", 1e-5, 10.0, "CH1 Hall sensor sensitivity."),
     XR_S_BOOL("hardware.frontend", hardware.frontend.hall_invert, "hall_invert",
               "Hall sensor mounted the other way round."),
     XR_S_FLT("hardware.frontend", hardware.frontend.rpm_per_volt, "rpm_per_volt", "RPM/V", 0.001, 1e6,
@@ -106,23 +118,27 @@ const SettingSpec kSchema[] = {
              "CH3 thermistor resistance at thermistor_t0_c."),
     XR_S_FLT("hardware.frontend", hardware.frontend.thermistor_t0_c, "thermistor_t0_c", "degC", -50.0, 200.0,
              "CH3 thermistor reference temperature."),
-    XR_S_FLT("hardware.frontend", hardware.frontend.thermistor_series_r_ohm, "thermistor_series_r_ohm", "ohm", 1.0,
-             1e9, "CH3 series resistor."),
-    XR_S_FLT("hardware.frontend", hardware.frontend.thermistor_supply_v, "thermistor_supply_v", "V", 0.1, 30.0,
-             "CH3 divider supply."),
+    XR_S_FLT("hardware.frontend", hardware.frontend.thermistor_series_r_ohm, "thermistor_series_r_ohm", "ohm",
+             1.0, 1e9, "CH3 series resistor."),
+    XR_S_FLT("hardware.frontend", hardware.frontend.thermistor_supply_v, "thermistor_supply_v", "V", 0.1,
+             30.0, "CH3 divider supply."),
     // [runtime]
     XR_S_INT("runtime", runtime.control_period_us, "control_period_us", "us", 500, 100000, false,
              "Control tick period (2500 us = 400 Hz)."),
-    XR_S_INT("runtime", runtime.rt_priority, "rt_priority", "", 1, 99, false, "SCHED_FIFO priority of the control thread."),
-    XR_S_INT("runtime", runtime.cpu, "cpu", "", -1, 1023, false, "Pin the control thread to this CPU (-1 = no pinning)."),
+    XR_S_INT("runtime", runtime.rt_priority, "rt_priority", "", 1, 99, false,
+             "SCHED_FIFO priority of the control thread."),
+    XR_S_INT("runtime", runtime.cpu, "cpu", "", -1, 1023, false,
+             "Pin the control thread to this CPU (-1 = no pinning)."),
     // [web]
     XR_S_STR("web", web.listen, "listen", "", "HTTP listen address (127.0.0.1 = this machine only)."),
     XR_S_INT("web", web.port, "port", "", 1, 65535, false, "HTTP port."),
     XR_S_STR("web", web.token, "token", "",
              "Bearer token for writes; empty = generated at first start and kept with the state."),
-    XR_S_FLT("web", web.telemetry_rate_hz, "telemetry_rate_hz", "Hz", 0.1, 100.0, "WebSocket telemetry rate."),
+    XR_S_FLT("web", web.telemetry_rate_hz, "telemetry_rate_hz", "Hz", 0.1, 100.0,
+             "WebSocket telemetry rate."),
     XR_S_BOOL("web", web.reads_require_token, "reads_require_token", "Require the token for reads too."),
-    XR_S_INT("web", web.max_connections, "max_connections", "", 1, 10000, false, "Simultaneous HTTP/WebSocket clients."),
+    XR_S_INT("web", web.max_connections, "max_connections", "", 1, 10000, false,
+             "Simultaneous HTTP/WebSocket clients."),
     XR_S_STR("web", web.www_root, "www_root", "",
              "Dashboard assets directory; empty = the packaged /usr/share/xregulator/www."),
     // [store]
@@ -139,8 +155,8 @@ const SettingSpec kSchema[] = {
 #undef XR_S_FLT
 #undef XR_S_BOOL
 
-constexpr std::array<std::string_view, 6> kTables{"hardware", "hardware.frontend", "runtime",
-                                                   "web",      "store",             "log"};
+constexpr std::array<std::string_view, 6> kTables{"hardware", "hardware.frontend", "runtime", "web", "store",
+                                                  "log"};
 
 std::string rangeText(const SettingSpec& spec) {
   std::string r = "allowed " + formatNumber(spec.min) + " to " + formatNumber(spec.max);
@@ -163,8 +179,7 @@ std::string checkSettingValue(const SettingSpec& spec, const SettingValue& v) {
   switch (spec.kind) {
     case SettingKind::Int: {
       const auto i = std::get<std::int64_t>(v);
-      if (i < spec.min || i > spec.max)
-        return std::to_string(i) + " is out of range: " + rangeText(spec);
+      if (i < spec.min || i > spec.max) return std::to_string(i) + " is out of range: " + rangeText(spec);
       return {};
     }
     case SettingKind::Float: {
@@ -193,7 +208,8 @@ std::string checkSettingValue(const SettingSpec& spec, const SettingValue& v) {
       }
       return "\"" + s + "\" is not one of: " + std::string(spec.choices);
     }
-    case SettingKind::Bool: return {};
+    case SettingKind::Bool:
+      return {};
   }
   return {};
 }

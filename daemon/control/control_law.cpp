@@ -79,8 +79,8 @@ void ControlLaw::updateChargingStage(const ControlSensors& s, const Params& p, b
   if (overrideWasActive_ && !overrideNow) stages_.resetToBulk(s.now);
   overrideWasActive_ = overrideNow;
   if (stages_.stage() != before) {
-    ev.push(makeEvent(s.now, EventLevel::Info, EventCode::StageChanged, Reason::NONE, static_cast<double>(before),
-                      static_cast<double>(stages_.stage())));
+    ev.push(makeEvent(s.now, EventLevel::Info, EventCode::StageChanged, Reason::NONE,
+                      static_cast<double>(before), static_cast<double>(stages_.stage())));
   }
 
   voltageControlActive_ = stages_.voltageControlActive();
@@ -210,8 +210,8 @@ double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const Fa
       configurePid(p);
       currentPID_.SetMode(Pid::AUTOMATIC);  // re-seeded to lastAppliedDuty (bumpless)
       const SystemIdResult& r = sysId_.result();
-      ev.push(makeEvent(s.now, EventLevel::Info, EventCode::SystemIdDone, Reason::NONE, r.deadTimeMs, r.riseTimeMs,
-                        r.valid ? 1 : 0));
+      ev.push(makeEvent(s.now, EventLevel::Info, EventCode::SystemIdDone, Reason::NONE, r.deadTimeMs,
+                        r.riseTimeMs, r.valid ? 1 : 0));
     }
     return duty;
   }

@@ -215,8 +215,8 @@ const Outputs& Regulator::step(const Inputs& in) {
         s.law.enter_sys_fault();
         break;
     }
-    ev.push(makeEvent(in.now, isNormalMode(d.mode) ? EventLevel::Info : EventLevel::Warning, EventCode::ModeChanged,
-                      d.reason, static_cast<double>(s.lastMode), 0.0, 0, d.mode));
+    ev.push(makeEvent(in.now, isNormalMode(d.mode) ? EventLevel::Info : EventLevel::Warning,
+                      EventCode::ModeChanged, d.reason, static_cast<double>(s.lastMode), 0.0, 0, d.mode));
   }
   s.firstTick = false;
   s.lastMode = d.mode;

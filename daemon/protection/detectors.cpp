@@ -170,14 +170,16 @@ inline void ProtectionSupervisor::updateTemperature(const Inputs& in, EventBatch
   flags_.tempWarning = t1;
   flags_.tempCritical = t3;
 
-  if (stale && !evT5_.logged) push(ev, EventCode::TempSensorStale, EventLevel::Error, Reason::REASON_TEMP_STALE, t);
+  if (stale && !evT5_.logged)
+    push(ev, EventCode::TempSensorStale, EventLevel::Error, Reason::REASON_TEMP_STALE, t);
   edge(evT5_, stale, Reason::REASON_TEMP_STALE, t, 0.0, ev, EventLevel::Error, false);
   flags_.tempStale = stale;
 
   // T4: TempTask heartbeat (buzzer only). Uptime counts as a heartbeat at boot.
   const TimeNs hb = std::max(in.tempTaskHeartbeat, boot_);
   const bool hung = now_ - hb > fromMs(k::TEMP_TASK_TIMEOUT);
-  if (hung && !evT4_.logged) push(ev, EventCode::TempTaskHung, EventLevel::Critical, Reason::NONE, toSec(now_ - hb));
+  if (hung && !evT4_.logged)
+    push(ev, EventCode::TempTaskHung, EventLevel::Critical, Reason::NONE, toSec(now_ - hb));
   evT4_.logged = hung;
   flags_.tempTaskAlarm = hung;
 }

@@ -6,8 +6,8 @@
 
 namespace xr::rt {
 
-ControlCycle::ControlCycle(ControlCore& core, const CycleDevices& devices, Handoffs& handoffs, LoopStats& stats,
-                           const Clock& timing, CycleConfig config)
+ControlCycle::ControlCycle(ControlCore& core, const CycleDevices& devices, Handoffs& handoffs,
+                           LoopStats& stats, const Clock& timing, CycleConfig config)
     : core_(core), dev_(devices), h_(handoffs), stats_(stats), timing_(timing), cfg_(config) {}
 
 void ControlCycle::applyBetweenTicks() noexcept {
@@ -18,8 +18,10 @@ void ControlCycle::applyBetweenTicks() noexcept {
   }
   Command c;
   for (int i = 0; i < cfg_.maxCommandsPerTick && h_.commands.pop(c); ++i) {
-    if (core_.command(c)) ++health_.commandsApplied;
-    else ++health_.commandsRejected;
+    if (core_.command(c))
+      ++health_.commandsApplied;
+    else
+      ++health_.commandsRejected;
   }
 }
 
@@ -45,10 +47,14 @@ void ControlCycle::mergeSlowInputs() noexcept {
 
 void ControlCycle::readDiscreteInputs() noexcept {
   // A read error counts as the safe level: charging disabled / ignition off.
-  if (dev_.bms) in_.bmsChargeEnabled = dev_.bms->get() == 0;
-  else in_.bmsChargeEnabled = true;
-  if (dev_.ignition) in_.ignitionOn = dev_.ignition->get() == 1;
-  else in_.ignitionOn = true;
+  if (dev_.bms)
+    in_.bmsChargeEnabled = dev_.bms->get() == 0;
+  else
+    in_.bmsChargeEnabled = true;
+  if (dev_.ignition)
+    in_.ignitionOn = dev_.ignition->get() == 1;
+  else
+    in_.ignitionOn = true;
 }
 
 bool ControlCycle::writeOutputs(const Outputs& out) noexcept {
@@ -59,16 +65,22 @@ bool ControlCycle::writeOutputs(const Outputs& out) noexcept {
   bool ok = true;
   // Turning off: enable LOW before the duty. Turning on: duty before enable.
   if (!enable && (!outputsKnown_ || lastEnable_)) {
-    if (dev_.fieldEnable->set(false)) lastEnable_ = false;
-    else ok = false;
+    if (dev_.fieldEnable->set(false))
+      lastEnable_ = false;
+    else
+      ok = false;
   }
   if (!outputsKnown_ || duty != lastDuty_) {
-    if (dev_.pwm->setDutyPercent(duty)) lastDuty_ = duty;
-    else ok = false;
+    if (dev_.pwm->setDutyPercent(duty))
+      lastDuty_ = duty;
+    else
+      ok = false;
   }
   if (enable && ok && (!outputsKnown_ || !lastEnable_)) {
-    if (dev_.fieldEnable->set(true)) lastEnable_ = true;
-    else ok = false;
+    if (dev_.fieldEnable->set(true))
+      lastEnable_ = true;
+    else
+      ok = false;
   }
   if (dev_.buzzer && (!outputsKnown_ || out.buzzer != lastBuzzer_)) {
     if (dev_.buzzer->set(out.buzzer)) lastBuzzer_ = out.buzzer;
@@ -86,7 +98,8 @@ bool ControlCycle::tick(TimeNs now) {
   if (dev_.hook) dev_.hook->beforeTick(now);
   applyBetweenTicks();
 
-  const bool timed = cfg_.timeEveryTicks <= 1 || (tick_ % static_cast<std::uint64_t>(cfg_.timeEveryTicks)) == 0;
+  const bool timed =
+      cfg_.timeEveryTicks <= 1 || (tick_ % static_cast<std::uint64_t>(cfg_.timeEveryTicks)) == 0;
   const TimeNs t0 = timed ? timing_.now() : 0;
   in_.now = now;
   const bool sensorsOk = dev_.sensors->read(now, in_);
@@ -158,7 +171,8 @@ void ControlCycle::publish(const Outputs& out, TimeNs now) noexcept {
   lastNow_ = now;
   if ((tick_ & 63) == 1) summary_ = stats_.summary();  // quantiles are not free: ~6 Hz at 400 Hz
   const bool every = cfg_.publishEveryTicks <= 1;
-  if (every || stopping_ || (tick_ % static_cast<std::uint64_t>(cfg_.publishEveryTicks)) == 1) storeSnapshot(out, now);
+  if (every || stopping_ || (tick_ % static_cast<std::uint64_t>(cfg_.publishEveryTicks)) == 1)
+    storeSnapshot(out, now);
 
   if (cfg_.rowPeriod > 0 && (!rowsStarted_ || now - lastRow_ >= cfg_.rowPeriod)) {
     // Rows sit on the grid start + k·rowPeriod so t_s is regular.
@@ -179,7 +193,8 @@ void ControlCycle::publish(const Outputs& out, TimeNs now) noexcept {
 
 void ControlCycle::serviceEdges(TimeNs deadline) noexcept {
   if (!dev_.adsReady) return;
-  const bool timed = cfg_.timeEveryTicks <= 1 || (tick_ % static_cast<std::uint64_t>(cfg_.timeEveryTicks)) == 0;
+  const bool timed =
+      cfg_.timeEveryTicks <= 1 || (tick_ % static_cast<std::uint64_t>(cfg_.timeEveryTicks)) == 0;
   // Bounded: at 860 SPS a 2.5 ms period holds 2-3 edges; a storm of
   // spurious edges must not starve the tick.
   for (int i = 0; i < kMaxEdgesPerPeriod; ++i) {

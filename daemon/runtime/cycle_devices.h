@@ -15,7 +15,7 @@ namespace xr::rt {
 // one tick with ready-edge pacing, so the per-tick fresh flags undercount).
 struct SampleCounts {
   std::array<std::uint32_t, 4> ads{};
-  bool valid = false;  // false: the sensors do not count; use the fresh flags
+  bool valid = false;              // false: the sensors do not count; use the fresh flags
   bool readyEdgeFallback = false;  // ALERT/RDY configured but silent: single-shot pacing
 };
 

@@ -39,10 +39,10 @@ struct RuntimeHealth {
   std::uint64_t commandsApplied = 0, commandsRejected = 0;
   std::uint64_t paramSwaps = 0;
   std::uint64_t eventsDropped = 0;
-  std::uint64_t rowsDropped = 0;        // CSV rows lost because the writer fell behind
-  std::uint64_t edgeErrors = 0;         // ALERT/RDY waits that failed
-  bool adsEdgeFallback = false;         // ALERT/RDY configured but silent: single-shot pacing
-  bool stopping = false;                // the controlled shutdown ramp is running
+  std::uint64_t rowsDropped = 0;  // CSV rows lost because the writer fell behind
+  std::uint64_t edgeErrors = 0;   // ALERT/RDY waits that failed
+  bool adsEdgeFallback = false;   // ALERT/RDY configured but silent: single-shot pacing
+  bool stopping = false;          // the controlled shutdown ramp is running
 };
 
 struct RuntimeSnapshot {

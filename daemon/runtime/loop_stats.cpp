@@ -17,7 +17,8 @@ TimeNs LatencyHistogram::quantile(double p) const noexcept {
   if (count_ == 0) return 0;
   p = std::clamp(p, 0.0, 1.0);
   // Rank of the sample (1-based) that the quantile names.
-  const auto rank = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::ceil(p * static_cast<double>(count_))));
+  const auto rank =
+      std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::ceil(p * static_cast<double>(count_))));
   std::uint64_t seen = 0;
   for (std::size_t i = 0; i <= kBins; ++i) {
     seen += bins_[i];

@@ -39,20 +39,20 @@ inline constexpr std::array<int, 7> kPeriodErrorEdgesUs{10, 50, 100, 200, 500, 1
 
 struct LoopStatsSummary {
   std::uint64_t ticks = 0;
-  std::uint64_t overruns = 0;       // deadlines missed entirely
-  bool periodMeasured = false;      // false under --speed max (no deadlines)
+  std::uint64_t overruns = 0;   // deadlines missed entirely
+  bool periodMeasured = false;  // false under --speed max (no deadlines)
   double periodErrP50Us = 0, periodErrP99Us = 0, periodErrMaxUs = 0;
   double computeP50Us = 0, computeP99Us = 0, computeMaxUs = 0;
   double ioP50Us = 0, ioP99Us = 0, ioMaxUs = 0;
   // periodErrHist[i] = ticks with error < kPeriodErrorEdgesUs[i] (cumulative
   // counts); the last entry is every tick.
   std::array<std::uint64_t, kPeriodErrorEdgesUs.size() + 1> periodErrHist{};
-  double ch1SampleRateHz = 0;                  // alternator current (CH1)
-  std::array<double, 4> adsChannelRateHz{};    // every ADS channel
+  double ch1SampleRateHz = 0;                // alternator current (CH1)
+  std::array<double, 4> adsChannelRateHz{};  // every ADS channel
   double inaSampleRateHz = 0;
-  double windowS = 0;                          // the rate window length
-  std::uint64_t adsEdges = 0;                  // ALERT/RDY edges serviced (ready-edge pacing)
-  double edgeIoP99Us = 0, edgeIoMaxUs = 0;     // I2C time per edge
+  double windowS = 0;                       // the rate window length
+  std::uint64_t adsEdges = 0;               // ALERT/RDY edges serviced (ready-edge pacing)
+  double edgeIoP99Us = 0, edgeIoMaxUs = 0;  // I2C time per edge
 };
 
 class LoopStats {

@@ -24,7 +24,8 @@ bool DriverSensors::read(TimeNs now, Inputs& in) noexcept {
   if (ads_.pacing() == AdsPacing::ReadyEdge) {
     // A chip that does not answer explains the silence by itself (its own
     // re-detect runs); silence from an answering chip means no edges reach us.
-    if (!ads_.present()) lastEdge_ = now;
+    if (!ads_.present())
+      lastEdge_ = now;
     else if (now - lastEdge_ > kEdgeSilence) {
       edgeFallback_ = true;
       ads_.setPacing(AdsPacing::SingleShot, now);
@@ -34,7 +35,8 @@ bool DriverSensors::read(TimeNs now, Inputs& in) noexcept {
   fillInaInputs(ina_, in);
   last_ = ads_.poll(now);
   fillAdsInputs(last_, in);
-  const bool ok = ina_.stats().failedReads == lastInaFailures_ && ads_.stats().failedReads == lastAdsFailures_;
+  const bool ok =
+      ina_.stats().failedReads == lastInaFailures_ && ads_.stats().failedReads == lastAdsFailures_;
   lastInaFailures_ = ina_.stats().failedReads;
   lastAdsFailures_ = ads_.stats().failedReads;
   return ok;

@@ -28,11 +28,21 @@ std::uint16_t Ads1115Model::peekConfig() const noexcept {
 std::int16_t Ads1115Model::sample(std::uint16_t cfg) noexcept {
   double v = 0.0;
   switch (muxOf(cfg)) {
-    case 0: v = pin(0) - pin(1); break;
-    case 1: v = pin(0) - pin(3); break;
-    case 2: v = pin(1) - pin(3); break;
-    case 3: v = pin(2) - pin(3); break;
-    default: v = pin(muxOf(cfg) - 4); break;
+    case 0:
+      v = pin(0) - pin(1);
+      break;
+    case 1:
+      v = pin(0) - pin(3);
+      break;
+    case 2:
+      v = pin(1) - pin(3);
+      break;
+    case 3:
+      v = pin(2) - pin(3);
+      break;
+    default:
+      v = pin(muxOf(cfg) - 4);
+      break;
   }
   const double fs = kFsrVolts[pgaOf(cfg)];
   const double code = std::nearbyint(v / fs * 32768.0);
@@ -102,9 +112,15 @@ int Ads1115Model::read(std::uint8_t* buf, std::size_t len) noexcept {
       // A latched comparator alert clears when the Conversion register is read.
       if ((config_ & 0x0004) && !readyMode()) alert_ = false;
       break;
-    case 1: v = peekConfig(); break;
-    case 2: v = loThresh_; break;
-    default: v = hiThresh_; break;
+    case 1:
+      v = peekConfig();
+      break;
+    case 2:
+      v = loThresh_;
+      break;
+    default:
+      v = hiThresh_;
+      break;
   }
   buf[0] = std::uint8_t(v >> 8);
   if (len == 2) buf[1] = std::uint8_t(v);

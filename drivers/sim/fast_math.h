@@ -12,7 +12,7 @@ namespace xr::sim {
 // subtracting it back is exact. (Relies on IEEE doubles and no -ffast-math,
 // which would fold the two operations away; the unit test checks it.)
 inline double roundEven(double x) noexcept {
-  constexpr double kMagic = 6755399441055744.0;  // 1.5 x 2^52
+  constexpr double kMagic = 6755399441055744.0;              // 1.5 x 2^52
   if (!(std::fabs(x) < 0x1.0p51)) return std::nearbyint(x);  // huge (halves down to 2^52), inf, NaN: rare
   return (x + kMagic) - kMagic;
 }

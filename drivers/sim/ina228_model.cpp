@@ -10,13 +10,28 @@ namespace xr::sim {
 namespace ina228 {
 int regSize(std::uint8_t reg) noexcept {
   switch (reg) {
-    case CONFIG: case ADC_CONFIG: case SHUNT_CAL: case SHUNT_TEMPCO: case DIETEMP: case DIAG_ALRT:
-    case SOVL: case SUVL: case BOVL: case BUVL: case TEMP_LIMIT: case PWR_LIMIT: case MANUFACTURER_ID:
+    case CONFIG:
+    case ADC_CONFIG:
+    case SHUNT_CAL:
+    case SHUNT_TEMPCO:
+    case DIETEMP:
+    case DIAG_ALRT:
+    case SOVL:
+    case SUVL:
+    case BOVL:
+    case BUVL:
+    case TEMP_LIMIT:
+    case PWR_LIMIT:
+    case MANUFACTURER_ID:
     case DEVICE_ID:
       return 2;
-    case VSHUNT: case VBUS: case CURRENT: case POWER:
+    case VSHUNT:
+    case VBUS:
+    case CURRENT:
+    case POWER:
       return 3;
-    case ENERGY: case CHARGE:
+    case ENERGY:
+    case CHARGE:
       return 5;
     default:
       return 0;
@@ -29,8 +44,8 @@ using namespace ina228;
 namespace {
 constexpr std::int32_t kMax20 = (1 << 19) - 1;
 constexpr std::int32_t kMin20 = -(1 << 19);
-constexpr double kVbusLsb = 195.3125e-6;      // V
-constexpr double kTempLsb = 7.8125e-3;        // °C
+constexpr double kVbusLsb = 195.3125e-6;  // V
+constexpr double kTempLsb = 7.8125e-3;    // °C
 constexpr std::uint64_t kMask40 = (std::uint64_t{1} << 40) - 1;
 constexpr double kInvAvg[8] = {1.0, 1.0 / 4, 1.0 / 16, 1.0 / 64, 1.0 / 128, 1.0 / 256, 1.0 / 512, 1.0 / 1024};
 
@@ -240,27 +255,48 @@ bool Ina228Model::alertActive() const noexcept {
 std::uint64_t Ina228Model::peek(std::uint8_t reg) const noexcept {
   auto r20 = [](std::int32_t c) { return std::uint64_t(std::uint32_t(c) & 0xFFFFF) << 4; };
   switch (reg) {
-    case CONFIG: return config_;
-    case ADC_CONFIG: return adcConfig_;
-    case SHUNT_CAL: return shuntCal_;
-    case SHUNT_TEMPCO: return tempco_;
-    case VSHUNT: return r20(vshunt_);
-    case VBUS: return r20(vbus_);
-    case DIETEMP: return std::uint16_t(dietemp_);
-    case CURRENT: return r20(current_);
-    case POWER: return power_;
-    case ENERGY: return std::uint64_t(energyAcc_) & kMask40;          // integer part (>= 0)
-    case CHARGE: return std::uint64_t(std::int64_t(chargeAcc_)) & kMask40;  // truncated toward 0
-    case DIAG_ALRT: return diag_;
-    case SOVL: return sovl_;
-    case SUVL: return suvl_;
-    case BOVL: return bovl_;
-    case BUVL: return buvl_;
-    case TEMP_LIMIT: return tempLimit_;
-    case PWR_LIMIT: return pwrLimit_;
-    case MANUFACTURER_ID: return 0x5449;
-    case DEVICE_ID: return 0x2281;
-    default: return 0;
+    case CONFIG:
+      return config_;
+    case ADC_CONFIG:
+      return adcConfig_;
+    case SHUNT_CAL:
+      return shuntCal_;
+    case SHUNT_TEMPCO:
+      return tempco_;
+    case VSHUNT:
+      return r20(vshunt_);
+    case VBUS:
+      return r20(vbus_);
+    case DIETEMP:
+      return std::uint16_t(dietemp_);
+    case CURRENT:
+      return r20(current_);
+    case POWER:
+      return power_;
+    case ENERGY:
+      return std::uint64_t(energyAcc_) & kMask40;  // integer part (>= 0)
+    case CHARGE:
+      return std::uint64_t(std::int64_t(chargeAcc_)) & kMask40;  // truncated toward 0
+    case DIAG_ALRT:
+      return diag_;
+    case SOVL:
+      return sovl_;
+    case SUVL:
+      return suvl_;
+    case BOVL:
+      return bovl_;
+    case BUVL:
+      return buvl_;
+    case TEMP_LIMIT:
+      return tempLimit_;
+    case PWR_LIMIT:
+      return pwrLimit_;
+    case MANUFACTURER_ID:
+      return 0x5449;
+    case DEVICE_ID:
+      return 0x2281;
+    default:
+      return 0;
   }
 }
 
@@ -327,19 +363,34 @@ int Ina228Model::write(const std::uint8_t* buf, std::size_t len) noexcept {
       shuntCal_ = v & 0x7FFF;
       codesValid_ = false;  // the raw power code depends on it
       break;
-    case SHUNT_TEMPCO: tempco_ = v & 0x3FFF; break;
+    case SHUNT_TEMPCO:
+      tempco_ = v & 0x3FFF;
+      break;
     case DIAG_ALRT:
       // Only the four control bits are writable; the rest are status.
       diag_ = static_cast<std::uint16_t>((diag_ & 0x0FFF) | (v & 0xF000));
       limitActive_ = (diag_ & kLimitFlags) != 0;
       break;
-    case SOVL: sovl_ = v; break;
-    case SUVL: suvl_ = v; break;
-    case BOVL: bovl_ = v & 0x7FFF; break;
-    case BUVL: buvl_ = v & 0x7FFF; break;
-    case TEMP_LIMIT: tempLimit_ = v; break;
-    case PWR_LIMIT: pwrLimit_ = v; break;
-    default: break;
+    case SOVL:
+      sovl_ = v;
+      break;
+    case SUVL:
+      suvl_ = v;
+      break;
+    case BOVL:
+      bovl_ = v & 0x7FFF;
+      break;
+    case BUVL:
+      buvl_ = v & 0x7FFF;
+      break;
+    case TEMP_LIMIT:
+      tempLimit_ = v;
+      break;
+    case PWR_LIMIT:
+      pwrLimit_ = v;
+      break;
+    default:
+      break;
   }
   return 0;
 }

@@ -88,8 +88,8 @@ class Ina228Model final : public SimI2cDevice {
  private:
   void reset() noexcept;
   void restartConversions() noexcept;
-  void onSample() noexcept;                   // one raw sample of every active channel
-  void publish(double dtSeconds) noexcept;    // the averaged result is ready
+  void onSample() noexcept;                 // one raw sample of every active channel
+  void publish(double dtSeconds) noexcept;  // the averaged result is ready
   void compareLimits(std::int32_t vshCode, std::int32_t vbusCode, std::int32_t tempCode,
                      std::uint32_t powerCode) noexcept;
   int mode() const noexcept { return (adcConfig_ >> 12) & 0xF; }
@@ -105,22 +105,23 @@ class Ina228Model final : public SimI2cDevice {
   std::uint16_t config_ = 0, adcConfig_ = 0, shuntCal_ = 0, tempco_ = 0;
   std::int32_t vshunt_ = 0, vbus_ = 0, current_ = 0;  // 20-bit codes
   std::int16_t dietemp_ = 0;
-  std::uint32_t power_ = 0;                          // 24-bit
-  double energyAcc_ = 0.0;  // ENERGY in its LSBs; the register is the integer part (40-bit)
-  double chargeAcc_ = 0.0;  // CHARGE in its LSBs; the register is the truncated value (40-bit two's complement)
+  std::uint32_t power_ = 0;  // 24-bit
+  double energyAcc_ = 0.0;   // ENERGY in its LSBs; the register is the integer part (40-bit)
+  double chargeAcc_ =
+      0.0;  // CHARGE in its LSBs; the register is the truncated value (40-bit two's complement)
   std::uint16_t diag_ = 0, sovl_ = 0, suvl_ = 0, bovl_ = 0, buvl_ = 0, tempLimit_ = 0, pwrLimit_ = 0;
   bool limitActive_ = false;  // some limit condition true at the last comparison
   // Conversion engine state.
   bool running_ = false;
   TimeNs nextSample_ = 0;
-  TimeNs sampleTime_ = 1;      // sampleTime() while running (set when conversions restart)
+  TimeNs sampleTime_ = 1;  // sampleTime() while running (set when conversions restart)
   // Raw ADC codes of analog_ (constant until the next setAnalog() or an
   // ADCRANGE change): quantised once, not per raw sample batch.
   bool codesValid_ = false;
   std::int32_t vshCode_ = 0, vbusCode_ = 0, tcode_ = 0;
   std::uint32_t rawPower_ = 0;
   std::uint16_t curScaleCal_ = 0;  // SHUNT_CAL that curScale_ = 4096 / SHUNT_CAL was computed for
-  double curScale_ = 0.0;  // POWER code of one raw sample (SLOWALERT = 0 limit)
+  double curScale_ = 0.0;          // POWER code of one raw sample (SLOWALERT = 0 limit)
   int samplesInWindow_ = 0;
   double sumVsh_ = 0.0, sumVbus_ = 0.0, sumTemp_ = 0.0;
   std::uint64_t conversions_ = 0;

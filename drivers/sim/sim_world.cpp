@@ -48,16 +48,23 @@ void SimWorld::setFault(Fault f, bool active, double value) {
   faults_[int(f)] = active;
   faultValues_[int(f)] = active ? value : 0.0;
   switch (f) {
-    case Fault::ina228_nack: bus_.setNack(hw_.ina228_address, active); break;
-    case Fault::ads1115_nack: bus_.setNack(hw_.ads1115_address, active); break;
-    case Fault::field_open: plant_.setFieldOpen(active); break;
+    case Fault::ina228_nack:
+      bus_.setNack(hw_.ina228_address, active);
+      break;
+    case Fault::ads1115_nack:
+      bus_.setNack(hw_.ads1115_address, active);
+      break;
+    case Fault::field_open:
+      plant_.setFieldOpen(active);
+      break;
     case Fault::temp_sensor_disconnect:
       if (w1_) w1_->setPresent(!active);
       break;
     case Fault::temp_value:
       if (w1_) w1_->convertNow();  // the file follows the fault at once, not at the next 750 ms
       break;
-    default: break;
+    default:
+      break;
   }
   refreshAnalog(0.0);
 }
@@ -95,8 +102,9 @@ void SimWorld::refreshAnalog(double dt) noexcept {
   // actually samples a pin (one channel per conversion), instead of drawing
   // noise for all four every step. (frontend::adcFromBatteryVolts /
   // adcFromAltAmps / adcFromRpm inlined, same arithmetic.)
-  pins_[0] = faults_[int(Fault::battery_v_zero)] ? 0.0
-                                                 : (p.battery_v + faultValues_[int(Fault::battery_v_offset)]) / ch0Gain_;
+  pins_[0] = faults_[int(Fault::battery_v_zero)]
+                 ? 0.0
+                 : (p.battery_v + faultValues_[int(Fault::battery_v_offset)]) / ch0Gain_;
   const double hallA = p.alt_a + faultValues_[int(Fault::alt_current_offset)];
   pins_[1] = fe.hall_zero_v + (fe.hall_invert ? -hallA : hallA) * fe.hall_sensitivity_v_per_a;
   // LM2907: tracks the tach frequency with a short ripple filter; when the
@@ -123,7 +131,8 @@ void SimWorld::refreshAnalog(double dt) noexcept {
     if (faults_[int(Fault::temp_value)]) tempF = faultValues_[int(Fault::temp_value)];
     tempSenseF_ = tempF;
     // Open thermistor: the divider node sits at the supply.
-    ch3V_ = faults_[int(Fault::temp_sensor_disconnect)] ? fe.thermistor_supply_v : frontend::adcFromTempF(fe, tempF);
+    ch3V_ = faults_[int(Fault::temp_sensor_disconnect)] ? fe.thermistor_supply_v
+                                                        : frontend::adcFromTempF(fe, tempF);
   }
   pins_[3] = ch3V_;
 
@@ -140,8 +149,11 @@ double SimWorld::adsPin(void* ctx, int ain) noexcept {
     case 2:  // the tach ripple is noise only while there is a tach signal
       if (!w.faults_[int(Fault::rpm_signal_loss)]) v += w.rng_.gauss(w.pinSigma_[2]);
       break;
-    case 1: v += w.rng_.gauss(w.pinSigma_[1]); break;
-    default: break;  // CH3: the thermistor node carries the temperature noise (slow refresh)
+    case 1:
+      v += w.rng_.gauss(w.pinSigma_[1]);
+      break;
+    default:
+      break;  // CH3: the thermistor node carries the temperature noise (slow refresh)
   }
   return std::clamp(std::isfinite(v) ? v : 0.0, 0.0, kAdsVdd + 0.3);
 }

@@ -57,8 +57,8 @@ struct WorldConfig {
 // Plant truth plus the board-level facts, for the CSV sim_* columns.
 struct SimTruth {
   PlantTruth plant;
-  bool field_on = false;        // field drive reaching the winding
-  bool ina_alert = false;       // INA228 ALERT active (enable pulled low)
+  bool field_on = false;   // field drive reaching the winding
+  bool ina_alert = false;  // INA228 ALERT active (enable pulled low)
 };
 
 class SimWorld {
@@ -128,7 +128,7 @@ class SimWorld {
   TimeNs gridNext_;  // the first multiple of grid_ after plantNow_
   // Linear front-end scalings (frontend::adcFrom*, same arithmetic), hoisted
   // out of the per-step path.
-  double ch0Gain_ = 1.0;  // battery volts per ADC volt
+  double ch0Gain_ = 1.0;   // battery volts per ADC volt
   double rpmScale_ = 1.0;  // engine RPM per ADC volt
   Rng rng_;
   Plant plant_;

@@ -9,17 +9,17 @@
 namespace xr::sim {
 
 struct AlternatorConfig {
-  double rated_a = 120.0;       // hot output at full field, high RPM
-  double field_tau_s = 0.15;    // field current lag behind the duty
-  double temp_f = 80.0;         // initial alternator temperature
-  double ambient_f = 95.0;      // engine-room air
-  double pulley_ratio = 2.5;    // alternator RPM / engine RPM
-  double cut_in_rpm = 600.0;    // engine RPM where output starts
-  double full_rpm = 2000.0;     // engine RPM where rated output is reached
-  double cruise_rpm = 1800.0;   // engine RPM the thermal calibration refers to
+  double rated_a = 120.0;         // hot output at full field, high RPM
+  double field_tau_s = 0.15;      // field current lag behind the duty
+  double temp_f = 80.0;           // initial alternator temperature
+  double ambient_f = 95.0;        // engine-room air
+  double pulley_ratio = 2.5;      // alternator RPM / engine RPM
+  double cut_in_rpm = 600.0;      // engine RPM where output starts
+  double full_rpm = 2000.0;       // engine RPM where rated output is reached
+  double cruise_rpm = 1800.0;     // engine RPM the thermal calibration refers to
   double thermal_rise_f = 150.0;  // steady rise above ambient at rated output, cruise RPM
   double thermal_tau_s = 600.0;   // thermal time constant at cruise RPM
-  double wiring_ohm = 0.003;    // alternator B+ to battery cable
+  double wiring_ohm = 0.003;      // alternator B+ to battery cable
 };
 
 class AlternatorModel {

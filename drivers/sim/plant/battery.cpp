@@ -11,24 +11,39 @@ struct Pt {
 };
 // Rest voltage of a 12 V bank. LiFePO4: 4 cells, flat 3.25-3.35 V plateau, a
 // steep knee above ~97 % and below ~10 %.
-constexpr std::array<Pt, 12> kLfp{{{0.00, 10.0}, {0.05, 12.0}, {0.10, 12.8}, {0.20, 13.0}, {0.30, 13.1},
-                                   {0.50, 13.2}, {0.70, 13.28}, {0.90, 13.35}, {0.95, 13.42}, {0.98, 13.6},
-                                   {0.995, 13.95}, {1.00, 14.7}}};
+constexpr std::array<Pt, 12> kLfp{{{0.00, 10.0},
+                                   {0.05, 12.0},
+                                   {0.10, 12.8},
+                                   {0.20, 13.0},
+                                   {0.30, 13.1},
+                                   {0.50, 13.2},
+                                   {0.70, 13.28},
+                                   {0.90, 13.35},
+                                   {0.95, 13.42},
+                                   {0.98, 13.6},
+                                   {0.995, 13.95},
+                                   {1.00, 14.7}}};
 // Lead-acid rest voltages (6 cells).
-constexpr std::array<Pt, 6> kAgm{{{0.0, 11.6}, {0.2, 11.95}, {0.4, 12.2}, {0.6, 12.45}, {0.8, 12.65}, {1.0, 12.9}}};
+constexpr std::array<Pt, 6> kAgm{
+    {{0.0, 11.6}, {0.2, 11.95}, {0.4, 12.2}, {0.6, 12.45}, {0.8, 12.65}, {1.0, 12.9}}};
 constexpr std::array<Pt, 6> kFlooded{
     {{0.0, 11.5}, {0.2, 11.8}, {0.4, 12.05}, {0.6, 12.3}, {0.8, 12.5}, {1.0, 12.7}}};
-constexpr std::array<Pt, 6> kGel{{{0.0, 11.7}, {0.2, 12.0}, {0.4, 12.25}, {0.6, 12.5}, {0.8, 12.7}, {1.0, 12.95}}};
+constexpr std::array<Pt, 6> kGel{
+    {{0.0, 11.7}, {0.2, 12.0}, {0.4, 12.25}, {0.6, 12.5}, {0.8, 12.7}, {1.0, 12.95}}};
 
 bool isLead(Chemistry c) { return c != Chemistry::lifepo4; }
 }  // namespace
 
 std::string_view toString(Chemistry c) {
   switch (c) {
-    case Chemistry::lifepo4: return "lifepo4";
-    case Chemistry::agm: return "agm";
-    case Chemistry::flooded: return "flooded";
-    case Chemistry::gel: return "gel";
+    case Chemistry::lifepo4:
+      return "lifepo4";
+    case Chemistry::agm:
+      return "agm";
+    case Chemistry::flooded:
+      return "flooded";
+    case Chemistry::gel:
+      return "gel";
   }
   return "?";
 }
@@ -47,10 +62,18 @@ BatteryModel::BatteryModel(const BatteryConfig& c) : cfg_(c) {
   r1_ = r_ * (isLead(c.chemistry) ? 1.5 : 0.8);
   tau1_ = isLead(c.chemistry) ? 120.0 : 60.0;
   switch (c.chemistry) {
-    case Chemistry::lifepo4: eff_ = 0.99; break;
-    case Chemistry::agm: eff_ = 0.95; break;
-    case Chemistry::flooded: eff_ = 0.90; break;
-    case Chemistry::gel: eff_ = 0.93; break;
+    case Chemistry::lifepo4:
+      eff_ = 0.99;
+      break;
+    case Chemistry::agm:
+      eff_ = 0.95;
+      break;
+    case Chemistry::flooded:
+      eff_ = 0.90;
+      break;
+    case Chemistry::gel:
+      eff_ = 0.93;
+      break;
   }
   socPerAmpSecond_ = 1.0 / (3600.0 * cap);
   setSocPct(c.soc_pct);
@@ -68,10 +91,17 @@ void BatteryModel::refreshOcv() noexcept {
     const Pt* t = kLfp.data();
     std::size_t n = kLfp.size();
     switch (cfg_.chemistry) {
-      case Chemistry::lifepo4: break;
-      case Chemistry::agm: t = kAgm.data(), n = kAgm.size(); break;
-      case Chemistry::flooded: t = kFlooded.data(), n = kFlooded.size(); break;
-      case Chemistry::gel: t = kGel.data(), n = kGel.size(); break;
+      case Chemistry::lifepo4:
+        break;
+      case Chemistry::agm:
+        t = kAgm.data(), n = kAgm.size();
+        break;
+      case Chemistry::flooded:
+        t = kFlooded.data(), n = kFlooded.size();
+        break;
+      case Chemistry::gel:
+        t = kGel.data(), n = kGel.size();
+        break;
     }
     const double scale = cfg_.nominal_v / 12.0;
     if (soc_ <= t[0].soc) {

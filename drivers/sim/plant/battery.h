@@ -44,12 +44,12 @@ class BatteryModel {
   double chargeOverpotential(double amps) const noexcept;
   void refreshOcv() noexcept;  // after every SoC change
   BatteryConfig cfg_;
-  double soc_;      // 0..1
-  double r_;        // series resistance, ohm
-  double r1_;       // polarisation resistance, ohm
-  double tau1_;     // polarisation time constant, s
-  double vrc_ = 0;  // polarisation voltage, V
-  double eff_;      // coulombic efficiency when charging
+  double soc_;                      // 0..1
+  double r_;                        // series resistance, ohm
+  double r1_;                       // polarisation resistance, ohm
+  double tau1_;                     // polarisation time constant, s
+  double vrc_ = 0;                  // polarisation voltage, V
+  double eff_;                      // coulombic efficiency when charging
   double rcDt_ = -1.0, rcA_ = 0.0;  // cached exp(-dt/tau1)
   double socPerAmpSecond_;          // 1 / (3600 x capacity)
   double ocv_ = 0.0;                // OCV(soc_), see refreshOcv()
@@ -57,7 +57,7 @@ class BatteryModel {
   // The OCV-curve segment soc_ lies in, (segLo_, segHi_], as a line in volts
   // already scaled to the bank: SoC moves by parts per million per step, so
   // refreshOcv() is a compare and a multiply-add almost every time.
-  double segLo_ = 1.0, segHi_ = 0.0;               // empty until the first refreshOcv()
+  double segLo_ = 1.0, segHi_ = 0.0;                   // empty until the first refreshOcv()
   double segS0_ = 0.0, segV0_ = 0.0, segSlope_ = 0.0;  // ocv = V0 + (soc - S0) x slope
 };
 

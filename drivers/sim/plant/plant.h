@@ -12,23 +12,23 @@ namespace xr::sim {
 struct PlantConfig {
   BatteryConfig battery;
   AlternatorConfig alternator;
-  double rpm = 1800.0;           // engine RPM
-  double house_a = 15.0;         // house load at the nominal voltage
+  double rpm = 1800.0;    // engine RPM
+  double house_a = 15.0;  // house load at the nominal voltage
   double bus_capacitance_f = 0.01;
-  double tvs_clamp_v = 0.0;      // 0 = 2.5 x nominal (30 V on a 12 V bus)
+  double tvs_clamp_v = 0.0;  // 0 = 2.5 x nominal (30 V on a 12 V bus)
 };
 
 struct PlantTruth {
-  double battery_v = 0.0;     // bus voltage at the battery terminals
-  double battery_a = 0.0;     // into the battery (+ = charging)
+  double battery_v = 0.0;  // bus voltage at the battery terminals
+  double battery_a = 0.0;  // into the battery (+ = charging)
   double alt_a = 0.0;
   double alt_terminal_v = 0.0;
   double alt_temp_f = 0.0;
   double house_a = 0.0;
   double soc_pct = 0.0;
-  double field = 0.0;         // field current fraction 0..1
+  double field = 0.0;  // field current fraction 0..1
   bool bms_connected = true;
-  double peak_bus_v = 0.0;    // highest bus voltage so far
+  double peak_bus_v = 0.0;           // highest bus voltage so far
   double peak_disconnected_v = 0.0;  // highest bus voltage while the BMS was open
 };
 

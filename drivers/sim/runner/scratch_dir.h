@@ -13,9 +13,9 @@ namespace xr::sim {
 // A new private directory `<tmpfs or TMPDIR>/<prefix>XXXXXX`; empty on failure.
 inline std::filesystem::path makeScratchDir(const char* prefix) {
   std::error_code ec;
-  const std::filesystem::path base =
-      std::filesystem::is_directory("/dev/shm", ec) ? std::filesystem::path("/dev/shm")
-                                                     : std::filesystem::temp_directory_path(ec);
+  const std::filesystem::path base = std::filesystem::is_directory("/dev/shm", ec)
+                                         ? std::filesystem::path("/dev/shm")
+                                         : std::filesystem::temp_directory_path(ec);
   std::string tmpl = (base / (std::string(prefix) + "XXXXXX")).string();
   if (::mkdtemp(tmpl.data()) == nullptr) return {};
   return tmpl;

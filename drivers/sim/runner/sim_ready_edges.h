@@ -14,6 +14,7 @@ class SimReadyEdges final : public rt::ReadyEdgeSource {
   int waitEdge(TimeNs deadline, TimeNs* stamp) noexcept override {
     const TimeNs edge = world_.ads().nextReadyEdge();
     if (edge < 0 || edge >= deadline) return 0;  // no pulse due before the deadline
+    if (edge <= world_.now()) return -1;         // a pulse in the past: the model is not up to time
     world_.advanceTo(edge);
     *stamp = edge;
     return 1;

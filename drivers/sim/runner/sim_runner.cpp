@@ -8,15 +8,15 @@
 #include <ostream>
 
 #include "control/regulator.h"
-#include "params/derived.h"
-#include "drivers/onewire/ds18b20_reader.h"
 #include "drivers/fast_sensors/driver_sensors.h"
+#include "drivers/onewire/ds18b20_reader.h"
 #include "drivers/sim/runner/scratch_dir.h"
 #include "drivers/sim/runner/sim_ready_edges.h"
 #include "drivers/sim/sim_clock.h"
+#include "params/derived.h"
+#include "runtime/control_core.h"
 #include "runtime/control_cycle.h"
 #include "runtime/control_loop.h"
-#include "runtime/control_core.h"
 #include "runtime/loop_stats.h"
 
 namespace xr::sim {
@@ -59,7 +59,8 @@ class WorldTruth final : public rt::TruthSource {
 // the run is deterministic).
 class HookedClock final : public Clock {
  public:
-  HookedClock(SimClock& inner, std::function<void(TimeNs)> before) : inner_(inner), before_(std::move(before)) {}
+  HookedClock(SimClock& inner, std::function<void(TimeNs)> before)
+      : inner_(inner), before_(std::move(before)) {}
   TimeNs now() const noexcept override { return inner_.now(); }
   void sleepUntil(TimeNs t) noexcept override {
     before_(t);
@@ -114,7 +115,8 @@ struct SimRunner::Impl {
         world(worldConfigOf(opts, w1Dir), opts.settings.hardware),
         simClock(world, opts.speed),
         handoffs(params),
-        sensors(world.i2c(), opts.settings.hardware, simClock, opts.settings.hardware.ads_alert_rdy_line >= 0),
+        sensors(world.i2c(), opts.settings.hardware, simClock,
+                opts.settings.hardware.ads_alert_rdy_line >= 0),
         readyEdges(world),
         core(params),
         truth(world),

@@ -27,14 +27,14 @@ namespace xr::sim {
 
 struct SimRunOptions {
   Scenario scenario = defaultScenario();
-  Settings settings;                 // hardware (addresses, shunt, front end), control period
-  std::optional<Params> baseParams;  // before the scenario's [config]; default = catalogue defaults
-  double telemetryRateHz = 10.0;     // rows per simulated second (0 = none)
-  std::optional<double> durationS;   // overrides the scenario's duration_s
-  std::optional<std::uint64_t> seed; // overrides the scenario's seed
-  double speed = 0.0;                // 0 = max (no pacing), 1 = real time
-  bool keepRows = true;              // collect rows in the result
-  bool coldStart = false;            // start the loop the instant the chips power up
+  Settings settings;                  // hardware (addresses, shunt, front end), control period
+  std::optional<Params> baseParams;   // before the scenario's [config]; default = catalogue defaults
+  double telemetryRateHz = 10.0;      // rows per simulated second (0 = none)
+  std::optional<double> durationS;    // overrides the scenario's duration_s
+  std::optional<std::uint64_t> seed;  // overrides the scenario's seed
+  double speed = 0.0;                 // 0 = max (no pacing), 1 = real time
+  bool keepRows = true;               // collect rows in the result
+  bool coldStart = false;             // start the loop the instant the chips power up
   std::function<void(const struct SimRow&)> onRow;  // streaming (CSV writer)
   std::function<void(const Event&)> onEvent;        // events, in order
 };

@@ -50,9 +50,12 @@ int main(int argc, char** argv) {
     }
   }
   std::sort(late.begin(), late.end());
-  auto q = [&](double p) { return late[std::min(late.size() - 1, static_cast<std::size_t>(p * late.size()))] / 1000; };
+  auto q = [&](double p) {
+    return late[std::min(late.size() - 1, static_cast<std::size_t>(p * late.size()))] / 1000;
+  };
   std::printf(
-      "timer baseline: %d s at %lld us, %s, %s: wake-up lateness p50/p99/max %lld/%lld/%lld us, overruns %lld\n",
+      "timer baseline: %d s at %lld us, %s, %s: wake-up lateness p50/p99/max %lld/%lld/%lld us, overruns "
+      "%lld\n",
       seconds, period / 1000, fifo ? "SCHED_FIFO 80" : "normal scheduling (SCHED_FIFO not permitted)",
       locked ? "memory locked" : "memory not locked", q(0.50), q(0.99), late.back() / 1000, overruns);
   return 0;

@@ -30,7 +30,8 @@ void runScenario(benchmark::State& state, double durationS) {
     benchmark::DoNotOptimize(res.finalTruth.soc_pct);
   }
   state.counters["x_realtime"] = benchmark::Counter(simS, benchmark::Counter::kIsRate);
-  state.counters["tick_ns"] = benchmark::Counter(ticks, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["tick_ns"] =
+      benchmark::Counter(ticks, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
 // The headline: 8 simulated hours, one run.

@@ -1,9 +1,10 @@
 // ADS1115 model against datasheet-facts §2.
+#include "drivers/sim/ads1115_model.h"
+
 #include <gtest/gtest.h>
 
 #include <cerrno>
 
-#include "drivers/sim/ads1115_model.h"
 #include "drivers/sim/sim_i2c_bus.h"
 
 namespace xr::sim {
@@ -49,7 +50,7 @@ TEST(Ads1115Model, SingleShotTakesOneDataPeriodAndOsReportsBusy) {
   Rig r;
   r.chip.setInputs({1.0, 0, 0, 0});
   ASSERT_EQ(r.writeReg(1, cfg(1, 4, 1, 1, 4)), 0);  // AIN0-GND, ±4.096 V, 128 SPS
-  EXPECT_EQ(r.readReg(1) & 0x8000, 0);             // converting
+  EXPECT_EQ(r.readReg(1) & 0x8000, 0);              // converting
   r.advance(fromSec(1.0 / 128) - 1000);
   EXPECT_EQ(r.readReg(1) & 0x8000, 0);
   EXPECT_EQ(r.readReg(0), 0);
@@ -160,10 +161,10 @@ TEST(Ads1115Model, AlertRdyPulsesInContinuous) {
 
 TEST(Ads1115Model, TraditionalComparatorWithQueue) {
   Rig r;
-  r.writeReg(3, 8000);  // hi
-  r.writeReg(2, 4000);  // lo
-  r.chip.setInputs({1.5, 0, 0, 0});           // 12000 codes at ±4.096
-  r.writeReg(1, cfg(0, 4, 1, 0, 7, 1));      // continuous, assert after 2
+  r.writeReg(3, 8000);                   // hi
+  r.writeReg(2, 4000);                   // lo
+  r.chip.setInputs({1.5, 0, 0, 0});      // 12000 codes at ±4.096
+  r.writeReg(1, cfg(0, 4, 1, 0, 7, 1));  // continuous, assert after 2
   r.advance(TimeNs(1e9 / 860) + 10);
   EXPECT_FALSE(r.chip.alertActive());
   r.advance(TimeNs(1e9 / 860));
@@ -186,7 +187,7 @@ TEST(Ads1115Model, WindowComparatorLatchesUntilConversionRead) {
   Rig r;
   r.writeReg(3, 8000);
   r.writeReg(2, 4000);
-  r.chip.setInputs({0.25, 0, 0, 0});                 // 2000: below the window
+  r.chip.setInputs({0.25, 0, 0, 0});                       // 2000: below the window
   r.writeReg(1, cfg(0, 4, 1, 0, 7, 0) | 0x0010 | 0x0004);  // window, latching, assert after 1
   r.advance(fromMs(2));
   EXPECT_TRUE(r.chip.alertActive());
@@ -240,7 +241,7 @@ TEST(Ads1115Model, InputSourceIsAskedOnlyForTheMuxPinsAtEachConversion) {
   r.advance(fromMs(2));
   EXPECT_EQ(probe.asked[0] + probe.asked[1] + probe.asked[3], 0);
   EXPECT_EQ(probe.asked[2], 1);
-  EXPECT_EQ(r.readReg(0), 8000);  // 1 V / 125 uV, from the source, not setInputs()
+  EXPECT_EQ(r.readReg(0), 8000);                    // 1 V / 125 uV, from the source, not setInputs()
   ASSERT_EQ(r.writeReg(1, cfg(1, 0, 1, 1, 7)), 0);  // AIN0-AIN1 differential
   r.advance(fromMs(2));
   EXPECT_EQ(probe.asked[0], 1);

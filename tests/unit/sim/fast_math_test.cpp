@@ -1,11 +1,12 @@
 // roundEven(): the INA228 model's libm-free std::nearbyint.
+#include "drivers/sim/fast_math.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdint>
 #include <limits>
 
-#include "drivers/sim/fast_math.h"
 #include "drivers/sim/prng.h"
 
 namespace xr::sim {

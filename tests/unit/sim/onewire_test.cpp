@@ -1,10 +1,10 @@
 // Simulated w1 sysfs tree in the kernel's w1_slave format.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <unistd.h>
 
 #include "drivers/sim/sim_onewire.h"
 

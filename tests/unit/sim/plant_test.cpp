@@ -1,10 +1,11 @@
 // Physics plant: alternator, battery per chemistry, bus with BMS disconnect.
+#include "drivers/sim/plant/plant.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "drivers/sim/plant/plant.h"
 #include "drivers/sim/prng.h"
 
 namespace xr::sim {
@@ -77,8 +78,8 @@ TEST(Battery, LfpKneeIsSteep) {
   BatteryModel b70(c);
   c.soc_pct = 99.9;
   BatteryModel b100(c);
-  EXPECT_LT(b70.ocv() - b50.ocv(), 0.15);   // flat plateau
-  EXPECT_GT(b100.ocv() - b70.ocv(), 0.8);   // knee
+  EXPECT_LT(b70.ocv() - b50.ocv(), 0.15);  // flat plateau
+  EXPECT_GT(b100.ocv() - b70.ocv(), 0.8);  // knee
 }
 
 TEST(Battery, ChargingRaisesSocWithCoulombicEfficiency) {
@@ -189,8 +190,8 @@ TEST(Rng, NormalShapeIsCloseToGaussianAndBounded) {
     sq += x * x;
     q += x * x * x * x;
   }
-  EXPECT_NEAR(double(in1) / kN, 0.668, 0.01);  // Gaussian: 0.683
-  EXPECT_NEAR(double(in2) / kN, 0.957, 0.01);  // Gaussian: 0.954
+  EXPECT_NEAR(double(in1) / kN, 0.668, 0.01);                       // Gaussian: 0.683
+  EXPECT_NEAR(double(in2) / kN, 0.957, 0.01);                       // Gaussian: 0.954
   EXPECT_NEAR(q / kN / ((sq / kN) * (sq / kN)) - 3.0, -0.3, 0.05);  // excess kurtosis
   EXPECT_GE(lo, -3.4642);
   EXPECT_LE(hi, 3.4642);

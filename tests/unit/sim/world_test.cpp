@@ -1,12 +1,12 @@
 // SimWorld: wiring of the plant to the chips, faults, ALERT cutting the field.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cerrno>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <unistd.h>
 
 #include "drivers/frontend/analog_frontend.h"
 #include "drivers/sim/ina228_model.h"
@@ -158,7 +158,8 @@ TEST(SimWorld, SameSeedSameNoise) {
   for (int i = 1; i < 50; ++i) {
     a.advanceTo(fromMs(3 * i));
     b.advanceTo(fromMs(3 * i));
-    EXPECT_EQ(readReg(a, hw.ina228_address, ina228::VSHUNT, 3), readReg(b, hw.ina228_address, ina228::VSHUNT, 3));
+    EXPECT_EQ(readReg(a, hw.ina228_address, ina228::VSHUNT, 3),
+              readReg(b, hw.ina228_address, ina228::VSHUNT, 3));
   }
 }
 
