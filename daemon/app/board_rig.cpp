@@ -13,7 +13,13 @@ class LineReadyEdges final : public rt::ReadyEdgeSource {
  public:
   LineReadyEdges(AdsReadyLine& line, const Clock& clock) : line_(line), clock_(clock) {}
   int waitEdge(TimeNs deadline, TimeNs* stamp) noexcept override {
-    const TimeNs remaining = deadline - clock_.now();
+    // Stop waiting a little early: ppoll's relative timeout carries timer
+    // slack (50 µs for a normal thread), and the loop's own
+    // clock_nanosleep(TIMER_ABSTIME) hits the deadline itself. An edge in
+    // the margin is serviced right after the tick (the driver's budget is
+    // ~0.95 ms per edge).
+    constexpr TimeNs kWakeMargin = 100'000;
+    const TimeNs remaining = deadline - kWakeMargin - clock_.now();
     if (remaining <= 0) return 0;
     long long s = 0;
     const int rc = line_.wait(static_cast<long>(remaining), &s);
