@@ -24,11 +24,20 @@ bool DriverSensors::read(TimeNs now, Inputs& in) noexcept {
   if (ads_.pacing() == AdsPacing::ReadyEdge) {
     // A chip that does not answer explains the silence by itself (its own
     // re-detect runs); silence from an answering chip means no edges reach us.
-    if (!ads_.present())
+    if (!ads_.present()) {
       lastEdge_ = now;
-    else if (now - lastEdge_ > kEdgeSilence) {
-      edgeFallback_ = true;
-      ads_.setPacing(AdsPacing::SingleShot, now);
+    } else if (now - lastEdge_ > kEdgeSilence) {
+      if (!silenceRestarted_) {
+        // First silence: the chip may have lost its configuration (a power
+        // glitch leaves it single-shot with the comparator off, so it stops
+        // pulsing). Restart it in ready mode once before giving up on edges.
+        silenceRestarted_ = true;
+        ads_.setPacing(AdsPacing::ReadyEdge, now);
+        lastEdge_ = now;
+      } else {
+        edgeFallback_ = true;
+        ads_.setPacing(AdsPacing::SingleShot, now);
+      }
     }
   }
   ina_.poll(now);
@@ -44,6 +53,7 @@ bool DriverSensors::read(TimeNs now, Inputs& in) noexcept {
 
 void DriverSensors::onReadyEdge(TimeNs edge) noexcept {
   lastEdge_ = edge;
+  silenceRestarted_ = false;
   ads_.onReadyEdge(edge);
 }
 

@@ -9,10 +9,12 @@
 // ADS1115 pacing (issue 7): with ALERT/RDY wired (`readyEdges`), the loop
 // hands every conversion-ready edge to onReadyEdge() and every conversion is
 // used (~860 samples/s, CH1 ~430/s with the default sequence). If no edge
-// has arrived for kEdgeSilence while the chip answers (line not wired, wrong
-// line number, broken wire), the driver falls back to single-shot pacing
-// (one conversion per tick) and edgeFallback() says so: the regulator keeps
-// its sensors and the supervisor logs what to fix.
+// has arrived for kEdgeSilence while the chip answers, the chip is restarted
+// in ready mode once (a power glitch resets it to single-shot with the
+// comparator off); if it stays silent for another kEdgeSilence (line not
+// wired, wrong line number, broken wire), the driver falls back to
+// single-shot pacing (one conversion per tick) and edgeFallback() says so:
+// the regulator keeps its sensors and the supervisor logs what to fix.
 #include <array>
 #include <cstdint>
 
@@ -55,6 +57,7 @@ class DriverSensors final : public rt::FastSensors {
   double bovl_ = 0.0;
   TimeNs lastEdge_ = 0;  // last edge, or when edge pacing (re)started
   bool edgeFallback_ = false;
+  bool silenceRestarted_ = false;  // one restart in ready mode already tried
   unsigned long lastInaFailures_ = 0, lastAdsFailures_ = 0;
 };
 

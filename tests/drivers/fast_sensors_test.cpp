@@ -62,8 +62,12 @@ TEST(DriverSensors, SilentReadyLineFallsBackToSingleShot) {
   for (int i = 0; i < 96; ++i) b.period(false);
   EXPECT_FALSE(b.sensors.edgeFallback());
   EXPECT_EQ(b.ch1(), 0u);
-  // Past kEdgeSilence (250 ms): single-shot takes over.
+  // Past kEdgeSilence (250 ms): one restart in ready mode, no fallback yet.
   for (int i = 0; i < 8; ++i) b.period(false);
+  EXPECT_FALSE(b.sensors.edgeFallback());
+  EXPECT_EQ(b.sensors.ads().pacing(), AdsPacing::ReadyEdge);
+  // Silent for another 250 ms: single-shot takes over.
+  for (int i = 0; i < 100; ++i) b.period(false);
   EXPECT_TRUE(b.sensors.edgeFallback());
   EXPECT_EQ(b.sensors.ads().pacing(), AdsPacing::SingleShot);
   rt::SampleCounts c;
@@ -81,6 +85,22 @@ TEST(DriverSensors, NotWiredUsesSingleShotFromTheStart) {
   EXPECT_GE(b.ch1(), 190u);
   EXPECT_LE(b.ch1(), 201u);
   EXPECT_FALSE(b.sensors.edgeFallback());
+}
+
+TEST(DriverSensors, AChipResetThatStopsTheEdgesIsRestartedNotAbandoned) {
+  Board b(true);
+  for (int i = 0; i < 40; ++i) b.period(true);
+  // Power glitch: the ADS1115 comes back with its reset Config (single-shot,
+  // comparator off), so ALERT/RDY stops pulsing although the chip answers.
+  std::uint8_t reset[3] = {0x01, 0x85, 0x83};
+  I2cMsg m{b.hw.ads1115_address, false, reset, 3};
+  ASSERT_EQ(b.world.i2c().transfer(std::span<I2cMsg>(&m, 1)), 0);
+  for (int i = 0; i < 400; ++i) b.period(true);
+  EXPECT_FALSE(b.sensors.edgeFallback());
+  EXPECT_EQ(b.sensors.ads().pacing(), AdsPacing::ReadyEdge);
+  const std::uint32_t before = b.ch1();
+  for (int i = 0; i < 400; ++i) b.period(true);
+  EXPECT_GE(b.ch1() - before, 420u);  // back to every conversion
 }
 
 }  // namespace
