@@ -62,7 +62,7 @@ const SettingSpec kSchema[] = {
     XR_S_INT(
         "hardware", hardware.ads_alert_rdy_line, "ads_alert_rdy_line", "", -1, 1023, false,
         "GPIO line of the ADS1115 ALERT/RDY pin: every conversion is used, CH1 ~430 Hz (-1 = not wired: "
-        "single-shot, ~200 Hz; a configured line with no edges falls back to single-shot after 250 ms)."),
+        "single-shot, ~200 Hz; a configured line with no edges is retried once, then falls back to single-shot after 500 ms)."),
     XR_S_STR("hardware", hardware.pwm_sysfs_root, "pwm_sysfs_root", "", "sysfs PWM class directory."),
     XR_S_INT("hardware", hardware.pwm_chip, "pwm_chip", "", 0, 63, false,
              "pwmchipN driving the field (dtoverlay=pwm,pin=18,func=2 gives pwmchip0)."),
