@@ -26,7 +26,28 @@ void ControlCycle::applyBetweenTicks() noexcept {
 }
 
 void ControlCycle::mergeSlowInputs() noexcept {
-  const TemperatureHandoff t = h_.temperature.load();
+  // The slow sensors post about once a second: while a hand-off's version
+  // has not moved, its sample is the one already merged (only no longer
+  // fresh), so the copy out of the seqlock is skipped.
+  if (h_.temperature.version() == tempVersion_) {
+    in_.AlternatorTemperatureF.fresh = false;
+  } else {
+    mergeTemperature();
+  }
+  if (h_.victron.version() == victronVersion_) {
+    if (lastVictronStamp_ != 0) {
+      in_.VictronCurrent.fresh = false;
+      in_.VictronVoltage.fresh = false;
+      in_.solarPowerW.fresh = false;
+    }
+  } else {
+    mergeVictron();
+  }
+}
+
+void ControlCycle::mergeTemperature() noexcept {
+  TemperatureHandoff t;
+  tempVersion_ = h_.temperature.load(t);
   in_.AlternatorTemperatureF.fresh = t.stamp != 0 && t.stamp != lastTempStamp_;
   if (t.stamp != 0) {
     in_.AlternatorTemperatureF.value = t.tempF;
@@ -34,8 +55,11 @@ void ControlCycle::mergeSlowInputs() noexcept {
   }
   lastTempStamp_ = t.stamp;
   in_.tempTaskHeartbeat = t.heartbeat;
+}
 
-  const VictronHandoff v = h_.victron.load();
+void ControlCycle::mergeVictron() noexcept {
+  VictronHandoff v;
+  victronVersion_ = h_.victron.load(v);
   const bool fresh = v.stamp != 0 && v.stamp != lastVictronStamp_;
   if (v.stamp != 0) {
     in_.VictronCurrent = Reading{v.currentA, v.stamp, fresh};

@@ -68,6 +68,8 @@ class ControlCycle {
   static constexpr int kMaxEdgesPerPeriod = 16;
   void applyBetweenTicks() noexcept;
   void mergeSlowInputs() noexcept;
+  void mergeTemperature() noexcept;
+  void mergeVictron() noexcept;
   void readDiscreteInputs() noexcept;
   bool writeOutputs(const Outputs& out) noexcept;
   void publish(const Outputs& out, TimeNs now) noexcept;
@@ -92,6 +94,7 @@ class ControlCycle {
   const Outputs* lastOut_ = nullptr;
   TimeNs lastNow_ = 0;
   TimeNs lastTempStamp_ = 0, lastVictronStamp_ = 0;
+  std::uint64_t tempVersion_ = ~0ULL, victronVersion_ = ~0ULL;  // odd: never a stored version
   TimeNs lastAdsStamp_[4] = {0, 0, 0, 0};
   TimeNs lastInaStamp_ = 0;
   SampleCounts lastCounts_{};
