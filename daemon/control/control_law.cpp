@@ -26,7 +26,7 @@ ControlLaw::ControlLaw(const Params& p) : currentPID_(p.PidKp, p.PidKi, p.PidKd,
   ChargingVoltageTarget_ = p.BulkVoltage;
 }
 
-void ControlLaw::configurePid(const Params& p) {
+[[gnu::always_inline]] inline void ControlLaw::configurePid(const Params& p) {
   currentPID_.SetOutputLimits(p.MinDuty, std::max(p.MinDuty + 1e-6, p.MaxDuty));
   currentPID_.SetTunings(p.PidKp, p.PidKi, p.PidKd);
   currentPID_.SetTrackingGain(p.PIDTrackingGain);
@@ -161,7 +161,7 @@ double ControlLaw::computeUTarget(const ControlSensors& s, const Params& p) {
   return uTargetRaw_;
 }
 
-void ControlLaw::updateGovMode(const ControlSensors& s, const Params& p, const FastOvApply& fa) {
+[[gnu::always_inline]] inline void ControlLaw::updateGovMode(const ControlSensors& s, const Params& p, const FastOvApply& fa) {
   const bool majorOV = finite(s.IBV) && s.IBV > alternatorHardShutdownV(p) + k::HARD_SHUTDOWN_BYPASS_OFFSET_V;
   // CV overshoot latch: set when fast-OV fires in CV, released once IBV is
   // back under target + 20 mV (hysteresis stops chatter as the field collapses).
@@ -174,7 +174,7 @@ void ControlLaw::updateGovMode(const ControlSensors& s, const Params& p, const F
   govMode_ = bypass ? GovMode::GOV_BYPASS_SLEW : GovMode::GOV_NORMAL_SLEW;
 }
 
-double ControlLaw::governorStep(const Params& p, double request, GovMode mode, double dt) {
+[[gnu::always_inline]] inline double ControlLaw::governorStep(const Params& p, double request, GovMode mode, double dt) {
   GovernorLimits lim{p.MinDuty, p.MaxDuty, p.DutyRampRate};
   return governor_apply(lastAppliedDuty_, request, mode, rpmMinDuty_, dt, lim);
 }
@@ -397,7 +397,7 @@ void ControlLaw::updateTelemetry(ControlTelemetry& t) {
   slowTelemetryStale_ = active;
 }
 
-void ControlLaw::fillLoopTelemetry(ControlTelemetry& t) const {
+[[gnu::always_inline]] inline void ControlLaw::fillLoopTelemetry(ControlTelemetry& t) const {
   t.sysMode = sysMode_;
   t.govMode = govMode_;
   t.I_cap = I_cap_;

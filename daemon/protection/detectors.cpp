@@ -94,7 +94,7 @@ inline void ProtectionSupervisor::updateInaLatch(const Inputs& in, EventBatch& e
 }
 
 // Alternator hard shutdown, disagreement warning/critical, implausibility.
-inline void ProtectionSupervisor::updateVoltageSensors(const Inputs& in, EventBatch& ev) {
+[[gnu::always_inline]] inline void ProtectionSupervisor::updateVoltageSensors(const Inputs& in, EventBatch& ev) {
   // Alternator Hard Shutdown: IBV > AlternatorHardShutdownV.
   const double hs = d_.hardShutdownV;
   flags_.altHardShutdown = finite(IBV_) && IBV_ > hs;
@@ -142,7 +142,7 @@ inline void ProtectionSupervisor::updateVoltageSensors(const Inputs& in, EventBa
 }
 
 // T1, T2, T3 (IgnoreTemperature), T4 and T5 (not ignorable, see docs).
-inline void ProtectionSupervisor::updateTemperature(const Inputs& in, EventBatch& ev) {
+[[gnu::always_inline]] inline void ProtectionSupervisor::updateTemperature(const Inputs& in, EventBatch& ev) {
   const Reading& tr = p_.TempSource == 0 ? in.AlternatorTemperatureF : in.thermistorF;
   TempToUse_ = tr.value;
   const bool inRange = finite(tr.value) && tr.value >= k::TEMP_VALID_MIN_F && tr.value <= k::TEMP_VALID_MAX_F;
@@ -185,7 +185,7 @@ inline void ProtectionSupervisor::updateTemperature(const Inputs& in, EventBatch
 }
 
 // Hard overcurrent, RPM gate, current data stale.
-inline void ProtectionSupervisor::updateCurrent(const Inputs& in, double MeasuredAmps, EventBatch& ev) {
+[[gnu::always_inline]] inline void ProtectionSupervisor::updateCurrent(const Inputs& in, double MeasuredAmps, EventBatch& ev) {
   const double trip = d_.hardOcTripA;
   flags_.hardOvercurrent =
       sustained(hardOcT_, finite(MeasuredAmps) && MeasuredAmps > trip, fromMs(p_.HardOCDebounceMs));
