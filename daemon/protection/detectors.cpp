@@ -2,6 +2,7 @@
 // safeties-and-protections.md, with its sustained timer. Flags only: which
 // mode each flag acts in is decided by selectFieldMode().
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "params/constants.h"
@@ -144,6 +145,13 @@ inline void ProtectionSupervisor::updateInaLatch(const Inputs& in, EventBatch& e
 // T1, T2, T3 (IgnoreTemperature), T4 and T5 (not ignorable, see docs).
 [[gnu::always_inline]] inline void ProtectionSupervisor::updateTemperature(const Inputs& in, EventBatch& ev) {
   const Reading& tr = p_.TempSource == 0 ? in.AlternatorTemperatureF : in.thermistorF;
+  // Quiet fast path: nothing tripped, logged or timing on the last full
+  // evaluation, the same value (bit for bit), a reading and a heartbeat no
+  // older than then, and before the first instant T5 or T4 could fire with
+  // those older stamps: every result below would be the same again.
+  if (tempQuiet_ && now_ <= tempQuietUntil_ && std::bit_cast<std::uint64_t>(tr.value) == tempQuietBits_ &&
+      tr.stamp >= tempQuietStamp_ && in.tempTaskHeartbeat >= tempQuietHb_)
+    return;
   TempToUse_ = tr.value;
   const bool inRange = finite(tr.value) && tr.value >= k::TEMP_VALID_MIN_F && tr.value <= k::TEMP_VALID_MAX_F;
   // T5: never read after 60 s of uptime; older than 20 s; NaN / out of range.
@@ -182,6 +190,16 @@ inline void ProtectionSupervisor::updateInaLatch(const Inputs& in, EventBatch& e
     push(ev, EventCode::TempTaskHung, EventLevel::Critical, Reason::NONE, toSec(now_ - hb));
   evT4_.logged = hung;
   flags_.tempTaskAlarm = hung;
+
+  tempQuiet_ = tr.stamp > 0 && !stale && !t1 && !t3 && !hung && t1T_.since < 0 && !evT1_.logged &&
+               !evT3_.logged && !evT5_.logged;
+  if (tempQuiet_) {
+    tempQuietBits_ = std::bit_cast<std::uint64_t>(tr.value);
+    tempQuietStamp_ = tr.stamp;
+    tempQuietHb_ = in.tempTaskHeartbeat;
+    // stale needs now - stamp > TEMP_STALE_MS; hung needs now - hb > TEMP_TASK_TIMEOUT.
+    tempQuietUntil_ = std::min(tr.stamp + fromMs(k::TEMP_STALE_MS), hb + fromMs(k::TEMP_TASK_TIMEOUT));
+  }
 }
 
 // Hard overcurrent, RPM gate, current data stale.

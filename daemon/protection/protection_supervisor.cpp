@@ -17,6 +17,7 @@ ProtectionSupervisor::ProtectionSupervisor(const Params& p) : p_(p) {
 void ProtectionSupervisor::setParams(const Params& p) {
   p_ = p;
   computeDerived();
+  tempQuiet_ = false;
 }
 
 void ProtectionSupervisor::computeDerived() {
@@ -59,6 +60,7 @@ void ProtectionSupervisor::edgeChanged(EventEdge& e, bool now, Reason r, double 
 // "T2 ... No auto-restart — field stays off until manual re-enable or reboot."
 void ProtectionSupervisor::reenableField() {
   flags_.tempSustained = false;
+  tempQuiet_ = false;
   t1T_.since = -1;  // the sustained timer restarts from the re-enable
   if (flags_.rampLatched && flags_.rampLatchedReason == Reason::REASON_TEMP_SUSTAINED)
     flags_.rampLatched = false;

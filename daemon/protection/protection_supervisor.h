@@ -198,6 +198,11 @@ class ProtectionSupervisor {
   bool inaFastModeActive_ = false;
   TimeNs inaFastSince_ = -1;   // when the INA228 last entered fast mode (stale window)
   bool tempStaleRaw_ = false;  // "no valid read > 20 s" for the buzzer
+  // updateTemperature's quiet state (skip while nothing can change; cleared by
+  // setParams and reenableField).
+  bool tempQuiet_ = false;
+  std::uint64_t tempQuietBits_ = 0;
+  TimeNs tempQuietStamp_ = 0, tempQuietHb_ = 0, tempQuietUntil_ = 0;
 
   // INA228 software latch.
   TimeNs inaNextCheck_ = 0;

@@ -5,6 +5,7 @@
 
 #include <limits>
 
+#include "params/constants.h"
 #include "rig.h"
 
 namespace xr::test {
@@ -263,6 +264,56 @@ TEST(EventLogging, BuzzerFollowingAFlappingAlarmLogsOneAlarmOn) {
   EXPECT_EQ(r.count(EventCode::AlarmOff), 0u) << "logged before the 30 s throttle";
   r.run(fromSec(1.5));
   EXPECT_EQ(r.count(EventCode::AlarmOff), 1u);
+}
+
+// updateTemperature skips its work while nothing can change (same value, no
+// older stamps, before the stale / hung deadlines). These pin the edges of
+// that shortcut to the full evaluation's results, tick by tick.
+TEST(TemperatureQuietPath, StaleTripsOnTheFirstTickPast20sWithAConstantValue) {
+  Rig r;
+  r.warmUp();
+  r.freezeTemp = true;  // the last reading (same value) keeps its stamp
+  const TimeNs lastStamp = r.in.AlternatorTemperatureF.stamp;
+  r.run(lastStamp + fromMs(k::TEMP_STALE_MS) - r.t, fromMs(10));
+  EXPECT_EQ(r.t, lastStamp + fromMs(k::TEMP_STALE_MS));
+  EXPECT_FALSE(r.sup.flags().tempStale);  // exactly 20 s old is not stale
+  r.tick(fromMs(10));
+  EXPECT_TRUE(r.sup.flags().tempStale);
+  EXPECT_EQ(r.count(EventCode::TempSensorStale), 1u);
+}
+
+TEST(TemperatureQuietPath, HungTripsOnTheFirstTickPast20sWithoutHeartbeat) {
+  Rig r;
+  r.warmUp();
+  r.freezeHeartbeat = true;
+  const TimeNs lastBeat = r.in.tempTaskHeartbeat;
+  r.run(lastBeat + fromMs(k::TEMP_TASK_TIMEOUT) - r.t, fromMs(10));
+  EXPECT_FALSE(r.sup.flags().tempTaskAlarm);
+  r.tick(fromMs(10));
+  EXPECT_TRUE(r.sup.flags().tempTaskAlarm);
+  EXPECT_EQ(r.count(EventCode::TempTaskHung), 1u);
+}
+
+TEST(TemperatureQuietPath, NewValueUnderTheSameStampIsJudgedAtOnce) {
+  Rig r;
+  r.warmUp();
+  r.freezeTemp = true;  // stamp stays, only the value changes
+  r.in.AlternatorTemperatureF.value = r.p.TemperatureLimitF + r.p.TempCritExcess + 1.0;
+  r.tick();
+  EXPECT_TRUE(r.sup.flags().tempWarning);
+  EXPECT_TRUE(r.sup.flags().tempCritical);
+}
+
+TEST(TemperatureQuietPath, ParameterChangeIsJudgedAtOnce) {
+  Rig r;
+  r.warmUp();
+  EXPECT_FALSE(r.sup.flags().tempWarning);
+  Params p = r.p;
+  p.TemperatureLimitF = r.tempF - p.TempWarnExcess - 1.0;  // the same reading is now above T1
+  r.setParams(p);
+  r.tick();
+  EXPECT_TRUE(r.sup.flags().tempWarning);
+  EXPECT_FALSE(r.sup.flags().tempCritical);
 }
 
 }  // namespace
