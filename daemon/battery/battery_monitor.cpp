@@ -94,8 +94,7 @@ void BatteryMonitor::checkAutoZeroTriggers(const Inputs& in, EventBatch& ev) {
                     tempShift ? 1 : 0));
 }
 
-bool BatteryMonitor::processAutoZero(const Inputs& in, EventBatch& ev) {
-  if (!autoZeroActive_) return false;
+bool BatteryMonitor::processActiveAutoZero(const Inputs& in, EventBatch& ev) {
   const TimeNs elapsed = in.now - autoZeroStartTime_;
   if (elapsed < fromMs(battery_k::AUTO_ZERO_DURATION_MS)) {
     // Field is held off by the caller; sample only after the 2 s settle and
@@ -456,12 +455,6 @@ void BatteryMonitor::restoreLedger(const BatteryLedger& in) {
 }
 
 // ---------------------------------------------------------------- outputs
-
-double BatteryMonitor::socPercent() const {
-  const double cap = p_.BatteryCapacity_Ah;
-  if (!(cap > 0.0)) return 0.0;
-  return ledger_.CoulombCount_Ah / cap * 100.0;
-}
 
 double BatteryMonitor::chargedEnergyLifetimeWh() const {
   return ledger_.ChargedEnergy_AllTime_Wh + charged_.lifetimeFraction_Wh;

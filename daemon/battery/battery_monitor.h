@@ -99,7 +99,9 @@ class BatteryMonitor {
   // DynamicAltCurrentZero = mean raw CH1 after the 2 s settle and emits
   // AutoZeroDone (a = new zero A, detail 0 = ok, 1 = no samples, 2 = rejected
   // as implausible).
-  bool processAutoZero(const Inputs& in, EventBatch& ev);
+  bool processAutoZero(const Inputs& in, EventBatch& ev) {  // inline idle path: no call on almost every tick
+    return autoZeroActive_ && processActiveAutoZero(in, ev);
+  }
   bool autoZeroActive() const { return autoZeroActive_; }
 
   // ---- corrected sensor values ---------------------------------------------
@@ -139,7 +141,11 @@ class BatteryMonitor {
   // refilled only then; otherwise only the per-tick fields are written.
   // The result is always equal to fillTelemetry() (battery_test checks it).
   void updateTelemetry(BatteryTelemetry& t);
-  double socPercent() const;
+  double socPercent() const {  // inline: read several times per tick
+    const double cap = p_.BatteryCapacity_Ah;
+    if (!(cap > 0.0)) return 0.0;
+    return ledger_.CoulombCount_Ah / cap * 100.0;
+  }
   // False while the SoC is the constructor's guess: no valid ledger restored,
   // no setSoc, no full-charge detection yet. Control may ignore SOC gating
   // (StageInputs::socValid) while this is false.
@@ -156,6 +162,7 @@ class BatteryMonitor {
                               double exponent);
 
  private:
+  bool processActiveAutoZero(const Inputs& in, EventBatch& ev);  // processAutoZero while autoZeroActive_
   struct Energy {  // one accumulator: session + lifetime (whole Wh + fraction)
     double session_Wh = 0.0;
     double lifetimeFraction_Wh = 0.0;

@@ -4,19 +4,6 @@
 
 namespace xr {
 
-double ChargingStageMachine::ChargingVoltageTarget(const Params& p) const {
-  switch (stage_) {
-    case ChargeStage::ABSORPTION:
-      return p.AbsorptionVoltage;
-    case ChargeStage::FLOAT:
-    case ChargeStage::IDLE:
-      return p.FloatVoltage;
-    case ChargeStage::BULK:
-    default:
-      return p.BulkVoltage;
-  }
-}
-
 void ChargingStageMachine::enter(ChargeStage s, TimeNs now) {
   previous_ = stage_;
   stage_ = s;

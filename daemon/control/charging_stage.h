@@ -40,7 +40,19 @@ class ChargingStageMachine {
   bool voltageControlActive() const {
     return stage_ == ChargeStage::ABSORPTION || stage_ == ChargeStage::FLOAT;
   }
-  double ChargingVoltageTarget(const Params& p) const;
+  // Inline: read on every tick by the control law.
+  double ChargingVoltageTarget(const Params& p) const {
+    switch (stage_) {
+      case ChargeStage::ABSORPTION:
+        return p.AbsorptionVoltage;
+      case ChargeStage::FLOAT:
+      case ChargeStage::IDLE:
+        return p.FloatVoltage;
+      case ChargeStage::BULK:
+      default:
+        return p.BulkVoltage;
+    }
+  }
   bool tailSuppressedByThermal() const { return tailThermalSuppressed_; }
   bool rebulkBlockedBySoc() const { return rebulkBlockedBySoc_; }
 
