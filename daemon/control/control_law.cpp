@@ -161,7 +161,8 @@ double ControlLaw::computeUTarget(const ControlSensors& s, const Params& p) {
   return uTargetRaw_;
 }
 
-[[gnu::always_inline]] inline void ControlLaw::updateGovMode(const ControlSensors& s, const Params& p, const FastOvApply& fa) {
+[[gnu::always_inline]] inline void ControlLaw::updateGovMode(const ControlSensors& s, const Params& p,
+                                                             const FastOvApply& fa) {
   const bool majorOV = finite(s.IBV) && s.IBV > alternatorHardShutdownV(p) + k::HARD_SHUTDOWN_BYPASS_OFFSET_V;
   // CV overshoot latch: set when fast-OV fires in CV, released once IBV is
   // back under target + 20 mV (hysteresis stops chatter as the field collapses).
@@ -174,7 +175,8 @@ double ControlLaw::computeUTarget(const ControlSensors& s, const Params& p) {
   govMode_ = bypass ? GovMode::GOV_BYPASS_SLEW : GovMode::GOV_NORMAL_SLEW;
 }
 
-[[gnu::always_inline]] inline double ControlLaw::governorStep(const Params& p, double request, GovMode mode, double dt) {
+[[gnu::always_inline]] inline double ControlLaw::governorStep(const Params& p, double request, GovMode mode,
+                                                              double dt) {
   GovernorLimits lim{p.MinDuty, p.MaxDuty, p.DutyRampRate};
   return governor_apply(lastAppliedDuty_, request, mode, rpmMinDuty_, dt, lim);
 }

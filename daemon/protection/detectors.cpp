@@ -95,7 +95,8 @@ inline void ProtectionSupervisor::updateInaLatch(const Inputs& in, EventBatch& e
 }
 
 // Alternator hard shutdown, disagreement warning/critical, implausibility.
-[[gnu::always_inline]] inline void ProtectionSupervisor::updateVoltageSensors(const Inputs& in, EventBatch& ev) {
+[[gnu::always_inline]] inline void ProtectionSupervisor::updateVoltageSensors(const Inputs& in,
+                                                                              EventBatch& ev) {
   // Alternator Hard Shutdown: IBV > AlternatorHardShutdownV.
   const double hs = d_.hardShutdownV;
   flags_.altHardShutdown = finite(IBV_) && IBV_ > hs;
@@ -203,7 +204,8 @@ inline void ProtectionSupervisor::updateInaLatch(const Inputs& in, EventBatch& e
 }
 
 // Hard overcurrent, RPM gate, current data stale.
-[[gnu::always_inline]] inline void ProtectionSupervisor::updateCurrent(const Inputs& in, double MeasuredAmps, EventBatch& ev) {
+[[gnu::always_inline]] inline void ProtectionSupervisor::updateCurrent(const Inputs& in, double MeasuredAmps,
+                                                                       EventBatch& ev) {
   const double trip = d_.hardOcTripA;
   flags_.hardOvercurrent =
       sustained(hardOcT_, finite(MeasuredAmps) && MeasuredAmps > trip, fromMs(p_.HardOCDebounceMs));
