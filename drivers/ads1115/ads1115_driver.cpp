@@ -24,7 +24,13 @@ constexpr TimeNs kSameChannelWait = Ads1115Driver::kPeriod * 11 / 10 + 20'000;
 Ads1115Driver::Ads1115Driver(I2cBus& bus, std::uint16_t address, std::span<const int> channelSequence,
                              const AnalogFrontEndSettings& frontend, const Clock& clock,
                              AdsPacing pacing) noexcept
-    : bus_(bus), addr_(address), fe_(frontend), clock_(clock), pacing_(pacing) {
+    : bus_(bus),
+      addr_(address),
+      fe_(frontend),
+      ch0Gain_(frontend::dividerGain(frontend)),
+      rpmScale_(frontend::rpmScale(frontend)),
+      clock_(clock),
+      pacing_(pacing) {
   bool ok = !channelSequence.empty() && channelSequence.size() <= kMaxSequence;
   for (int c : channelSequence) ok = ok && c >= 0 && c <= 3;
   std::span<const int> use = ok ? channelSequence : std::span<const int>(kDefaultSequence);
@@ -135,15 +141,17 @@ void Ads1115Driver::accept(int channel, std::uint16_t raw, TimeNs stamp) noexcep
   const double v = ads1115::codeToVolts(raw, pga_[static_cast<std::size_t>(channel)]);
   s.adcVolts = v;
   switch (channel) {
-    case 0:
-      s.value = frontend::batteryVoltsFromAdc(fe_, v);
+    case 0:  // frontend::batteryVoltsFromAdc with the gain computed once
+      s.value = v * ch0Gain_;
       break;
     case 1:
       s.value = frontend::altAmpsFromAdc(fe_, v);
       break;
-    case 2:
-      s.value = frontend::rpmFromAdc(fe_, v);
+    case 2: {  // frontend::rpmFromAdc with the scale computed once
+      const double rpm = v * rpmScale_;
+      s.value = rpm < fe_.rpm_low_floor ? 0.0 : rpm;
       break;
+    }
     default:
       s.value = frontend::tempFFromAdc(fe_, v);
       break;

@@ -126,6 +126,10 @@ class Ads1115Driver {
   I2cBus& bus_;
   std::uint16_t addr_;
   AnalogFrontEndSettings fe_;
+  // frontend::dividerGain / rpmScale of fe_, computed once (accept() runs
+  // per conversion, ~860 times a second).
+  double ch0Gain_;
+  double rpmScale_;
   const Clock& clock_;
   AdsPacing pacing_;
   std::array<int, kMaxSequence> seq_{};

@@ -8,13 +8,14 @@ namespace {
 constexpr double kKelvin = 273.15;
 double fToC(double f) { return (f - 32.0) * 5.0 / 9.0; }
 double cToF(double c) { return c * 9.0 / 5.0 + 32.0; }
+}  // namespace
+
 double dividerGain(const AnalogFrontEndSettings& s) {
   return (s.divider_r_top_ohm + s.divider_r_bottom_ohm) / s.divider_r_bottom_ohm;
 }
 double rpmScale(const AnalogFrontEndSettings& s) {
   return s.rpm_per_volt / (s.pulley_ratio > 0.0 ? s.pulley_ratio : 1.0);
 }
-}  // namespace
 
 double batteryVoltsFromAdc(const AnalogFrontEndSettings& s, double v) { return v * dividerGain(s); }
 double adcFromBatteryVolts(const AnalogFrontEndSettings& s, double v) { return v / dividerGain(s); }

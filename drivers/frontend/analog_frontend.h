@@ -10,6 +10,12 @@
 
 namespace xr::frontend {
 
+// The linear scale factors of CH0 and CH2, for callers that convert per
+// sample and want them computed once from the settings (x * factor is
+// bit-identical to the *FromAdc functions below, which use the same ones).
+double dividerGain(const AnalogFrontEndSettings& s);  // battery volts per ADC volt
+double rpmScale(const AnalogFrontEndSettings& s);     // engine RPM per ADC volt
+
 // CH0
 double batteryVoltsFromAdc(const AnalogFrontEndSettings& s, double adcVolts);
 double adcFromBatteryVolts(const AnalogFrontEndSettings& s, double batteryVolts);
