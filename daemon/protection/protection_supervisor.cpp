@@ -97,14 +97,14 @@ void ProtectionSupervisor::fillTelemetry(ProtectionTelemetry& t) const {
   t.hardOvercurrent = flags_.hardOvercurrent;
   t.tempCritical = flags_.tempCritical;
   t.rpmBelowMin = flags_.rpmBelowMin;
-  t.altHardShutdown = flags_.altHardShutdown;
-  t.voltageDisagreeWarning = flags_.voltageDisagreeWarning;
   t.voltageDisagreeCritical = flags_.voltageDisagreeCritical;
   t.voltageImplausible = flags_.voltageImplausible;
-  t.tempWarning = flags_.tempWarning;
-  t.tempSustained = flags_.tempSustained;
   t.tempStale = flags_.tempStale;
   t.currentStale = flags_.currentStale;
+  t.altHardShutdown = flags_.altHardShutdown;
+  t.voltageDisagreeWarning = flags_.voltageDisagreeWarning;
+  t.tempWarning = flags_.tempWarning;
+  t.tempSustained = flags_.tempSustained;
   t.fieldCut = fieldCut_;
   t.alarmLatched = alarmLatched_;
 }

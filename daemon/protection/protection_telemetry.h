@@ -22,14 +22,15 @@ struct ProtectionTelemetry {
   double Vpred = 0.0;
   double dvdt = 0.0;     // V/s, EMA at DvdtAlpha
   double dBcurDt = 0.0;  // A/s, last accepted sample pair
-  bool govBypassLatched = false;
-  // Detector states.
+  // Detector states, declared in ProtectionFlags' order (tick_snapshot.h) so
+  // the per-tick copy compiles to a few wide moves (exporters go by name
+  // through visitProtectionTelemetry, whose order is the exported one).
   bool hardOvercurrent = false, tempCritical = false, rpmBelowMin = false;
-  bool altHardShutdown = false, voltageDisagreeWarning = false, voltageDisagreeCritical = false,
-       voltageImplausible = false;
-  bool tempWarning = false, tempSustained = false, tempStale = false, currentStale = false;
+  bool voltageDisagreeCritical = false, voltageImplausible = false, tempStale = false, currentStale = false;
+  bool altHardShutdown = false, voltageDisagreeWarning = false, tempWarning = false, tempSustained = false;
   bool fieldCut = false;  // GPIO4 held LOW by the sequencer
   bool alarmLatched = false;
+  bool govBypassLatched = false;  // fast-OV (declared here to keep the detector block aligned)
 };
 
 // Visits every field as f("name", value) — the one list the status JSON
