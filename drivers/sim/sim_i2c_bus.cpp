@@ -5,10 +5,16 @@
 namespace xr::sim {
 
 void SimI2cBus::attach(std::uint16_t addr, SimI2cDevice* dev) noexcept {
-  if (addr < devs_.size()) devs_[addr] = dev;
+  if (addr < devs_.size()) {
+    devs_[addr] = dev;
+    updatedTo_[addr] = kNever;
+  }
 }
 void SimI2cBus::detach(std::uint16_t addr) noexcept {
-  if (addr < devs_.size()) devs_[addr] = nullptr;
+  if (addr < devs_.size()) {
+    devs_[addr] = nullptr;
+    updatedTo_[addr] = kNever;
+  }
 }
 void SimI2cBus::setNack(std::uint16_t addr, bool n) noexcept {
   if (addr < nack_.size()) nack_[addr] = n;
@@ -22,7 +28,6 @@ int SimI2cBus::transfer(std::span<I2cMsg> msgs) noexcept {
     return EINVAL;
   }
   const TimeNs t = now_ ? *now_ : 0;
-  SimI2cDevice* upToDate = nullptr;  // a combined write+read brings its chip up to t once
   for (auto& m : msgs) {
     // i2c-dev rejects 10-bit addresses unless I2C_TEN is set; we have none.
     if (m.addr >= devs_.size() || devs_[m.addr] == nullptr || nack_[m.addr]) {
@@ -34,9 +39,9 @@ int SimI2cBus::transfer(std::span<I2cMsg> msgs) noexcept {
       return EFAULT;
     }
     SimI2cDevice* d = devs_[m.addr];
-    if (d != upToDate) {
+    if (updatedTo_[m.addr] != t) {  // once per chip and instant (update() is monotonic)
       d->update(t);
-      upToDate = d;
+      updatedTo_[m.addr] = t;
     }
     const int rc = m.read ? d->read(m.buf, m.len) : d->write(m.buf, m.len);
     if (rc != 0) {

@@ -14,7 +14,7 @@ namespace xr::sim {
 class SimI2cBus final : public I2cBus {
  public:
   // `now` is read before each transfer so chips convert up to that instant.
-  explicit SimI2cBus(const TimeNs* now) : now_(now) {}
+  explicit SimI2cBus(const TimeNs* now) : now_(now) { updatedTo_.fill(kNever); }
 
   // The device is not owned. Attaching at an occupied address replaces it.
   void attach(std::uint16_t addr, SimI2cDevice* dev) noexcept;
@@ -29,9 +29,15 @@ class SimI2cBus final : public I2cBus {
   std::uint64_t failedTransfers() const noexcept { return failed_; }
 
  private:
+  static constexpr TimeNs kNever = INT64_MIN;
   const TimeNs* now_;
   std::array<SimI2cDevice*, 128> devs_{};
   std::array<bool, 128> nack_{};
+  // The instant each address's chip was last brought up to by transfer():
+  // update() is monotonic (a no-op for a time it has reached), so the ~8
+  // transfers of one control tick, all at the same simulated instant, call it
+  // once per chip instead of once per transfer.
+  std::array<TimeNs, 128> updatedTo_{};
   std::uint64_t transfers_ = 0;
   std::uint64_t failed_ = 0;
 };
