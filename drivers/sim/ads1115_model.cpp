@@ -4,6 +4,8 @@
 #include <cerrno>
 #include <cmath>
 
+#include "drivers/sim/fast_math.h"
+
 namespace xr::sim {
 using namespace ads1115;
 
@@ -45,7 +47,7 @@ std::int16_t Ads1115Model::sample(std::uint16_t cfg) noexcept {
       break;
   }
   const double fs = kFsrVolts[pgaOf(cfg)];
-  const double code = std::nearbyint(v / fs * 32768.0);
+  const double code = roundEven(v / fs * 32768.0);  // = std::nearbyint, without the libm call
   if (!(code == code)) return 0;
   return static_cast<std::int16_t>(std::clamp(code, -32768.0, 32767.0));  // clips at ±FS
 }

@@ -1,6 +1,7 @@
 #include "drivers/sim/ina228_model.h"
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <cmath>
 
@@ -8,35 +9,21 @@
 
 namespace xr::sim {
 namespace ina228 {
-int regSize(std::uint8_t reg) noexcept {
-  switch (reg) {
-    case CONFIG:
-    case ADC_CONFIG:
-    case SHUNT_CAL:
-    case SHUNT_TEMPCO:
-    case DIETEMP:
-    case DIAG_ALRT:
-    case SOVL:
-    case SUVL:
-    case BOVL:
-    case BUVL:
-    case TEMP_LIMIT:
-    case PWR_LIMIT:
-    case MANUFACTURER_ID:
-    case DEVICE_ID:
-      return 2;
-    case VSHUNT:
-    case VBUS:
-    case CURRENT:
-    case POWER:
-      return 3;
-    case ENERGY:
-    case CHARGE:
-      return 5;
-    default:
-      return 0;
-  }
-}
+namespace {
+// Register size in bytes by pointer value, 0 = reserved (read and write
+// both look it up once per message: a table, not a switch).
+constexpr std::array<std::uint8_t, 64> kRegSize = [] {
+  std::array<std::uint8_t, 64> t{};
+  for (std::uint8_t r : {CONFIG, ADC_CONFIG, SHUNT_CAL, SHUNT_TEMPCO, DIETEMP, DIAG_ALRT, SOVL, SUVL, BOVL, BUVL,
+                         TEMP_LIMIT, PWR_LIMIT, MANUFACTURER_ID, DEVICE_ID})
+    t[r] = 2;
+  for (std::uint8_t r : {VSHUNT, VBUS, CURRENT, POWER}) t[r] = 3;
+  for (std::uint8_t r : {ENERGY, CHARGE}) t[r] = 5;
+  return t;
+}();
+}  // namespace
+
+int regSize(std::uint8_t reg) noexcept { return reg < kRegSize.size() ? kRegSize[reg] : 0; }
 }  // namespace ina228
 
 using namespace ina228;
