@@ -44,7 +44,9 @@ void Ads1115Driver::setPga(int channel, unsigned pga) noexcept {
 }
 
 int Ads1115Driver::nextChannel() noexcept {
-  seqPos_ = (seqPos_ + 1) % seqLen_;
+  // Wrap by compare, not `%` (a 64-bit division on every conversion);
+  // seqPos_ < seqLen_ always holds.
+  if (++seqPos_ >= seqLen_) seqPos_ = 0;
   return seq_[seqPos_];
 }
 
