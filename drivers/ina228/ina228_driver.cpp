@@ -74,7 +74,10 @@ int Ina228Driver::start(TimeNs now) noexcept {
 }
 
 TimeNs Ina228Driver::conversionCycle() const noexcept {
-  return static_cast<TimeNs>(adcCycleUs(fast_ ? kAdcConfigFast : kAdcConfigSlow)) * 1000;
+  // Both cycles are compile-time constants (poll() asks after every read).
+  static constexpr TimeNs kFastCycle = static_cast<TimeNs>(adcCycleUs(kAdcConfigFast)) * 1000;
+  static constexpr TimeNs kSlowCycle = static_cast<TimeNs>(adcCycleUs(kAdcConfigSlow)) * 1000;
+  return fast_ ? kFastCycle : kSlowCycle;
 }
 
 int Ina228Driver::setFastMode(bool fast) noexcept {
