@@ -93,8 +93,7 @@ void Ads1115Model::finishConversion() noexcept {
   if (!(config_ & MODE_SINGLE)) startConversion(convEnd_);
 }
 
-void Ads1115Model::update(TimeNs t) noexcept {
-  if (t < now_) return;
+void Ads1115Model::convertTo(TimeNs t) noexcept {
   while (converting_ && convEnd_ <= t) {
     now_ = convEnd_;
     finishConversion();

@@ -36,7 +36,15 @@ class Ads1115Model final : public SimI2cDevice {
     src_ = fn;
     srcCtx_ = ctx;
   }
-  void update(TimeNs t) noexcept override;
+  // Inline early-out: most calls (several per control tick) end no conversion.
+  void update(TimeNs t) noexcept override {
+    if (t < now_) return;
+    if (converting_ && convEnd_ <= t) {
+      convertTo(t);
+    } else {
+      now_ = t;
+    }
+  }
   int write(const std::uint8_t* buf, std::size_t len) noexcept override;
   int read(std::uint8_t* buf, std::size_t len) noexcept override;
 
@@ -58,6 +66,7 @@ class Ads1115Model final : public SimI2cDevice {
   TimeNs period(int dr) const noexcept { return period_[dr & 7]; }
 
  private:
+  void convertTo(TimeNs t) noexcept;  // update() with a conversion ending by t
   void startConversion(TimeNs at) noexcept;
   void finishConversion() noexcept;
   bool readyMode() const noexcept { return (hiThresh_ & 0x8000) && !(loThresh_ & 0x8000); }

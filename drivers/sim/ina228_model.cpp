@@ -101,8 +101,7 @@ void Ina228Model::restartConversions() noexcept {
   nextSample_ = now_ + delay + sampleTime_;
 }
 
-void Ina228Model::update(TimeNs t) noexcept {
-  if (t <= now_) return;
+void Ina228Model::convertTo(TimeNs t) noexcept {
   // The analog inputs are constant between two updates (the plant changes
   // them only between steps), so every raw sample in [now_, t] sees the same
   // values: batch them instead of looping per sample.
@@ -294,7 +293,14 @@ int Ina228Model::read(std::uint8_t* buf, std::size_t len) noexcept {
     return EREMOTEIO;
   }
   const std::uint64_t v = peek(ptr_);
-  for (std::size_t i = 0; i < len; ++i) buf[i] = std::uint8_t(v >> (8 * (size - 1 - int(i))));
+  // MSB first, the first `len` bytes. Register MSB moved to bit 63 (size is
+  // 2, 3 or 5), then fixed shifts: no per-byte variable shift loop.
+  const std::uint64_t a = v << (64 - 8 * size);
+  buf[0] = std::uint8_t(a >> 56);
+  if (len > 1) buf[1] = std::uint8_t(a >> 48);
+  if (len > 2) buf[2] = std::uint8_t(a >> 40);
+  if (len > 3) buf[3] = std::uint8_t(a >> 32);
+  if (len > 4) buf[4] = std::uint8_t(a >> 24);
   // Read side effects.
   if (ptr_ == DIAG_ALRT) {
     // Latched flags and CNVRF clear on a read of DIAG_ALRT.

@@ -69,7 +69,16 @@ class Ina228Model final : public SimI2cDevice {
     analog_ = a;
     codesValid_ = false;
   }
-  void update(TimeNs t) noexcept override;
+  // Inline early-out: the board calls update() several times per control
+  // tick, mostly with no raw sample due (or at an instant already reached).
+  void update(TimeNs t) noexcept override {
+    if (t <= now_) return;
+    if (running_ && nextSample_ <= t) {
+      convertTo(t);
+    } else {
+      now_ = t;
+    }
+  }
   int write(const std::uint8_t* buf, std::size_t len) noexcept override;
   int read(std::uint8_t* buf, std::size_t len) noexcept override;
 
@@ -86,6 +95,7 @@ class Ina228Model final : public SimI2cDevice {
   std::uint64_t conversions() const noexcept { return conversions_; }
 
  private:
+  void convertTo(TimeNs t) noexcept;  // update() with at least one raw sample due by t
   void reset() noexcept;
   void restartConversions() noexcept;
   void onSample() noexcept;                 // one raw sample of every active channel
