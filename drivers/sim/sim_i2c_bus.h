@@ -33,6 +33,9 @@ class SimI2cBus final : public I2cBus {
   const TimeNs* now_;
   std::array<SimI2cDevice*, 128> devs_{};
   std::array<bool, 128> nack_{};
+  // devs_ with the NACKing addresses cleared: what transfer() looks up (one
+  // load per message instead of three checks).
+  std::array<SimI2cDevice*, 128> acking_{};
   // The instant each address's chip was last brought up to by transfer():
   // update() is monotonic (a no-op for a time it has reached), so the ~8
   // transfers of one control tick, all at the same simulated instant, call it
