@@ -39,7 +39,8 @@ double tempFFromAdc(const AnalogFrontEndSettings& s, double v) {
   // Node voltage V = Vs * Rth / (Rs + Rth)  =>  Rth = Rs * V / (Vs - V).
   if (!(v > 0.0) || !(v < s.thermistor_supply_v)) return std::numeric_limits<double>::quiet_NaN();
   const double r = s.thermistor_series_r_ohm * v / (s.thermistor_supply_v - v);
-  const double invT = 1.0 / (s.thermistor_t0_c + kKelvin) + std::log(r / s.thermistor_r0_ohm) / s.thermistor_beta;
+  const double invT =
+      1.0 / (s.thermistor_t0_c + kKelvin) + std::log(r / s.thermistor_r0_ohm) / s.thermistor_beta;
   return cToF(1.0 / invT - kKelvin);
 }
 double adcFromTempF(const AnalogFrontEndSettings& s, double tempF) {

@@ -14,8 +14,8 @@ namespace {
 // both look it up once per message: a table, not a switch).
 constexpr std::array<std::uint8_t, 64> kRegSize = [] {
   std::array<std::uint8_t, 64> t{};
-  for (std::uint8_t r : {CONFIG, ADC_CONFIG, SHUNT_CAL, SHUNT_TEMPCO, DIETEMP, DIAG_ALRT, SOVL, SUVL, BOVL, BUVL,
-                         TEMP_LIMIT, PWR_LIMIT, MANUFACTURER_ID, DEVICE_ID})
+  for (std::uint8_t r : {CONFIG, ADC_CONFIG, SHUNT_CAL, SHUNT_TEMPCO, DIETEMP, DIAG_ALRT, SOVL, SUVL, BOVL,
+                         BUVL, TEMP_LIMIT, PWR_LIMIT, MANUFACTURER_ID, DEVICE_ID})
     t[r] = 2;
   for (std::uint8_t r : {VSHUNT, VBUS, CURRENT, POWER}) t[r] = 3;
   for (std::uint8_t r : {ENERGY, CHARGE}) t[r] = 5;
