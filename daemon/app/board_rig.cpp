@@ -3,6 +3,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "drivers/onewire/ds18b20_handoff.h"
 #include "runtime/fatal_guard.h"
 
 namespace xr::app {
@@ -112,13 +113,15 @@ void BoardRig::registerFatalActions() {
 
 void BoardRig::beforeTick(TimeNs) {
   if (!handoffs_) return;
-  // Relay the slow threads' lock-free samples into the cycle's hand-offs.
+  // Relay the slow threads' lock-free samples into the cycle's hand-offs,
+  // only when the reader moved on (about once a second): an unchanged
+  // hand-off costs the control cycle nothing to read.
   const Ds18b20Sample s = ds18b20_->latest();
-  rt::TemperatureHandoff th;
-  th.tempF = s.stamp ? s.tempF : kNoValue;
-  th.stamp = s.stamp;
-  th.heartbeat = s.heartbeat;
-  handoffs_->temperature.store(th);
+  if (s.heartbeat != lastTempHeartbeat_ || s.stamp != lastTempStamp_) {
+    handoffs_->temperature.store(temperatureHandoff(s));
+    lastTempHeartbeat_ = s.heartbeat;
+    lastTempStamp_ = s.stamp;
+  }
   if (vedirect_) {
     const VeDirectSample v = vedirect_->latest();
     if (v.frames != lastVictronFrames_ && v.hasCurrent) {

@@ -50,6 +50,7 @@ class BoardRig final : public rt::TickHook {
   std::unique_ptr<VeDirectReader> vedirect_;
   rt::Handoffs* handoffs_ = nullptr;
   std::uint64_t lastVictronFrames_ = 0;
+  TimeNs lastTempHeartbeat_ = -1, lastTempStamp_ = -1;  // -1: nothing relayed yet
 };
 
 }  // namespace xr::app

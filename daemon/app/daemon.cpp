@@ -40,9 +40,9 @@ namespace {
 void logLoopStats(const rt::LoopStatsSummary& s, const rt::RuntimeHealth& h) {
   spdlog::info(
       "control loop: {} ticks, {} overruns, period error p50/p99/max {:.0f}/{:.0f}/{:.0f} us, compute "
-      "p50/p99/max {:.0f}/{:.0f}/{:.0f} us, I/O p50/p99/max {:.0f}/{:.0f}/{:.0f} us, CH1 {:.0f} Hz (CH0 "
-      "{:.0f}, "
-      "CH2 {:.0f}, CH3 {:.0f}), INA {:.0f} Hz, sensor errors {}, output errors {}, events dropped {}",
+      "p50/p99/max {:.0f}/{:.0f}/{:.0f} us, I/O p50/p99/max {:.0f}/{:.0f}/{:.0f} us, "
+      "CH1 {:.0f} Hz (CH0 {:.0f}, CH2 {:.0f}, CH3 {:.0f}), INA {:.0f} Hz, "
+      "sensor errors {}, output errors {}, events dropped {}",
       s.ticks, s.overruns, s.periodErrP50Us, s.periodErrP99Us, s.periodErrMaxUs, s.computeP50Us,
       s.computeP99Us, s.computeMaxUs, s.ioP50Us, s.ioP99Us, s.ioMaxUs, s.ch1SampleRateHz,
       s.adsChannelRateHz[0], s.adsChannelRateHz[2], s.adsChannelRateHz[3], s.inaSampleRateHz,
@@ -141,11 +141,7 @@ int Daemon::run() {
   rt::CycleConfig cycleCfg;
   cycleCfg.rowPeriod = cli_.telemetryCsv ? fromSec(1.0 / cli_.telemetryRateHz) : 0;
   cycleCfg.blockOnFullRows = cli_.sim && cli_.speed <= 0.0;
-  if (cli_.sim && cli_.speed <= 0.0) {
-    // --speed max: the dashboard still sees ~10 snapshots per simulated second.
-    cycleCfg.publishEveryTicks = 40;
-    cycleCfg.timeEveryTicks = 16;
-  }
+  if (cli_.sim && cli_.speed <= 0.0) cycleCfg.thinForUnpacedRun();
   rt::ControlCycle cycle(core, devices, *handoffs, stats, *wall, cycleCfg);
   cycle.driveSafeState();  // field known LOW before anything runs
 

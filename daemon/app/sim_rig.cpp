@@ -7,6 +7,7 @@
 #include <exception>
 #include <stdexcept>
 
+#include "drivers/onewire/ds18b20_handoff.h"
 #include "drivers/sim/runner/scratch_dir.h"
 
 namespace xr::app {
@@ -40,7 +41,6 @@ SimRig::SimRig(const sim::Scenario& scenario, const Settings& settings, const Cl
       // configuration names a line, as on the board.
       sensors_(world_.i2c(), settings.hardware, simClock_, settings.hardware.ads_alert_rdy_line >= 0),
       readyEdges_(world_),
-      readyWired_(settings.hardware.ads_alert_rdy_line >= 0),
       player_(scenario) {
   if (cli.speed > 0.0) paced_ = std::make_unique<rt::PacedClock>(simClock_, wall_, cli.speed);
   ds18b20_ = std::make_unique<Ds18b20Reader>((tmpDir_ / "w1").string(), settings.hardware.onewire_sensor_id,
@@ -71,7 +71,7 @@ rt::CycleDevices SimRig::devices() {
   d.watchdog = &world_.watchdog();
   d.truth = this;
   d.hook = this;
-  d.adsReady = readyWired_ ? &readyEdges_ : nullptr;
+  d.adsReady = sensors_.ads().pacing() == AdsPacing::ReadyEdge ? &readyEdges_ : nullptr;
   return d;
 }
 
@@ -110,12 +110,7 @@ void SimRig::beforeTick(TimeNs now) {
   // stale at --speed max).
   if (now >= nextTempRead_ && handoffs_) {
     ds18b20_->readOnce();
-    const Ds18b20Sample s = ds18b20_->latest();
-    rt::TemperatureHandoff th;
-    th.tempF = s.stamp ? s.tempF : kNoValue;
-    th.stamp = s.stamp;
-    th.heartbeat = s.heartbeat;
-    handoffs_->temperature.store(th);
+    handoffs_->temperature.store(temperatureHandoff(ds18b20_->latest()));
     nextTempRead_ = now + fromSec(1.0);
   }
   if (cli_.testFault != TestFault::None && !faultFired_ && t >= cli_.testFaultAtS) {

@@ -56,7 +56,6 @@ class SimRig final : public rt::TickHook, public rt::TruthSource {
   std::unique_ptr<rt::PacedClock> paced_;
   DriverSensors sensors_;
   sim::SimReadyEdges readyEdges_;
-  bool readyWired_;
   std::unique_ptr<Ds18b20Reader> ds18b20_;
   sim::ScenarioPlayer player_;
   std::unique_ptr<rt::OutputMirror> mirror_;

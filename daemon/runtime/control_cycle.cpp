@@ -122,8 +122,7 @@ bool ControlCycle::tick(TimeNs now) {
   if (dev_.hook) dev_.hook->beforeTick(now);
   applyBetweenTicks();
 
-  const bool timed =
-      cfg_.timeEveryTicks <= 1 || (tick_ % static_cast<std::uint64_t>(cfg_.timeEveryTicks)) == 0;
+  const bool timed = timedTick();
   const TimeNs t0 = timed ? timing_.now() : 0;
   in_.now = now;
   const bool sensorsOk = dev_.sensors->read(now, in_);
@@ -194,15 +193,15 @@ void ControlCycle::publish(const Outputs& out, TimeNs now) noexcept {
   lastOut_ = &out;
   lastNow_ = now;
   if ((tick_ & 63) == 1) summary_ = stats_.summary();  // quantiles are not free: ~6 Hz at 400 Hz
-  const bool every = cfg_.publishEveryTicks <= 1;
-  if (every || stopping_ || (tick_ % static_cast<std::uint64_t>(cfg_.publishEveryTicks)) == 1)
-    storeSnapshot(out, now);
+  const bool stored = cfg_.publishEveryTicks <= 1 || stopping_ ||
+                      (tick_ % static_cast<std::uint64_t>(cfg_.publishEveryTicks)) == 1;
+  if (stored) storeSnapshot(out, now);
 
   if (cfg_.rowPeriod > 0 && (!rowsStarted_ || now - lastRow_ >= cfg_.rowPeriod)) {
     // Rows sit on the grid start + k·rowPeriod so t_s is regular.
     lastRow_ = rowsStarted_ ? lastRow_ + cfg_.rowPeriod * ((now - lastRow_) / cfg_.rowPeriod) : now;
     rowsStarted_ = true;
-    if (!every) storeSnapshot(out, now);  // the row carries this tick's state
+    if (!stored) storeSnapshot(out, now);  // the row carries this tick's state
     RuntimeSnapshot snap = scratch_;
     snap.loop = stats_.summary();
     while (!h_.rows.push(snap)) {
@@ -217,8 +216,7 @@ void ControlCycle::publish(const Outputs& out, TimeNs now) noexcept {
 
 void ControlCycle::serviceEdges(TimeNs deadline) noexcept {
   if (!dev_.adsReady) return;
-  const bool timed =
-      cfg_.timeEveryTicks <= 1 || (tick_ % static_cast<std::uint64_t>(cfg_.timeEveryTicks)) == 0;
+  const bool timed = timedTick();
   // Bounded: at 860 SPS a 2.5 ms period holds 2-3 edges; a storm of
   // spurious edges must not starve the tick.
   for (int i = 0; i < kMaxEdgesPerPeriod; ++i) {

@@ -28,6 +28,12 @@ struct CycleConfig {
   // and the final state are never thinned.
   int publishEveryTicks = 1;
   int timeEveryTicks = 1;
+  // The thinning for an unpaced run (--speed max, SimRunner at speed 0):
+  // ~10 snapshots per simulated second at 400 Hz.
+  void thinForUnpacedRun() noexcept {
+    publishEveryTicks = 40;
+    timeEveryTicks = 16;
+  }
 };
 
 class ControlCycle {
@@ -66,6 +72,10 @@ class ControlCycle {
 
  private:
   static constexpr int kMaxEdgesPerPeriod = 16;
+  // This tick (and the edges before it) get compute/I-O timing.
+  bool timedTick() const noexcept {
+    return cfg_.timeEveryTicks <= 1 || (tick_ % static_cast<std::uint64_t>(cfg_.timeEveryTicks)) == 0;
+  }
   void applyBetweenTicks() noexcept;
   void mergeSlowInputs() noexcept;
   void mergeTemperature() noexcept;

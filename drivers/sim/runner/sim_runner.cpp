@@ -9,6 +9,7 @@
 
 #include "control/regulator.h"
 #include "drivers/fast_sensors/driver_sensors.h"
+#include "drivers/onewire/ds18b20_handoff.h"
 #include "drivers/onewire/ds18b20_reader.h"
 #include "drivers/sim/runner/scratch_dir.h"
 #include "drivers/sim/runner/sim_ready_edges.h"
@@ -158,10 +159,7 @@ SimRunResult SimRunner::run() {
   rt::CycleConfig cc;
   cc.rowPeriod = d.opts.telemetryRateHz > 0 ? fromSec(1.0 / d.opts.telemetryRateHz) : 0;
   cc.blockOnFullRows = false;  // drained every tick below, never full
-  if (d.opts.speed <= 0.0) {
-    cc.publishEveryTicks = 40;  // nobody watches the snapshot in real time
-    cc.timeEveryTicks = 16;
-  }
+  if (d.opts.speed <= 0.0) cc.thinForUnpacedRun();
   rt::CycleDevices dev;
   dev.sensors = &d.sensors;
   dev.pwm = &d.world.pwm();
@@ -171,7 +169,7 @@ SimRunResult SimRunner::run() {
   dev.ignition = &d.world.ignition();
   dev.watchdog = &d.world.watchdog();
   dev.truth = &d.truth;
-  if (d.opts.settings.hardware.ads_alert_rdy_line >= 0) dev.adsReady = &d.readyEdges;
+  if (d.sensors.ads().pacing() == AdsPacing::ReadyEdge) dev.adsReady = &d.readyEdges;
   d.cycle = std::make_unique<rt::ControlCycle>(d.core, dev, d.handoffs, d.stats, d.simClock, cc);
 
   if (!d.w1Dir.empty()) {
@@ -215,12 +213,7 @@ SimRunResult SimRunner::run() {
     if (d.w1Reader && t >= nextW1) {
       nextW1 += fromSec(1.0);
       d.w1Reader->readOnce();
-      const Ds18b20Sample s = d.w1Reader->latest();
-      rt::TemperatureHandoff th;
-      th.tempF = s.stamp != 0 ? s.tempF : kNoValue;
-      th.stamp = s.stamp;
-      th.heartbeat = s.heartbeat;
-      d.handoffs.temperature.store(th);
+      d.handoffs.temperature.store(temperatureHandoff(d.w1Reader->latest()));
     }
   };
   HookedClock clock(d.simClock, before);
