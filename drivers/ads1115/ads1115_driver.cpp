@@ -80,10 +80,6 @@ int Ads1115Driver::readConversionChecked(std::uint16_t* raw) noexcept {
   return 0;
 }
 
-int Ads1115Driver::readConversion(std::uint16_t* raw) noexcept {
-  return i2creg::readReg16(bus_, addr_, ads1115::CONVERSION, raw);
-}
-
 int Ads1115Driver::start(TimeNs now) noexcept {
   seqPos_ = 0;
   const int first = seq_[0];
@@ -269,36 +265,56 @@ void Ads1115Driver::onReadyEdge(TimeNs edge) noexcept {
   const bool missed = lastEdge_ != 0 && edge - lastEdge_ > kMissedEdgeGap;
   lastEdge_ = edge;
   const bool late = clock_.now() - edge > kEdgeBudget;
+  const std::size_t pos = seqPos_;
+  const int c = nextChannel();
+  const std::uint16_t cfg = configFor(c);
+  std::uint8_t wr[3] = {ads1115::CONFIG, static_cast<std::uint8_t>(cfg >> 8),
+                        static_cast<std::uint8_t>(cfg & 0xFF)};
   if (missed || late) {
-    // Which conversion the register holds is no longer certain.
+    // Which conversion the register holds is no longer certain: skip the
+    // read, only write the MUX for the conversion after next.
     stats_.discarded += 1;
     flushPipeline();
-  } else {
-    std::uint16_t raw = 0;
-    const int rc = readConversion(&raw);
+    I2cMsg msg{addr_, false, wr, 3};
+    const int rc = bus_.transfer({&msg, 1});
+    inProgress_ = nextUp_;
     if (rc != 0) {
       noteFailure(rc, edge);
-      flushPipeline();
+      nextUp_ = -1;
       return;
     }
-    stats_.consecutiveFailures = 0;
-    if (inProgress_ >= 0) {
-      accept(inProgress_, raw, edge);
-    } else {
-      ++stats_.discarded;
-    }
-  }
-  // The conversion that started at this edge uses the last config written
-  // before it.
-  inProgress_ = nextUp_;
-  const int c = nextChannel();
-  const int rc = writeMux(c);
-  if (rc != 0) {
-    noteFailure(rc, edge);
-    nextUp_ = -1;
+    lastWritten_ = cfg;
+    nextUp_ = (clock_.now() - edge <= kEdgeBudget) ? c : -1;
     return;
   }
-  // The write must land before the next edge to label the next conversion.
+  // The result of the conversion that just ended and the MUX for the
+  // conversion after next in ONE combined transaction (pointer, read,
+  // Config write; repeated starts, as the chip allows): the same register
+  // accesses in the same order as two transfers, one ioctl on the board.
+  std::uint8_t pConv = ads1115::CONVERSION;
+  std::uint8_t conv[2] = {};
+  I2cMsg msgs[3] = {{addr_, false, &pConv, 1}, {addr_, true, conv, 2}, {addr_, false, wr, 3}};
+  const int rc = bus_.transfer(msgs);
+  if (rc != 0) {
+    // Which message failed is unknown: the result is not trusted and the
+    // chip may hold either MUX. Flush (the next two results are discarded)
+    // and keep the sequence where it was, as when the read alone failed.
+    seqPos_ = pos;
+    noteFailure(rc, edge);
+    flushPipeline();
+    return;
+  }
+  stats_.consecutiveFailures = 0;
+  if (inProgress_ >= 0) {
+    accept(inProgress_, static_cast<std::uint16_t>((conv[0] << 8) | conv[1]), edge);
+  } else {
+    ++stats_.discarded;
+  }
+  lastWritten_ = cfg;
+  // The conversion that started at this edge uses the last config written
+  // before it; the write must land before the next edge to label the next
+  // conversion.
+  inProgress_ = nextUp_;
   nextUp_ = (clock_.now() - edge <= kEdgeBudget) ? c : -1;
 }
 

@@ -111,7 +111,6 @@ class Ads1115Driver {
 
  private:
   int writeMux(int channel) noexcept;
-  int readConversion(std::uint16_t* raw) noexcept;
   // Timed pacing: Config and Conversion in ONE combined transaction; the
   // result is trusted only when Config still holds what we wrote (a chip
   // that reset reads single-shot with a zero result). ESTALE on a mismatch.
