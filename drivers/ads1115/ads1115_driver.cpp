@@ -166,6 +166,16 @@ void Ads1115Driver::flushPipeline() noexcept {
 }
 
 Ads1115Samples Ads1115Driver::poll(TimeNs now) noexcept {
+  Ads1115Samples out = service(now);
+  clearFresh();
+  return out;
+}
+
+void Ads1115Driver::clearFresh() noexcept {
+  for (auto& s : samples_.ch) s.fresh = false;
+}
+
+const Ads1115Samples& Ads1115Driver::service(TimeNs now) noexcept {
   if (!present_ && now >= nextRedetect_) {
     nextRedetect_ = now + kRedetectInterval;
     if (start(now) == 0) ++stats_.redetects;
@@ -221,10 +231,8 @@ Ads1115Samples Ads1115Driver::poll(TimeNs now) noexcept {
       noteFailure(rc, now);
     }
   }
-  Ads1115Samples out = samples_;
-  out.present = present_;
-  for (auto& s : samples_.ch) s.fresh = false;
-  return out;
+  samples_.present = present_;
+  return samples_;
 }
 
 void Ads1115Driver::pollSingleShot(TimeNs now) noexcept {

@@ -91,6 +91,11 @@ class Ads1115Driver {
   // updated since the previous poll(), then clears the fresh flags. While
   // absent, re-starts at most once per kRedetectInterval.
   Ads1115Samples poll(TimeNs now) noexcept;
+  // poll() without the copy, for the per-tick path: the same work, then the
+  // samples by reference with their fresh flags still set; clearFresh()
+  // ends the tick's view (poll() == service() + copy + clearFresh()).
+  const Ads1115Samples& service(TimeNs now) noexcept;
+  void clearFresh() noexcept;
   // ReadyEdge pacing: one call per ALERT/RDY edge, `edge` = its timestamp.
   void onReadyEdge(TimeNs edge) noexcept;
   // Change pacing at run time (e.g. ReadyEdge → SingleShot when no edges
