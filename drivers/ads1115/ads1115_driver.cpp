@@ -35,12 +35,19 @@ Ads1115Driver::Ads1115Driver(I2cBus& bus, std::uint16_t address, std::span<const
   for (int c : channelSequence) ok = ok && c >= 0 && c <= 3;
   std::span<const int> use = ok ? channelSequence : std::span<const int>(kDefaultSequence);
   configError_ = !ok;
+  edgePtr_ = ads1115::CONVERSION;
+  edgeWrite_[0] = ads1115::CONFIG;
+  edgeMsgs_[0] = {addr_, false, &edgePtr_, 1};
+  edgeMsgs_[1] = {addr_, true, edgeRead_, 2};
+  edgeMsgs_[2] = {addr_, false, edgeWrite_, 3};
+  refreshEdgeConfigs();
   seqLen_ = use.size();
   for (std::size_t i = 0; i < seqLen_; ++i) seq_[i] = use[i];
 }
 
 void Ads1115Driver::setPga(int channel, unsigned pga) noexcept {
   if (channel >= 0 && channel <= 3) pga_[static_cast<std::size_t>(channel)] = pga & 7;
+  refreshEdgeConfigs();
 }
 
 int Ads1115Driver::nextChannel() noexcept {
@@ -80,7 +87,12 @@ int Ads1115Driver::readConversionChecked(std::uint16_t* raw) noexcept {
   return 0;
 }
 
+void Ads1115Driver::refreshEdgeConfigs() noexcept {
+  for (int ch = 0; ch < 4; ++ch) edgeConfig_[static_cast<std::size_t>(ch)] = configFor(ch);
+}
+
 int Ads1115Driver::start(TimeNs now) noexcept {
+  refreshEdgeConfigs();  // pacing_ may have changed (setPacing)
   seqPos_ = 0;
   const int first = seq_[0];
   int rc = 0;
@@ -142,16 +154,25 @@ void Ads1115Driver::accept(int channel, std::uint16_t raw, TimeNs stamp) noexcep
     case 0:  // frontend::batteryVoltsFromAdc with the gain computed once
       s.value = v * ch0Gain_;
       break;
-    case 1:
-      s.value = frontend::altAmpsFromAdc(fe_, v);
+    case 1: {  // frontend::altAmpsFromAdc, the same expression, inlined
+      const double a = (v - fe_.hall_zero_v) / fe_.hall_sensitivity_v_per_a;
+      s.value = fe_.hall_invert ? -a : a;
       break;
+    }
     case 2: {  // frontend::rpmFromAdc with the scale computed once
       const double rpm = v * rpmScale_;
       s.value = rpm < fe_.rpm_low_floor ? 0.0 : rpm;
       break;
     }
     default:
-      s.value = frontend::tempFFromAdc(fe_, v);
+      // A pure function of the code (fe_ and the PGA are fixed): the log in
+      // it is skipped while the thermistor reads the same code again.
+      if (!ch3Cached_ || raw != ch3Raw_) {
+        ch3Value_ = frontend::tempFFromAdc(fe_, v);
+        ch3Raw_ = raw;
+        ch3Cached_ = true;
+      }
+      s.value = ch3Value_;
       break;
   }
   s.stamp = stamp;
@@ -275,16 +296,16 @@ void Ads1115Driver::onReadyEdge(TimeNs edge) noexcept {
   const bool late = clock_.now() - edge > kEdgeBudget;
   const std::size_t pos = seqPos_;
   const int c = nextChannel();
-  const std::uint16_t cfg = configFor(c);
-  std::uint8_t wr[3] = {ads1115::CONFIG, static_cast<std::uint8_t>(cfg >> 8),
-                        static_cast<std::uint8_t>(cfg & 0xFF)};
+  const std::uint16_t cfg = edgeConfig_[static_cast<std::size_t>(c)];
+  std::uint8_t* const wr = edgeWrite_;
+  wr[1] = static_cast<std::uint8_t>(cfg >> 8);
+  wr[2] = static_cast<std::uint8_t>(cfg & 0xFF);
   if (missed || late) {
     // Which conversion the register holds is no longer certain: skip the
     // read, only write the MUX for the conversion after next.
     stats_.discarded += 1;
     flushPipeline();
-    I2cMsg msg{addr_, false, wr, 3};
-    const int rc = bus_.transfer({&msg, 1});
+    const int rc = bus_.transfer({&edgeMsgs_[2], 1});
     inProgress_ = nextUp_;
     if (rc != 0) {
       noteFailure(rc, edge);
@@ -299,10 +320,8 @@ void Ads1115Driver::onReadyEdge(TimeNs edge) noexcept {
   // conversion after next in ONE combined transaction (pointer, read,
   // Config write; repeated starts, as the chip allows): the same register
   // accesses in the same order as two transfers, one ioctl on the board.
-  std::uint8_t pConv = ads1115::CONVERSION;
-  std::uint8_t conv[2] = {};
-  I2cMsg msgs[3] = {{addr_, false, &pConv, 1}, {addr_, true, conv, 2}, {addr_, false, wr, 3}};
-  const int rc = bus_.transfer(msgs);
+  // The messages are built once (constructor): only the Config bytes change.
+  const int rc = bus_.transfer(edgeMsgs_);
   if (rc != 0) {
     // Which message failed is unknown: the result is not trusted and the
     // chip may hold either MUX. Flush (the next two results are discarded)
@@ -314,7 +333,7 @@ void Ads1115Driver::onReadyEdge(TimeNs edge) noexcept {
   }
   stats_.consecutiveFailures = 0;
   if (inProgress_ >= 0) {
-    accept(inProgress_, static_cast<std::uint16_t>((conv[0] << 8) | conv[1]), edge);
+    accept(inProgress_, static_cast<std::uint16_t>((edgeRead_[0] << 8) | edgeRead_[1]), edge);
   } else {
     ++stats_.discarded;
   }

@@ -77,6 +77,10 @@ class Ads1115Driver {
                 const AnalogFrontEndSettings& frontend, const Clock& clock,
                 AdsPacing pacing = AdsPacing::Timed) noexcept;
 
+  // Not copyable: the ready-edge messages point into the driver itself.
+  Ads1115Driver(const Ads1115Driver&) = delete;
+  Ads1115Driver& operator=(const Ads1115Driver&) = delete;
+
   // Set a channel's PGA code before start() (default kDefaultPga).
   void setPga(int channel, unsigned pga) noexcept;
   // Writes thresholds (for ReadyEdge) and the Config for the first channel in
@@ -126,6 +130,7 @@ class Ads1115Driver {
   void noteFailure(int err, TimeNs now) noexcept;
   void flushPipeline() noexcept;
   int nextChannel() noexcept;
+  void refreshEdgeConfigs() noexcept;
 
   I2cBus& bus_;
   std::uint16_t addr_;
@@ -155,6 +160,19 @@ class Ads1115Driver {
   static constexpr TimeNs kVerifyInterval = 1'000'000'000;
   Ads1115Samples samples_;
   Ads1115Stats stats_;
+  // Ready-edge path (~860 times a second), built once: configFor() per
+  // channel (refreshed by start() and setPga()) and the combined
+  // transaction's messages over these buffers (pointer to Conversion, the
+  // result, the Config write).
+  std::array<std::uint16_t, 4> edgeConfig_{};
+  std::uint8_t edgePtr_ = 0;  // ads1115::CONVERSION (set in the constructor)
+  std::uint8_t edgeRead_[2] = {};
+  std::uint8_t edgeWrite_[3] = {};  // ads1115::CONFIG, then the value
+  I2cMsg edgeMsgs_[3] = {};
+  // CH3 (thermistor) conversion of the last code: tempFFromAdc has a log.
+  bool ch3Cached_ = false;
+  std::uint16_t ch3Raw_ = 0;
+  double ch3Value_ = 0.0;
 };
 
 }  // namespace xr
