@@ -159,8 +159,8 @@ bool ControlCycle::tick(TimeNs now) {
     if (dev_.watchdog->keepAlive()) ++health_.watchdogFeeds;
   }
   h_.events.pushBatch(out.events);
-  ++tick_;
-  if ((tick_ % 100) == 1) {
+  advanceTick();
+  if (ledgerPhase_ == 1) {
     BatteryLedger l;
     if (core_.ledger(l)) h_.ledger.store(l);
   }
@@ -193,8 +193,7 @@ void ControlCycle::publish(const Outputs& out, TimeNs now) noexcept {
   lastOut_ = &out;
   lastNow_ = now;
   if ((tick_ & 63) == 1) summary_ = stats_.summary();  // quantiles are not free: ~6 Hz at 400 Hz
-  const bool stored = cfg_.publishEveryTicks <= 1 || stopping_ ||
-                      (tick_ % static_cast<std::uint64_t>(cfg_.publishEveryTicks)) == 1;
+  const bool stored = cfg_.publishEveryTicks <= 1 || stopping_ || publishPhase_ == 1;
   if (stored) storeSnapshot(out, now);
 
   if (cfg_.rowPeriod > 0 && (!rowsStarted_ || now - lastRow_ >= cfg_.rowPeriod)) {

@@ -18,7 +18,11 @@ Ina228Driver::Ina228Driver(I2cBus& bus, std::uint16_t address, double shuntOhm, 
       maxCurrentA_(maxCurrentA),
       invert_(invertCurrent),
       currentLsb_(ina228::currentLsb(maxCurrentA)),
-      lowRange_(useLowAdcRange(shuntOhm, maxCurrentA)) {}
+      lowRange_(useLowAdcRange(shuntOhm, maxCurrentA)),
+      pollPtr_{DIAG_ALRT, VBUS, CURRENT},
+      pollMsgs_{{addr_, false, &pollPtr_[0], 1}, {addr_, true, pollRx_, 2},
+                {addr_, false, &pollPtr_[1], 1}, {addr_, true, pollRx_ + 2, 3},
+                {addr_, false, &pollPtr_[2], 1}, {addr_, true, pollRx_ + 5, 3}} {}
 
 int Ina228Driver::readReg(std::uint8_t reg, std::size_t bytes, std::uint64_t* v) noexcept {
   return i2creg::readReg(bus_, addr_, reg, bytes, v);
@@ -175,17 +179,17 @@ const Ina228Sample& Ina228Driver::poll(TimeNs now) noexcept {
   // After an ADC_CONFIG write the first result of the new mode is due one
   // conversion cycle after this (successful) poll: nothing to read now.
   const bool readResult = !conversionRestarted_ && now >= nextRead_;
-  std::uint8_t pDiag = DIAG_ALRT, pVbus = VBUS, pCur = CURRENT;
-  std::uint8_t diagB[2] = {}, vbusB[3] = {}, curB[3] = {};
-  I2cMsg msgs[6] = {{addr_, false, &pDiag, 1}, {addr_, true, diagB, 2},  {addr_, false, &pVbus, 1},
-                    {addr_, true, vbusB, 3},   {addr_, false, &pCur, 1}, {addr_, true, curB, 3}};
-  int rc = bus_.transfer({msgs, readResult ? 6u : 2u});
+  // The messages are built once (constructor) over pollPtr_/pollRx_.
+  int rc = bus_.transfer({pollMsgs_, readResult ? 6u : 2u});
   if (rc != 0) {
     // Which message failed is unknown: nothing of this transaction is used.
     noteFailure(rc, now);
     return sample_;
   }
   noteSuccess();
+  const std::uint8_t* const diagB = pollRx_;
+  const std::uint8_t* const vbusB = pollRx_ + 2;
+  const std::uint8_t* const curB = pollRx_ + 5;
   const auto diag = static_cast<std::uint16_t>((diagB[0] << 8) | diagB[1]);
   sample_.diagAlrt = diag;
   sample_.busOvervoltage = (diag & DIAG_BUSOL) != 0;

@@ -205,7 +205,9 @@ SimRunResult SimRunner::run() {
 
   TimeNs nextW1 = start;
   auto before = [&](TimeNs t) {
-    drain();
+    // Rows come at the telemetry rate and events rarely: the out-of-line
+    // drain only when something is queued.
+    if (!d.handoffs.rows.empty() || !d.handoffs.events.empty()) drain();
     d.player.applyDue(toSec(t - start), d.world, [&](const ScenarioEvent& e) {
       if (e.command) d.handoffs.submitCommand(*e.command);
       if (!e.set.empty()) {
