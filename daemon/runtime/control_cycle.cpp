@@ -144,15 +144,16 @@ bool ControlCycle::tick(TimeNs now) {
   stats_.onTick();
   SampleCounts counts;
   dev_.sensors->sampleCounts(counts);
-  std::array<std::uint32_t, 4> adsNew{};
   if (counts.valid) {
-    for (std::size_t c = 0; c < 4; ++c) adsNew[c] = counts.ads[c] - lastCounts_.ads[c];
-    lastCounts_ = counts;
     health_.adsEdgeFallback = counts.readyEdgeFallback;
+    stats_.onSampleTotals(now, counts.ads, in_.IBV.fresh);
   } else {
-    adsNew = {in_.BatteryV.fresh, in_.altCurrentRaw.fresh, in_.rpm.fresh, in_.thermistorF.fresh};
+    freshTotals_[0] += in_.BatteryV.fresh;
+    freshTotals_[1] += in_.altCurrentRaw.fresh;
+    freshTotals_[2] += in_.rpm.fresh;
+    freshTotals_[3] += in_.thermistorF.fresh;
+    stats_.onSampleTotals(now, freshTotals_, in_.IBV.fresh);
   }
-  stats_.onSamples(now, adsNew, in_.IBV.fresh);
 
   // A stalled or failing loop must lead to a reset: feed only when healthy.
   if (healthy && dev_.watchdog) {

@@ -118,7 +118,7 @@ class ControlCycle {
   std::uint64_t tempVersion_ = ~0ULL, victronVersion_ = ~0ULL;  // odd: never a stored version
   TimeNs lastAdsStamp_[4] = {0, 0, 0, 0};
   TimeNs lastInaStamp_ = 0;
-  SampleCounts lastCounts_{};
+  std::array<std::uint32_t, 4> freshTotals_{};  // sensors that do not count: fresh flags summed
 
   // What the outputs are known to be (written successfully).
   bool outputsKnown_ = false;

@@ -43,16 +43,24 @@ void LoopStats::onPeriodError(TimeNs lateness) noexcept {
 }
 
 void LoopStats::onSamples(TimeNs now, const std::array<std::uint32_t, 4>& adsNew, bool inaFresh) noexcept {
+  for (std::size_t c = 0; c < 4; ++c) adsTotals_[c] += adsNew[c];
+  onSampleTotals(now, adsTotals_, inaFresh);
+}
+
+void LoopStats::onSampleTotals(TimeNs now, const std::array<std::uint32_t, 4>& adsTotals,
+                               bool inaFresh) noexcept {
   if (windowStart_ < 0) windowStart_ = now;
-  for (std::size_t c = 0; c < 4; ++c) adsCount_[c] += adsNew[c];
   inaCount_ += inaFresh ? 1 : 0;
   const TimeNs elapsed = now - windowStart_;
   if (elapsed >= fromSec(1.0)) {
     windowS_ = toSec(elapsed);
     for (std::size_t c = 0; c < 4; ++c) {
-      adsRate_[c] = adsCount_[c] / windowS_;
-      adsCount_[c] = 0;
+      // Unsigned difference: exact across a wrap of the totals, as the sum
+      // of the per-tick differences was.
+      const std::uint32_t n = adsTotals[c] - adsBase_[c];
+      adsRate_[c] = n / windowS_;
     }
+    adsBase_ = adsTotals;
     inaRate_ = inaCount_ / windowS_;
     inaCount_ = 0;
     windowStart_ = now;
