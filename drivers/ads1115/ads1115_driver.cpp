@@ -146,7 +146,7 @@ void Ads1115Driver::noteFailure(int err, TimeNs now) noexcept {
   }
 }
 
-void Ads1115Driver::accept(int channel, std::uint16_t raw, TimeNs stamp) noexcept {
+inline void Ads1115Driver::accept(int channel, std::uint16_t raw, TimeNs stamp) noexcept {
   auto& s = samples_.ch[static_cast<std::size_t>(channel)];
   const double v = ads1115::codeToVolts(raw, pga_[static_cast<std::size_t>(channel)]);
   s.adcVolts = v;
@@ -289,6 +289,22 @@ void Ads1115Driver::pollSingleShot(TimeNs now) noexcept {
   if (rc != 0) noteFailure(rc, now);
 }
 
+void Ads1115Driver::skipResultAndWriteMux(TimeNs edge, int c, std::uint16_t cfg) noexcept {
+  // Which conversion the register holds is no longer certain: skip the
+  // read, only write the MUX for the conversion after next.
+  stats_.discarded += 1;
+  flushPipeline();
+  const int rc = bus_.transfer({&edgeMsgs_[2], 1});
+  inProgress_ = nextUp_;
+  if (rc != 0) {
+    noteFailure(rc, edge);
+    nextUp_ = -1;
+    return;
+  }
+  lastWritten_ = cfg;
+  nextUp_ = (clock_.now() - edge <= kEdgeBudget) ? c : -1;
+}
+
 void Ads1115Driver::onReadyEdge(TimeNs edge) noexcept {
   if (!present_ || pacing_ != AdsPacing::ReadyEdge) return;
   const bool missed = lastEdge_ != 0 && edge - lastEdge_ > kMissedEdgeGap;
@@ -300,20 +316,8 @@ void Ads1115Driver::onReadyEdge(TimeNs edge) noexcept {
   std::uint8_t* const wr = edgeWrite_;
   wr[1] = static_cast<std::uint8_t>(cfg >> 8);
   wr[2] = static_cast<std::uint8_t>(cfg & 0xFF);
-  if (missed || late) {
-    // Which conversion the register holds is no longer certain: skip the
-    // read, only write the MUX for the conversion after next.
-    stats_.discarded += 1;
-    flushPipeline();
-    const int rc = bus_.transfer({&edgeMsgs_[2], 1});
-    inProgress_ = nextUp_;
-    if (rc != 0) {
-      noteFailure(rc, edge);
-      nextUp_ = -1;
-      return;
-    }
-    lastWritten_ = cfg;
-    nextUp_ = (clock_.now() - edge <= kEdgeBudget) ? c : -1;
+  if (missed || late) [[unlikely]] {
+    skipResultAndWriteMux(edge, c, cfg);
     return;
   }
   // The result of the conversion that just ended and the MUX for the

@@ -127,6 +127,8 @@ class Ads1115Driver {
   std::uint16_t configFor(int channel) const noexcept;
   void pollSingleShot(TimeNs now) noexcept;
   void accept(int channel, std::uint16_t raw, TimeNs stamp) noexcept;
+  // Ready edge that came late or after a missed one: no read, MUX write only.
+  void skipResultAndWriteMux(TimeNs edge, int channel, std::uint16_t cfg) noexcept;
   void noteFailure(int err, TimeNs now) noexcept;
   void flushPipeline() noexcept;
   int nextChannel() noexcept;
