@@ -144,23 +144,24 @@ bool ControlCycle::tick(TimeNs now) {
   stats_.onTick();
   SampleCounts counts;
   dev_.sensors->sampleCounts(counts);
-  std::array<std::uint32_t, 4> adsNew{};
   if (counts.valid) {
-    for (std::size_t c = 0; c < 4; ++c) adsNew[c] = counts.ads[c] - lastCounts_.ads[c];
-    lastCounts_ = counts;
     health_.adsEdgeFallback = counts.readyEdgeFallback;
+    stats_.onSampleTotals(now, counts.ads, in_.IBV.fresh);
   } else {
-    adsNew = {in_.BatteryV.fresh, in_.altCurrentRaw.fresh, in_.rpm.fresh, in_.thermistorF.fresh};
+    freshTotals_[0] += in_.BatteryV.fresh;
+    freshTotals_[1] += in_.altCurrentRaw.fresh;
+    freshTotals_[2] += in_.rpm.fresh;
+    freshTotals_[3] += in_.thermistorF.fresh;
+    stats_.onSampleTotals(now, freshTotals_, in_.IBV.fresh);
   }
-  stats_.onSamples(now, adsNew, in_.IBV.fresh);
 
   // A stalled or failing loop must lead to a reset: feed only when healthy.
   if (healthy && dev_.watchdog) {
     if (dev_.watchdog->keepAlive()) ++health_.watchdogFeeds;
   }
   h_.events.pushBatch(out.events);
-  ++tick_;
-  if ((tick_ % 100) == 1) {
+  advanceTick();
+  if (ledgerPhase_ == 1) {
     BatteryLedger l;
     if (core_.ledger(l)) h_.ledger.store(l);
   }
@@ -193,8 +194,7 @@ void ControlCycle::publish(const Outputs& out, TimeNs now) noexcept {
   lastOut_ = &out;
   lastNow_ = now;
   if ((tick_ & 63) == 1) summary_ = stats_.summary();  // quantiles are not free: ~6 Hz at 400 Hz
-  const bool stored = cfg_.publishEveryTicks <= 1 || stopping_ ||
-                      (tick_ % static_cast<std::uint64_t>(cfg_.publishEveryTicks)) == 1;
+  const bool stored = cfg_.publishEveryTicks <= 1 || stopping_ || publishPhase_ == 1;
   if (stored) storeSnapshot(out, now);
 
   if (cfg_.rowPeriod > 0 && (!rowsStarted_ || now - lastRow_ >= cfg_.rowPeriod)) {

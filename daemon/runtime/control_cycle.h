@@ -73,8 +73,15 @@ class ControlCycle {
  private:
   static constexpr int kMaxEdgesPerPeriod = 16;
   // This tick (and the edges before it) get compute/I-O timing.
-  bool timedTick() const noexcept {
-    return cfg_.timeEveryTicks <= 1 || (tick_ % static_cast<std::uint64_t>(cfg_.timeEveryTicks)) == 0;
+  // (tick_ % timeEveryTicks == 0, kept as a phase counter: no 64-bit
+  // division per tick.)
+  bool timedTick() const noexcept { return timePhase_ == 0; }
+  // Advances tick_ and the phase counters that stand for its residues.
+  void advanceTick() noexcept {
+    ++tick_;
+    if (++timePhase_ >= cfg_.timeEveryTicks) timePhase_ = 0;
+    if (++publishPhase_ >= cfg_.publishEveryTicks) publishPhase_ = 0;
+    if (++ledgerPhase_ >= kLedgerEveryTicks) ledgerPhase_ = 0;
   }
   void applyBetweenTicks() noexcept;
   void mergeSlowInputs() noexcept;
@@ -101,13 +108,17 @@ class ControlCycle {
   TimeNs lastRow_ = 0;
   bool rowsStarted_ = false;
   std::uint64_t tick_ = 0;
+  // tick_ % timeEveryTicks, tick_ % publishEveryTicks, tick_ % kLedgerEveryTicks
+  // (each 0 when its period is <= 1).
+  static constexpr int kLedgerEveryTicks = 100;
+  int timePhase_ = 0, publishPhase_ = 0, ledgerPhase_ = 0;
   const Outputs* lastOut_ = nullptr;
   TimeNs lastNow_ = 0;
   TimeNs lastTempStamp_ = 0, lastVictronStamp_ = 0;
   std::uint64_t tempVersion_ = ~0ULL, victronVersion_ = ~0ULL;  // odd: never a stored version
   TimeNs lastAdsStamp_[4] = {0, 0, 0, 0};
   TimeNs lastInaStamp_ = 0;
-  SampleCounts lastCounts_{};
+  std::array<std::uint32_t, 4> freshTotals_{};  // sensors that do not count: fresh flags summed
 
   // What the outputs are known to be (written successfully).
   bool outputsKnown_ = false;

@@ -14,6 +14,8 @@ LoopExit ControlLoop::run() {
   bool ramping = false;
   TimeNs rampStart = 0;
   LoopExit exit = LoopExit::Stopped;
+  // Wall-clock deadlines (board, paced simulation); fixed for the run.
+  const bool paced = cfg_.wallDeadlineOf && cfg_.wall;
 
   for (;;) {
     if (abort_.load(std::memory_order_relaxed)) break;
@@ -30,9 +32,11 @@ LoopExit ControlLoop::run() {
 
     cycle_.serviceEdges(next);  // ADS1115 ready edges until the deadline (if wired)
     clock_.sleepUntil(next);
-    if (cfg_.wallDeadlineOf && cfg_.wall) stats_.onPeriodError(cfg_.wall->now() - cfg_.wallDeadlineOf(next));
+    if (paced) stats_.onPeriodError(cfg_.wall->now() - cfg_.wallDeadlineOf(next));
     cycle_.tick(clock_.now());
-    heartbeat_.fetch_add(1, std::memory_order_relaxed);
+    // Single writer (this thread): a plain load + store, not a locked
+    // read-modify-write on every tick.
+    heartbeat_.store(heartbeat_.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
 
     next += cfg_.period;
     // At least one whole deadline passed without a tick: an overrun. Judged
@@ -40,7 +44,7 @@ LoopExit ControlLoop::run() {
     // clock does not move while the tick runs). Skip the missed deadlines
     // rather than bursting to catch up.
     TimeNs missed = 0;
-    if (cfg_.wallDeadlineOf && cfg_.wall) {
+    if (paced) {
       const TimeNs due = cfg_.wallDeadlineOf(next);
       const TimeNs wallPeriod = cfg_.wallDeadlineOf(next + cfg_.period) - due;
       const TimeNs late = cfg_.wall->now() - due;

@@ -35,6 +35,7 @@ class EventRing {
     return false;
   }
   bool pop(Event& e) noexcept { return queue_.pop(e); }
+  bool empty() const noexcept { return queue_.empty(); }
   std::uint64_t dropped() const noexcept { return dropped_.load(std::memory_order_relaxed); }
 
  private:

@@ -29,8 +29,11 @@ TimeNs LatencyHistogram::quantile(double p) const noexcept {
 
 std::uint64_t LatencyHistogram::countBelow(TimeNs limit) const noexcept {
   const auto lastBin = static_cast<std::size_t>(std::max<TimeNs>(0, limit) / kBinNs);
+  // Bins above the one holding max() are empty: stop there (the summary
+  // asks seven limits up to 2.5 ms of mostly empty histograms).
+  const std::size_t usedBins = std::min(static_cast<std::size_t>(max_ / kBinNs), kBins) + 1;
   std::uint64_t n = 0;
-  for (std::size_t i = 0; i < std::min(lastBin, kBins + 1); ++i) n += bins_[i];
+  for (std::size_t i = 0; i < std::min(lastBin, usedBins); ++i) n += bins_[i];
   return n;
 }
 
@@ -40,16 +43,24 @@ void LoopStats::onPeriodError(TimeNs lateness) noexcept {
 }
 
 void LoopStats::onSamples(TimeNs now, const std::array<std::uint32_t, 4>& adsNew, bool inaFresh) noexcept {
+  for (std::size_t c = 0; c < 4; ++c) adsTotals_[c] += adsNew[c];
+  onSampleTotals(now, adsTotals_, inaFresh);
+}
+
+void LoopStats::onSampleTotals(TimeNs now, const std::array<std::uint32_t, 4>& adsTotals,
+                               bool inaFresh) noexcept {
   if (windowStart_ < 0) windowStart_ = now;
-  for (std::size_t c = 0; c < 4; ++c) adsCount_[c] += adsNew[c];
   inaCount_ += inaFresh ? 1 : 0;
   const TimeNs elapsed = now - windowStart_;
   if (elapsed >= fromSec(1.0)) {
     windowS_ = toSec(elapsed);
     for (std::size_t c = 0; c < 4; ++c) {
-      adsRate_[c] = adsCount_[c] / windowS_;
-      adsCount_[c] = 0;
+      // Unsigned difference: exact across a wrap of the totals, as the sum
+      // of the per-tick differences was.
+      const std::uint32_t n = adsTotals[c] - adsBase_[c];
+      adsRate_[c] = n / windowS_;
     }
+    adsBase_ = adsTotals;
     inaRate_ = inaCount_ / windowS_;
     inaCount_ = 0;
     windowStart_ = now;

@@ -67,6 +67,11 @@ class LoopStats {
   // with ready-edge pacing a tick may bring two); rates are computed over 1 s
   // windows of loop time (virtual time in simulation).
   void onSamples(TimeNs now, const std::array<std::uint32_t, 4>& adsNew, bool inaFresh) noexcept;
+  // The same from cumulative per-channel counts (results since start, as
+  // FastSensors::sampleCounts reports them): the window's count is the
+  // difference at its ends, so nothing is summed per tick. Do not mix with
+  // onSamples() on one LoopStats.
+  void onSampleTotals(TimeNs now, const std::array<std::uint32_t, 4>& adsTotals, bool inaFresh) noexcept;
   // An ADS1115 ready edge serviced between ticks, and (when timed) the I/O
   // time it took.
   void onEdge() noexcept { ++edges_; }
@@ -79,7 +84,8 @@ class LoopStats {
   std::uint64_t ticks_ = 0, overruns_ = 0, edges_ = 0;
   bool periodMeasured_ = false;
   TimeNs windowStart_ = -1;
-  std::array<std::uint32_t, 4> adsCount_{};
+  std::array<std::uint32_t, 4> adsTotals_{};  // onSamples(): its running totals
+  std::array<std::uint32_t, 4> adsBase_{};    // totals when the window started
   std::uint32_t inaCount_ = 0;
   std::array<double, 4> adsRate_{};
   double inaRate_ = 0, windowS_ = 0;

@@ -28,11 +28,20 @@ class SeqLock {
 
   // Writer (one thread only).
   void store(const T& value) noexcept {
-    std::array<std::uint64_t, kWords> words{};
-    std::memcpy(words.data(), &value, sizeof(T));
+    // Word by word straight from `value` (no zeroed staging copy: the
+    // snapshot is several KB); only the last word may be partial.
+    const auto* src = reinterpret_cast<const unsigned char*>(&value);
+    constexpr std::size_t kTail = sizeof(T) - (kWords - 1) * sizeof(std::uint64_t);
     const std::uint64_t s = seq_.load(std::memory_order_relaxed);
     seq_.store(s + 1, std::memory_order_relaxed);
-    for (std::size_t i = 0; i < kWords; ++i) data_[i].store(words[i], std::memory_order_release);
+    for (std::size_t i = 0; i + 1 < kWords; ++i) {
+      std::uint64_t w;
+      std::memcpy(&w, src + i * sizeof(std::uint64_t), sizeof w);
+      data_[i].store(w, std::memory_order_release);
+    }
+    std::uint64_t last = 0;
+    std::memcpy(&last, src + (kWords - 1) * sizeof(std::uint64_t), kTail);
+    data_[kWords - 1].store(last, std::memory_order_release);
     seq_.store(s + 2, std::memory_order_release);
   }
 

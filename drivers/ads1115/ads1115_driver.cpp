@@ -35,12 +35,19 @@ Ads1115Driver::Ads1115Driver(I2cBus& bus, std::uint16_t address, std::span<const
   for (int c : channelSequence) ok = ok && c >= 0 && c <= 3;
   std::span<const int> use = ok ? channelSequence : std::span<const int>(kDefaultSequence);
   configError_ = !ok;
+  edgePtr_ = ads1115::CONVERSION;
+  edgeWrite_[0] = ads1115::CONFIG;
+  edgeMsgs_[0] = {addr_, false, &edgePtr_, 1};
+  edgeMsgs_[1] = {addr_, true, edgeRead_, 2};
+  edgeMsgs_[2] = {addr_, false, edgeWrite_, 3};
+  refreshEdgeConfigs();
   seqLen_ = use.size();
   for (std::size_t i = 0; i < seqLen_; ++i) seq_[i] = use[i];
 }
 
 void Ads1115Driver::setPga(int channel, unsigned pga) noexcept {
   if (channel >= 0 && channel <= 3) pga_[static_cast<std::size_t>(channel)] = pga & 7;
+  refreshEdgeConfigs();
 }
 
 int Ads1115Driver::nextChannel() noexcept {
@@ -80,11 +87,12 @@ int Ads1115Driver::readConversionChecked(std::uint16_t* raw) noexcept {
   return 0;
 }
 
-int Ads1115Driver::readConversion(std::uint16_t* raw) noexcept {
-  return i2creg::readReg16(bus_, addr_, ads1115::CONVERSION, raw);
+void Ads1115Driver::refreshEdgeConfigs() noexcept {
+  for (int ch = 0; ch < 4; ++ch) edgeConfig_[static_cast<std::size_t>(ch)] = configFor(ch);
 }
 
 int Ads1115Driver::start(TimeNs now) noexcept {
+  refreshEdgeConfigs();  // pacing_ may have changed (setPacing)
   seqPos_ = 0;
   const int first = seq_[0];
   int rc = 0;
@@ -138,7 +146,7 @@ void Ads1115Driver::noteFailure(int err, TimeNs now) noexcept {
   }
 }
 
-void Ads1115Driver::accept(int channel, std::uint16_t raw, TimeNs stamp) noexcept {
+inline void Ads1115Driver::accept(int channel, std::uint16_t raw, TimeNs stamp) noexcept {
   auto& s = samples_.ch[static_cast<std::size_t>(channel)];
   const double v = ads1115::codeToVolts(raw, pga_[static_cast<std::size_t>(channel)]);
   s.adcVolts = v;
@@ -146,16 +154,25 @@ void Ads1115Driver::accept(int channel, std::uint16_t raw, TimeNs stamp) noexcep
     case 0:  // frontend::batteryVoltsFromAdc with the gain computed once
       s.value = v * ch0Gain_;
       break;
-    case 1:
-      s.value = frontend::altAmpsFromAdc(fe_, v);
+    case 1: {  // frontend::altAmpsFromAdc, the same expression, inlined
+      const double a = (v - fe_.hall_zero_v) / fe_.hall_sensitivity_v_per_a;
+      s.value = fe_.hall_invert ? -a : a;
       break;
+    }
     case 2: {  // frontend::rpmFromAdc with the scale computed once
       const double rpm = v * rpmScale_;
       s.value = rpm < fe_.rpm_low_floor ? 0.0 : rpm;
       break;
     }
     default:
-      s.value = frontend::tempFFromAdc(fe_, v);
+      // A pure function of the code (fe_ and the PGA are fixed): the log in
+      // it is skipped while the thermistor reads the same code again.
+      if (!ch3Cached_ || raw != ch3Raw_) {
+        ch3Value_ = frontend::tempFFromAdc(fe_, v);
+        ch3Raw_ = raw;
+        ch3Cached_ = true;
+      }
+      s.value = ch3Value_;
       break;
   }
   s.stamp = stamp;
@@ -170,6 +187,16 @@ void Ads1115Driver::flushPipeline() noexcept {
 }
 
 Ads1115Samples Ads1115Driver::poll(TimeNs now) noexcept {
+  Ads1115Samples out = service(now);
+  clearFresh();
+  return out;
+}
+
+void Ads1115Driver::clearFresh() noexcept {
+  for (auto& s : samples_.ch) s.fresh = false;
+}
+
+const Ads1115Samples& Ads1115Driver::service(TimeNs now) noexcept {
   if (!present_ && now >= nextRedetect_) {
     nextRedetect_ = now + kRedetectInterval;
     if (start(now) == 0) ++stats_.redetects;
@@ -225,10 +252,8 @@ Ads1115Samples Ads1115Driver::poll(TimeNs now) noexcept {
       noteFailure(rc, now);
     }
   }
-  Ads1115Samples out = samples_;
-  out.present = present_;
-  for (auto& s : samples_.ch) s.fresh = false;
-  return out;
+  samples_.present = present_;
+  return samples_;
 }
 
 void Ads1115Driver::pollSingleShot(TimeNs now) noexcept {
@@ -264,41 +289,63 @@ void Ads1115Driver::pollSingleShot(TimeNs now) noexcept {
   if (rc != 0) noteFailure(rc, now);
 }
 
-void Ads1115Driver::onReadyEdge(TimeNs edge) noexcept {
-  if (!present_ || pacing_ != AdsPacing::ReadyEdge) return;
-  const bool missed = lastEdge_ != 0 && edge - lastEdge_ > kMissedEdgeGap;
-  lastEdge_ = edge;
-  const bool late = clock_.now() - edge > kEdgeBudget;
-  if (missed || late) {
-    // Which conversion the register holds is no longer certain.
-    stats_.discarded += 1;
-    flushPipeline();
-  } else {
-    std::uint16_t raw = 0;
-    const int rc = readConversion(&raw);
-    if (rc != 0) {
-      noteFailure(rc, edge);
-      flushPipeline();
-      return;
-    }
-    stats_.consecutiveFailures = 0;
-    if (inProgress_ >= 0) {
-      accept(inProgress_, raw, edge);
-    } else {
-      ++stats_.discarded;
-    }
-  }
-  // The conversion that started at this edge uses the last config written
-  // before it.
+void Ads1115Driver::skipResultAndWriteMux(TimeNs edge, int c, std::uint16_t cfg) noexcept {
+  // Which conversion the register holds is no longer certain: skip the
+  // read, only write the MUX for the conversion after next.
+  stats_.discarded += 1;
+  flushPipeline();
+  const int rc = bus_.transfer({&edgeMsgs_[2], 1});
   inProgress_ = nextUp_;
-  const int c = nextChannel();
-  const int rc = writeMux(c);
   if (rc != 0) {
     noteFailure(rc, edge);
     nextUp_ = -1;
     return;
   }
-  // The write must land before the next edge to label the next conversion.
+  lastWritten_ = cfg;
+  nextUp_ = (clock_.now() - edge <= kEdgeBudget) ? c : -1;
+}
+
+void Ads1115Driver::onReadyEdge(TimeNs edge) noexcept {
+  if (!present_ || pacing_ != AdsPacing::ReadyEdge) return;
+  const bool missed = lastEdge_ != 0 && edge - lastEdge_ > kMissedEdgeGap;
+  lastEdge_ = edge;
+  const bool late = clock_.now() - edge > kEdgeBudget;
+  const std::size_t pos = seqPos_;
+  const int c = nextChannel();
+  const std::uint16_t cfg = edgeConfig_[static_cast<std::size_t>(c)];
+  std::uint8_t* const wr = edgeWrite_;
+  wr[1] = static_cast<std::uint8_t>(cfg >> 8);
+  wr[2] = static_cast<std::uint8_t>(cfg & 0xFF);
+  if (missed || late) [[unlikely]] {
+    skipResultAndWriteMux(edge, c, cfg);
+    return;
+  }
+  // The result of the conversion that just ended and the MUX for the
+  // conversion after next in ONE combined transaction (pointer, read,
+  // Config write; repeated starts, as the chip allows): the same register
+  // accesses in the same order as two transfers, one ioctl on the board.
+  // The messages are built once (constructor): only the Config bytes change.
+  const int rc = bus_.transfer(edgeMsgs_);
+  if (rc != 0) {
+    // Which message failed is unknown: the result is not trusted and the
+    // chip may hold either MUX. Flush (the next two results are discarded)
+    // and keep the sequence where it was, as when the read alone failed.
+    seqPos_ = pos;
+    noteFailure(rc, edge);
+    flushPipeline();
+    return;
+  }
+  stats_.consecutiveFailures = 0;
+  if (inProgress_ >= 0) {
+    accept(inProgress_, static_cast<std::uint16_t>((edgeRead_[0] << 8) | edgeRead_[1]), edge);
+  } else {
+    ++stats_.discarded;
+  }
+  lastWritten_ = cfg;
+  // The conversion that started at this edge uses the last config written
+  // before it; the write must land before the next edge to label the next
+  // conversion.
+  inProgress_ = nextUp_;
   nextUp_ = (clock_.now() - edge <= kEdgeBudget) ? c : -1;
 }
 

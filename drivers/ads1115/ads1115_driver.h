@@ -77,6 +77,10 @@ class Ads1115Driver {
                 const AnalogFrontEndSettings& frontend, const Clock& clock,
                 AdsPacing pacing = AdsPacing::Timed) noexcept;
 
+  // Not copyable: the ready-edge messages point into the driver itself.
+  Ads1115Driver(const Ads1115Driver&) = delete;
+  Ads1115Driver& operator=(const Ads1115Driver&) = delete;
+
   // Set a channel's PGA code before start() (default kDefaultPga).
   void setPga(int channel, unsigned pga) noexcept;
   // Writes thresholds (for ReadyEdge) and the Config for the first channel in
@@ -91,6 +95,11 @@ class Ads1115Driver {
   // updated since the previous poll(), then clears the fresh flags. While
   // absent, re-starts at most once per kRedetectInterval.
   Ads1115Samples poll(TimeNs now) noexcept;
+  // poll() without the copy, for the per-tick path: the same work, then the
+  // samples by reference with their fresh flags still set; clearFresh()
+  // ends the tick's view (poll() == service() + copy + clearFresh()).
+  const Ads1115Samples& service(TimeNs now) noexcept;
+  void clearFresh() noexcept;
   // ReadyEdge pacing: one call per ALERT/RDY edge, `edge` = its timestamp.
   void onReadyEdge(TimeNs edge) noexcept;
   // Change pacing at run time (e.g. ReadyEdge → SingleShot when no edges
@@ -111,7 +120,6 @@ class Ads1115Driver {
 
  private:
   int writeMux(int channel) noexcept;
-  int readConversion(std::uint16_t* raw) noexcept;
   // Timed pacing: Config and Conversion in ONE combined transaction; the
   // result is trusted only when Config still holds what we wrote (a chip
   // that reset reads single-shot with a zero result). ESTALE on a mismatch.
@@ -119,9 +127,12 @@ class Ads1115Driver {
   std::uint16_t configFor(int channel) const noexcept;
   void pollSingleShot(TimeNs now) noexcept;
   void accept(int channel, std::uint16_t raw, TimeNs stamp) noexcept;
+  // Ready edge that came late or after a missed one: no read, MUX write only.
+  void skipResultAndWriteMux(TimeNs edge, int channel, std::uint16_t cfg) noexcept;
   void noteFailure(int err, TimeNs now) noexcept;
   void flushPipeline() noexcept;
   int nextChannel() noexcept;
+  void refreshEdgeConfigs() noexcept;
 
   I2cBus& bus_;
   std::uint16_t addr_;
@@ -151,6 +162,19 @@ class Ads1115Driver {
   static constexpr TimeNs kVerifyInterval = 1'000'000'000;
   Ads1115Samples samples_;
   Ads1115Stats stats_;
+  // Ready-edge path (~860 times a second), built once: configFor() per
+  // channel (refreshed by start() and setPga()) and the combined
+  // transaction's messages over these buffers (pointer to Conversion, the
+  // result, the Config write).
+  std::array<std::uint16_t, 4> edgeConfig_{};
+  std::uint8_t edgePtr_ = 0;  // ads1115::CONVERSION (set in the constructor)
+  std::uint8_t edgeRead_[2] = {};
+  std::uint8_t edgeWrite_[3] = {};  // ads1115::CONFIG, then the value
+  I2cMsg edgeMsgs_[3] = {};
+  // CH3 (thermistor) conversion of the last code: tempFFromAdc has a log.
+  bool ch3Cached_ = false;
+  std::uint16_t ch3Raw_ = 0;
+  double ch3Value_ = 0.0;
 };
 
 }  // namespace xr

@@ -7,12 +7,16 @@
 namespace xr {
 
 inline void fillAdsInputs(const Ads1115Samples& s, Inputs& in) noexcept {
-  Reading* dst[4] = {&in.BatteryV, &in.altCurrentRaw, &in.rpm, &in.thermistorF};
-  for (std::size_t i = 0; i < 4; ++i) {
-    dst[i]->value = s.ch[i].value;
-    dst[i]->stamp = s.ch[i].stamp;
-    dst[i]->fresh = s.ch[i].fresh && s.present;
-  }
+  const bool present = s.present;
+  auto put = [present](Reading& r, const AdsChannelSample& c) {
+    r.value = c.value;
+    r.stamp = c.stamp;
+    r.fresh = c.fresh && present;
+  };
+  put(in.BatteryV, s.ch[0]);
+  put(in.altCurrentRaw, s.ch[1]);
+  put(in.rpm, s.ch[2]);
+  put(in.thermistorF, s.ch[3]);
 }
 
 }  // namespace xr

@@ -13,10 +13,10 @@ inline constexpr unsigned COMP_QUE_DISABLE = 3;        // bits 1:0
 inline constexpr unsigned COMP_QUE_ONE = 0;
 
 // PGA codes and full-scale ranges (V): 0=6.144, 1=4.096, 2=2.048, 3=1.024, 4=0.512, 5..7=0.256.
-constexpr double fullScaleVolts(unsigned pga) {
-  constexpr double fsr[8] = {6.144, 4.096, 2.048, 1.024, 0.512, 0.256, 0.256, 0.256};
-  return fsr[pga & 7];
-}
+// (Namespace-scope table: a table local to the function is rebuilt on the
+// stack at every call, ~860 times a second.)
+inline constexpr double kFullScaleVolts[8] = {6.144, 4.096, 2.048, 1.024, 0.512, 0.256, 0.256, 0.256};
+constexpr double fullScaleVolts(unsigned pga) { return kFullScaleVolts[pga & 7]; }
 // Data rates (SPS) by DR code.
 constexpr int dataRateSps(unsigned dr) {
   constexpr int sps[8] = {8, 16, 32, 64, 128, 250, 475, 860};

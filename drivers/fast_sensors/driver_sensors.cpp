@@ -42,8 +42,10 @@ bool DriverSensors::read(TimeNs now, Inputs& in) noexcept {
   }
   ina_.poll(now);
   fillInaInputs(ina_, in);
-  last_ = ads_.poll(now);
-  fillAdsInputs(last_, in);
+  const Ads1115Samples& ads = ads_.service(now);
+  fillAdsInputs(ads, in);
+  for (std::size_t i = 0; i < 4; ++i) counts_[i] = ads.ch[i].count;
+  ads_.clearFresh();
   const bool ok =
       ina_.stats().failedReads == lastInaFailures_ && ads_.stats().failedReads == lastAdsFailures_;
   lastInaFailures_ = ina_.stats().failedReads;
@@ -58,7 +60,7 @@ void DriverSensors::onReadyEdge(TimeNs edge) noexcept {
 }
 
 void DriverSensors::sampleCounts(rt::SampleCounts& c) const noexcept {
-  for (std::size_t i = 0; i < 4; ++i) c.ads[i] = last_.ch[i].count;
+  c.ads = counts_;
   c.valid = true;
   c.readyEdgeFallback = edgeFallback_;
 }

@@ -53,7 +53,7 @@ class DriverSensors final : public rt::FastSensors {
  private:
   Ina228Driver ina_;
   Ads1115Driver ads_;
-  Ads1115Samples last_{};
+  std::array<std::uint32_t, 4> counts_{};  // per-channel result counts as of the last read()
   double bovl_ = 0.0;
   TimeNs lastEdge_ = 0;  // last edge, or when edge pacing (re)started
   bool edgeFallback_ = false;

@@ -18,7 +18,11 @@ Ina228Driver::Ina228Driver(I2cBus& bus, std::uint16_t address, double shuntOhm, 
       maxCurrentA_(maxCurrentA),
       invert_(invertCurrent),
       currentLsb_(ina228::currentLsb(maxCurrentA)),
-      lowRange_(useLowAdcRange(shuntOhm, maxCurrentA)) {}
+      lowRange_(useLowAdcRange(shuntOhm, maxCurrentA)),
+      pollPtr_{DIAG_ALRT, VBUS, CURRENT},
+      pollMsgs_{{addr_, false, &pollPtr_[0], 1}, {addr_, true, pollRx_, 2},
+                {addr_, false, &pollPtr_[1], 1}, {addr_, true, pollRx_ + 2, 3},
+                {addr_, false, &pollPtr_[2], 1}, {addr_, true, pollRx_ + 5, 3}} {}
 
 int Ina228Driver::readReg(std::uint8_t reg, std::size_t bytes, std::uint64_t* v) noexcept {
   return i2creg::readReg(bus_, addr_, reg, bytes, v);
@@ -166,32 +170,41 @@ const Ina228Sample& Ina228Driver::poll(TimeNs now) noexcept {
     return sample_;
   }
 
-  std::uint64_t diag = 0;
-  int rc = readReg(DIAG_ALRT, 2, &diag);
+  // DIAG_ALRT every tick and, when a new averaged result is due, VBUS and
+  // CURRENT: ONE combined transaction (pointer, read, pointer, read, ...
+  // with repeated starts, which the chip allows), the same register
+  // accesses in the same order as separate reads, one ioctl on the board.
+  // DIAG_ALRT is transparent (ALATCH=0): reading it clears nothing, so a
+  // transaction that fails part-way loses no alert.
+  // After an ADC_CONFIG write the first result of the new mode is due one
+  // conversion cycle after this (successful) poll: nothing to read now.
+  const bool readResult = !conversionRestarted_ && now >= nextRead_;
+  // The messages are built once (constructor) over pollPtr_/pollRx_.
+  int rc = bus_.transfer({pollMsgs_, readResult ? 6u : 2u});
   if (rc != 0) {
+    // Which message failed is unknown: nothing of this transaction is used.
     noteFailure(rc, now);
     return sample_;
   }
   noteSuccess();
-  sample_.diagAlrt = static_cast<std::uint16_t>(diag);
+  const std::uint8_t* const diagB = pollRx_;
+  const std::uint8_t* const vbusB = pollRx_ + 2;
+  const std::uint8_t* const curB = pollRx_ + 5;
+  const auto diag = static_cast<std::uint16_t>((diagB[0] << 8) | diagB[1]);
+  sample_.diagAlrt = diag;
   sample_.busOvervoltage = (diag & DIAG_BUSOL) != 0;
   sample_.diagStamp = now;
-
   if (conversionRestarted_) {
     conversionRestarted_ = false;
     nextRead_ = now + conversionCycle();
   }
-  if (now >= nextRead_) {
-    std::uint64_t vbus = 0, cur = 0;
-    rc = readReg(VBUS, 3, &vbus);
-    if (rc == 0) rc = readReg(CURRENT, 3, &cur);
-    if (rc != 0) {
-      noteFailure(rc, now);
-      return sample_;
-    }
-    noteSuccess();
-    sample_.busVolts = vbusVolts(static_cast<std::uint32_t>(vbus));
-    const double amps = currentAmps(static_cast<std::uint32_t>(cur), currentLsb_);
+  if (readResult) {
+    const auto vbus =
+        (static_cast<std::uint32_t>(vbusB[0]) << 16) | (static_cast<std::uint32_t>(vbusB[1]) << 8) | vbusB[2];
+    const auto cur =
+        (static_cast<std::uint32_t>(curB[0]) << 16) | (static_cast<std::uint32_t>(curB[1]) << 8) | curB[2];
+    sample_.busVolts = vbusVolts(vbus);
+    const double amps = currentAmps(cur, currentLsb_);
     sample_.currentA = invert_ ? -amps : amps;
     sample_.fresh = true;
     sample_.stamp = now;

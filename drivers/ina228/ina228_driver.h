@@ -47,6 +47,9 @@ class Ina228Driver {
   // (the core wants + = charging into the battery).
   Ina228Driver(I2cBus& bus, std::uint16_t address, double shuntOhm, double maxCurrentA,
                bool invertCurrent = false) noexcept;
+  // Not copyable: the poll messages point into the driver itself.
+  Ina228Driver(const Ina228Driver&) = delete;
+  Ina228Driver& operator=(const Ina228Driver&) = delete;
 
   // MANUFACTURER_ID == 0x5449 and DEVICE_ID bits 15:4 == 0x228. 0, ENODEV
   // (other chip), or the bus errno.
@@ -107,6 +110,12 @@ class Ina228Driver {
   TimeNs nextRedetect_ = 0;
   Ina228Sample sample_;
   Ina228Stats stats_;
+  // poll()'s combined transaction, built once: pointer DIAG_ALRT, read 2;
+  // pointer VBUS, read 3; pointer CURRENT, read 3 (the first two messages
+  // alone when no result is due). Declared last: initialised from addr_.
+  std::uint8_t pollPtr_[3];
+  std::uint8_t pollRx_[8] = {};
+  I2cMsg pollMsgs_[6];
 };
 
 }  // namespace xr

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <vector>
 
 #include "drivers/ads1115/ads1115_registers.h"
@@ -67,7 +68,9 @@ class Ads1115DriverTest : public ::testing::TestWithParam<double> {
   }
   // ReadyEdge pacing: find each conversion end in 5 µs steps, hand the edge
   // to the driver `latency` later; `skipEvery` > 0 drops every Nth edge.
-  Counts runEdges(Ads1115Driver& d, TimeNs dur, TimeNs latency, int skipEvery = 0) {
+  // `beforeEdge(n)` runs before the driver sees edge n (1-based).
+  Counts runEdges(Ads1115Driver& d, TimeNs dur, TimeNs latency, int skipEvery = 0,
+                  const std::function<void(int)>& beforeEdge = {}) {
     Counts c;
     const TimeNs end = t.now + dur;
     auto seen = chip.conversions();
@@ -81,6 +84,7 @@ class Ads1115DriverTest : public ::testing::TestWithParam<double> {
       if (skipEvery > 0 && edges % skipEvery == 0) continue;
       const TimeNs edge = t.now;
       t.now += latency;
+      if (beforeEdge) beforeEdge(edges);
       d.onReadyEdge(edge);
       seen = chip.conversions();  // the transfers may have advanced the chip
       tally(d.poll(t.now), c);
@@ -194,6 +198,103 @@ TEST_F(Ads1115DriverTest, ReadyEdgeUsesEveryConversion) {
   EXPECT_GE(c.n[1], 400);
   for (int ch = 0; ch < 4; ++ch) EXPECT_GE(c.n[static_cast<std::size_t>(ch)], 100);
   EXPECT_EQ(chip.protocolErrors(), 0u);
+}
+
+TEST_F(Ads1115DriverTest, ReadyEdgeReadsTheResultAndWritesTheNextMuxInOneTransaction) {
+  // Pointer to Conversion, the 2-byte result, the Config write for the
+  // conversion after next: the same accesses in the same order as two
+  // transfers, in one transaction (one I2C_RDWR ioctl on the board).
+  test::RecordingBus rec(bus);
+  Ads1115Driver d(rec, kAddr, seq, fe, clock, AdsPacing::ReadyEdge);
+  ASSERT_EQ(d.start(t.now), 0);
+  int checked = 0;
+  runEdges(d, 100'000'000, 150'000, 0, [&](int n) {
+    if (n > 1) {
+      ASSERT_EQ(rec.sizes().size(), 1u) << "one transaction per edge";
+      const auto& m = rec.log();
+      ASSERT_EQ(m.size(), 3u);
+      EXPECT_FALSE(m[0].read);
+      EXPECT_EQ(m[0].len, 1u);
+      EXPECT_EQ(m[0].first, ads1115::CONVERSION);
+      EXPECT_TRUE(m[1].read);
+      EXPECT_EQ(m[1].len, 2u);
+      EXPECT_FALSE(m[2].read);
+      EXPECT_EQ(m[2].len, 3u);
+      EXPECT_EQ(m[2].first, ads1115::CONFIG);
+      ++checked;
+    }
+    rec.clear();
+  });
+  EXPECT_GT(checked, 50);
+  EXPECT_EQ(chip.protocolErrors(), 0u);
+}
+
+TEST_F(Ads1115DriverTest, ReadyEdgeTransactionFailingPartWayFlushesAndNeverMislabels) {
+  // A NACK at the Config write (the result was already read) or at the
+  // result read: which part failed is unknown, so the result is dropped and
+  // the pipeline flushed (the chip may hold either MUX); labels stay right.
+  for (int failAt : {1, 2}) {
+    test::RecordingBus rec(bus);
+    Ads1115Driver d(rec, kAddr, seq, fe, clock, AdsPacing::ReadyEdge);
+    ASSERT_EQ(d.start(t.now), 0);
+    const Counts c = runEdges(d, 1'000'000'000, 150'000, 0, [&](int n) {
+      // Every 11th edge: 11 is prime to the 6-entry sequence, so the
+      // failures hit every channel's turn (not one phase over and over).
+      if (n % 11 == 0) rec.failNext(failAt);
+    });
+    EXPECT_EQ(c.wrongTotal(), 0) << "fail at message " << failAt;
+    EXPECT_GT(rec.injected(), 50);
+    EXPECT_GE(d.stats().failedReads, static_cast<unsigned long>(rec.injected()));
+    EXPECT_GE(d.stats().pipelineFlushes, static_cast<unsigned long>(rec.injected()));
+    EXPECT_TRUE(d.present()) << "isolated failures are tolerated";
+    EXPECT_GT(c.total(), 300);
+    for (int ch = 0; ch < 4; ++ch) EXPECT_GT(c.n[static_cast<std::size_t>(ch)], 20) << "channel " << ch;
+    EXPECT_EQ(chip.protocolErrors(), 0u);
+  }
+}
+
+TEST_F(Ads1115DriverTest, ReadyEdgeValuesEqualTheFrontEndConversions) {
+  // accept() inlines/caches the front-end conversions (CH1 scale, CH3 log
+  // for a repeated code): every value must equal frontend::*FromAdc of its
+  // ADC volts, bit for bit, whether the code repeats or changes.
+  Ads1115Driver d(bus, kAddr, seq, fe, clock, AdsPacing::ReadyEdge);
+  ASSERT_EQ(d.start(t.now), 0);
+  int checked = 0;
+  auto check = [&](const Ads1115Samples& s) {
+    for (int ch = 0; ch < 4; ++ch) {
+      const auto& x = s.ch[static_cast<std::size_t>(ch)];
+      if (!x.fresh) continue;
+      const double want = ch == 0   ? frontend::batteryVoltsFromAdc(fe, x.adcVolts)
+                          : ch == 1 ? frontend::altAmpsFromAdc(fe, x.adcVolts)
+                          : ch == 2 ? frontend::rpmFromAdc(fe, x.adcVolts)
+                                    : frontend::tempFFromAdc(fe, x.adcVolts);
+      EXPECT_EQ(x.value, want) << "channel " << ch;
+      ++checked;
+    }
+  };
+  double tempF = 120.0;
+  for (int step = 0; step < 40; ++step) {
+    // Change every input now and then; in between the codes repeat.
+    if (step % 4 == 0) {
+      tempF += 3.7;
+      chip.setInputs({frontend::adcFromBatteryVolts(fe, 12.0 + step * 0.05),
+                      frontend::adcFromAltAmps(fe, -20.0 + step * 2.1),
+                      frontend::adcFromRpm(fe, 900.0 + step * 40), frontend::adcFromTempF(fe, tempF)});
+    }
+    const TimeNs end = t.now + 10'000'000;
+    auto seen = chip.conversions();
+    while (t.now < end) {
+      t.now += 5'000;
+      chip.update(t.now);
+      if (chip.conversions() == seen) continue;
+      const TimeNs edge = t.now;
+      t.now += 100'000;
+      d.onReadyEdge(edge);
+      seen = chip.conversions();
+      check(d.poll(t.now));
+    }
+  }
+  EXPECT_GT(checked, 300);
 }
 
 TEST_F(Ads1115DriverTest, ReadyEdgeLateServiceFlushesInsteadOfMislabelling) {

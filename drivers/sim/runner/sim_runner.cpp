@@ -57,11 +57,12 @@ class WorldTruth final : public rt::TruthSource {
 // The loop's Clock: before virtual time moves to t, the scenario events due
 // at t are applied, the slow 1-Wire reader runs on its virtual 1 s cadence,
 // and the rows the cycle queued are drained (everything on one thread, so
-// the run is deterministic).
+// the run is deterministic). `Before` is the caller's lambda, called
+// directly (no std::function hop: this runs every tick).
+template <typename Before>
 class HookedClock final : public Clock {
  public:
-  HookedClock(SimClock& inner, std::function<void(TimeNs)> before)
-      : inner_(inner), before_(std::move(before)) {}
+  HookedClock(SimClock& inner, Before& before) : inner_(inner), before_(before) {}
   TimeNs now() const noexcept override { return inner_.now(); }
   void sleepUntil(TimeNs t) noexcept override {
     before_(t);
@@ -70,7 +71,7 @@ class HookedClock final : public Clock {
 
  private:
   SimClock& inner_;
-  std::function<void(TimeNs)> before_;
+  Before& before_;
 };
 
 WorldConfig worldConfigOf(const SimRunOptions& o, const fs::path& w1) {
@@ -178,8 +179,11 @@ SimRunResult SimRunner::run() {
                                                  fromSec(1.0), [w] { return w->now(); });
   }
 
+  // Pop targets made once: a RuntimeSnapshot is large and drain() runs
+  // every tick (rows come at the telemetry rate only).
+  rt::RuntimeSnapshot snap;
+  Event e;
   auto drain = [&] {
-    rt::RuntimeSnapshot snap;
     while (d.handoffs.rows.pop(snap)) {
       SimRow row;
       row.t_s = toSec(snap.telemetry.now - start);
@@ -193,7 +197,6 @@ SimRunResult SimRunner::run() {
       if (d.opts.onRow) d.opts.onRow(row);
       if (d.opts.keepRows) res.rows.push_back(std::move(row));
     }
-    Event e;
     while (d.handoffs.events.pop(e)) {
       if (d.opts.onEvent) d.opts.onEvent(e);
       res.events.push_back(e);
@@ -202,7 +205,9 @@ SimRunResult SimRunner::run() {
 
   TimeNs nextW1 = start;
   auto before = [&](TimeNs t) {
-    drain();
+    // Rows come at the telemetry rate and events rarely: the out-of-line
+    // drain only when something is queued.
+    if (!d.handoffs.rows.empty() || !d.handoffs.events.empty()) drain();
     d.player.applyDue(toSec(t - start), d.world, [&](const ScenarioEvent& e) {
       if (e.command) d.handoffs.submitCommand(*e.command);
       if (!e.set.empty()) {
@@ -216,7 +221,7 @@ SimRunResult SimRunner::run() {
       d.handoffs.temperature.store(temperatureHandoff(d.w1Reader->latest()));
     }
   };
-  HookedClock clock(d.simClock, before);
+  HookedClock<decltype(before)> clock(d.simClock, before);
 
   d.sensors.start(start, voltageHardwareLimit(d.params));
   rt::LoopConfig lc;

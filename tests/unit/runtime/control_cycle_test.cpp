@@ -338,5 +338,60 @@ TEST(ControlCycle, AnEdgeStormCannotStarveTheTick) {
   EXPECT_EQ(r.sensors.edges.size(), 16u);  // bounded per period
 }
 
+// A clock that counts its reads: the cycle reads its timing clock only on
+// timed ticks.
+class CountingClock final : public Clock {
+ public:
+  TimeNs now() const noexcept override {
+    ++reads;
+    return 0;
+  }
+  void sleepUntil(TimeNs) noexcept override {}
+  mutable int reads = 0;
+};
+
+// Counts the periodic ledger copies.
+class LedgerCore final : public ControlCore {
+ public:
+  explicit LedgerCore(ControlCore& inner) : inner_(inner) {}
+  const Outputs& step(const Inputs& in) override { return inner_.step(in); }
+  void setParams(const Params& p) override { inner_.setParams(p); }
+  bool command(const Command& c) override { return inner_.command(c); }
+  bool ledger(BatteryLedger&) override {
+    ++ledgers;
+    return false;
+  }
+  int ledgers = 0;
+
+ private:
+  ControlCore& inner_;
+};
+
+TEST(ControlCycle, ThinnedRunTimesStoresAndCopiesTheLedgerOnTheirTicks) {
+  // The cadences are phase counters standing for tick % N: timed when
+  // (ticks before) % timeEveryTicks == 0, snapshot stored when
+  // (ticks after) % publishEveryTicks == 1, ledger when (ticks after) % 100 == 1.
+  CycleRig r;
+  CountingClock timing;
+  LedgerCore core(r.core);
+  CycleConfig cfg;
+  cfg.rowPeriod = 0;
+  cfg.thinForUnpacedRun();
+  ASSERT_EQ(cfg.publishEveryTicks, 40);
+  ASSERT_EQ(cfg.timeEveryTicks, 16);
+  ControlCycle cycle(core, r.dev, r.handoffs, r.stats, timing, cfg);
+  std::uint64_t lastStored = 0;
+  for (std::uint64_t k = 1; k <= 1000; ++k) {
+    const int readsBefore = timing.reads;
+    const int ledgersBefore = core.ledgers;
+    r.clock.t += fromUs(2500);
+    cycle.tick(r.clock.t);
+    EXPECT_EQ(timing.reads - readsBefore, (k - 1) % 16 == 0 ? 4 : 0) << "tick " << k;
+    EXPECT_EQ(core.ledgers - ledgersBefore, k % 100 == 1 ? 1 : 0) << "tick " << k;
+    if (k % 40 == 1) lastStored = k;
+    EXPECT_EQ(r.handoffs.snapshot.load().tick, lastStored) << "tick " << k;
+  }
+}
+
 }  // namespace
 }  // namespace xr::rt

@@ -70,5 +70,35 @@ TEST(LoopStats, ChannelRatesUseOneSecondWindows) {
   EXPECT_NEAR(sum.windowS, 1.0, 0.01);
 }
 
+TEST(LoopStats, TotalsGiveTheSameRatesAsPerTickCounts) {
+  // onSampleTotals (cumulative counts, differenced per window) must equal
+  // onSamples (per-tick counts summed), bit for bit, also across a wrap of
+  // the 32-bit totals and with uneven arrivals.
+  LoopStats perTick, totals;
+  std::array<std::uint32_t, 4> cum{0xFFFFFF00u, 7u, 0xFFFFFFFFu, 0u};
+  const std::array<std::uint32_t, 4> start = cum;
+  // The first tick brings everything counted before it (as ControlCycle
+  // always did: its previous counts start at 0).
+  perTick.onSamples(0, start, false);
+  totals.onSampleTotals(0, cum, false);
+  TimeNs t = 0;
+  for (int i = 1; i <= 5000; ++i) {
+    t += fromUs(2500) + (i % 3) * 1000;
+    const std::array<std::uint32_t, 4> add{static_cast<std::uint32_t>(i % 3), 1u + (i % 2),
+                                           i % 5 == 0 ? 1u : 0u, i % 7 == 0 ? 2u : 0u};
+    for (std::size_t c = 0; c < 4; ++c) cum[c] += add[c];
+    perTick.onSamples(t, add, i % 2 == 0);
+    totals.onSampleTotals(t, cum, i % 2 == 0);
+    if (i % 97 == 0) {
+      const auto a = perTick.summary(), b = totals.summary();
+      for (std::size_t c = 0; c < 4; ++c) EXPECT_EQ(a.adsChannelRateHz[c], b.adsChannelRateHz[c]) << i;
+      EXPECT_EQ(a.inaSampleRateHz, b.inaSampleRateHz);
+      EXPECT_EQ(a.windowS, b.windowS);
+    }
+  }
+  EXPECT_LT(cum[0], start[0]) << "the totals wrapped";
+  EXPECT_GT(totals.summary().ch1SampleRateHz, 500.0);
+}
+
 }  // namespace
 }  // namespace xr::rt
