@@ -286,7 +286,7 @@ std::uint64_t Ina228Model::peek(std::uint8_t reg) const noexcept {
   }
 }
 
-int Ina228Model::read(std::uint8_t* buf, std::size_t len) noexcept {
+inline int Ina228Model::readMsg(std::uint8_t* buf, std::size_t len) noexcept {
   const int size = regSize(ptr_);
   if (len == 0 || size == 0 || len > std::size_t(size)) {
     ++protocolErrors_;
@@ -314,7 +314,7 @@ int Ina228Model::read(std::uint8_t* buf, std::size_t len) noexcept {
   return 0;
 }
 
-int Ina228Model::write(const std::uint8_t* buf, std::size_t len) noexcept {
+inline int Ina228Model::writeMsg(const std::uint8_t* buf, std::size_t len) noexcept {
   if (len == 0) {
     ++protocolErrors_;
     return EREMOTEIO;
@@ -384,6 +384,22 @@ int Ina228Model::write(const std::uint8_t* buf, std::size_t len) noexcept {
       break;
     default:
       break;
+  }
+  return 0;
+}
+
+int Ina228Model::read(std::uint8_t* buf, std::size_t len) noexcept { return readMsg(buf, len); }
+int Ina228Model::write(const std::uint8_t* buf, std::size_t len) noexcept { return writeMsg(buf, len); }
+
+int Ina228Model::transact(TimeNs t, std::span<I2cMsg> msgs) noexcept {
+  update(t);
+  for (I2cMsg& m : msgs) {
+    std::uint8_t* const b = m.buf;
+    const std::size_t len = m.len;
+    if (b == nullptr && len > 0) [[unlikely]]
+      return EFAULT;
+    const int rc = m.read ? readMsg(b, len) : writeMsg(b, len);
+    if (rc != 0) return rc;
   }
   return 0;
 }

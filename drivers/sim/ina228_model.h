@@ -79,6 +79,7 @@ class Ina228Model final : public SimI2cDevice {
       now_ = t;
     }
   }
+  int transact(TimeNs t, std::span<I2cMsg> msgs) noexcept override;
   int write(const std::uint8_t* buf, std::size_t len) noexcept override;
   int read(std::uint8_t* buf, std::size_t len) noexcept override;
 
@@ -95,6 +96,10 @@ class Ina228Model final : public SimI2cDevice {
   std::uint64_t conversions() const noexcept { return conversions_; }
 
  private:
+  // One read / write message (read() and write() are these, non-inlined;
+  // transact() inlines them).
+  int readMsg(std::uint8_t* buf, std::size_t len) noexcept;
+  int writeMsg(const std::uint8_t* buf, std::size_t len) noexcept;
   void convertTo(TimeNs t) noexcept;  // update() with at least one raw sample due by t
   void reset() noexcept;
   void restartConversions() noexcept;

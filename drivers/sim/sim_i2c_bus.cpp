@@ -8,14 +8,12 @@ void SimI2cBus::attach(std::uint16_t addr, SimI2cDevice* dev) noexcept {
   if (addr < devs_.size()) {
     devs_[addr] = dev;
     acking_[addr] = nack_[addr] ? nullptr : dev;
-    updatedTo_[addr] = kNever;
   }
 }
 void SimI2cBus::detach(std::uint16_t addr) noexcept {
   if (addr < devs_.size()) {
     devs_[addr] = nullptr;
     acking_[addr] = nullptr;
-    updatedTo_[addr] = kNever;
   }
 }
 void SimI2cBus::setNack(std::uint16_t addr, bool n) noexcept {
@@ -28,32 +26,36 @@ bool SimI2cBus::nack(std::uint16_t addr) const noexcept { return addr < nack_.si
 
 int SimI2cBus::transfer(std::span<I2cMsg> msgs) noexcept {
   ++transfers_;
-  if (msgs.empty()) {
+  const std::size_t n = msgs.size();
+  if (n == 0) {
     ++failed_;
     return EINVAL;
   }
   const TimeNs t = now_ ? *now_ : 0;
-  for (auto& m : msgs) {
-    // i2c-dev rejects 10-bit addresses unless I2C_TEN is set; we have none.
-    SimI2cDevice* const d = m.addr < acking_.size() ? acking_[m.addr] : nullptr;
-    if (d == nullptr) {  // absent chip or NACK fault
+  I2cMsg* const m = msgs.data();
+  std::size_t i = 0;
+  do {
+    // The run of messages to one address (all of them, for our drivers) goes
+    // to the chip in one transact(), which stops at a message without a
+    // buffer (EFAULT) or one the chip refuses; the outcome is the one of
+    // dispatching the messages singly. An absent or NACKing address fails
+    // with EREMOTEIO (i2c-dev rejects 10-bit addresses unless I2C_TEN is
+    // set; we have none).
+    const std::uint16_t addr = m[i].addr;
+    SimI2cDevice* const d = addr < acking_.size() ? acking_[addr] : nullptr;
+    if (d == nullptr) {
       ++failed_;
       return EREMOTEIO;
     }
-    if (m.len > 0 && m.buf == nullptr) {
-      ++failed_;
-      return EFAULT;
-    }
-    if (updatedTo_[m.addr] != t) {  // once per chip and instant (update() is monotonic)
-      d->update(t);
-      updatedTo_[m.addr] = t;
-    }
-    const int rc = m.read ? d->read(m.buf, m.len) : d->write(m.buf, m.len);
+    std::size_t j = i + 1;
+    while (j < n && m[j].addr == addr) ++j;
+    const int rc = d->transact(t, {m + i, j - i});
     if (rc != 0) {
       ++failed_;
       return rc;
     }
-  }
+    i = j;
+  } while (i < n);
   return 0;
 }
 
