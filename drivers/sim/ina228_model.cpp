@@ -89,7 +89,7 @@ void Ina228Model::restartConversions() noexcept {
   // first one in 2 ms steps.
   const int m = mode();
   samplesInWindow_ = 0;
-  sumVsh_ = sumVbus_ = sumTemp_ = 0.0;
+  sumVsh_ = sumVbus_ = sumTemp_ = 0;
   if (m == 0 || m == 8) {
     running_ = false;
     return;
@@ -111,10 +111,13 @@ void Ina228Model::convertTo(TimeNs t) noexcept {
     vbusCode_ = quantise20(analog_.vbus_v, kVbusLsb);
     const double tc = roundEven(analog_.dietemp_c / kTempLsb);
     tcode_ = static_cast<std::int32_t>(std::clamp(tc == tc ? tc : 0.0, -32768.0, 32767.0));
-    // The raw power the SLOWALERT = 0 comparison uses.
-    const double curCode = shuntCal_ ? double(vshCode_) * 4096.0 / shuntCal_ : 0.0;
-    const double pw = std::fabs(curCode) * double(vbusCode_) / 16384.0;
-    rawPower_ = static_cast<std::uint32_t>(std::min(pw, double(0xFFFFFF)));
+    // The raw power only the SLOWALERT = 0 comparison uses (a DIAG_ALRT
+    // write invalidates the codes, so it is computed when SLOWALERT clears).
+    if (!(diag_ & SLOWALERT)) {
+      const double curCode = shuntCal_ ? double(vshCode_) * 4096.0 / shuntCal_ : 0.0;
+      const double pw = std::fabs(curCode) * double(vbusCode_) / 16384.0;
+      rawPower_ = static_cast<std::uint32_t>(std::min(pw, double(0xFFFFFF)));
+    }
   }
   while (running_ && nextSample_ <= t) {
     const TimeNs st = sampleTime_;
@@ -126,9 +129,9 @@ void Ina228Model::convertTo(TimeNs t) noexcept {
     const std::int64_t k = std::min<std::int64_t>(due, avg - samplesInWindow_);
     now_ = nextSample_ + (k - 1) * st;
     const std::int32_t vsh = vshCode_, vb = vbusCode_, tcode = tcode_;
-    sumVsh_ += double(vsh) * k;
-    sumVbus_ += double(vb) * k;
-    sumTemp_ += double(tcode) * k;
+    sumVsh_ += vsh * k;
+    sumVbus_ += vb * k;
+    sumTemp_ += tcode * k;
     samplesInWindow_ += int(k);
     nextSample_ += k * st;
     if (!(diag_ & SLOWALERT)) {
@@ -145,15 +148,17 @@ void Ina228Model::convertTo(TimeNs t) noexcept {
 
 void Ina228Model::publish(double dt) noexcept {
   // The window holds exactly AVG samples (update() never overfills it), and
-  // AVG is a power of two: multiplying by 1/n is exact, no division.
+  // AVG is a power of two: multiplying by 1/n is exact, no division. The
+  // integer sums (< 2^30) convert to double exactly: the same mean as a
+  // double accumulation.
   const int n = samplesInWindow_;
   const double inv = n == kAvgSamples[adcConfig_ & 7] ? kInvAvg[adcConfig_ & 7] : 1.0 / n;
   samplesInWindow_ = 0;
   diag_ &= ~MATHOF;
-  if (shuntActive()) vshunt_ = static_cast<std::int32_t>(roundEven(sumVsh_ * inv));
-  if (busActive()) vbus_ = static_cast<std::int32_t>(roundEven(sumVbus_ * inv));
-  if (tempActive()) dietemp_ = static_cast<std::int16_t>(roundEven(sumTemp_ * inv));
-  sumVsh_ = sumVbus_ = sumTemp_ = 0.0;
+  if (shuntActive()) vshunt_ = static_cast<std::int32_t>(roundEven(double(sumVsh_) * inv));
+  if (busActive()) vbus_ = static_cast<std::int32_t>(roundEven(double(sumVbus_) * inv));
+  if (tempActive()) dietemp_ = static_cast<std::int16_t>(roundEven(double(sumTemp_) * inv));
+  sumVsh_ = sumVbus_ = sumTemp_ = 0;
   ++conversions_;
 
   // CURRENT = VSHUNT x SHUNT_CAL arithmetic: with SHUNT_CAL = 13107.2e6 x
@@ -363,6 +368,7 @@ inline int Ina228Model::writeMsg(const std::uint8_t* buf, std::size_t len) noexc
       // Only the four control bits are writable; the rest are status.
       diag_ = static_cast<std::uint16_t>((diag_ & 0x0FFF) | (v & 0xF000));
       limitActive_ = (diag_ & kLimitFlags) != 0;
+      codesValid_ = false;  // SLOWALERT decides whether the raw power is needed
       break;
     case SOVL:
       sovl_ = v;

@@ -138,7 +138,7 @@ class Ina228Model final : public SimI2cDevice {
   std::uint16_t curScaleCal_ = 0;  // SHUNT_CAL that curScale_ = 4096 / SHUNT_CAL was computed for
   double curScale_ = 0.0;          // POWER code of one raw sample (SLOWALERT = 0 limit)
   int samplesInWindow_ = 0;
-  double sumVsh_ = 0.0, sumVbus_ = 0.0, sumTemp_ = 0.0;
+  std::int64_t sumVsh_ = 0, sumVbus_ = 0, sumTemp_ = 0;  // raw codes of the window
   std::uint64_t conversions_ = 0;
 };
 

@@ -1,8 +1,11 @@
 #include "drivers/sim/sim_onewire.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <system_error>
 
 namespace xr::sim {
@@ -35,8 +38,8 @@ std::uint8_t SimOneWire::crc8(const std::uint8_t* p, std::size_t n) {
 }
 
 std::string SimOneWire::formatW1Slave(std::int16_t raw, bool corrupt) {
-  std::uint8_t sp[9] = {std::uint8_t(raw & 0xFF), std::uint8_t((raw >> 8) & 0xFF), 0x4B, 0x46, 0x7F, 0xFF,
-                        0x0C, 0x10, 0};
+  std::uint8_t sp[9] = {
+      std::uint8_t(raw & 0xFF), std::uint8_t((raw >> 8) & 0xFF), 0x4B, 0x46, 0x7F, 0xFF, 0x0C, 0x10, 0};
   const std::uint8_t crc = crc8(sp, 8);
   sp[8] = corrupt ? std::uint8_t(crc ^ 0x5A) : crc;
   std::string bytes;
@@ -57,12 +60,26 @@ std::string SimOneWire::formatW1Slave(std::int16_t raw, bool corrupt) {
 void SimOneWire::writeFile(const std::string& content) {
   std::error_code ec;
   if (!written_) fs::create_directories(root_ / id_, ec);  // after a reconnect
-  const fs::path tmp = root_ / id_ / ".w1_slave.tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    f << content;
+  // Plain open/write/close/rename on paths built once (no iostream, no
+  // path concatenation per write): this runs every 750 ms of virtual time.
+  if (tmpPath_.empty()) {
+    tmpPath_ = (root_ / id_ / ".w1_slave.tmp").string();
+    slavePath_ = slavePath().string();
   }
-  fs::rename(tmp, slavePath(), ec);
+  const int fd = ::open(tmpPath_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd >= 0) {
+    const char* p = content.data();
+    std::size_t left = content.size();
+    while (left > 0) {
+      const ssize_t n = ::write(fd, p, left);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) break;
+      p += n;
+      left -= std::size_t(n);
+    }
+    ::close(fd);
+  }
+  ::rename(tmpPath_.c_str(), slavePath_.c_str());
   ++writes_;
 }
 

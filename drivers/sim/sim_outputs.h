@@ -3,10 +3,10 @@
 // output records every change with its (virtual) time, so tests can assert
 // "the field enable went LOW at t" and the plant can read the levels.
 // The log keeps the newest `capacity` changes (a long run changes the duty
-// every tick); counts cover the whole run.
+// every tick) in a ring; counts cover the whole run.
 #include <cstddef>
 #include <cstdint>
-#include <deque>
+#include <vector>
 
 #include "core/time.h"
 #include "drivers/hal/outputs.h"
@@ -18,16 +18,37 @@ struct Change {
   double value = 0.0;
 };
 
+// A ring of the newest `capacity` changes: its storage grows (doubling) to
+// the capacity once, then a change overwrites the oldest in place, so a long
+// run that changes the duty every tick costs a store per change, not a
+// deque node push and pop.
 class ChangeLog {
  public:
   explicit ChangeLog(std::size_t capacity = 1u << 16) : cap_(capacity) {}
-  void record(TimeNs t, double v);
-  const std::deque<Change>& changes() const noexcept { return log_; }
+  void record(TimeNs t, double v) {
+    ++count_;
+    if (ring_.size() < cap_) {
+      ring_.push_back({t, v});  // still filling (amortised growth, at most log2(capacity) times)
+      return;
+    }
+    if (cap_ == 0) return;
+    ring_[head_] = {t, v};
+    head_ = head_ + 1 == cap_ ? 0 : head_ + 1;
+  }
+  // The kept changes, oldest first: [0, size()).
+  std::size_t size() const noexcept { return ring_.size(); }
+  bool empty() const noexcept { return ring_.empty(); }
+  const Change& operator[](std::size_t i) const noexcept {
+    const std::size_t k = head_ + i;
+    return ring_[k < ring_.size() ? k : k - ring_.size()];
+  }
+  const Change& back() const noexcept { return (*this)[ring_.size() - 1]; }
   std::uint64_t count() const noexcept { return count_; }
 
  private:
   std::size_t cap_;
-  std::deque<Change> log_;
+  std::vector<Change> ring_;
+  std::size_t head_ = 0;  // index of the oldest change once the ring is full
   std::uint64_t count_ = 0;
 };
 
