@@ -97,6 +97,7 @@ void Ina228Model::restartConversions() noexcept {
   if (!continuous()) diag_ &= ~CNVRF;  // a new triggered conversion clears CNVRF
   running_ = true;
   sampleTime_ = sampleTime();
+  avg_ = kAvgSamples[adcConfig_ & 7];
   const TimeNs delay = fromMs(2 * ((config_ >> 6) & 0xFF));
   nextSample_ = now_ + delay + sampleTime_;
 }
@@ -121,7 +122,7 @@ void Ina228Model::convertTo(TimeNs t) noexcept {
   }
   while (running_ && nextSample_ <= t) {
     const TimeNs st = sampleTime_;
-    const int avg = kAvgSamples[adcConfig_ & 7];
+    const int avg = avg_;
     // Samples due by t (the common case, a step shorter than one sample
     // pass, without the 64-bit division).
     const TimeNs late = t - nextSample_;
@@ -152,7 +153,7 @@ void Ina228Model::publish(double dt) noexcept {
   // integer sums (< 2^30) convert to double exactly: the same mean as a
   // double accumulation.
   const int n = samplesInWindow_;
-  const double inv = n == kAvgSamples[adcConfig_ & 7] ? kInvAvg[adcConfig_ & 7] : 1.0 / n;
+  const double inv = n == avg_ ? kInvAvg[adcConfig_ & 7] : 1.0 / n;
   samplesInWindow_ = 0;
   diag_ &= ~MATHOF;
   if (shuntActive()) vshunt_ = static_cast<std::int32_t>(roundEven(double(sumVsh_) * inv));
@@ -292,6 +293,15 @@ std::uint64_t Ina228Model::peek(std::uint8_t reg) const noexcept {
 }
 
 inline int Ina228Model::readMsg(std::uint8_t* buf, std::size_t len) noexcept {
+  if (ptr_ == DIAG_ALRT && len == 2) [[likely]] {
+    // The read of every control tick, straight from diag_ (the general path
+    // below gives the same bytes and side effects).
+    buf[0] = std::uint8_t(diag_ >> 8);
+    buf[1] = std::uint8_t(diag_);
+    if (diag_ & ALATCH) diag_ &= ~kLimitFlags;  // latched flags and CNVRF clear on this read
+    diag_ &= ~CNVRF;
+    return 0;
+  }
   const int size = regSize(ptr_);
   if (len == 0 || size == 0 || len > std::size_t(size)) {
     ++protocolErrors_;

@@ -130,6 +130,7 @@ class Ina228Model final : public SimI2cDevice {
   bool running_ = false;
   TimeNs nextSample_ = 0;
   TimeNs sampleTime_ = 1;  // sampleTime() while running (set when conversions restart)
+  int avg_ = 1;            // samples per result (AVG) while running, set with sampleTime_
   // Raw ADC codes of analog_ (constant until the next setAnalog() or an
   // ADCRANGE change): quantised once, not per raw sample batch.
   bool codesValid_ = false;
