@@ -36,7 +36,7 @@ constexpr double kTempLsb = 7.8125e-3;    // °C
 constexpr std::uint64_t kMask40 = (std::uint64_t{1} << 40) - 1;
 constexpr double kInvAvg[8] = {1.0, 1.0 / 4, 1.0 / 16, 1.0 / 64, 1.0 / 128, 1.0 / 256, 1.0 / 512, 1.0 / 1024};
 
-std::int32_t quantise20(double v, double lsb) {
+[[gnu::always_inline]] inline std::int32_t quantise20(double v, double lsb) {
   const double c = roundEven(v / lsb);
   if (!(c == c)) return 0;  // NaN input: the ADC reads 0
   return static_cast<std::int32_t>(std::clamp(c, double(kMin20), double(kMax20)));

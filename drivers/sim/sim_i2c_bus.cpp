@@ -26,14 +26,13 @@ bool SimI2cBus::nack(std::uint16_t addr) const noexcept { return addr < nack_.si
 
 int SimI2cBus::transfer(std::span<I2cMsg> msgs) noexcept {
   ++transfers_;
-  const std::size_t n = msgs.size();
-  if (n == 0) {
+  I2cMsg* m = msgs.data();
+  I2cMsg* const end = m + msgs.size();
+  if (m == end) {
     ++failed_;
     return EINVAL;
   }
   const TimeNs t = now_ ? *now_ : 0;
-  I2cMsg* const m = msgs.data();
-  std::size_t i = 0;
   do {
     // The run of messages to one address (all of them, for our drivers) goes
     // to the chip in one transact(), which stops at a message without a
@@ -41,21 +40,21 @@ int SimI2cBus::transfer(std::span<I2cMsg> msgs) noexcept {
     // dispatching the messages singly. An absent or NACKing address fails
     // with EREMOTEIO (i2c-dev rejects 10-bit addresses unless I2C_TEN is
     // set; we have none).
-    const std::uint16_t addr = m[i].addr;
+    const std::uint16_t addr = m->addr;
     SimI2cDevice* const d = addr < acking_.size() ? acking_[addr] : nullptr;
-    if (d == nullptr) {
+    if (d == nullptr) [[unlikely]] {
       ++failed_;
       return EREMOTEIO;
     }
-    std::size_t j = i + 1;
-    while (j < n && m[j].addr == addr) ++j;
-    const int rc = d->transact(t, {m + i, j - i});
-    if (rc != 0) {
+    I2cMsg* run = m + 1;
+    while (run != end && run->addr == addr) ++run;
+    const int rc = d->transact(t, std::span<I2cMsg>(m, std::size_t(run - m)));
+    if (rc != 0) [[unlikely]] {
       ++failed_;
       return rc;
     }
-    i = j;
-  } while (i < n);
+    m = run;
+  } while (m != end);
   return 0;
 }
 
