@@ -6,7 +6,7 @@
 // every tick) in a ring; counts cover the whole run.
 #include <cstddef>
 #include <cstdint>
-#include <vector>
+#include <memory>
 
 #include "core/time.h"
 #include "drivers/hal/outputs.h"
@@ -18,37 +18,36 @@ struct Change {
   double value = 0.0;
 };
 
-// A ring of the newest `capacity` changes: its storage grows (doubling) to
-// the capacity once, then a change overwrites the oldest in place, so a long
-// run that changes the duty every tick costs a store per change, not a
-// deque node push and pop.
+// A ring of the newest `capacity` changes, allocated once at the first
+// change: a long run that changes the duty every tick costs two stores and
+// a wrap per change (no deque node push and pop, no vector growth).
 class ChangeLog {
  public:
   explicit ChangeLog(std::size_t capacity = 1u << 16) : cap_(capacity) {}
   void record(TimeNs t, double v) {
     ++count_;
-    if (ring_.size() < cap_) {
-      ring_.push_back({t, v});  // still filling (amortised growth, at most log2(capacity) times)
-      return;
-    }
     if (cap_ == 0) return;
+    if (!ring_) [[unlikely]]
+      ring_ = std::make_unique<Change[]>(cap_);
     ring_[head_] = {t, v};
     head_ = head_ + 1 == cap_ ? 0 : head_ + 1;
+    if (size_ < cap_) ++size_;
   }
   // The kept changes, oldest first: [0, size()).
-  std::size_t size() const noexcept { return ring_.size(); }
-  bool empty() const noexcept { return ring_.empty(); }
+  std::size_t size() const noexcept { return size_; }
+  bool empty() const noexcept { return size_ == 0; }
   const Change& operator[](std::size_t i) const noexcept {
-    const std::size_t k = head_ + i;
-    return ring_[k < ring_.size() ? k : k - ring_.size()];
+    const std::size_t k = (size_ < cap_ ? 0 : head_) + i;  // the oldest is at head_ once full
+    return ring_[k < cap_ ? k : k - cap_];
   }
-  const Change& back() const noexcept { return (*this)[ring_.size() - 1]; }
+  const Change& back() const noexcept { return ring_[head_ == 0 ? cap_ - 1 : head_ - 1]; }
   std::uint64_t count() const noexcept { return count_; }
 
  private:
   std::size_t cap_;
-  std::vector<Change> ring_;
-  std::size_t head_ = 0;  // index of the oldest change once the ring is full
+  std::unique_ptr<Change[]> ring_;
+  std::size_t head_ = 0;  // where the next change goes
+  std::size_t size_ = 0;
   std::uint64_t count_ = 0;
 };
 
