@@ -239,11 +239,6 @@ void Ina228Model::compareLimits(std::int32_t vsh, std::int32_t vb, std::int32_t 
   limitActive_ = (diag_ & kLimitFlags) != 0;
 }
 
-bool Ina228Model::alertActive() const noexcept {
-  if (diag_ & kLimitFlags) return true;
-  return (diag_ & CNVR) && (diag_ & CNVRF);
-}
-
 std::uint64_t Ina228Model::peek(std::uint8_t reg) const noexcept {
   auto r20 = [](std::int32_t c) { return std::uint64_t(std::uint32_t(c) & 0xFFFFF) << 4; };
   switch (reg) {

@@ -85,7 +85,10 @@ class Ina228Model final : public SimI2cDevice {
 
   // Logical ALERT: true while the pin is driven active (pulled low with
   // APOL=0). The board wiring ANDs it into the gate-driver enable.
-  bool alertActive() const noexcept;
+  bool alertActive() const noexcept {
+    if (diag_ & ina228::kLimitFlags) return true;
+    return (diag_ & ina228::CNVR) && (diag_ & ina228::CNVRF);
+  }
   // Electrical pin level: open drain with a pull-up (true = high).
   bool alertPinHigh() const noexcept { return (diag_ & ina228::APOL) ? alertActive() : !alertActive(); }
 
