@@ -88,7 +88,10 @@ class Ads1115Model final : public SimI2cDevice {
   void convertTo(TimeNs t) noexcept;  // update() with a conversion ending by t
   void startConversion(TimeNs at) noexcept;
   void finishConversion() noexcept;
-  bool readyMode() const noexcept { return (hiThresh_ & 0x8000) && !(loThresh_ & 0x8000); }
+  // Hi_thresh MSB = 1 and Lo_thresh MSB = 0: ALERT/RDY is the conversion-ready
+  // pin. Held as a flag, set when a threshold is written (asked per conversion
+  // and per edge wait, written once per configuration).
+  bool readyMode() const noexcept { return ready_; }
   std::int16_t sample(std::uint16_t cfg) noexcept;
   double pin(int ain) noexcept {
     if (src_) return src_(srcCtx_, ain);
@@ -112,6 +115,7 @@ class Ads1115Model final : public SimI2cDevice {
   std::uint16_t config_ = 0x8583;  // reset value (OS bit read back as "idle")
   std::int16_t conversion_ = 0;
   std::uint16_t loThresh_ = 0x8000, hiThresh_ = 0x7FFF;
+  bool ready_ = false;  // readyMode() of the reset thresholds
   bool converting_ = false;
   std::uint16_t convConfig_ = 0;  // settings latched when the conversion started
   TimeNs convEnd_ = 0;

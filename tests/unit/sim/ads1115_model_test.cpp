@@ -161,6 +161,29 @@ TEST(Ads1115Model, AlertRdyPulsesInContinuous) {
   EXPECT_EQ(r.chip.readyPulses(), 12u);  // 100 ms / 7.8125 ms
 }
 
+TEST(Ads1115Model, ThresholdWritesSwitchBetweenReadyPinAndComparator) {
+  Rig r;
+  r.writeReg(1, cfg(0, 4, 1, 0, 4, 0));  // continuous, 128 SPS, queue 1
+  r.advance(fromMs(20));
+  EXPECT_EQ(r.chip.nextReadyEdge(), -1) << "reset thresholds: comparator, no ready pulses";
+  r.writeReg(3, 0x8000);
+  EXPECT_EQ(r.chip.nextReadyEdge(), -1) << "Lo_thresh MSB still 1";
+  r.writeReg(2, 0x0000);
+  EXPECT_GT(r.chip.nextReadyEdge(), r.now);
+  r.advance(fromMs(40));
+  const auto pulses = r.chip.readyPulses();
+  EXPECT_EQ(pulses, 5u);  // 40 ms / 7.8125 ms
+  r.writeReg(3, 0x7FFF);  // Hi_thresh MSB back to 0: comparator again
+  EXPECT_EQ(r.chip.nextReadyEdge(), -1);
+  r.advance(fromMs(40));
+  EXPECT_EQ(r.chip.readyPulses(), pulses);
+  r.writeReg(3, 0x8000);
+  r.writeReg(2, 0x8000);  // Lo_thresh MSB 1: not the ready pin either
+  EXPECT_EQ(r.chip.nextReadyEdge(), -1);
+  r.writeReg(2, 0x0001);
+  EXPECT_GT(r.chip.nextReadyEdge(), r.now);
+}
+
 TEST(Ads1115Model, TraditionalComparatorWithQueue) {
   Rig r;
   r.writeReg(3, 8000);                   // hi
