@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cerrno>
+#include <climits>
 #include <cmath>
 
 #include "drivers/sim/fast_math.h"
@@ -68,6 +69,7 @@ void Ina228Model::reset() noexcept {
   limitActive_ = false;
   ptr_ = 0;
   restartConversions();  // power-on default is continuous bus + shunt + temperature
+  refreshLimits();
 }
 
 TimeNs Ina228Model::sampleTime() const noexcept {
@@ -216,25 +218,39 @@ void Ina228Model::publish(double dt) noexcept {
   if (diag_ & SLOWALERT) compareLimits(vshunt_, vbus_, dietemp_, power_);
 }
 
+void Ina228Model::refreshLimits() noexcept {
+  // A channel that is not measured never trips: its bound is out of reach.
+  constexpr std::int32_t kNone = INT32_MAX, kNoneLow = INT32_MIN;
+  limTemp_ = tempActive() ? std::int32_t(std::int16_t(tempLimit_)) : kNone;
+  limSovl_ = shuntActive() ? std::int32_t(std::int16_t(sovl_)) * 16 : kNone;
+  limSuvl_ = shuntActive() ? std::int32_t(std::int16_t(suvl_)) * 16 : kNoneLow;
+  limBovl_ = busActive() ? std::int32_t(bovl_ & 0x7FFF) * 16 : kNone;
+  limBuvl_ = busActive() ? std::int32_t(buvl_ & 0x7FFF) * 16 : kNoneLow;
+  limPol_ = shuntActive() && busActive() && shuntCal_;
+  std::uint16_t measured = 0;
+  if (tempActive()) measured |= TMPOL;
+  if (shuntActive()) measured |= SHNTOL | SHNTUL;
+  if (busActive()) measured |= BUSOL | BUSUL;
+  if (shuntActive() && busActive()) measured |= POL;
+  measured_ = measured;
+}
+
 void Ina228Model::compareLimits(std::int32_t vsh, std::int32_t vb, std::int32_t tcode,
                                 std::uint32_t pw) noexcept {
+  // The bounds of the channels measured, taken when a register was written
+  // (refreshLimits), not per comparison.
   std::uint16_t cond = 0;
-  if (tempActive() && tcode > std::int16_t(tempLimit_)) cond |= TMPOL;
-  if (shuntActive() && vsh > std::int32_t(std::int16_t(sovl_)) * 16) cond |= SHNTOL;
-  if (shuntActive() && vsh < std::int32_t(std::int16_t(suvl_)) * 16) cond |= SHNTUL;
-  if (busActive() && vb > std::int32_t(bovl_ & 0x7FFF) * 16) cond |= BUSOL;
-  if (busActive() && vb < std::int32_t(buvl_ & 0x7FFF) * 16) cond |= BUSUL;
-  if (shuntActive() && busActive() && shuntCal_ && (pw >> 8) > pwrLimit_) cond |= POL;
+  if (tcode > limTemp_) cond |= TMPOL;
+  if (vsh > limSovl_) cond |= SHNTOL;
+  if (vsh < limSuvl_) cond |= SHNTUL;
+  if (vb > limBovl_) cond |= BUSOL;
+  if (vb < limBuvl_) cond |= BUSUL;
+  if (limPol_ && (pw >> 8) > pwrLimit_) cond |= POL;
   if (diag_ & ALATCH) {
     diag_ |= cond;
   } else {
     // Transparent: the flags follow the comparison of the channels measured.
-    std::uint16_t measured = 0;
-    if (tempActive()) measured |= TMPOL;
-    if (shuntActive()) measured |= SHNTOL | SHNTUL;
-    if (busActive()) measured |= BUSOL | BUSUL;
-    if (shuntActive() && busActive()) measured |= POL;
-    diag_ = static_cast<std::uint16_t>((diag_ & ~measured) | cond);
+    diag_ = static_cast<std::uint16_t>((diag_ & ~measured_) | cond);
   }
   limitActive_ = (diag_ & kLimitFlags) != 0;
 }
@@ -396,6 +412,7 @@ inline int Ina228Model::writeMsg(const std::uint8_t* buf, std::size_t len) noexc
     default:
       break;
   }
+  refreshLimits();  // any register write may move a limit or the active channels
   return 0;
 }
 

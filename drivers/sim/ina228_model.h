@@ -108,6 +108,7 @@ class Ina228Model final : public SimI2cDevice {
   void restartConversions() noexcept;
   void onSample() noexcept;                 // one raw sample of every active channel
   void publish(double dtSeconds) noexcept;  // the averaged result is ready
+  void refreshLimits() noexcept;            // after any register write or reset
   void compareLimits(std::int32_t vshCode, std::int32_t vbusCode, std::int32_t tempCode,
                      std::uint32_t powerCode) noexcept;
   int mode() const noexcept { return (adcConfig_ >> 12) & 0xF; }
@@ -129,6 +130,10 @@ class Ina228Model final : public SimI2cDevice {
       0.0;  // CHARGE in its LSBs; the register is the truncated value (40-bit two's complement)
   std::uint16_t diag_ = 0, sovl_ = 0, suvl_ = 0, bovl_ = 0, buvl_ = 0, tempLimit_ = 0, pwrLimit_ = 0;
   bool limitActive_ = false;  // some limit condition true at the last comparison
+  // compareLimits() bounds of the measured channels (refreshLimits()).
+  std::int32_t limTemp_ = 0, limSovl_ = 0, limSuvl_ = 0, limBovl_ = 0, limBuvl_ = 0;
+  bool limPol_ = false;
+  std::uint16_t measured_ = 0;
   // Conversion engine state.
   bool running_ = false;
   TimeNs nextSample_ = 0;

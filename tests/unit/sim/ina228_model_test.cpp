@@ -417,5 +417,26 @@ TEST(Ina228Model, ClearingSlowAlertComparesRawSamplesAtOnce) {
   EXPECT_TRUE(r.readReg(DIAG_ALRT, 2) & POL);
 }
 
+TEST(Ina228Model, OnlyMeasuredChannelsFlagAndLimitWritesApplyAtOnce) {
+  Rig r;
+  r.writeReg(SOVL, 10);                 // 50 uV
+  r.writeReg(ADC_CONFIG, (0x9 << 12));  // bus only, 50 us: the shunt is not measured
+  r.chip.setAnalog({0.001, 12.0, 25.0});
+  r.advance(fromUs(200));
+  EXPECT_FALSE(r.readReg(DIAG_ALRT, 2) & SHNTOL);
+  r.writeReg(ADC_CONFIG, (0xB << 12));  // bus + shunt
+  r.advance(fromUs(200));
+  EXPECT_TRUE(r.readReg(DIAG_ALRT, 2) & SHNTOL);
+  r.writeReg(SOVL, 0x7FFF);  // limit raised: transparent flag follows at the next sample
+  r.advance(fromUs(200));
+  EXPECT_FALSE(r.readReg(DIAG_ALRT, 2) & SHNTOL);
+  r.writeReg(BUVL, std::uint16_t(13.0 / 3.125e-3));  // 13 V: the bus reads under
+  r.advance(fromUs(200));
+  EXPECT_TRUE(r.readReg(DIAG_ALRT, 2) & BUSUL);
+  r.writeReg(BUVL, 0);
+  r.advance(fromUs(200));
+  EXPECT_FALSE(r.readReg(DIAG_ALRT, 2) & BUSUL);
+}
+
 }  // namespace
 }  // namespace xr::sim
