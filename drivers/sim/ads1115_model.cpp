@@ -28,24 +28,13 @@ std::uint16_t Ads1115Model::peekConfig() const noexcept {
 }
 
 std::int16_t Ads1115Model::sample(std::uint16_t cfg) noexcept {
-  double v = 0.0;
-  switch (muxOf(cfg)) {
-    case 0:
-      v = pin(0) - pin(1);
-      break;
-    case 1:
-      v = pin(0) - pin(3);
-      break;
-    case 2:
-      v = pin(1) - pin(3);
-      break;
-    case 3:
-      v = pin(2) - pin(3);
-      break;
-    default:
-      v = pin(muxOf(cfg) - 4);
-      break;
-  }
+  // MUX -> AINp, AINn (-1 = GND), as tables instead of a switch. The
+  // positive input is sampled (and draws its noise) before the negative one.
+  static constexpr std::int8_t kPos[8] = {0, 0, 1, 2, 0, 1, 2, 3};
+  static constexpr std::int8_t kNeg[8] = {1, 3, 3, 3, -1, -1, -1, -1};
+  const int mux = muxOf(cfg);
+  double v = pin(kPos[mux]);
+  if (kNeg[mux] >= 0) v -= pin(kNeg[mux]);
   const double fs = kFsrVolts[pgaOf(cfg)];
   const double code = roundEven(v / fs * 32768.0);  // = std::nearbyint, without the libm call
   if (!(code == code)) return 0;
@@ -101,7 +90,7 @@ void Ads1115Model::convertTo(TimeNs t) noexcept {
   now_ = t;
 }
 
-int Ads1115Model::read(std::uint8_t* buf, std::size_t len) noexcept {
+inline int Ads1115Model::readMsg(std::uint8_t* buf, std::size_t len) noexcept {
   if (len == 0 || len > 2) {
     ++protocolErrors_;
     return EREMOTEIO;
@@ -128,7 +117,7 @@ int Ads1115Model::read(std::uint8_t* buf, std::size_t len) noexcept {
   return 0;
 }
 
-int Ads1115Model::write(const std::uint8_t* buf, std::size_t len) noexcept {
+inline int Ads1115Model::writeMsg(const std::uint8_t* buf, std::size_t len) noexcept {
   if (len == 0 || (buf[0] & 0xFC) != 0) {  // pointer bits 7:2 must be 0
     ++protocolErrors_;
     return EREMOTEIO;
@@ -146,8 +135,10 @@ int Ads1115Model::write(const std::uint8_t* buf, std::size_t len) noexcept {
   const std::uint16_t v = static_cast<std::uint16_t>((buf[1] << 8) | buf[2]);
   if (reg == 2) {
     loThresh_ = v;
+    ready_ = (hiThresh_ & 0x8000) && !(loThresh_ & 0x8000);
   } else if (reg == 3) {
     hiThresh_ = v;
+    ready_ = (hiThresh_ & 0x8000) && !(loThresh_ & 0x8000);
   } else {
     config_ = static_cast<std::uint16_t>(v & ~OS);
     queueCount_ = 0;
@@ -159,6 +150,22 @@ int Ads1115Model::write(const std::uint8_t* buf, std::size_t len) noexcept {
     } else if ((v & OS) && !converting_) {
       startConversion(now_);  // single-shot start; ignored while busy
     }
+  }
+  return 0;
+}
+
+int Ads1115Model::read(std::uint8_t* buf, std::size_t len) noexcept { return readMsg(buf, len); }
+int Ads1115Model::write(const std::uint8_t* buf, std::size_t len) noexcept { return writeMsg(buf, len); }
+
+int Ads1115Model::transact(TimeNs t, std::span<I2cMsg> msgs) noexcept {
+  update(t);
+  for (I2cMsg& m : msgs) {
+    std::uint8_t* const b = m.buf;
+    const std::size_t len = m.len;
+    if (b == nullptr && len > 0) [[unlikely]]
+      return EFAULT;
+    const int rc = m.read ? readMsg(b, len) : writeMsg(b, len);
+    if (rc != 0) return rc;
   }
   return 0;
 }

@@ -11,7 +11,9 @@
 // Conversion register, a write of the wrong length, a read longer than 2.
 #include <array>
 #include <cstdint>
+#include <limits>
 
+#include "drivers/sim/prng.h"
 #include "drivers/sim/sim_i2c_device.h"
 
 namespace xr::sim {
@@ -27,6 +29,18 @@ class Ads1115Model final : public SimI2cDevice {
 
   // Input pin voltages AIN0..AIN3 (to GND), set by the plant before update().
   void setInputs(const std::array<double, 4>& ain) noexcept { ain_ = ain; }
+  void setInput(int ain, double v) noexcept { ain_[ain & 3] = v; }
+  // Sensor noise drawn at the instant a conversion samples a pin: only the
+  // pins the MUX of that conversion selects draw from `rng` (sigma[ain] volts,
+  // none for a sigma of 0; see Rng::gauss), in the order AINp then AINn, and
+  // the noisy voltage is clamped to [0, vmax] (the board's input protection;
+  // a non-finite value reads as 0 V). nullptr: no noise, no clamp.
+  void setInputNoise(Rng* rng, const std::array<double, 4>& sigma, double vmax) noexcept {
+    rng_ = rng;
+    sigma_ = sigma;
+    vmax_ = vmax;
+  }
+  void setInputSigma(int ain, double sigma) noexcept { sigma_[ain & 3] = sigma; }
   // Or pulled at the instant a conversion samples them: only the pins the
   // MUX of that conversion selects are asked for (so a simulated board draws
   // sensor noise per conversion, not per plant step). Overrides setInputs()
@@ -45,6 +59,7 @@ class Ads1115Model final : public SimI2cDevice {
       now_ = t;
     }
   }
+  int transact(TimeNs t, std::span<I2cMsg> msgs) noexcept override;
   int write(const std::uint8_t* buf, std::size_t len) noexcept override;
   int read(std::uint8_t* buf, std::size_t len) noexcept override;
 
@@ -66,16 +81,33 @@ class Ads1115Model final : public SimI2cDevice {
   TimeNs period(int dr) const noexcept { return period_[dr & 7]; }
 
  private:
+  // One read / write message (read() and write() are these, non-inlined;
+  // transact() inlines them).
+  int readMsg(std::uint8_t* buf, std::size_t len) noexcept;
+  int writeMsg(const std::uint8_t* buf, std::size_t len) noexcept;
   void convertTo(TimeNs t) noexcept;  // update() with a conversion ending by t
   void startConversion(TimeNs at) noexcept;
   void finishConversion() noexcept;
-  bool readyMode() const noexcept { return (hiThresh_ & 0x8000) && !(loThresh_ & 0x8000); }
+  // Hi_thresh MSB = 1 and Lo_thresh MSB = 0: ALERT/RDY is the conversion-ready
+  // pin. Held as a flag, set when a threshold is written (asked per conversion
+  // and per edge wait, written once per configuration).
+  bool readyMode() const noexcept { return ready_; }
   std::int16_t sample(std::uint16_t cfg) noexcept;
-  double pin(int ain) noexcept { return src_ ? src_(srcCtx_, ain) : ain_[ain]; }
+  double pin(int ain) noexcept {
+    if (src_) return src_(srcCtx_, ain);
+    if (!rng_) return ain_[ain];
+    const double v = ain_[ain] + rng_->gauss(sigma_[ain]);
+    if (v >= 0.0 && v <= vmax_) return v;  // the usual case: one range check
+    // Above the clamp: vmax; below 0, NaN or infinite: 0 V.
+    return (v > vmax_ && v < std::numeric_limits<double>::infinity()) ? vmax_ : 0.0;
+  }
 
   std::array<double, 4> ain_{};
   InputSource src_ = nullptr;
   void* srcCtx_ = nullptr;
+  Rng* rng_ = nullptr;
+  std::array<double, 4> sigma_{};
+  double vmax_ = 0.0;
   double clockScale_;
   std::array<TimeNs, 8> period_{};  // period(dr), computed once
   TimeNs now_ = 0;
@@ -83,6 +115,7 @@ class Ads1115Model final : public SimI2cDevice {
   std::uint16_t config_ = 0x8583;  // reset value (OS bit read back as "idle")
   std::int16_t conversion_ = 0;
   std::uint16_t loThresh_ = 0x8000, hiThresh_ = 0x7FFF;
+  bool ready_ = false;  // readyMode() of the reset thresholds
   bool converting_ = false;
   std::uint16_t convConfig_ = 0;  // settings latched when the conversion started
   TimeNs convEnd_ = 0;

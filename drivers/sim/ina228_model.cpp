@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cerrno>
+#include <climits>
 #include <cmath>
 
 #include "drivers/sim/fast_math.h"
@@ -36,7 +37,7 @@ constexpr double kTempLsb = 7.8125e-3;    // °C
 constexpr std::uint64_t kMask40 = (std::uint64_t{1} << 40) - 1;
 constexpr double kInvAvg[8] = {1.0, 1.0 / 4, 1.0 / 16, 1.0 / 64, 1.0 / 128, 1.0 / 256, 1.0 / 512, 1.0 / 1024};
 
-std::int32_t quantise20(double v, double lsb) {
+[[gnu::always_inline]] inline std::int32_t quantise20(double v, double lsb) {
   const double c = roundEven(v / lsb);
   if (!(c == c)) return 0;  // NaN input: the ADC reads 0
   return static_cast<std::int32_t>(std::clamp(c, double(kMin20), double(kMax20)));
@@ -68,6 +69,7 @@ void Ina228Model::reset() noexcept {
   limitActive_ = false;
   ptr_ = 0;
   restartConversions();  // power-on default is continuous bus + shunt + temperature
+  refreshLimits();
 }
 
 TimeNs Ina228Model::sampleTime() const noexcept {
@@ -89,7 +91,7 @@ void Ina228Model::restartConversions() noexcept {
   // first one in 2 ms steps.
   const int m = mode();
   samplesInWindow_ = 0;
-  sumVsh_ = sumVbus_ = sumTemp_ = 0.0;
+  sumVsh_ = sumVbus_ = sumTemp_ = 0;
   if (m == 0 || m == 8) {
     running_ = false;
     return;
@@ -97,6 +99,7 @@ void Ina228Model::restartConversions() noexcept {
   if (!continuous()) diag_ &= ~CNVRF;  // a new triggered conversion clears CNVRF
   running_ = true;
   sampleTime_ = sampleTime();
+  avg_ = kAvgSamples[adcConfig_ & 7];
   const TimeNs delay = fromMs(2 * ((config_ >> 6) & 0xFF));
   nextSample_ = now_ + delay + sampleTime_;
 }
@@ -111,14 +114,17 @@ void Ina228Model::convertTo(TimeNs t) noexcept {
     vbusCode_ = quantise20(analog_.vbus_v, kVbusLsb);
     const double tc = roundEven(analog_.dietemp_c / kTempLsb);
     tcode_ = static_cast<std::int32_t>(std::clamp(tc == tc ? tc : 0.0, -32768.0, 32767.0));
-    // The raw power the SLOWALERT = 0 comparison uses.
-    const double curCode = shuntCal_ ? double(vshCode_) * 4096.0 / shuntCal_ : 0.0;
-    const double pw = std::fabs(curCode) * double(vbusCode_) / 16384.0;
-    rawPower_ = static_cast<std::uint32_t>(std::min(pw, double(0xFFFFFF)));
+    // The raw power only the SLOWALERT = 0 comparison uses (a DIAG_ALRT
+    // write invalidates the codes, so it is computed when SLOWALERT clears).
+    if (!(diag_ & SLOWALERT)) {
+      const double curCode = shuntCal_ ? double(vshCode_) * 4096.0 / shuntCal_ : 0.0;
+      const double pw = std::fabs(curCode) * double(vbusCode_) / 16384.0;
+      rawPower_ = static_cast<std::uint32_t>(std::min(pw, double(0xFFFFFF)));
+    }
   }
   while (running_ && nextSample_ <= t) {
     const TimeNs st = sampleTime_;
-    const int avg = kAvgSamples[adcConfig_ & 7];
+    const int avg = avg_;
     // Samples due by t (the common case, a step shorter than one sample
     // pass, without the 64-bit division).
     const TimeNs late = t - nextSample_;
@@ -126,9 +132,9 @@ void Ina228Model::convertTo(TimeNs t) noexcept {
     const std::int64_t k = std::min<std::int64_t>(due, avg - samplesInWindow_);
     now_ = nextSample_ + (k - 1) * st;
     const std::int32_t vsh = vshCode_, vb = vbusCode_, tcode = tcode_;
-    sumVsh_ += double(vsh) * k;
-    sumVbus_ += double(vb) * k;
-    sumTemp_ += double(tcode) * k;
+    sumVsh_ += vsh * k;
+    sumVbus_ += vb * k;
+    sumTemp_ += tcode * k;
     samplesInWindow_ += int(k);
     nextSample_ += k * st;
     if (!(diag_ & SLOWALERT)) {
@@ -145,15 +151,17 @@ void Ina228Model::convertTo(TimeNs t) noexcept {
 
 void Ina228Model::publish(double dt) noexcept {
   // The window holds exactly AVG samples (update() never overfills it), and
-  // AVG is a power of two: multiplying by 1/n is exact, no division.
+  // AVG is a power of two: multiplying by 1/n is exact, no division. The
+  // integer sums (< 2^30) convert to double exactly: the same mean as a
+  // double accumulation.
   const int n = samplesInWindow_;
-  const double inv = n == kAvgSamples[adcConfig_ & 7] ? kInvAvg[adcConfig_ & 7] : 1.0 / n;
+  const double inv = n == avg_ ? kInvAvg[adcConfig_ & 7] : 1.0 / n;
   samplesInWindow_ = 0;
   diag_ &= ~MATHOF;
-  if (shuntActive()) vshunt_ = static_cast<std::int32_t>(roundEven(sumVsh_ * inv));
-  if (busActive()) vbus_ = static_cast<std::int32_t>(roundEven(sumVbus_ * inv));
-  if (tempActive()) dietemp_ = static_cast<std::int16_t>(roundEven(sumTemp_ * inv));
-  sumVsh_ = sumVbus_ = sumTemp_ = 0.0;
+  if (shuntActive()) vshunt_ = static_cast<std::int32_t>(roundEven(double(sumVsh_) * inv));
+  if (busActive()) vbus_ = static_cast<std::int32_t>(roundEven(double(sumVbus_) * inv));
+  if (tempActive()) dietemp_ = static_cast<std::int16_t>(roundEven(double(sumTemp_) * inv));
+  sumVsh_ = sumVbus_ = sumTemp_ = 0;
   ++conversions_;
 
   // CURRENT = VSHUNT x SHUNT_CAL arithmetic: with SHUNT_CAL = 13107.2e6 x
@@ -210,32 +218,41 @@ void Ina228Model::publish(double dt) noexcept {
   if (diag_ & SLOWALERT) compareLimits(vshunt_, vbus_, dietemp_, power_);
 }
 
+void Ina228Model::refreshLimits() noexcept {
+  // A channel that is not measured never trips: its bound is out of reach.
+  constexpr std::int32_t kNone = INT32_MAX, kNoneLow = INT32_MIN;
+  limTemp_ = tempActive() ? std::int32_t(std::int16_t(tempLimit_)) : kNone;
+  limSovl_ = shuntActive() ? std::int32_t(std::int16_t(sovl_)) * 16 : kNone;
+  limSuvl_ = shuntActive() ? std::int32_t(std::int16_t(suvl_)) * 16 : kNoneLow;
+  limBovl_ = busActive() ? std::int32_t(bovl_ & 0x7FFF) * 16 : kNone;
+  limBuvl_ = busActive() ? std::int32_t(buvl_ & 0x7FFF) * 16 : kNoneLow;
+  limPol_ = shuntActive() && busActive() && shuntCal_;
+  std::uint16_t measured = 0;
+  if (tempActive()) measured |= TMPOL;
+  if (shuntActive()) measured |= SHNTOL | SHNTUL;
+  if (busActive()) measured |= BUSOL | BUSUL;
+  if (shuntActive() && busActive()) measured |= POL;
+  measured_ = measured;
+}
+
 void Ina228Model::compareLimits(std::int32_t vsh, std::int32_t vb, std::int32_t tcode,
                                 std::uint32_t pw) noexcept {
+  // The bounds of the channels measured, taken when a register was written
+  // (refreshLimits), not per comparison.
   std::uint16_t cond = 0;
-  if (tempActive() && tcode > std::int16_t(tempLimit_)) cond |= TMPOL;
-  if (shuntActive() && vsh > std::int32_t(std::int16_t(sovl_)) * 16) cond |= SHNTOL;
-  if (shuntActive() && vsh < std::int32_t(std::int16_t(suvl_)) * 16) cond |= SHNTUL;
-  if (busActive() && vb > std::int32_t(bovl_ & 0x7FFF) * 16) cond |= BUSOL;
-  if (busActive() && vb < std::int32_t(buvl_ & 0x7FFF) * 16) cond |= BUSUL;
-  if (shuntActive() && busActive() && shuntCal_ && (pw >> 8) > pwrLimit_) cond |= POL;
+  if (tcode > limTemp_) cond |= TMPOL;
+  if (vsh > limSovl_) cond |= SHNTOL;
+  if (vsh < limSuvl_) cond |= SHNTUL;
+  if (vb > limBovl_) cond |= BUSOL;
+  if (vb < limBuvl_) cond |= BUSUL;
+  if (limPol_ && (pw >> 8) > pwrLimit_) cond |= POL;
   if (diag_ & ALATCH) {
     diag_ |= cond;
   } else {
     // Transparent: the flags follow the comparison of the channels measured.
-    std::uint16_t measured = 0;
-    if (tempActive()) measured |= TMPOL;
-    if (shuntActive()) measured |= SHNTOL | SHNTUL;
-    if (busActive()) measured |= BUSOL | BUSUL;
-    if (shuntActive() && busActive()) measured |= POL;
-    diag_ = static_cast<std::uint16_t>((diag_ & ~measured) | cond);
+    diag_ = static_cast<std::uint16_t>((diag_ & ~measured_) | cond);
   }
   limitActive_ = (diag_ & kLimitFlags) != 0;
-}
-
-bool Ina228Model::alertActive() const noexcept {
-  if (diag_ & kLimitFlags) return true;
-  return (diag_ & CNVR) && (diag_ & CNVRF);
 }
 
 std::uint64_t Ina228Model::peek(std::uint8_t reg) const noexcept {
@@ -286,7 +303,16 @@ std::uint64_t Ina228Model::peek(std::uint8_t reg) const noexcept {
   }
 }
 
-int Ina228Model::read(std::uint8_t* buf, std::size_t len) noexcept {
+inline int Ina228Model::readMsg(std::uint8_t* buf, std::size_t len) noexcept {
+  if (ptr_ == DIAG_ALRT && len == 2) [[likely]] {
+    // The read of every control tick, straight from diag_ (the general path
+    // below gives the same bytes and side effects).
+    buf[0] = std::uint8_t(diag_ >> 8);
+    buf[1] = std::uint8_t(diag_);
+    if (diag_ & ALATCH) diag_ &= ~kLimitFlags;  // latched flags and CNVRF clear on this read
+    diag_ &= ~CNVRF;
+    return 0;
+  }
   const int size = regSize(ptr_);
   if (len == 0 || size == 0 || len > std::size_t(size)) {
     ++protocolErrors_;
@@ -314,7 +340,7 @@ int Ina228Model::read(std::uint8_t* buf, std::size_t len) noexcept {
   return 0;
 }
 
-int Ina228Model::write(const std::uint8_t* buf, std::size_t len) noexcept {
+inline int Ina228Model::writeMsg(const std::uint8_t* buf, std::size_t len) noexcept {
   if (len == 0) {
     ++protocolErrors_;
     return EREMOTEIO;
@@ -363,6 +389,7 @@ int Ina228Model::write(const std::uint8_t* buf, std::size_t len) noexcept {
       // Only the four control bits are writable; the rest are status.
       diag_ = static_cast<std::uint16_t>((diag_ & 0x0FFF) | (v & 0xF000));
       limitActive_ = (diag_ & kLimitFlags) != 0;
+      codesValid_ = false;  // SLOWALERT decides whether the raw power is needed
       break;
     case SOVL:
       sovl_ = v;
@@ -384,6 +411,23 @@ int Ina228Model::write(const std::uint8_t* buf, std::size_t len) noexcept {
       break;
     default:
       break;
+  }
+  refreshLimits();  // any register write may move a limit or the active channels
+  return 0;
+}
+
+int Ina228Model::read(std::uint8_t* buf, std::size_t len) noexcept { return readMsg(buf, len); }
+int Ina228Model::write(const std::uint8_t* buf, std::size_t len) noexcept { return writeMsg(buf, len); }
+
+int Ina228Model::transact(TimeNs t, std::span<I2cMsg> msgs) noexcept {
+  update(t);
+  for (I2cMsg& m : msgs) {
+    std::uint8_t* const b = m.buf;
+    const std::size_t len = m.len;
+    if (b == nullptr && len > 0) [[unlikely]]
+      return EFAULT;
+    const int rc = m.read ? readMsg(b, len) : writeMsg(b, len);
+    if (rc != 0) return rc;
   }
   return 0;
 }

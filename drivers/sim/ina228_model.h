@@ -79,12 +79,16 @@ class Ina228Model final : public SimI2cDevice {
       now_ = t;
     }
   }
+  int transact(TimeNs t, std::span<I2cMsg> msgs) noexcept override;
   int write(const std::uint8_t* buf, std::size_t len) noexcept override;
   int read(std::uint8_t* buf, std::size_t len) noexcept override;
 
   // Logical ALERT: true while the pin is driven active (pulled low with
   // APOL=0). The board wiring ANDs it into the gate-driver enable.
-  bool alertActive() const noexcept;
+  bool alertActive() const noexcept {
+    if (diag_ & ina228::kLimitFlags) return true;
+    return (diag_ & ina228::CNVR) && (diag_ & ina228::CNVRF);
+  }
   // Electrical pin level: open drain with a pull-up (true = high).
   bool alertPinHigh() const noexcept { return (diag_ & ina228::APOL) ? alertActive() : !alertActive(); }
 
@@ -95,11 +99,16 @@ class Ina228Model final : public SimI2cDevice {
   std::uint64_t conversions() const noexcept { return conversions_; }
 
  private:
+  // One read / write message (read() and write() are these, non-inlined;
+  // transact() inlines them).
+  int readMsg(std::uint8_t* buf, std::size_t len) noexcept;
+  int writeMsg(const std::uint8_t* buf, std::size_t len) noexcept;
   void convertTo(TimeNs t) noexcept;  // update() with at least one raw sample due by t
   void reset() noexcept;
   void restartConversions() noexcept;
   void onSample() noexcept;                 // one raw sample of every active channel
   void publish(double dtSeconds) noexcept;  // the averaged result is ready
+  void refreshLimits() noexcept;            // after any register write or reset
   void compareLimits(std::int32_t vshCode, std::int32_t vbusCode, std::int32_t tempCode,
                      std::uint32_t powerCode) noexcept;
   int mode() const noexcept { return (adcConfig_ >> 12) & 0xF; }
@@ -121,10 +130,15 @@ class Ina228Model final : public SimI2cDevice {
       0.0;  // CHARGE in its LSBs; the register is the truncated value (40-bit two's complement)
   std::uint16_t diag_ = 0, sovl_ = 0, suvl_ = 0, bovl_ = 0, buvl_ = 0, tempLimit_ = 0, pwrLimit_ = 0;
   bool limitActive_ = false;  // some limit condition true at the last comparison
+  // compareLimits() bounds of the measured channels (refreshLimits()).
+  std::int32_t limTemp_ = 0, limSovl_ = 0, limSuvl_ = 0, limBovl_ = 0, limBuvl_ = 0;
+  bool limPol_ = false;
+  std::uint16_t measured_ = 0;
   // Conversion engine state.
   bool running_ = false;
   TimeNs nextSample_ = 0;
   TimeNs sampleTime_ = 1;  // sampleTime() while running (set when conversions restart)
+  int avg_ = 1;            // samples per result (AVG) while running, set with sampleTime_
   // Raw ADC codes of analog_ (constant until the next setAnalog() or an
   // ADCRANGE change): quantised once, not per raw sample batch.
   bool codesValid_ = false;
@@ -133,7 +147,7 @@ class Ina228Model final : public SimI2cDevice {
   std::uint16_t curScaleCal_ = 0;  // SHUNT_CAL that curScale_ = 4096 / SHUNT_CAL was computed for
   double curScale_ = 0.0;          // POWER code of one raw sample (SLOWALERT = 0 limit)
   int samplesInWindow_ = 0;
-  double sumVsh_ = 0.0, sumVbus_ = 0.0, sumTemp_ = 0.0;
+  std::int64_t sumVsh_ = 0, sumVbus_ = 0, sumTemp_ = 0;  // raw codes of the window
   std::uint64_t conversions_ = 0;
 };
 

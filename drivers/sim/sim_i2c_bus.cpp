@@ -8,14 +8,12 @@ void SimI2cBus::attach(std::uint16_t addr, SimI2cDevice* dev) noexcept {
   if (addr < devs_.size()) {
     devs_[addr] = dev;
     acking_[addr] = nack_[addr] ? nullptr : dev;
-    updatedTo_[addr] = kNever;
   }
 }
 void SimI2cBus::detach(std::uint16_t addr) noexcept {
   if (addr < devs_.size()) {
     devs_[addr] = nullptr;
     acking_[addr] = nullptr;
-    updatedTo_[addr] = kNever;
   }
 }
 void SimI2cBus::setNack(std::uint16_t addr, bool n) noexcept {
@@ -28,32 +26,35 @@ bool SimI2cBus::nack(std::uint16_t addr) const noexcept { return addr < nack_.si
 
 int SimI2cBus::transfer(std::span<I2cMsg> msgs) noexcept {
   ++transfers_;
-  if (msgs.empty()) {
+  I2cMsg* m = msgs.data();
+  I2cMsg* const end = m + msgs.size();
+  if (m == end) {
     ++failed_;
     return EINVAL;
   }
   const TimeNs t = now_ ? *now_ : 0;
-  for (auto& m : msgs) {
-    // i2c-dev rejects 10-bit addresses unless I2C_TEN is set; we have none.
-    SimI2cDevice* const d = m.addr < acking_.size() ? acking_[m.addr] : nullptr;
-    if (d == nullptr) {  // absent chip or NACK fault
+  do {
+    // The run of messages to one address (all of them, for our drivers) goes
+    // to the chip in one transact(), which stops at a message without a
+    // buffer (EFAULT) or one the chip refuses; the outcome is the one of
+    // dispatching the messages singly. An absent or NACKing address fails
+    // with EREMOTEIO (i2c-dev rejects 10-bit addresses unless I2C_TEN is
+    // set; we have none).
+    const std::uint16_t addr = m->addr;
+    SimI2cDevice* const d = addr < acking_.size() ? acking_[addr] : nullptr;
+    if (d == nullptr) [[unlikely]] {
       ++failed_;
       return EREMOTEIO;
     }
-    if (m.len > 0 && m.buf == nullptr) {
-      ++failed_;
-      return EFAULT;
-    }
-    if (updatedTo_[m.addr] != t) {  // once per chip and instant (update() is monotonic)
-      d->update(t);
-      updatedTo_[m.addr] = t;
-    }
-    const int rc = m.read ? d->read(m.buf, m.len) : d->write(m.buf, m.len);
-    if (rc != 0) {
+    I2cMsg* run = m + 1;
+    while (run != end && run->addr == addr) ++run;
+    const int rc = d->transact(t, std::span<I2cMsg>(m, std::size_t(run - m)));
+    if (rc != 0) [[unlikely]] {
       ++failed_;
       return rc;
     }
-  }
+    m = run;
+  } while (m != end);
   return 0;
 }
 

@@ -1,8 +1,11 @@
 #include "drivers/sim/sim_onewire.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cmath>
-#include <cstdio>
-#include <fstream>
+#include <string>
 #include <system_error>
 
 namespace xr::sim {
@@ -35,34 +38,58 @@ std::uint8_t SimOneWire::crc8(const std::uint8_t* p, std::size_t n) {
 }
 
 std::string SimOneWire::formatW1Slave(std::int16_t raw, bool corrupt) {
-  std::uint8_t sp[9] = {std::uint8_t(raw & 0xFF), std::uint8_t((raw >> 8) & 0xFF), 0x4B, 0x46, 0x7F, 0xFF,
-                        0x0C, 0x10, 0};
+  std::uint8_t sp[9] = {
+      std::uint8_t(raw & 0xFF), std::uint8_t((raw >> 8) & 0xFF), 0x4B, 0x46, 0x7F, 0xFF, 0x0C, 0x10, 0};
   const std::uint8_t crc = crc8(sp, 8);
   sp[8] = corrupt ? std::uint8_t(crc ^ 0x5A) : crc;
-  std::string bytes;
-  char b[4];
-  for (auto x : sp) {
-    std::snprintf(b, sizeof b, "%02x ", x);
-    bytes += b;
+  // Formatted by hand (what "%02x " x 9, ": crc=%02x YES|NO" and "t=%d"
+  // give; the unit test holds it to snprintf): one string, no printf parsing.
+  static constexpr char kHex[] = "0123456789abcdef";
+  char bytes[27];
+  for (int i = 0; i < 9; ++i) {
+    bytes[3 * i] = kHex[sp[i] >> 4];
+    bytes[3 * i + 1] = kHex[sp[i] & 15];
+    bytes[3 * i + 2] = ' ';
   }
-  char tail[48];
-  std::snprintf(tail, sizeof tail, ": crc=%02x %s\n", crc, sp[8] == crc ? "YES" : "NO");
   // The kernel computes t= from the 16-bit reading: raw * 1000 / 16 (C division).
   const int milli = int(raw) * 1000 / 16;
-  char line2[32];
-  std::snprintf(line2, sizeof line2, "t=%d\n", milli);
-  return bytes + tail + bytes + line2;
+  std::string out;
+  out.reserve(96);
+  out.append(bytes, sizeof bytes);
+  out += ": crc=";
+  out += kHex[crc >> 4];
+  out += kHex[crc & 15];
+  out += sp[8] == crc ? " YES\n" : " NO\n";
+  out.append(bytes, sizeof bytes);
+  out += "t=";
+  out += std::to_string(milli);
+  out += '\n';
+  return out;
 }
 
 void SimOneWire::writeFile(const std::string& content) {
   std::error_code ec;
   if (!written_) fs::create_directories(root_ / id_, ec);  // after a reconnect
-  const fs::path tmp = root_ / id_ / ".w1_slave.tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    f << content;
+  // Plain open/write/close/rename on paths built once (no iostream, no
+  // path concatenation per write): this runs every 750 ms of virtual time.
+  if (tmpPath_.empty()) {
+    tmpPath_ = (root_ / id_ / ".w1_slave.tmp").string();
+    slavePath_ = slavePath().string();
   }
-  fs::rename(tmp, slavePath(), ec);
+  const int fd = ::open(tmpPath_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd >= 0) {
+    const char* p = content.data();
+    std::size_t left = content.size();
+    while (left > 0) {
+      const ssize_t n = ::write(fd, p, left);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) break;
+      p += n;
+      left -= std::size_t(n);
+    }
+    ::close(fd);
+  }
+  ::rename(tmpPath_.c_str(), slavePath_.c_str());
   ++writes_;
 }
 

@@ -47,6 +47,7 @@ class SimOneWire {
   void writeFile(const std::string& content);
   std::filesystem::path root_;
   std::string id_;
+  std::string tmpPath_, slavePath_;  // built at the first write
   bool present_ = true;
   bool corrupt_ = false;
   bool written_ = false;

@@ -5,13 +5,6 @@
 
 namespace xr::sim {
 
-void ChangeLog::record(TimeNs t, double v) {
-  ++count_;
-  if (cap_ == 0) return;
-  if (log_.size() >= cap_) log_.pop_front();
-  log_.push_back({t, v});
-}
-
 bool SimPwm::setDutyPercent(double pct) noexcept {
   if (failing_) return false;
   if (!std::isfinite(pct)) return false;  // sysfs would reject it too

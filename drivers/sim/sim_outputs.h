@@ -3,10 +3,10 @@
 // output records every change with its (virtual) time, so tests can assert
 // "the field enable went LOW at t" and the plant can read the levels.
 // The log keeps the newest `capacity` changes (a long run changes the duty
-// every tick); counts cover the whole run.
+// every tick) in a ring; counts cover the whole run.
 #include <cstddef>
 #include <cstdint>
-#include <deque>
+#include <memory>
 
 #include "core/time.h"
 #include "drivers/hal/outputs.h"
@@ -18,16 +18,36 @@ struct Change {
   double value = 0.0;
 };
 
+// A ring of the newest `capacity` changes, allocated once at the first
+// change: a long run that changes the duty every tick costs two stores and
+// a wrap per change (no deque node push and pop, no vector growth).
 class ChangeLog {
  public:
   explicit ChangeLog(std::size_t capacity = 1u << 16) : cap_(capacity) {}
-  void record(TimeNs t, double v);
-  const std::deque<Change>& changes() const noexcept { return log_; }
+  void record(TimeNs t, double v) {
+    ++count_;
+    if (cap_ == 0) return;
+    if (!ring_) [[unlikely]]
+      ring_ = std::make_unique<Change[]>(cap_);
+    ring_[head_] = {t, v};
+    head_ = head_ + 1 == cap_ ? 0 : head_ + 1;
+    if (size_ < cap_) ++size_;
+  }
+  // The kept changes, oldest first: [0, size()).
+  std::size_t size() const noexcept { return size_; }
+  bool empty() const noexcept { return size_ == 0; }
+  const Change& operator[](std::size_t i) const noexcept {
+    const std::size_t k = (size_ < cap_ ? 0 : head_) + i;  // the oldest is at head_ once full
+    return ring_[k < cap_ ? k : k - cap_];
+  }
+  const Change& back() const noexcept { return ring_[head_ == 0 ? cap_ - 1 : head_ - 1]; }
   std::uint64_t count() const noexcept { return count_; }
 
  private:
   std::size_t cap_;
-  std::deque<Change> log_;
+  std::unique_ptr<Change[]> ring_;
+  std::size_t head_ = 0;  // where the next change goes
+  std::size_t size_ = 0;
   std::uint64_t count_ = 0;
 };
 

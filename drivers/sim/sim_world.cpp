@@ -31,7 +31,9 @@ SimWorld::SimWorld(const WorldConfig& cfg, const HardwareSettings& hw)
   // Noise at the ADS pins, in ADC volts, per conversion.
   pinSigma_ = {cfg_.noise.battery_v / ch0Gain_, cfg_.noise.alt_a * fe.hall_sensitivity_v_per_a,
                cfg_.noise.rpm / rpmScale_, 0.0};
-  ads_.setInputSource(&SimWorld::adsPin, this);
+  // The ADS1115 draws this noise itself, for the pin a conversion samples
+  // (one channel per conversion), and clamps at the input protection.
+  ads_.setInputNoise(&rng_, pinSigma_, kAdsVdd + 0.3);
   bus_.attach(hw.ina228_address, &ina_);
   bus_.attach(hw.ads1115_address, &ads_);
   if (!cfg.w1Root.empty()) w1_ = std::make_unique<SimOneWire>(cfg.w1Root);
@@ -62,6 +64,12 @@ void SimWorld::setFault(Fault f, bool active, double value) {
       break;
     case Fault::temp_value:
       if (w1_) w1_->convertNow();  // the file follows the fault at once, not at the next 750 ms
+      break;
+    case Fault::battery_v_zero:  // a broken sense wire reads exactly 0 V, without noise
+      ads_.setInputSigma(0, active ? 0.0 : pinSigma_[0]);
+      break;
+    case Fault::rpm_signal_loss:  // the tach ripple is noise only while there is a tach signal
+      ads_.setInputSigma(2, active ? 0.0 : pinSigma_[2]);
       break;
     default:
       break;
@@ -98,15 +106,14 @@ void SimWorld::refreshAnalog(double dt) noexcept {
   a.dietemp_c = cfg_.inaDieTempC;
   ina_.setAnalog(a);
 
-  // ADS1115 pins, noise-free here: adsPin() adds the noise when a conversion
-  // actually samples a pin (one channel per conversion), instead of drawing
-  // noise for all four every step. (frontend::adcFromBatteryVolts /
-  // adcFromAltAmps / adcFromRpm inlined, same arithmetic.)
-  pins_[0] = faults_[int(Fault::battery_v_zero)]
-                 ? 0.0
-                 : (p.battery_v + faultValues_[int(Fault::battery_v_offset)]) / ch0Gain_;
+  // ADS1115 pins, noise-free: the model adds the noise when a conversion
+  // actually samples a pin. (frontend::adcFromBatteryVolts / adcFromAltAmps /
+  // adcFromRpm inlined, same arithmetic.)
+  ads_.setInput(0, faults_[int(Fault::battery_v_zero)]
+                       ? 0.0
+                       : (p.battery_v + faultValues_[int(Fault::battery_v_offset)]) / ch0Gain_);
   const double hallA = p.alt_a + faultValues_[int(Fault::alt_current_offset)];
-  pins_[1] = fe.hall_zero_v + (fe.hall_invert ? -hallA : hallA) * fe.hall_sensitivity_v_per_a;
+  ads_.setInput(1, fe.hall_zero_v + (fe.hall_invert ? -hallA : hallA) * fe.hall_sensitivity_v_per_a);
   // LM2907: tracks the tach frequency with a short ripple filter; when the
   // signal is lost its output decays through the 2 s coupling time constant.
   const bool lost = faults_[int(Fault::rpm_signal_loss)];
@@ -122,7 +129,7 @@ void SimWorld::refreshAnalog(double dt) noexcept {
   } else if (!lost) {
     lm2907V_ = target;
   }
-  pins_[2] = lm2907V_;
+  ads_.setInput(2, lm2907V_);
   // Temperatures move over seconds: refresh the thermistor node and the
   // 1-Wire reading every 50 ms of virtual time (and at once on a fault change).
   if (dt == 0.0 || now_ >= nextSlowRefresh_) {
@@ -134,28 +141,9 @@ void SimWorld::refreshAnalog(double dt) noexcept {
     ch3V_ = faults_[int(Fault::temp_sensor_disconnect)] ? fe.thermistor_supply_v
                                                         : frontend::adcFromTempF(fe, tempF);
   }
-  pins_[3] = ch3V_;
+  ads_.setInput(3, ch3V_);  // CH3: the thermistor node carries the temperature noise (slow refresh)
 
   if (w1_ && now_ >= w1_->nextConversion()) w1_->update(now_, fToC(tempSenseF_));
-}
-
-double SimWorld::adsPin(void* ctx, int ain) noexcept {
-  SimWorld& w = *static_cast<SimWorld*>(ctx);
-  double v = w.pins_[ain & 3];
-  switch (ain & 3) {
-    case 0:  // a broken sense wire reads exactly 0 V
-      if (!w.faults_[int(Fault::battery_v_zero)]) v += w.rng_.gauss(w.pinSigma_[0]);
-      break;
-    case 2:  // the tach ripple is noise only while there is a tach signal
-      if (!w.faults_[int(Fault::rpm_signal_loss)]) v += w.rng_.gauss(w.pinSigma_[2]);
-      break;
-    case 1:
-      v += w.rng_.gauss(w.pinSigma_[1]);
-      break;
-    default:
-      break;  // CH3: the thermistor node carries the temperature noise (slow refresh)
-  }
-  return std::clamp(std::isfinite(v) ? v : 0.0, 0.0, kAdsVdd + 0.3);
 }
 
 void SimWorld::stepPlant(TimeNs to) noexcept {

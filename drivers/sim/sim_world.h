@@ -114,9 +114,6 @@ class SimWorld {
 
  private:
   void refreshAnalog(double dt) noexcept;
-  // The ADS1115 model's input source: pin voltage plus noise at the instant
-  // a conversion samples it.
-  static double adsPin(void* ctx, int ain) noexcept;
   void stepPlant(TimeNs to) noexcept;
   double fieldCommand() const noexcept;
 
@@ -144,8 +141,7 @@ class SimWorld {
   SimWatchdog watchdog_;
   std::array<bool, kFaultCount> faults_{};
   std::array<double, kFaultCount> faultValues_{};
-  std::array<double, 4> pins_{};      // ADS1115 AIN0..3, noise-free, at the last plant step
-  std::array<double, 4> pinSigma_{};  // noise per conversion, ADC volts
+  std::array<double, 4> pinSigma_{};  // ADS1115 noise per conversion, ADC volts (without faults)
   double lm2907V_ = 0.0;
   // Slow channels (temperatures) are refreshed at this cadence, not every step.
   TimeNs nextSlowRefresh_ = 0;

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cerrno>
+#include <cmath>
+#include <limits>
 
 #include "drivers/sim/sim_i2c_bus.h"
 
@@ -159,6 +161,29 @@ TEST(Ads1115Model, AlertRdyPulsesInContinuous) {
   EXPECT_EQ(r.chip.readyPulses(), 12u);  // 100 ms / 7.8125 ms
 }
 
+TEST(Ads1115Model, ThresholdWritesSwitchBetweenReadyPinAndComparator) {
+  Rig r;
+  r.writeReg(1, cfg(0, 4, 1, 0, 4, 0));  // continuous, 128 SPS, queue 1
+  r.advance(fromMs(20));
+  EXPECT_EQ(r.chip.nextReadyEdge(), -1) << "reset thresholds: comparator, no ready pulses";
+  r.writeReg(3, 0x8000);
+  EXPECT_EQ(r.chip.nextReadyEdge(), -1) << "Lo_thresh MSB still 1";
+  r.writeReg(2, 0x0000);
+  EXPECT_GT(r.chip.nextReadyEdge(), r.now);
+  r.advance(fromMs(40));
+  const auto pulses = r.chip.readyPulses();
+  EXPECT_EQ(pulses, 5u);  // 40 ms / 7.8125 ms
+  r.writeReg(3, 0x7FFF);  // Hi_thresh MSB back to 0: comparator again
+  EXPECT_EQ(r.chip.nextReadyEdge(), -1);
+  r.advance(fromMs(40));
+  EXPECT_EQ(r.chip.readyPulses(), pulses);
+  r.writeReg(3, 0x8000);
+  r.writeReg(2, 0x8000);  // Lo_thresh MSB 1: not the ready pin either
+  EXPECT_EQ(r.chip.nextReadyEdge(), -1);
+  r.writeReg(2, 0x0001);
+  EXPECT_GT(r.chip.nextReadyEdge(), r.now);
+}
+
 TEST(Ads1115Model, TraditionalComparatorWithQueue) {
   Rig r;
   r.writeReg(3, 8000);                   // hi
@@ -257,6 +282,45 @@ TEST(Ads1115Model, InputSourceIsAskedOnlyForTheMuxPinsAtEachConversion) {
   r.chip.setInputSource(nullptr, nullptr);
   r.advance(fromMs(5));
   EXPECT_EQ(r.readReg(0), 24000);  // 3 V
+}
+
+TEST(Ads1115Model, InputNoiseIsDrawnForTheSampledPinOnlyAndClamped) {
+  Rig r;
+  Rng rng(42), ref(42);
+  r.chip.setInputs({1.0, 2.0, 9.0, -1.0});
+  r.chip.setInputNoise(&rng, {0.01, 0.0, 0.02, 0.0}, 5.3);
+  // AIN0-GND single-shot, ±4.096 V: one draw, the one a reference generator gives.
+  ASSERT_EQ(r.writeReg(1, cfg(1, 4, 1, 1, 7)), 0);
+  r.advance(fromMs(2));
+  const double v0 = 1.0 + ref.gauss(0.01);
+  EXPECT_EQ(std::int16_t(r.readReg(0)), std::int16_t(std::nearbyint(v0 / 4.096 * 32768.0)));
+  // AIN1 has sigma 0: no draw at all (the generators stay in step).
+  ASSERT_EQ(r.writeReg(1, cfg(1, 5, 1, 1, 7)), 0);
+  r.advance(fromMs(2));
+  EXPECT_EQ(r.readReg(0), 16000);  // 2 V exactly
+  // AIN2 draws, then clamps at vmax (±6.144 V range so 5.3 V is on scale).
+  ASSERT_EQ(r.writeReg(1, cfg(1, 6, 0, 1, 7)), 0);
+  r.advance(fromMs(2));
+  (void)ref.gauss(0.02);
+  EXPECT_EQ(std::int16_t(r.readReg(0)), std::int16_t(std::nearbyint(5.3 / 6.144 * 32768.0)));
+  // AIN3 below ground reads 0 V; a differential AIN0-AIN3 samples AIN0 (one draw) then AIN3.
+  ASSERT_EQ(r.writeReg(1, cfg(1, 7, 1, 1, 7)), 0);
+  r.advance(fromMs(2));
+  EXPECT_EQ(r.readReg(0), 0);
+  ASSERT_EQ(r.writeReg(1, cfg(1, 1, 1, 1, 7)), 0);
+  r.advance(fromMs(2));
+  const double d = 1.0 + ref.gauss(0.01);
+  EXPECT_EQ(std::int16_t(r.readReg(0)), std::int16_t(std::nearbyint(d / 4.096 * 32768.0)));
+  EXPECT_EQ(rng.next(), ref.next()) << "exactly the draws of the sampled pins";
+  // A non-finite pin voltage reads 0 V, +inf included (not the clamp value).
+  r.chip.setInputs({std::numeric_limits<double>::infinity(), std::nan(""), 0, 0});
+  r.chip.setInputSigma(0, 0.0);
+  ASSERT_EQ(r.writeReg(1, cfg(1, 4, 1, 1, 7)), 0);
+  r.advance(fromMs(2));
+  EXPECT_EQ(r.readReg(0), 0);
+  ASSERT_EQ(r.writeReg(1, cfg(1, 5, 1, 1, 7)), 0);
+  r.advance(fromMs(2));
+  EXPECT_EQ(r.readReg(0), 0);
 }
 
 }  // namespace

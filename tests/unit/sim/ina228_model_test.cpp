@@ -1,11 +1,12 @@
 // INA228 model against datasheet-facts §1 (register map, encodings, alerts).
+#include "drivers/sim/ina228_model.h"
+
 #include <gtest/gtest.h>
 
 #include <cerrno>
 #include <cstdint>
 #include <vector>
 
-#include "drivers/sim/ina228_model.h"
 #include "drivers/sim/sim_i2c_bus.h"
 
 namespace xr::sim {
@@ -374,6 +375,67 @@ TEST(Ina228Model, TempcoCompensationLowersCurrentWhenHot) {
   }
   const double c = double(cold.readReg(CURRENT, 3) >> 4), h = double(hot.readReg(CURRENT, 3) >> 4);
   EXPECT_NEAR(h / c, 1.0 / 1.1, 1e-3);  // +100 degC x 1000 ppm = +10 % R
+}
+
+TEST(Ina228Model, WindowAverageIsTheRoundedMeanOfItsRawSamples) {
+  Rig r;
+  r.writeReg(ADC_CONFIG, (0x9 << 12) | 1);  // bus only, 50 us, AVG=1 (4 samples)
+  const double lsb = 195.3125e-6;
+  // Samples at 50, 100 us see code 100; at 150, 200 us code 101: mean 100.5,
+  // ties to even -> 100. Then 101, 101, 102, 102: 101.5 -> 102.
+  r.chip.setAnalog({0.0, 100 * lsb, 25.0});
+  r.advance(fromUs(100));
+  r.chip.setAnalog({0.0, 101 * lsb, 25.0});
+  r.advance(fromUs(100));
+  EXPECT_EQ(r.chip.conversions(), 1u);
+  EXPECT_EQ(r.readReg(VBUS, 3) >> 4, 100u);
+  r.advance(fromUs(100));
+  r.chip.setAnalog({0.0, 102 * lsb, 25.0});
+  r.advance(fromUs(100));
+  EXPECT_EQ(r.chip.conversions(), 2u);
+  EXPECT_EQ(r.readReg(VBUS, 3) >> 4, 102u);
+  // Negative shunt codes average the same way (two's complement, 20 bits).
+  r.writeReg(ADC_CONFIG, (0xA << 12) | 1);  // shunt only
+  r.chip.setAnalog({-3 * 312.5e-9, 0.0, 25.0});
+  r.advance(fromUs(100));
+  r.chip.setAnalog({-4 * 312.5e-9, 0.0, 25.0});
+  r.advance(fromUs(100));
+  EXPECT_EQ(r.readReg(VSHUNT, 3) >> 4, 0xFFFFCu);  // -3.5 -> -4
+}
+
+TEST(Ina228Model, ClearingSlowAlertComparesRawSamplesAtOnce) {
+  Rig r;
+  r.writeReg(SHUNT_CAL, 4096);
+  r.writeReg(PWR_LIMIT, 1);
+  r.writeReg(DIAG_ALRT, SLOWALERT);
+  r.writeReg(ADC_CONFIG, (0xB << 12) | 7);  // bus + shunt, 50 us, 1024 samples: no result for ~100 ms
+  r.chip.setAnalog({0.002, 12.0, 25.0});
+  r.advance(fromUs(500));
+  EXPECT_FALSE(r.readReg(DIAG_ALRT, 2) & POL) << "SLOWALERT: only the averaged result is compared";
+  r.writeReg(DIAG_ALRT, 0);  // raw comparisons from now on, same analog inputs
+  r.advance(fromUs(200));
+  EXPECT_TRUE(r.readReg(DIAG_ALRT, 2) & POL);
+}
+
+TEST(Ina228Model, OnlyMeasuredChannelsFlagAndLimitWritesApplyAtOnce) {
+  Rig r;
+  r.writeReg(SOVL, 10);                 // 50 uV
+  r.writeReg(ADC_CONFIG, (0x9 << 12));  // bus only, 50 us: the shunt is not measured
+  r.chip.setAnalog({0.001, 12.0, 25.0});
+  r.advance(fromUs(200));
+  EXPECT_FALSE(r.readReg(DIAG_ALRT, 2) & SHNTOL);
+  r.writeReg(ADC_CONFIG, (0xB << 12));  // bus + shunt
+  r.advance(fromUs(200));
+  EXPECT_TRUE(r.readReg(DIAG_ALRT, 2) & SHNTOL);
+  r.writeReg(SOVL, 0x7FFF);  // limit raised: transparent flag follows at the next sample
+  r.advance(fromUs(200));
+  EXPECT_FALSE(r.readReg(DIAG_ALRT, 2) & SHNTOL);
+  r.writeReg(BUVL, std::uint16_t(13.0 / 3.125e-3));  // 13 V: the bus reads under
+  r.advance(fromUs(200));
+  EXPECT_TRUE(r.readReg(DIAG_ALRT, 2) & BUSUL);
+  r.writeReg(BUVL, 0);
+  r.advance(fromUs(200));
+  EXPECT_FALSE(r.readReg(DIAG_ALRT, 2) & BUSUL);
 }
 
 }  // namespace

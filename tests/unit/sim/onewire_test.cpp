@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -93,6 +94,37 @@ TEST(SimOneWire, DisconnectRemovesTheDevice) {
   w.setPresent(true);
   w.update(fromSec(6), 31.0);
   EXPECT_TRUE(fs::exists(w.slavePath()));
+}
+
+// The kernel's format through printf, as the simulator wrote it before it
+// formatted by hand: every reading the DS18B20 can give, both CRC states.
+std::string printfW1Slave(std::int16_t raw, bool corrupt) {
+  std::uint8_t sp[9] = {
+      std::uint8_t(raw & 0xFF), std::uint8_t((raw >> 8) & 0xFF), 0x4B, 0x46, 0x7F, 0xFF, 0x0C, 0x10, 0};
+  const std::uint8_t crc = SimOneWire::crc8(sp, 8);
+  sp[8] = corrupt ? std::uint8_t(crc ^ 0x5A) : crc;
+  std::string bytes;
+  char b[4];
+  for (auto x : sp) {
+    std::snprintf(b, sizeof b, "%02x ", x);
+    bytes += b;
+  }
+  char tail[48];
+  std::snprintf(tail, sizeof tail, ": crc=%02x %s\n", crc, sp[8] == crc ? "YES" : "NO");
+  char line2[32];
+  std::snprintf(line2, sizeof line2, "t=%d\n", int(raw) * 1000 / 16);
+  return bytes + tail + bytes + line2;
+}
+
+TEST(SimOneWire, HandFormatMatchesPrintfForEveryReading) {
+  for (int raw = -55 * 16; raw <= 125 * 16; ++raw) {
+    for (bool corrupt : {false, true}) {
+      ASSERT_EQ(SimOneWire::formatW1Slave(std::int16_t(raw), corrupt),
+                printfW1Slave(std::int16_t(raw), corrupt))
+          << raw << (corrupt ? " corrupt" : "");
+    }
+  }
+  EXPECT_EQ(SimOneWire::formatW1Slave(85 * 16, false), printfW1Slave(85 * 16, false));
 }
 
 }  // namespace

@@ -58,8 +58,8 @@ TEST(SimWorld, FieldFollowsPwmAndEnable) {
   EXPECT_NEAR(w.truth().plant.field, 0.5, 0.01);
   EXPECT_TRUE(w.truth().field_on);
   EXPECT_GT(w.truth().plant.alt_a, 10.0);
-  ASSERT_GE(w.simFieldEnable().log().changes().size(), 1u);
-  EXPECT_EQ(w.simFieldEnable().log().changes().back().t, fromSec(1));
+  ASSERT_GE(w.simFieldEnable().log().size(), 1u);
+  EXPECT_EQ(w.simFieldEnable().log().back().t, fromSec(1));
 }
 
 TEST(SimWorld, InaAlertOnBovlCutsTheFieldInHardware) {
