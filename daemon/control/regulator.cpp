@@ -143,7 +143,7 @@ bool Regulator::command(const Command& cmd) {
   return ok;
 }
 
-const Outputs& Regulator::step(const Inputs& in) {
+[[gnu::flatten]] const Outputs& Regulator::step(const Inputs& in) {
   State& s = *s_;
   const Params& p = s.p;
   Outputs& out = s.out;
