@@ -16,6 +16,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
+#include <type_traits>
 
 #include "battery/battery_monitor.h"
 #include "control/control_law.h"
@@ -186,7 +188,10 @@ bool Regulator::command(const Command& cmd) {
   // 5. Immutable snapshot and mode selection by priority.
   TickSnapshot snap;
   snap.now = in.now;
-  snap.prot = s.prot.flags();
+  // One block copy: the member-wise assignment of these plain bools and
+  // enums cost ~6 more instructions per tick once Regulator::step is flattened.
+  static_assert(std::is_trivially_copyable_v<ProtectionFlags>);
+  std::memcpy(&snap.prot, &s.prot.flags(), sizeof(ProtectionFlags));
   snap.limpHome = s.limpHome;
   snap.manualMode = manualMode;
   snap.sysOff = s.opOff;
