@@ -5,13 +5,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/finite.h"
 #include "params/constants.h"
 
 namespace xr {
 
 namespace {
-
-bool finite(double v) { return std::isfinite(v); }
 
 // A reading usable at `now`: has a value and is no older than maxAgeMs.
 bool usable(const Reading& r, TimeNs now, std::int64_t maxAgeMs) {

@@ -5,6 +5,7 @@
 
 #include "control/rpm_tables.h"
 #include "control/slew.h"
+#include "core/finite.h"
 #include "params/constants.h"
 #include "params/derived.h"
 
@@ -17,7 +18,6 @@ namespace {
 constexpr double kMaxControlDtSec = 0.25;
 constexpr double kNoCeiling = 1e300;
 
-bool finite(double v) { return std::isfinite(v); }
 }  // namespace
 
 ControlLaw::ControlLaw(const Params& p) : currentPID_(p.PidKp, p.PidKi, p.PidKd, Pid::DIRECT) {

@@ -137,6 +137,9 @@ class ControlLaw {
   // so they are rewritten only then and on the tick after; the result always
   // equals fillTelemetry() (control_test checks it).
   void updateTelemetry(ControlTelemetry& t);
+  // A tick passed without updateTelemetry(): a tuning run may have started
+  // and stopped unseen, so the next update rewrites the slow fields.
+  void telemetrySkipped() { slowTelemetryStale_ = true; }
 
  private:
   void configurePid(const Params& p);

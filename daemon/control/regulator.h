@@ -32,8 +32,13 @@ class Regulator {
   // CommandRejected event on the next step, when the command is not legal now.
   bool command(const Command& cmd);
 
-  // One control tick.
+  // One control tick. With in.telemetryWanted false, the telemetry that is
+  // a pure function of the state (the module blocks, stage, targets, SoC and
+  // energies) is left as it was; completeTelemetry() fills it.
   const Outputs& step(const Inputs& in);
+  // Fills the deferred telemetry of the last step: afterwards outputs() is
+  // exactly what that step would have returned with telemetryWanted true.
+  const Outputs& completeTelemetry();
   const Outputs& outputs() const;
 
   // Persistent battery state, for the store.
@@ -41,6 +46,8 @@ class Regulator {
   void restoreLedger(const BatteryLedger& ledger);
 
  private:
+  void fillStateTelemetry();
+
   struct State;
   std::unique_ptr<State> s_;
 };

@@ -23,19 +23,19 @@ struct Inputs {
   TimeNs now = 0;
 
   // INA228 (sign convention: Bcur positive = charging into the battery).
-  bool inaPresent = false;       // detected and answering
-  Reading IBV;                   // bus voltage, V
-  Reading Bcur;                  // shunt current, A, before DynamicShuntGainFactor
+  bool inaPresent = false;         // detected and answering
+  Reading IBV;                     // bus voltage, V
+  Reading Bcur;                    // shunt current, A, before DynamicShuntGainFactor
   bool inaBusOvervoltage = false;  // DIAG_ALRT.BUSOL seen by the driver (hardware ALERT asserted)
-  TimeNs inaDiagStamp = 0;       // when DIAG_ALRT was last read
+  TimeNs inaDiagStamp = 0;         // when DIAG_ALRT was last read
   bool inaFastModeActive = false;  // the driver's conversion mode (fast while field on)
   double inaDieTempC = kNoValue;
 
   // ADS1115 channels, already scaled by the analog front end.
-  Reading BatteryV;        // CH0, V
-  Reading altCurrentRaw;   // CH1, A, before DynamicAltCurrentZero is subtracted
-  Reading rpm;             // CH2, RPM
-  Reading thermistorF;     // CH3, degF
+  Reading BatteryV;       // CH0, V
+  Reading altCurrentRaw;  // CH1, A, before DynamicAltCurrentZero is subtracted
+  Reading rpm;            // CH2, RPM
+  Reading thermistorF;    // CH3, degF
 
   // DS18B20 over 1-Wire (slow thread).
   Reading AlternatorTemperatureF;
@@ -49,6 +49,11 @@ struct Inputs {
   // Discrete inputs (already polarity-corrected).
   bool ignitionOn = true;
   bool bmsChargeEnabled = true;
+
+  // The caller will read this tick's telemetry (not only the duty, enables,
+  // buzzer, INA requests and events). False lets Regulator::step defer what
+  // Regulator::completeTelemetry() can fill later.
+  bool telemetryWanted = true;
 };
 
 }  // namespace xr

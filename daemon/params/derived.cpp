@@ -16,25 +16,26 @@ VoltageRange plausibleVoltageRange(const Params& p) {
   // safeties-and-protections.md "Implausibility": the seed's table, which
   // already includes its 0.5 V buffer.
   switch (systemClass(p)) {
-    case SystemClass::V12: return {4.5, 15.5};
-    case SystemClass::V24: return {9.0, 30.5};
-    case SystemClass::V48: return {18.0, 60.5};
+    case SystemClass::V12:
+      return {4.5, 15.5};
+    case SystemClass::V24:
+      return {9.0, 30.5};
+    case SystemClass::V48:
+      return {18.0, 60.5};
   }
   return {4.5, 15.5};
 }
 
 double criticalDisagreementThreshold(const Params& p) {
   switch (systemClass(p)) {
-    case SystemClass::V12: return k::DISAGREE_CRITICAL_12V;
-    case SystemClass::V24: return k::DISAGREE_CRITICAL_24V;
-    case SystemClass::V48: return k::DISAGREE_CRITICAL_48V;
+    case SystemClass::V12:
+      return k::DISAGREE_CRITICAL_12V;
+    case SystemClass::V24:
+      return k::DISAGREE_CRITICAL_24V;
+    case SystemClass::V48:
+      return k::DISAGREE_CRITICAL_48V;
   }
   return k::DISAGREE_CRITICAL_12V;
-}
-
-double alternatorHardShutdownV(const Params& p) {
-  return p.AlternatorHardShutdownV > 0.0 ? p.AlternatorHardShutdownV
-                                         : p.BulkVoltage + k::HARD_SHUTDOWN_DEFAULT_OFFSET_V;
 }
 
 double voltageHardwareLimit(const Params& p) { return p.BulkVoltage + k::INA_OV_OFFSET_V; }

@@ -1,5 +1,6 @@
 #pragma once
 // Values derived from parameters, computed in one place (foundation issue).
+#include "params/constants.h"
 #include "params/params.h"
 
 namespace xr {
@@ -20,7 +21,12 @@ VoltageRange plausibleVoltageRange(const Params& p);
 // 1 / 2 / 4 V by system class.
 double criticalDisagreementThreshold(const Params& p);
 // AlternatorHardShutdownV, or BulkVoltage + 0.3 V when it is 0 (first boot).
-double alternatorHardShutdownV(const Params& p);
+// Inline: the control law reads it on every tick (an out-of-line call cost
+// more than the comparison it feeds).
+inline double alternatorHardShutdownV(const Params& p) {
+  return p.AlternatorHardShutdownV > 0.0 ? p.AlternatorHardShutdownV
+                                         : p.BulkVoltage + k::HARD_SHUTDOWN_DEFAULT_OFFSET_V;
+}
 // BulkVoltage + 0.3 V: programmed into the INA228 BOVL register.
 double voltageHardwareLimit(const Params& p);
 // MaxTableValue + 10 A.

@@ -5,6 +5,7 @@
 #include <bit>
 #include <cmath>
 
+#include "core/finite.h"
 #include "params/constants.h"
 #include "protection/protection_supervisor.h"
 
@@ -15,8 +16,6 @@ namespace {
 // NaN means "not read yet", not "sensor dead". Two seconds covers the slowest
 // first conversion (INA228 slow mode ~1.05 s) with margin.
 constexpr std::int64_t kSensorBootGraceMs = 2000;
-
-bool finite(double v) { return std::isfinite(v); }
 
 }  // namespace
 

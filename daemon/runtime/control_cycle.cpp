@@ -129,6 +129,8 @@ bool ControlCycle::tick(TimeNs now) {
   if (!sensorsOk) ++health_.sensorReadErrors;
   mergeSlowInputs();
   readDiscreteInputs();
+  in_.telemetryWanted = telemetryObserved(now);
+  telemetryComplete_ = in_.telemetryWanted;
   const TimeNs t1 = timed ? timing_.now() : 0;
 
   const Outputs& out = core_.step(in_);
@@ -169,7 +171,19 @@ bool ControlCycle::tick(TimeNs now) {
   return healthy && sensorsOk;
 }
 
-void ControlCycle::storeSnapshot(const Outputs& out, TimeNs now) noexcept {
+bool ControlCycle::telemetryObserved(TimeNs now) const noexcept {
+  // The same conditions publish() tests after the step (publishPhase_ as
+  // advanceTick() will leave it). A miss would only cost speed: storeSnapshot
+  // completes the telemetry whenever this tick's step deferred it.
+  const int nextPublishPhase = publishPhase_ + 1 >= cfg_.publishEveryTicks ? 0 : publishPhase_ + 1;
+  const bool stored = cfg_.publishEveryTicks <= 1 || stopping_ || nextPublishPhase == 1;
+  const bool row = cfg_.rowPeriod > 0 && (!rowsStarted_ || now - lastRow_ >= cfg_.rowPeriod);
+  return stored || row;
+}
+
+void ControlCycle::storeSnapshot(const Outputs& stepOut, TimeNs now) noexcept {
+  const Outputs& out = telemetryComplete_ ? stepOut : core_.completeTelemetry();
+  telemetryComplete_ = true;
   if (dev_.truth) dev_.truth->fill(truth_);
   health_.eventsDropped = h_.events.dropped();
   health_.stopping = stopping_;

@@ -90,6 +90,9 @@ class ControlCycle {
   void readDiscreteInputs() noexcept;
   bool writeOutputs(const Outputs& out) noexcept;
   void publish(const Outputs& out, TimeNs now) noexcept;
+  // This tick's telemetry goes into a snapshot or a row (decided before the
+  // step, from the same counters publish() uses).
+  bool telemetryObserved(TimeNs now) const noexcept;
   void storeSnapshot(const Outputs& out, TimeNs now) noexcept;
 
   ControlCore& core_;
@@ -113,6 +116,8 @@ class ControlCycle {
   static constexpr int kLedgerEveryTicks = 100;
   int timePhase_ = 0, publishPhase_ = 0, ledgerPhase_ = 0;
   const Outputs* lastOut_ = nullptr;
+  // False after a step that deferred its telemetry, until completed.
+  bool telemetryComplete_ = true;
   TimeNs lastNow_ = 0;
   TimeNs lastTempStamp_ = 0, lastVictronStamp_ = 0;
   std::uint64_t tempVersion_ = ~0ULL, victronVersion_ = ~0ULL;  // odd: never a stored version

@@ -31,6 +31,7 @@ class RegulatorCore final : public rt::ControlCore {
   const Outputs& step(const Inputs& in) override { return reg_.step(in); }
   void setParams(const Params& p) override { reg_.setParams(p); }
   bool command(const Command& c) override { return reg_.command(c); }
+  const Outputs& completeTelemetry() override { return reg_.completeTelemetry(); }
 
  private:
   Regulator reg_;
