@@ -421,15 +421,9 @@ int Ina228Model::write(const std::uint8_t* buf, std::size_t len) noexcept { retu
 
 int Ina228Model::transact(TimeNs t, std::span<I2cMsg> msgs) noexcept {
   update(t);
-  for (I2cMsg& m : msgs) {
-    std::uint8_t* const b = m.buf;
-    const std::size_t len = m.len;
-    if (b == nullptr && len > 0) [[unlikely]]
-      return EFAULT;
-    const int rc = m.read ? readMsg(b, len) : writeMsg(b, len);
-    if (rc != 0) return rc;
-  }
-  return 0;
+  return runMessages(
+      msgs, [this](std::uint8_t* b, std::size_t n) { return readMsg(b, n); },
+      [this](const std::uint8_t* b, std::size_t n) { return writeMsg(b, n); });
 }
 
 }  // namespace xr::sim

@@ -30,12 +30,9 @@ class SimI2cDevice {
   // write()/read(); this default dispatches each message.
   virtual int transact(TimeNs t, std::span<I2cMsg> msgs) noexcept {
     update(t);
-    for (I2cMsg& m : msgs) {
-      if (m.buf == nullptr && m.len > 0) return EFAULT;
-      const int rc = m.read ? read(m.buf, m.len) : write(m.buf, m.len);
-      if (rc != 0) return rc;
-    }
-    return 0;
+    return runMessages(
+        msgs, [this](std::uint8_t* b, std::size_t n) { return read(b, n); },
+        [this](const std::uint8_t* b, std::size_t n) { return write(b, n); });
   }
   // One write message (pointer byte, then data bytes MSB first).
   virtual int write(const std::uint8_t* buf, std::size_t len) noexcept = 0;
@@ -45,6 +42,21 @@ class SimI2cDevice {
   std::uint64_t protocolErrors() const noexcept { return protocolErrors_; }
 
  protected:
+  // The message loop of every transact(): the default above and the models'
+  // overrides, which pass their own non-virtual handlers so they inline.
+  template <class Read, class Write>
+  static int runMessages(std::span<I2cMsg> msgs, Read&& readMsg, Write&& writeMsg) noexcept {
+    for (I2cMsg& m : msgs) {
+      std::uint8_t* const b = m.buf;
+      const std::size_t len = m.len;
+      if (b == nullptr && len > 0) [[unlikely]]
+        return EFAULT;
+      const int rc = m.read ? readMsg(b, len) : writeMsg(b, len);
+      if (rc != 0) return rc;
+    }
+    return 0;
+  }
+
   std::uint64_t protocolErrors_ = 0;
 };
 
