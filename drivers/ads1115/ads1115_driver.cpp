@@ -192,11 +192,7 @@ Ads1115Samples Ads1115Driver::poll(TimeNs now) noexcept {
   return out;
 }
 
-void Ads1115Driver::clearFresh() noexcept {
-  for (auto& s : samples_.ch) s.fresh = false;
-}
-
-const Ads1115Samples& Ads1115Driver::service(TimeNs now) noexcept {
+const Ads1115Samples& Ads1115Driver::serviceDue(TimeNs now) noexcept {
   if (!present_ && now >= nextRedetect_) {
     nextRedetect_ = now + kRedetectInterval;
     if (start(now) == 0) ++stats_.redetects;
