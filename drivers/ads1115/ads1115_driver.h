@@ -178,7 +178,8 @@ class Ads1115Driver {
   // transaction's messages over these buffers (pointer to Conversion, the
   // result, the Config write).
   std::array<std::uint16_t, 4> edgeConfig_{};
-  std::uint8_t edgePtr_ = 0;  // ads1115::CONVERSION (set in the constructor)
+  std::array<double, 4> voltsPerCode_{};  // ads1115::voltsPerCode(pga_[ch])
+  std::uint8_t edgePtr_ = 0;              // ads1115::CONVERSION (set in the constructor)
   std::uint8_t edgeRead_[2] = {};
   std::uint8_t edgeWrite_[3] = {};  // ads1115::CONFIG, then the value
   I2cMsg edgeMsgs_[3] = {};
