@@ -10,7 +10,13 @@ ControlCycle::ControlCycle(ControlCore& core, const CycleDevices& devices, Hando
                            LoopStats& stats, const Clock& timing, CycleConfig config)
     : core_(core), dev_(devices), h_(handoffs), stats_(stats), timing_(timing), cfg_(config) {}
 
-void ControlCycle::applyBetweenTicks() noexcept {
+inline void ControlCycle::applyBetweenTicks() noexcept {
+  // Almost every tick has neither new Params nor a command: two loads, and
+  // the swap/drain out of line only when there is something to apply.
+  if (h_.params.pending() || !h_.commands.emptyForConsumer()) applyPending();
+}
+
+void ControlCycle::applyPending() noexcept {
   // DESIGN.md: Params are swapped whole between ticks, never mid-tick.
   if (h_.params.update()) {
     core_.setParams(h_.params.current());
@@ -25,7 +31,7 @@ void ControlCycle::applyBetweenTicks() noexcept {
   }
 }
 
-void ControlCycle::mergeSlowInputs() noexcept {
+inline void ControlCycle::mergeSlowInputs() noexcept {
   // The slow sensors post about once a second: while a hand-off's version
   // has not moved, its sample is the one already merged (only no longer
   // fresh), so the copy out of the seqlock is skipped.
@@ -69,7 +75,7 @@ void ControlCycle::mergeVictron() noexcept {
   lastVictronStamp_ = v.stamp;
 }
 
-void ControlCycle::readDiscreteInputs() noexcept {
+inline void ControlCycle::readDiscreteInputs() noexcept {
   // A read error counts as the safe level: charging disabled / ignition off.
   if (dev_.bms)
     in_.bmsChargeEnabled = dev_.bms->get() == 0;
@@ -81,7 +87,7 @@ void ControlCycle::readDiscreteInputs() noexcept {
     in_.ignitionOn = true;
 }
 
-bool ControlCycle::writeOutputs(const Outputs& out) noexcept {
+inline bool ControlCycle::writeOutputs(const Outputs& out) noexcept {
   const bool enable = out.fieldEnable;
   double duty = out.dutyPct;
   if (!std::isfinite(duty)) duty = 0.0;
@@ -118,6 +124,64 @@ bool ControlCycle::writeOutputs(const Outputs& out) noexcept {
   return ok;
 }
 
+inline ControlCycle::PublishPlan ControlCycle::planPublish(TimeNs now) const noexcept {
+  // The snapshot is stored when publishPhase_, as advanceTick() will leave
+  // it, is 1; a row is due on the row grid.
+  const int nextPublishPhase = publishPhase_ + 1 >= cfg_.publishEveryTicks ? 0 : publishPhase_ + 1;
+  PublishPlan p;
+  p.store = cfg_.publishEveryTicks <= 1 || stopping_ || nextPublishPhase == 1;
+  p.row = cfg_.rowPeriod > 0 && (!rowsStarted_ || now - lastRow_ >= cfg_.rowPeriod);
+  return p;
+}
+
+void ControlCycle::storeSnapshot(const Outputs& stepOut, TimeNs now) noexcept {
+  const Outputs& out = telemetryComplete_ ? stepOut : core_.completeTelemetry();
+  telemetryComplete_ = true;
+  if (dev_.truth) dev_.truth->fill(truth_);
+  health_.eventsDropped = h_.events.dropped();
+  health_.stopping = stopping_;
+  RuntimeSnapshot& snap = scratch_;
+  snap.tick = tick_;
+  snap.start = start_;
+  snap.telemetry = out.telemetry;
+  snap.telemetry.now = now;
+  snap.loop = summary_;
+  snap.health = health_;
+  snap.sim = truth_;
+  h_.snapshot.store(snap);
+}
+
+void ControlCycle::publishLatest() noexcept {
+  if (!lastOut_) return;
+  summary_ = stats_.summary();
+  storeSnapshot(*lastOut_, lastNow_);
+}
+
+inline void ControlCycle::publish(const Outputs& out, TimeNs now, PublishPlan plan) noexcept {
+  lastOut_ = &out;
+  lastNow_ = now;
+  if ((tick_ & 63) == 1) summary_ = stats_.summary();  // quantiles are not free: ~6 Hz at 400 Hz
+  // The row carries this tick's state: it needs the snapshot even when the
+  // thinned store would skip this tick.
+  if (plan.store || plan.row) storeSnapshot(out, now);
+  if (plan.row) publishRow(now);
+}
+
+void ControlCycle::publishRow(TimeNs now) noexcept {
+  // Rows sit on the grid start + k·rowPeriod so t_s is regular.
+  lastRow_ = rowsStarted_ ? lastRow_ + cfg_.rowPeriod * ((now - lastRow_) / cfg_.rowPeriod) : now;
+  rowsStarted_ = true;
+  RuntimeSnapshot snap = scratch_;
+  snap.loop = stats_.summary();
+  while (!h_.rows.push(snap)) {
+    if (!cfg_.blockOnFullRows) {
+      ++health_.rowsDropped;
+      break;
+    }
+    std::this_thread::yield();  // --speed max only: not real time, the writer sets the pace
+  }
+}
+
 bool ControlCycle::tick(TimeNs now) {
   if (dev_.hook) dev_.hook->beforeTick(now);
   applyBetweenTicks();
@@ -129,7 +193,8 @@ bool ControlCycle::tick(TimeNs now) {
   if (!sensorsOk) ++health_.sensorReadErrors;
   mergeSlowInputs();
   readDiscreteInputs();
-  in_.telemetryWanted = telemetryObserved(now);
+  const PublishPlan plan = planPublish(now);
+  in_.telemetryWanted = plan.store || plan.row;
   telemetryComplete_ = in_.telemetryWanted;
   const TimeNs t1 = timed ? timing_.now() : 0;
 
@@ -167,65 +232,8 @@ bool ControlCycle::tick(TimeNs now) {
     BatteryLedger l;
     if (core_.ledger(l)) h_.ledger.store(l);
   }
-  publish(out, now);
+  publish(out, now, plan);
   return healthy && sensorsOk;
-}
-
-bool ControlCycle::telemetryObserved(TimeNs now) const noexcept {
-  // The same conditions publish() tests after the step (publishPhase_ as
-  // advanceTick() will leave it). A miss would only cost speed: storeSnapshot
-  // completes the telemetry whenever this tick's step deferred it.
-  const int nextPublishPhase = publishPhase_ + 1 >= cfg_.publishEveryTicks ? 0 : publishPhase_ + 1;
-  const bool stored = cfg_.publishEveryTicks <= 1 || stopping_ || nextPublishPhase == 1;
-  const bool row = cfg_.rowPeriod > 0 && (!rowsStarted_ || now - lastRow_ >= cfg_.rowPeriod);
-  return stored || row;
-}
-
-void ControlCycle::storeSnapshot(const Outputs& stepOut, TimeNs now) noexcept {
-  const Outputs& out = telemetryComplete_ ? stepOut : core_.completeTelemetry();
-  telemetryComplete_ = true;
-  if (dev_.truth) dev_.truth->fill(truth_);
-  health_.eventsDropped = h_.events.dropped();
-  health_.stopping = stopping_;
-  RuntimeSnapshot& snap = scratch_;
-  snap.tick = tick_;
-  snap.start = start_;
-  snap.telemetry = out.telemetry;
-  snap.telemetry.now = now;
-  snap.loop = summary_;
-  snap.health = health_;
-  snap.sim = truth_;
-  h_.snapshot.store(snap);
-}
-
-void ControlCycle::publishLatest() noexcept {
-  if (!lastOut_) return;
-  summary_ = stats_.summary();
-  storeSnapshot(*lastOut_, lastNow_);
-}
-
-void ControlCycle::publish(const Outputs& out, TimeNs now) noexcept {
-  lastOut_ = &out;
-  lastNow_ = now;
-  if ((tick_ & 63) == 1) summary_ = stats_.summary();  // quantiles are not free: ~6 Hz at 400 Hz
-  const bool stored = cfg_.publishEveryTicks <= 1 || stopping_ || publishPhase_ == 1;
-  if (stored) storeSnapshot(out, now);
-
-  if (cfg_.rowPeriod > 0 && (!rowsStarted_ || now - lastRow_ >= cfg_.rowPeriod)) {
-    // Rows sit on the grid start + k·rowPeriod so t_s is regular.
-    lastRow_ = rowsStarted_ ? lastRow_ + cfg_.rowPeriod * ((now - lastRow_) / cfg_.rowPeriod) : now;
-    rowsStarted_ = true;
-    if (!stored) storeSnapshot(out, now);  // the row carries this tick's state
-    RuntimeSnapshot snap = scratch_;
-    snap.loop = stats_.summary();
-    while (!h_.rows.push(snap)) {
-      if (!cfg_.blockOnFullRows) {
-        ++health_.rowsDropped;
-        break;
-      }
-      std::this_thread::yield();  // --speed max only: not real time, the writer sets the pace
-    }
-  }
 }
 
 void ControlCycle::serviceEdges(TimeNs deadline) noexcept {

@@ -83,16 +83,27 @@ class ControlCycle {
     if (++publishPhase_ >= cfg_.publishEveryTicks) publishPhase_ = 0;
     if (++ledgerPhase_ >= kLedgerEveryTicks) ledgerPhase_ = 0;
   }
-  void applyBetweenTicks() noexcept;
-  void mergeSlowInputs() noexcept;
+  // The per-tick helpers below run once per tick from tick() only: forced
+  // inline (GCC keeps them as calls with a prologue/epilogue each otherwise).
+  [[gnu::always_inline]] inline void applyBetweenTicks() noexcept;
+  void applyPending() noexcept;
+  [[gnu::always_inline]] inline void mergeSlowInputs() noexcept;
   void mergeTemperature() noexcept;
   void mergeVictron() noexcept;
-  void readDiscreteInputs() noexcept;
-  bool writeOutputs(const Outputs& out) noexcept;
-  void publish(const Outputs& out, TimeNs now) noexcept;
-  // This tick's telemetry goes into a snapshot or a row (decided before the
-  // step, from the same counters publish() uses).
-  bool telemetryObserved(TimeNs now) const noexcept;
+  [[gnu::always_inline]] inline void readDiscreteInputs() noexcept;
+  [[gnu::always_inline]] inline bool writeOutputs(const Outputs& out) noexcept;
+  // What this tick publishes: the snapshot store and/or a telemetry row.
+  // Decided ONCE per tick, before the step (so the step knows whether its
+  // telemetry is observed), and used by publish() after it: nothing the two
+  // depend on (the phase counters as advanceTick() leaves them, stopping_,
+  // lastRow_, rowsStarted_) changes in between.
+  struct PublishPlan {
+    bool store = false;
+    bool row = false;
+  };
+  [[gnu::always_inline]] inline PublishPlan planPublish(TimeNs now) const noexcept;
+  [[gnu::always_inline]] inline void publish(const Outputs& out, TimeNs now, PublishPlan plan) noexcept;
+  void publishRow(TimeNs now) noexcept;
   void storeSnapshot(const Outputs& out, TimeNs now) noexcept;
 
   ControlCore& core_;

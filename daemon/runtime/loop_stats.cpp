@@ -47,24 +47,19 @@ void LoopStats::onSamples(TimeNs now, const std::array<std::uint32_t, 4>& adsNew
   onSampleTotals(now, adsTotals_, inaFresh);
 }
 
-void LoopStats::onSampleTotals(TimeNs now, const std::array<std::uint32_t, 4>& adsTotals,
-                               bool inaFresh) noexcept {
-  if (windowStart_ < 0) windowStart_ = now;
-  inaCount_ += inaFresh ? 1 : 0;
+void LoopStats::rollWindow(TimeNs now, const std::array<std::uint32_t, 4>& adsTotals) noexcept {
   const TimeNs elapsed = now - windowStart_;
-  if (elapsed >= fromSec(1.0)) {
-    windowS_ = toSec(elapsed);
-    for (std::size_t c = 0; c < 4; ++c) {
-      // Unsigned difference: exact across a wrap of the totals, as the sum
-      // of the per-tick differences was.
-      const std::uint32_t n = adsTotals[c] - adsBase_[c];
-      adsRate_[c] = n / windowS_;
-    }
-    adsBase_ = adsTotals;
-    inaRate_ = inaCount_ / windowS_;
-    inaCount_ = 0;
-    windowStart_ = now;
+  windowS_ = toSec(elapsed);
+  for (std::size_t c = 0; c < 4; ++c) {
+    // Unsigned difference: exact across a wrap of the totals, as the sum
+    // of the per-tick differences was.
+    const std::uint32_t n = adsTotals[c] - adsBase_[c];
+    adsRate_[c] = n / windowS_;
   }
+  adsBase_ = adsTotals;
+  inaRate_ = inaCount_ / windowS_;
+  inaCount_ = 0;
+  windowStart_ = now;
 }
 
 namespace {

@@ -71,7 +71,13 @@ class LoopStats {
   // FastSensors::sampleCounts reports them): the window's count is the
   // difference at its ends, so nothing is summed per tick. Do not mix with
   // onSamples() on one LoopStats.
-  void onSampleTotals(TimeNs now, const std::array<std::uint32_t, 4>& adsTotals, bool inaFresh) noexcept;
+  // Inline: per tick it is a count and a compare; the window roll (once a
+  // second) is out of line.
+  void onSampleTotals(TimeNs now, const std::array<std::uint32_t, 4>& adsTotals, bool inaFresh) noexcept {
+    if (windowStart_ < 0) windowStart_ = now;
+    inaCount_ += inaFresh ? 1 : 0;
+    if (now - windowStart_ >= kRateWindow) rollWindow(now, adsTotals);
+  }
   // An ADS1115 ready edge serviced between ticks, and (when timed) the I/O
   // time it took.
   void onEdge() noexcept { ++edges_; }
@@ -80,6 +86,9 @@ class LoopStats {
   LoopStatsSummary summary() const noexcept;
 
  private:
+  static constexpr TimeNs kRateWindow = 1'000'000'000;
+  void rollWindow(TimeNs now, const std::array<std::uint32_t, 4>& adsTotals) noexcept;
+
   LatencyHistogram periodErr_, compute_, io_, edgeIo_;
   std::uint64_t ticks_ = 0, overruns_ = 0, edges_ = 0;
   bool periodMeasured_ = false;

@@ -45,6 +45,15 @@ class SpscQueue {
     return true;
   }
 
+  // Consumer side: true when pop() would find nothing now (the same check
+  // pop() makes, without touching a slot).
+  bool emptyForConsumer() noexcept {
+    const std::size_t tail = tail_.load(std::memory_order_relaxed);
+    if (tail != headCache_) return false;
+    headCache_ = head_.load(std::memory_order_acquire);
+    return tail == headCache_;
+  }
+
   // Approximate (exact when called from either endpoint with the other idle).
   std::size_t size() const noexcept {
     return head_.load(std::memory_order_acquire) - tail_.load(std::memory_order_acquire);
@@ -53,9 +62,9 @@ class SpscQueue {
 
  private:
   alignas(kCacheLine) std::atomic<std::size_t> head_{0};  // written by the producer
-  std::size_t tailCache_ = 0;                              // producer's view of tail_
+  std::size_t tailCache_ = 0;                             // producer's view of tail_
   alignas(kCacheLine) std::atomic<std::size_t> tail_{0};  // written by the consumer
-  std::size_t headCache_ = 0;                              // consumer's view of head_
+  std::size_t headCache_ = 0;                             // consumer's view of head_
   alignas(kCacheLine) std::array<T, Capacity> slots_{};
 };
 

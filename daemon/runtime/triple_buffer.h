@@ -22,7 +22,8 @@ class TripleBuffer {
   // Writer (one thread at a time): publish a whole new value.
   void write(const T& value) noexcept {
     slots_[back_] = value;
-    const std::uint8_t old = middle_.exchange(static_cast<std::uint8_t>(back_ | kFresh), std::memory_order_acq_rel);
+    const std::uint8_t old =
+        middle_.exchange(static_cast<std::uint8_t>(back_ | kFresh), std::memory_order_acq_rel);
     back_ = old & kIndexMask;
   }
 
@@ -34,6 +35,10 @@ class TripleBuffer {
     front_ = old & kIndexMask;
     return true;
   }
+
+  // Reader: a value was published that update() has not taken yet (a
+  // relaxed peek; update() does the acquiring exchange).
+  bool pending() const noexcept { return (middle_.load(std::memory_order_relaxed) & kFresh) != 0; }
 
   // Reader: the current value (valid until the next update()).
   const T& current() const noexcept { return slots_[front_]; }

@@ -88,7 +88,10 @@ int Ads1115Driver::readConversionChecked(std::uint16_t* raw) noexcept {
 }
 
 void Ads1115Driver::refreshEdgeConfigs() noexcept {
-  for (int ch = 0; ch < 4; ++ch) edgeConfig_[static_cast<std::size_t>(ch)] = configFor(ch);
+  for (int ch = 0; ch < 4; ++ch) {
+    edgeConfig_[static_cast<std::size_t>(ch)] = configFor(ch);
+    voltsPerCode_[static_cast<std::size_t>(ch)] = ads1115::voltsPerCode(pga_[static_cast<std::size_t>(ch)]);
+  }
 }
 
 int Ads1115Driver::start(TimeNs now) noexcept {
@@ -148,7 +151,8 @@ void Ads1115Driver::noteFailure(int err, TimeNs now) noexcept {
 
 inline void Ads1115Driver::accept(int channel, std::uint16_t raw, TimeNs stamp) noexcept {
   auto& s = samples_.ch[static_cast<std::size_t>(channel)];
-  const double v = ads1115::codeToVolts(raw, pga_[static_cast<std::size_t>(channel)]);
+  // == ads1115::codeToVolts(raw, pga_[channel]), bit for bit.
+  const double v = static_cast<std::int16_t>(raw) * voltsPerCode_[static_cast<std::size_t>(channel)];
   s.adcVolts = v;
   switch (channel) {
     case 0:  // frontend::batteryVoltsFromAdc with the gain computed once
@@ -192,11 +196,7 @@ Ads1115Samples Ads1115Driver::poll(TimeNs now) noexcept {
   return out;
 }
 
-void Ads1115Driver::clearFresh() noexcept {
-  for (auto& s : samples_.ch) s.fresh = false;
-}
-
-const Ads1115Samples& Ads1115Driver::service(TimeNs now) noexcept {
+const Ads1115Samples& Ads1115Driver::serviceDue(TimeNs now) noexcept {
   if (!present_ && now >= nextRedetect_) {
     nextRedetect_ = now + kRedetectInterval;
     if (start(now) == 0) ++stats_.redetects;

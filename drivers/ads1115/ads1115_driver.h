@@ -98,8 +98,18 @@ class Ads1115Driver {
   // poll() without the copy, for the per-tick path: the same work, then the
   // samples by reference with their fresh flags still set; clearFresh()
   // ends the tick's view (poll() == service() + copy + clearFresh()).
-  const Ads1115Samples& service(TimeNs now) noexcept;
-  void clearFresh() noexcept;
+  // Inline: with edge pacing and no Config read-back due (all but one tick
+  // a second) there is nothing to do but report presence.
+  const Ads1115Samples& service(TimeNs now) noexcept {
+    if (present_ && pacing_ == AdsPacing::ReadyEdge && now < nextVerify_) {
+      samples_.present = true;
+      return samples_;
+    }
+    return serviceDue(now);
+  }
+  void clearFresh() noexcept {
+    for (auto& s : samples_.ch) s.fresh = false;
+  }
   // ReadyEdge pacing: one call per ALERT/RDY edge, `edge` = its timestamp.
   void onReadyEdge(TimeNs edge) noexcept;
   // Change pacing at run time (e.g. ReadyEdge → SingleShot when no edges
@@ -119,6 +129,7 @@ class Ads1115Driver {
   static constexpr TimeNs kSingleShotWait = kPeriod * 11 / 10 + 45'000;
 
  private:
+  const Ads1115Samples& serviceDue(TimeNs now) noexcept;
   int writeMux(int channel) noexcept;
   // Timed pacing: Config and Conversion in ONE combined transaction; the
   // result is trusted only when Config still holds what we wrote (a chip
@@ -167,7 +178,8 @@ class Ads1115Driver {
   // transaction's messages over these buffers (pointer to Conversion, the
   // result, the Config write).
   std::array<std::uint16_t, 4> edgeConfig_{};
-  std::uint8_t edgePtr_ = 0;  // ads1115::CONVERSION (set in the constructor)
+  std::array<double, 4> voltsPerCode_{};  // ads1115::voltsPerCode(pga_[ch])
+  std::uint8_t edgePtr_ = 0;              // ads1115::CONVERSION (set in the constructor)
   std::uint8_t edgeRead_[2] = {};
   std::uint8_t edgeWrite_[3] = {};  // ads1115::CONFIG, then the value
   I2cMsg edgeMsgs_[3] = {};

@@ -9,9 +9,7 @@ void SimClock::setSpeed(double s) noexcept {
   anchored_ = false;  // re-anchor pacing at the next sleep
 }
 
-void SimClock::sleepUntil(TimeNs t) noexcept {
-  world_.advanceTo(t);
-  if (speed_ <= 0.0) return;
+void SimClock::pace() noexcept {
   if (!anchored_) {
     anchored_ = true;
     wallStart_ = std::chrono::steady_clock::now();

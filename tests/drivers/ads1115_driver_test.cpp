@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <vector>
 
@@ -460,6 +461,24 @@ TEST_P(Ads1115OscillatorTest, SingleShotNeverMislabels) {
   const Counts c2 = runTimed(d, 1'000'000'000, 1'000'000);
   EXPECT_EQ(c2.wrongTotal(), 0);
   EXPECT_GT(c2.total(), 450);
+}
+
+// The driver scales each conversion by one factor per channel: that must be
+// codeToVolts bit for bit, for every code at every PGA (a factor rounded
+// differently, e.g. fullScale * (1 / 32768.0) computed another way or a
+// division kept on one side only, would show up here).
+TEST(Ads1115Registers, VoltsPerCodeIsCodeToVoltsBitForBit) {
+  for (unsigned pga = 0; pga < 8; ++pga) {
+    for (std::uint32_t raw = 0; raw <= 0xFFFF; ++raw) {
+      const auto code = static_cast<std::uint16_t>(raw);
+      const double a = ads1115::codeToVolts(code, pga);
+      const double b = static_cast<std::int16_t>(code) * ads1115::voltsPerCode(pga);
+      std::uint64_t ba = 0, bb = 0;
+      std::memcpy(&ba, &a, sizeof a);
+      std::memcpy(&bb, &b, sizeof b);
+      ASSERT_EQ(ba, bb) << "pga " << pga << " code " << raw;
+    }
+  }
 }
 
 }  // namespace
