@@ -65,6 +65,20 @@ TEST(Disagreement, NanSensorIsCriticalAtOnce) {
   EXPECT_EQ(r.count(EventCode::VoltageDisagreement), 1u);
 }
 
+// "Either sensor NaN / < 0.1 V: critical at once": +/-inf and a reading just
+// under SENSOR_DEAD_V count as dead too (only NaN was pinned before).
+TEST(Disagreement, InfiniteOrNearZeroSensorIsCriticalAtOnce) {
+  for (const double v :
+       {std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(), 0.09, -1.0}) {
+    Rig r;
+    r.warmUp();
+    r.batteryV = v;
+    r.tick();
+    EXPECT_EQ(r.d.reason, Reason::REASON_VOLTAGE_DISAGREE_CRITICAL) << v;
+    EXPECT_EQ(r.count(EventCode::VoltageDisagreement), 1u) << v;
+  }
+}
+
 TEST(Disagreement, NotJudgedBeforeTheFirstSampleArrivesThenCriticalAfterGrace) {
   Rig q;
   EventBatch ev;
