@@ -133,11 +133,8 @@ inline int Ads1115Model::writeMsg(const std::uint8_t* buf, std::size_t len) noex
   }
   ptr_ = reg;
   const std::uint16_t v = static_cast<std::uint16_t>((buf[1] << 8) | buf[2]);
-  if (reg == 2) {
-    loThresh_ = v;
-    ready_ = (hiThresh_ & 0x8000) && !(loThresh_ & 0x8000);
-  } else if (reg == 3) {
-    hiThresh_ = v;
+  if (reg >= 2) {
+    (reg == 2 ? loThresh_ : hiThresh_) = v;
     ready_ = (hiThresh_ & 0x8000) && !(loThresh_ & 0x8000);
   } else {
     config_ = static_cast<std::uint16_t>(v & ~OS);

@@ -41,15 +41,6 @@ class Ads1115Model final : public SimI2cDevice {
     vmax_ = vmax;
   }
   void setInputSigma(int ain, double sigma) noexcept { sigma_[ain & 3] = sigma; }
-  // Or pulled at the instant a conversion samples them: only the pins the
-  // MUX of that conversion selects are asked for (so a simulated board draws
-  // sensor noise per conversion, not per plant step). Overrides setInputs()
-  // while set; nullptr goes back to the set values.
-  using InputSource = double (*)(void* ctx, int ain) noexcept;
-  void setInputSource(InputSource fn, void* ctx) noexcept {
-    src_ = fn;
-    srcCtx_ = ctx;
-  }
   // Inline early-out: most calls (several per control tick) end no conversion.
   void update(TimeNs t) noexcept override {
     if (t < now_) return;
@@ -94,7 +85,6 @@ class Ads1115Model final : public SimI2cDevice {
   bool readyMode() const noexcept { return ready_; }
   std::int16_t sample(std::uint16_t cfg) noexcept;
   double pin(int ain) noexcept {
-    if (src_) return src_(srcCtx_, ain);
     if (!rng_) return ain_[ain];
     const double v = ain_[ain] + rng_->gauss(sigma_[ain]);
     if (v >= 0.0 && v <= vmax_) return v;  // the usual case: one range check
@@ -103,8 +93,6 @@ class Ads1115Model final : public SimI2cDevice {
   }
 
   std::array<double, 4> ain_{};
-  InputSource src_ = nullptr;
-  void* srcCtx_ = nullptr;
   Rng* rng_ = nullptr;
   std::array<double, 4> sigma_{};
   double vmax_ = 0.0;

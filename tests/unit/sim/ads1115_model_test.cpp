@@ -243,44 +243,47 @@ TEST(Ads1115Model, SwitchingToSingleShotStopsAfterCurrentConversion) {
 namespace xr::sim {
 namespace {
 
-// The input source is asked, at the instant a conversion samples, for the
-// pins its MUX selects and no others; setInputs() values are ignored while a
-// source is set.
-struct PinProbe {
-  int asked[4] = {0, 0, 0, 0};
-  double v[4] = {0.5, 0.25, 1.0, 0.125};
-  static double get(void* ctx, int ain) noexcept {
-    auto* p = static_cast<PinProbe*>(ctx);
-    ++p->asked[ain];
-    return p->v[ain];
-  }
-};
+// A conversion samples its pins (and draws their noise) at the instant it
+// ends: only the pins its MUX selects, once per conversion. Counted by the
+// noise draws against a reference generator (one draw per sampled pin with
+// a sigma > 0); a sigma of 1 nV leaves the codes exact.
+bool inStep(const Rng& a, const Rng& b) {
+  Rng x = a, y = b;
+  return x.next() == y.next();
+}
 
-TEST(Ads1115Model, InputSourceIsAskedOnlyForTheMuxPinsAtEachConversion) {
+TEST(Ads1115Model, PinsAreSampledOnlyForTheMuxPinsAtEachConversion) {
   Rig r;
-  PinProbe probe;
-  r.chip.setInputs({3.0, 3.0, 3.0, 3.0});
-  r.chip.setInputSource(&PinProbe::get, &probe);
+  Rng rng(7), ref(7);
+  constexpr double kSigma = 1e-9;
+  r.chip.setInputs({0.5, 0.25, 1.0, 0.125});
+  r.chip.setInputNoise(&rng, {kSigma, kSigma, kSigma, kSigma}, 5.3);
   ASSERT_EQ(r.writeReg(1, cfg(1, 6, 1, 1, 7)), 0);  // AIN2-GND, ±4.096 V, single-shot 860 SPS
-  EXPECT_EQ(probe.asked[2], 0) << "nothing sampled before the conversion ends";
+  EXPECT_TRUE(inStep(rng, ref)) << "nothing sampled before the conversion ends";
   r.advance(fromMs(2));
-  EXPECT_EQ(probe.asked[0] + probe.asked[1] + probe.asked[3], 0);
-  EXPECT_EQ(probe.asked[2], 1);
-  EXPECT_EQ(r.readReg(0), 8000);                    // 1 V / 125 uV, from the source, not setInputs()
+  (void)ref.gauss(kSigma);  // AIN2 only
+  EXPECT_TRUE(inStep(rng, ref));
+  EXPECT_EQ(r.readReg(0), 8000);                    // 1 V / 125 uV
   ASSERT_EQ(r.writeReg(1, cfg(1, 0, 1, 1, 7)), 0);  // AIN0-AIN1 differential
   r.advance(fromMs(2));
-  EXPECT_EQ(probe.asked[0], 1);
-  EXPECT_EQ(probe.asked[1], 1);
-  EXPECT_EQ(probe.asked[3], 0);
+  (void)ref.gauss(kSigma);  // AIN0
+  (void)ref.gauss(kSigma);  // AIN1
+  EXPECT_TRUE(inStep(rng, ref));
   EXPECT_EQ(r.readReg(0), 2000);  // 0.25 V
-  // Continuous: one request per conversion.
+  // Continuous: one sample per conversion.
+  const std::uint64_t before = r.chip.conversions();
   ASSERT_EQ(r.writeReg(1, cfg(0, 7, 1, 0, 7)), 0);  // AIN3-GND continuous
   r.advance(fromMs(100));
-  EXPECT_EQ(std::uint64_t(probe.asked[3]), r.chip.conversions() - 2);
+  const std::uint64_t n = r.chip.conversions() - before;
+  EXPECT_GT(n, 80u);
+  for (std::uint64_t i = 0; i < n; ++i) (void)ref.gauss(kSigma);
+  EXPECT_TRUE(inStep(rng, ref));
   EXPECT_EQ(r.readReg(0), 1000);  // 0.125 V
-  // Back to the set values.
-  r.chip.setInputSource(nullptr, nullptr);
+  // Without a generator the set values are read as they are, with no draws.
+  r.chip.setInputNoise(nullptr, {}, 0.0);
+  r.chip.setInputs({3.0, 3.0, 3.0, 3.0});
   r.advance(fromMs(5));
+  EXPECT_TRUE(inStep(rng, ref));
   EXPECT_EQ(r.readReg(0), 24000);  // 3 V
 }
 
