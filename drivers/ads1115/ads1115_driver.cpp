@@ -151,7 +151,7 @@ void Ads1115Driver::noteFailure(int err, TimeNs now) noexcept {
 
 inline void Ads1115Driver::accept(int channel, std::uint16_t raw, TimeNs stamp) noexcept {
   auto& s = samples_.ch[static_cast<std::size_t>(channel)];
-  // == ads1115::codeToVolts(raw, pga_[channel]), bit for bit.
+  // ads1115::codeToVolts(raw, pga_[channel]) with the factor looked up once.
   const double v = static_cast<std::int16_t>(raw) * voltsPerCode_[static_cast<std::size_t>(channel)];
   s.adcVolts = v;
   switch (channel) {

@@ -42,14 +42,14 @@ constexpr int muxChannelOf(std::uint16_t config) {
 inline constexpr std::uint16_t kReadyHiThresh = 0x8000;
 inline constexpr std::uint16_t kReadyLoThresh = 0x0000;
 
-// Conversion code (16-bit two's complement) -> volts at the input.
-constexpr double codeToVolts(std::uint16_t raw, unsigned pga) {
-  return static_cast<std::int16_t>(raw) * fullScaleVolts(pga) / 32768.0;
-}
-// Volts per code: code * voltsPerCode(pga) is codeToVolts bit for bit (the
-// division by 2^15 is exact either side of the one rounded product; a test
-// compares every code at every PGA). Lets the driver keep one factor per
-// channel instead of two table lookups per conversion.
+// Volts per code, FSR / 2^15. Kept per channel by the driver (one multiply
+// per conversion instead of two table lookups).
 constexpr double voltsPerCode(unsigned pga) { return fullScaleVolts(pga) / 32768.0; }
+// Conversion code (16-bit two's complement) -> volts at the input. Equal bit
+// for bit to code * FSR / 2^15: the division by 2^15 is exact on either side
+// of the one rounded product (a test compares every code at every PGA).
+constexpr double codeToVolts(std::uint16_t raw, unsigned pga) {
+  return static_cast<std::int16_t>(raw) * voltsPerCode(pga);
+}
 
 }  // namespace xr::ads1115

@@ -467,12 +467,13 @@ TEST_P(Ads1115OscillatorTest, SingleShotNeverMislabels) {
 // codeToVolts bit for bit, for every code at every PGA (a factor rounded
 // differently, e.g. fullScale * (1 / 32768.0) computed another way or a
 // division kept on one side only, would show up here).
-TEST(Ads1115Registers, VoltsPerCodeIsCodeToVoltsBitForBit) {
+// codeToVolts is code x (FSR / 2^15): bit for bit the datasheet's code x FSR / 2^15.
+TEST(Ads1115Registers, CodeToVoltsIsTheDatasheetFormulaBitForBit) {
   for (unsigned pga = 0; pga < 8; ++pga) {
     for (std::uint32_t raw = 0; raw <= 0xFFFF; ++raw) {
       const auto code = static_cast<std::uint16_t>(raw);
-      const double a = ads1115::codeToVolts(code, pga);
-      const double b = static_cast<std::int16_t>(code) * ads1115::voltsPerCode(pga);
+      const double a = static_cast<std::int16_t>(code) * ads1115::fullScaleVolts(pga) / 32768.0;
+      const double b = ads1115::codeToVolts(code, pga);
       std::uint64_t ba = 0, bb = 0;
       std::memcpy(&ba, &a, sizeof a);
       std::memcpy(&bb, &b, sizeof b);
