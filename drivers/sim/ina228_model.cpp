@@ -309,8 +309,7 @@ inline int Ina228Model::readMsg(std::uint8_t* buf, std::size_t len) noexcept {
     // below gives the same bytes and side effects).
     buf[0] = std::uint8_t(diag_ >> 8);
     buf[1] = std::uint8_t(diag_);
-    if (diag_ & ALATCH) diag_ &= ~kLimitFlags;  // latched flags and CNVRF clear on this read
-    diag_ &= ~CNVRF;
+    clearOnDiagRead();
     return 0;
   }
   const int size = regSize(ptr_);
@@ -329,9 +328,7 @@ inline int Ina228Model::readMsg(std::uint8_t* buf, std::size_t len) noexcept {
   if (len > 4) buf[4] = std::uint8_t(a >> 24);
   // Read side effects.
   if (ptr_ == DIAG_ALRT) {
-    // Latched flags and CNVRF clear on a read of DIAG_ALRT.
-    if (diag_ & ALATCH) diag_ &= ~kLimitFlags;
-    diag_ &= ~CNVRF;
+    clearOnDiagRead();
   } else if (ptr_ == ENERGY) {
     diag_ &= ~ENERGYOF;
   } else if (ptr_ == CHARGE) {

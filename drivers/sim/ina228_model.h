@@ -109,6 +109,12 @@ class Ina228Model final : public SimI2cDevice {
   void onSample() noexcept;                 // one raw sample of every active channel
   void publish(double dtSeconds) noexcept;  // the averaged result is ready
   void refreshLimits() noexcept;            // after any register write or reset
+  // The side effect of reading DIAG_ALRT: latched limit flags (ALATCH = 1)
+  // and CNVRF clear.
+  void clearOnDiagRead() noexcept {
+    if (diag_ & ina228::ALATCH) diag_ &= ~ina228::kLimitFlags;
+    diag_ &= ~ina228::CNVRF;
+  }
   void compareLimits(std::int32_t vshCode, std::int32_t vbusCode, std::int32_t tempCode,
                      std::uint32_t powerCode) noexcept;
   int mode() const noexcept { return (adcConfig_ >> 12) & 0xF; }
