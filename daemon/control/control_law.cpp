@@ -21,15 +21,36 @@ constexpr double kNoCeiling = 1e300;
 }  // namespace
 
 ControlLaw::ControlLaw(const Params& p) : currentPID_(p.PidKp, p.PidKi, p.PidKd, Pid::DIRECT) {
+  derive(p);
   configurePid(p);
   currentPID_.SetMode(Pid::MANUAL);
   ChargingVoltageTarget_ = p.BulkVoltage;
 }
 
+void ControlLaw::derive(const Params& p) {
+  d_.overrideNow = p.MaintainMode || p.TargetVoltageMode || p.CVTuningMode;
+  d_.overrideTargets = d_.overrideNow || p.TuningMode;
+  d_.pidOutMax = std::max(p.MinDuty + 1e-6, p.MaxDuty);
+  pidTuningsStale_ = true;
+}
+
+void ControlLaw::setParams(const Params& p) {
+  derive(p);
+  thermal_.paramsChanged();
+}
+
 [[gnu::always_inline]] inline void ControlLaw::configurePid(const Params& p) {
-  currentPID_.SetOutputLimits(p.MinDuty, std::max(p.MinDuty + 1e-6, p.MaxDuty));
-  currentPID_.SetTunings(p.PidKp, p.PidKi, p.PidKd);
-  currentPID_.SetTrackingGain(p.PIDTrackingGain);
+  // The limits are applied on every call: SetOutputLimits also re-clamps
+  // output / outputSum, which the MANUAL, shutdown and SystemID paths write
+  // unclamped. The gains only change with the Params; nothing else sets them
+  // (setting them again with the same values is a no-op, so applying them
+  // once per setParams gives the same Pid state bit for bit).
+  currentPID_.SetOutputLimits(p.MinDuty, d_.pidOutMax);
+  if (pidTuningsStale_) {
+    currentPID_.SetTunings(p.PidKp, p.PidKi, p.PidKd);
+    currentPID_.SetTrackingGain(p.PIDTrackingGain);
+    pidTuningsStale_ = false;
+  }
 }
 
 void ControlLaw::updateFilters(const ControlSensors& s, const Params& p) {
@@ -59,7 +80,7 @@ void ControlLaw::updateFilters(const ControlSensors& s, const Params& p) {
 
 void ControlLaw::updateChargingStage(const ControlSensors& s, const Params& p, bool manualMode,
                                      EventBatch& ev) {
-  const bool overrideNow = p.MaintainMode || p.TargetVoltageMode || p.CVTuningMode;
+  const bool overrideNow = d_.overrideNow;
   // The stage machine only advances while charging in AUTO (IDLE keeps its
   // re-bulk watch while the field is off); override modes and manual hold it.
   const bool running = sysMode_ == SysMode::SYS_MODE_AUTO || stages_.inIdleStage();
@@ -94,7 +115,7 @@ void ControlLaw::updateChargingStage(const ControlSensors& s, const Params& p, b
   // 40 Ah AGM bank at 50 A). Once IBV reaches BulkVoltage in BULK, the CV loop
   // engages at the bulk target (bumpless seed, Groups 1-3 armed) until IBV
   // falls BULK_V_BAND_EXIT below it; the stage machine is untouched.
-  const bool overrideTargets = p.MaintainMode || p.TargetVoltageMode || p.CVTuningMode || p.TuningMode;
+  const bool overrideTargets = d_.overrideTargets;
   if (stages_.inBulkStage() && !overrideTargets && finite(s.IBV)) {
     if (!bulkVoltageLimitActive_ && s.IBV >= p.BulkVoltage)
       bulkVoltageLimitActive_ = true;

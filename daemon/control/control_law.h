@@ -60,6 +60,13 @@ class ControlLaw {
  public:
   explicit ControlLaw(const Params& p);
 
+  // The parameter set was replaced (Regulator::setParams). Contract: every
+  // per-tick call below is passed the Params last given here or to the
+  // constructor; values derived from them are cached between the two (see
+  // ParamsDerived). A caller that changes its Params in place between ticks
+  // (the unit-test rigs) calls this after each change, as Regulator does.
+  void setParams(const Params& p);
+
   // Every tick, first: filters on fresh CH1 / IBV, control dt bookkeeping.
   void updateFilters(const ControlSensors& s, const Params& p);
   // Step 3 (before mode selection): stage machine and override targets.
@@ -150,6 +157,22 @@ class ControlLaw {
   void fillLoopTelemetry(ControlTelemetry& t) const;
   void fillTuningTelemetry(ControlTelemetry& t) const;
   bool tuningActive() const { return tuning_.running() || cvTuning_.running() || sysId_.sysIDRunning(); }
+
+  // Values that depend only on the Params, computed by setParams() (and the
+  // constructor) instead of on every tick. They cannot be stale in
+  // production: Regulator owns the only Params copy, never mutates it, and
+  // its setParams() is the only place that replaces it, which calls ours
+  // (ControlSetParams.* fails if it does not).
+  struct ParamsDerived {
+    bool overrideNow = false;      // MaintainMode || TargetVoltageMode || CVTuningMode
+    bool overrideTargets = false;  // overrideNow || TuningMode
+    double pidOutMax = 100.0;      // max(MinDuty + 1e-6, MaxDuty)
+  };
+  void derive(const Params& p);
+  ParamsDerived d_;
+  // currentPID_'s gains and tracking gain are (re)applied on the next
+  // configurePid() after a setParams() only.
+  bool pidTuningsStale_ = true;
 
   // Loops.
   Pid currentPID_;

@@ -75,6 +75,7 @@ Regulator::~Regulator() = default;
 void Regulator::setParams(const Params& params) {
   s_->p = params;
   s_->inaBovlVolts = voltageHardwareLimit(params);
+  s_->law.setParams(params);
   s_->prot.setParams(params);
   s_->bat.setParams(params);
 }

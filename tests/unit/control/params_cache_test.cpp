@@ -1,0 +1,72 @@
+// Values derived from Params are cached between Regulator::setParams() calls
+// (ControlLaw::ParamsDerived, the PID gains, the temperature PID's
+// configuration). These tests fail if setParams() stops refreshing them.
+#include <gtest/gtest.h>
+
+#include "control/thermal_derate.h"
+#include "reg_rig.h"
+
+namespace xr {
+namespace {
+
+// The current PID's gains are applied once per setParams: a new PidKp must
+// reach the P term of the next compute.
+TEST(ControlSetParams, NewPidGainsReachTheCurrentLoop) {
+  test::RegRig rig;
+  rig.run(5.0);
+  ASSERT_EQ(rig.out->telemetry.mode, FieldControlMode::MODE_NORMAL_AUTO_PID);
+  ASSERT_NE(rig.out->telemetry.control.innerTermP, 0.0);
+  Params q = rig.p;
+  q.PidKp = 0.0;
+  rig.reg.setParams(q);
+  rig.run(0.1);
+  EXPECT_EQ(rig.out->telemetry.control.innerTermP, 0.0);
+}
+
+// The temperature PID's setpoint is configured once per setParams: lowering
+// TemperatureLimitF under the present temperature must start a penalty.
+TEST(ControlSetParams, NewTemperatureLimitReachesTheThermalLoop) {
+  test::RegRig rig;
+  rig.tempF = 140.0;
+  rig.run(12.0);
+  ASSERT_EQ(rig.out->telemetry.mode, FieldControlMode::MODE_NORMAL_AUTO_PID);
+  ASSERT_EQ(rig.out->telemetry.control.thermalPenaltyAmps_d, 0.0);
+  Params q = rig.p;
+  q.TemperatureLimitF = 139.0;  // T1 at 141 degF: no protection trips at 140
+  rig.reg.setParams(q);
+  rig.run(12.0);
+  EXPECT_EQ(rig.out->telemetry.mode, FieldControlMode::MODE_NORMAL_AUTO_PID);
+  EXPECT_GT(rig.out->telemetry.control.thermalPenaltyAmps_d, 0.0);
+}
+
+// ThermalDerate on its own: a Params change is seen only after
+// paramsChanged() (the contract the callers keep).
+TEST(ControlSetParams, ThermalDerateReconfiguresOnlyAfterParamsChanged) {
+  auto run = [](bool announce) {
+    Params p;
+    ThermalDerate t;
+    ThermalInputs in;
+    in.now = fromSec(1000.0);
+    in.dtSec = 0.01;
+    in.tempValid = true;
+    in.TempToUse = 140.0;
+    for (int i = 0; i < 1000; ++i) {
+      in.now += fromSec(in.dtSec);
+      in.tempFresh = i % 100 == 0;
+      t.update(in, p);
+    }
+    p.TemperatureLimitF = 130.0;
+    if (announce) t.paramsChanged();
+    for (int i = 0; i < 1000; ++i) {
+      in.now += fromSec(in.dtSec);
+      in.tempFresh = i % 100 == 0;
+      t.update(in, p);
+    }
+    return t.penaltyTarget();
+  };
+  EXPECT_GT(run(true), 0.0);
+  EXPECT_EQ(run(false), 0.0);  // the cached setpoint (150 degF) is still in use
+}
+
+}  // namespace
+}  // namespace xr
