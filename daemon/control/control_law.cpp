@@ -1,6 +1,7 @@
 #include "control/control_law.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "control/rpm_tables.h"
@@ -32,6 +33,23 @@ void ControlLaw::derive(const Params& p) {
   d_.overrideTargets = d_.overrideNow || p.TuningMode;
   d_.pidOutMax = std::max(p.MinDuty + 1e-6, p.MaxDuty);
   pidTuningsStale_ = true;
+  rpm_.valid = false;  // the tables may have changed
+}
+
+// Same search and interpolation as getMinDutyForRPM / capCurrentAt, done
+// only when rpm differs from the last call (by its bits, so NaN and -0.0 are
+// handled exactly) or the Params were replaced since.
+[[gnu::always_inline]] inline const ControlLaw::RpmLookup& ControlLaw::rpmLookup(const Params& p,
+                                                                                 double rpm) {
+  const std::uint64_t bits = std::bit_cast<std::uint64_t>(rpm);
+  if (!rpm_.valid || bits != rpm_.rpmBits) {
+    const RpmPosition at = locateRpm(p.rpmTableRPMPoints, rpm);
+    rpm_.minDuty = rpmTableValue(activeMinDutyTable(p), at);
+    rpm_.capTable = capTableValueAt(p, at);
+    rpm_.rpmBits = bits;
+    rpm_.valid = true;
+  }
+  return rpm_;
 }
 
 void ControlLaw::setParams(const Params& p) {
@@ -145,9 +163,9 @@ void ControlLaw::updateChargingStage(const ControlSensors& s, const Params& p, b
 
 double ControlLaw::computeUTarget(const ControlSensors& s, const Params& p) {
   // getMinDutyForRPM + getCapCurrentForRPM, sharing one breakpoint search.
-  const RpmPosition at = locateRpm(p.rpmTableRPMPoints, s.rpm);
-  rpmMinDuty_ = rpmTableValue(activeMinDutyTable(p), at);
-  I_cap_ = capCurrentAt(p, at, s.IBV);
+  const RpmLookup& at = rpmLookup(p, s.rpm);
+  rpmMinDuty_ = at.minDuty;
+  I_cap_ = capCurrentFromTable(p, at.capTable, s.IBV);
 
   // T0 on its own cadence; the penalty holds on stale input.
   ThermalInputs ti;
@@ -303,7 +321,7 @@ double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const Fa
 }
 
 double ControlLaw::runManual(const ControlSensors& s, const Params& p, double manualDuty) {
-  rpmMinDuty_ = getMinDutyForRPM(p, s.rpm);
+  rpmMinDuty_ = rpmLookup(p, s.rpm).minDuty;
   govMode_ = GovMode::GOV_NORMAL_SLEW;  // manual still respects the tach floor
   dutyRequest_ = manualDuty;
   const double duty = governorStep(p, manualDuty, govMode_, tickDt_);
@@ -315,7 +333,7 @@ double ControlLaw::runManual(const ControlSensors& s, const Params& p, double ma
 }
 
 double ControlLaw::runLimpHome(const ControlSensors& s, const Params& p, EventBatch& ev) {
-  rpmMinDuty_ = getMinDutyForRPM(p, s.rpm);
+  rpmMinDuty_ = rpmLookup(p, s.rpm).minDuty;
   govMode_ = GovMode::GOV_NORMAL_SLEW;
   dutyRequest_ = k::LIMP_HOME_DUTY;
   GovernorLimits lim{p.MinDuty, p.MaxDuty, p.DutyRampRate};
@@ -326,7 +344,7 @@ double ControlLaw::runLimpHome(const ControlSensors& s, const Params& p, EventBa
 }
 
 void ControlLaw::trackShutdown(double appliedDuty, const Params& p, double rpm) {
-  rpmMinDuty_ = getMinDutyForRPM(p, rpm);
+  rpmMinDuty_ = rpmLookup(p, rpm).minDuty;
   lastAppliedDuty_ = appliedDuty;
   dutyRequest_ = appliedDuty;
   currentPID_.output = appliedDuty;

@@ -12,6 +12,8 @@
 //   finishAuto()      : fastOvCurrentCap clamp => uTargetAmps -> CV (Icv) or
 //                       direct => setpointCommand -> slew => setpointLimited ->
 //                       currentPID -> governor_apply -> TrackAppliedOutput.
+#include <cstdint>
+
 #include "control/charging_stage.h"
 #include "control/control_telemetry.h"
 #include "control/cv_loop.h"
@@ -170,6 +172,17 @@ class ControlLaw {
   };
   void derive(const Params& p);
   ParamsDerived d_;
+  // The RPM table lookups of the last rpm seen (bit for bit), for these
+  // Params: rpm is a slow ADS channel, so most ticks repeat the last value
+  // and the breakpoint search gives the same result. derive() drops it.
+  struct RpmLookup {
+    bool valid = false;
+    std::uint64_t rpmBits = 0;
+    double minDuty = 0.0;   // rpmTableValue(activeMinDutyTable)
+    double capTable = 0.0;  // capTableValueAt
+  };
+  const RpmLookup& rpmLookup(const Params& p, double rpm);
+  RpmLookup rpm_;
   // currentPID_'s gains and tracking gain are (re)applied on the next
   // configurePid() after a setParams() only.
   bool pidTuningsStale_ = true;

@@ -39,6 +39,48 @@ TEST(ControlSetParams, NewTemperatureLimitReachesTheThermalLoop) {
   EXPECT_GT(rig.out->telemetry.control.thermalPenaltyAmps_d, 0.0);
 }
 
+// The RPM lookups are kept while rpm repeats bit for bit (the rig's rpm is
+// constant): new tables at the same rpm must still be read.
+TEST(ControlSetParams, NewRpmTablesAreReadAtAnUnchangedRpm) {
+  test::RegRig rig;
+  rig.run(2.0);
+  ASSERT_EQ(rig.out->telemetry.mode, FieldControlMode::MODE_NORMAL_AUTO_PID);
+  const double before = rig.out->telemetry.control.rpmMinDuty;
+  const double capBefore = rig.out->telemetry.control.I_cap;
+  Params q = rig.p;
+  q.rpmMinDutyTable.fill(before + 3.0);
+  q.rpmMinDutyTableLo.fill(before + 3.0);
+  q.rpmCapCurrentTable.fill(capBefore - 5.0);
+  q.rpmCapCurrentTableLo.fill(capBefore - 5.0);
+  rig.reg.setParams(q);
+  rig.tick();
+  EXPECT_EQ(rig.out->telemetry.control.rpmMinDuty, before + 3.0);
+  EXPECT_EQ(rig.out->telemetry.control.I_cap, capBefore - 5.0);
+}
+
+// A changed rpm is looked up again, a repeated one gives the same values.
+TEST(ControlSetParams, RpmLookupFollowsEveryChangeOfRpm) {
+  test::RegRig rig;
+  Params q = rig.p;
+  q.rpmTableRPMPoints = {500, 1000, 1500, 2000, 2500, 3000, 3500, 4000, 4500, 5000};
+  q.rpmCapCurrentTable = {10, 20, 30, 40, 50, 60, 70, 80, 90, 100};
+  q.rpmCapCurrentTableLo = q.rpmCapCurrentTable;
+  q.capLimitMode = 0;
+  rig.reg.setParams(q);
+  rig.rpm = 2250.0;
+  rig.run(1.0);
+  ASSERT_EQ(rig.out->telemetry.mode, FieldControlMode::MODE_NORMAL_AUTO_PID);
+  EXPECT_DOUBLE_EQ(rig.out->telemetry.control.I_cap, 45.0);
+  rig.rpm = 2750.0;
+  rig.tick();
+  EXPECT_DOUBLE_EQ(rig.out->telemetry.control.I_cap, 55.0);
+  rig.tick();
+  EXPECT_DOUBLE_EQ(rig.out->telemetry.control.I_cap, 55.0);
+  rig.rpm = 2250.0;
+  rig.tick();
+  EXPECT_DOUBLE_EQ(rig.out->telemetry.control.I_cap, 45.0);
+}
+
 // ThermalDerate on its own: a Params change is seen only after
 // paramsChanged() (the contract the callers keep).
 TEST(ControlSetParams, ThermalDerateReconfiguresOnlyAfterParamsChanged) {
