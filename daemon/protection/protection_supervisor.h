@@ -177,6 +177,15 @@ class ProtectionSupervisor {
     double criticalDisagreeV = 0.0;                 // criticalDisagreementThreshold
     double plausibleMin = 0.0, plausibleMax = 0.0;  // plausibleVoltageRange
     double hardOcTripA = 0.0;                       // hardOCTripAmps
+    // Unit conversions and clamps of parameters (exactly the expressions
+    // the detectors and supervisors evaluated per tick before).
+    TimeNs hardOcHold = 0;           // fromMs(HardOCDebounceMs)
+    TimeNs disagreeWarnHold = 0;     // fromSec(VoltageDisagreeTimeout)
+    TimeNs currentStaleWin = 0;      // fromMs(CurrentStaleMs)
+    TimeNs currentStaleWinSlow = 0;  // currentStaleWin + 2 slow INA228 periods
+    bool nearBulkAlways = false;     // ProtectionProxGateV <= 0
+    double nearBulkMinV = 0.0;       // BulkVoltage - ProtectionProxGateV
+    int iexMaN = 1;                  // IExcessMA_N clamped to the window
   };
   void computeDerived();
   void push(EventBatch& ev, EventCode c, EventLevel l, Reason r, double a = 0.0, double b = 0.0,

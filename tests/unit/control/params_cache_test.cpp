@@ -112,3 +112,41 @@ TEST(ControlSetParams, ThermalDerateReconfiguresOnlyAfterParamsChanged) {
 
 }  // namespace
 }  // namespace xr
+
+namespace xr {
+namespace {
+
+// Regulator::step keeps the last mode decision while the snapshot bytes
+// after `now` repeat. Each operator input and a protection flag must still
+// change the mode on the very tick it changes, and changing it back must
+// restore AUTO (the memo is re-keyed, not stuck on either value).
+TEST(ModeSelectionMemo, EverySnapshotInputChangesTheModeOnItsTick) {
+  test::RegRig rig;
+  rig.run(2.0);
+  ASSERT_EQ(rig.out->telemetry.mode, FieldControlMode::MODE_NORMAL_AUTO_PID);
+  auto stepWith = [&](auto change) {
+    rig.now += fromSec(0.0025);
+    Inputs in = rig.inputs();
+    change(in);
+    return rig.reg.step(in).telemetry.reason;
+  };
+  EXPECT_EQ(stepWith([](Inputs& in) { in.ignitionOn = false; }), Reason::REASON_IGNITION_OFF);
+  EXPECT_EQ(stepWith([](Inputs&) {}), Reason::NONE);
+  EXPECT_EQ(stepWith([](Inputs& in) { in.bmsChargeEnabled = false; }), Reason::REASON_BMS_DISABLED);
+  EXPECT_EQ(stepWith([](Inputs&) {}), Reason::NONE);
+  EXPECT_EQ(stepWith([](Inputs& in) { in.rpm.value = 0.0; }), Reason::REASON_RPM_LOW);
+  EXPECT_EQ(rig.out->telemetry.mode, FieldControlMode::MODE_DISABLED_RAMP);
+  EXPECT_EQ(stepWith([](Inputs&) {}), Reason::NONE);
+  EXPECT_EQ(rig.reg.outputs().telemetry.mode, FieldControlMode::MODE_NORMAL_AUTO_PID);
+  rig.reg.command(Command{CommandType::Off});
+  EXPECT_EQ(stepWith([](Inputs&) {}), Reason::REASON_SYS_OFF);
+  rig.reg.command(Command{CommandType::Auto});
+  EXPECT_EQ(stepWith([](Inputs&) {}), Reason::NONE);
+  rig.reg.command(Command{CommandType::LimpHome});
+  EXPECT_EQ(stepWith([](Inputs&) {}), Reason::REASON_LIMP_HOME);
+  rig.reg.command(Command{CommandType::LimpHomeOff});
+  EXPECT_EQ(stepWith([](Inputs&) {}), Reason::NONE);
+}
+
+}  // namespace
+}  // namespace xr
