@@ -32,6 +32,9 @@ void ControlLaw::derive(const Params& p) {
   d_.overrideNow = p.MaintainMode || p.TargetVoltageMode || p.CVTuningMode;
   d_.overrideTargets = d_.overrideNow || p.TuningMode;
   d_.pidOutMax = std::max(p.MinDuty + 1e-6, p.MaxDuty);
+  d_.majorOvV = alternatorHardShutdownV(p) + k::HARD_SHUTDOWN_BYPASS_OFFSET_V;
+  d_.baseCeilingA = std::min(p.MaxTableValue, p.MaximumAllowedBatteryAmps);
+  d_.pidDivisor = std::max(1, p.PidSampleDivisor);
   pidTuningsStale_ = true;
   rpm_.valid = false;  // the tables may have changed
 }
@@ -200,9 +203,8 @@ double ControlLaw::computeUTarget(const ControlSensors& s, const Params& p) {
   return uTargetRaw_;
 }
 
-[[gnu::always_inline]] inline void ControlLaw::updateGovMode(const ControlSensors& s, const Params& p,
-                                                             const FastOvApply& fa) {
-  const bool majorOV = finite(s.IBV) && s.IBV > alternatorHardShutdownV(p) + k::HARD_SHUTDOWN_BYPASS_OFFSET_V;
+[[gnu::always_inline]] inline void ControlLaw::updateGovMode(const ControlSensors& s, const FastOvApply& fa) {
+  const bool majorOV = finite(s.IBV) && s.IBV > d_.majorOvV;
   // CV overshoot latch: set when fast-OV fires in CV, released once IBV is
   // back under target + 20 mV (hysteresis stops chatter as the field collapses).
   if (cvOvershootBypass_ && (!voltageControlActive_ || !finite(s.IBV) ||
@@ -228,7 +230,7 @@ double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const Fa
   uTargetAmps_ = std::max(0.0, std::min(uTargetRaw_, fa.fastOvCurrentCap));
   if (fa.setCvI) cv_.setCvI(fa.cv_I);
   if (fa.zeroSetpointLimited) setpointLimited_ = 0.0;
-  updateGovMode(s, p, fa);
+  updateGovMode(s, fa);
 
   if (sysId_.sysIDRunning()) {
     // Plant-delay step test: setpoint machinery skipped, inner PID pinned.
@@ -296,7 +298,7 @@ double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const Fa
   if (currentPID_.GetMode() != Pid::AUTOMATIC) currentPID_.SetMode(Pid::AUTOMATIC);
   currentPID_.input = p.MaintainMode ? s.Bcur : pidSig_;
   currentPID_.setpoint = setpointLimited_;
-  if (++pidSampleCounter_ >= std::max(1, p.PidSampleDivisor)) {
+  if (++pidSampleCounter_ >= d_.pidDivisor) {
     pidSampleCounter_ = 0;
     const double pdt = lastPidCompute_ < 0 ? dt : toSec(s.now - lastPidCompute_);
     if (currentPID_.Compute(std::min(pdt, kMaxControlDtSec))) lastPidCompute_ = s.now;
@@ -311,7 +313,7 @@ double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const Fa
   if (p.CVTuningMode && finite(s.IBV)) cvTuning_.score(s.IBV, dt, p);
 
   // Non-thermal ceiling for T0's implied-penalty anti-windup (next tick).
-  double c = std::min(p.MaxTableValue, p.MaximumAllowedBatteryAmps);
+  double c = d_.baseCeilingA;
   if (warmupActive_) c = std::min(c, p.WarmupCeilingAmps);
   if (p.MaintainMode) c = 0.0;
   c = std::min(c, fa.fastOvCurrentCap);

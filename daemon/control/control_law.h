@@ -155,7 +155,7 @@ class ControlLaw {
   double pidFeedback(const Params& p) const;
   double governorStep(const Params& p, double request, GovMode mode, double dt);
   void enterManualLike(SysMode m);
-  void updateGovMode(const ControlSensors& s, const Params& p, const FastOvApply& fa);
+  void updateGovMode(const ControlSensors& s, const FastOvApply& fa);
   void fillLoopTelemetry(ControlTelemetry& t) const;
   void fillTuningTelemetry(ControlTelemetry& t) const;
   bool tuningActive() const { return tuning_.running() || cvTuning_.running() || sysId_.sysIDRunning(); }
@@ -169,6 +169,9 @@ class ControlLaw {
     bool overrideNow = false;      // MaintainMode || TargetVoltageMode || CVTuningMode
     bool overrideTargets = false;  // overrideNow || TuningMode
     double pidOutMax = 100.0;      // max(MinDuty + 1e-6, MaxDuty)
+    double majorOvV = 0.0;         // alternatorHardShutdownV + HARD_SHUTDOWN_BYPASS_OFFSET_V
+    double baseCeilingA = 0.0;     // min(MaxTableValue, MaximumAllowedBatteryAmps)
+    int pidDivisor = 1;            // max(1, PidSampleDivisor)
   };
   void derive(const Params& p);
   ParamsDerived d_;
