@@ -1,6 +1,7 @@
 // Values derived from Params are cached between Regulator::setParams() calls
 // (ControlLaw::ParamsDerived, the PID gains, the temperature PID's
 // configuration). These tests fail if setParams() stops refreshing them.
+// Also the mode-selection memo of Regulator::step (ModeSelectionMemo.*).
 #include <gtest/gtest.h>
 
 #include "control/thermal_derate.h"
@@ -109,12 +110,6 @@ TEST(ControlSetParams, ThermalDerateReconfiguresOnlyAfterParamsChanged) {
   EXPECT_GT(run(true), 0.0);
   EXPECT_EQ(run(false), 0.0);  // the cached setpoint (150 degF) is still in use
 }
-
-}  // namespace
-}  // namespace xr
-
-namespace xr {
-namespace {
 
 // Regulator::step keeps the last mode decision while the snapshot bytes
 // after `now` repeat. Each operator input and a protection flag must still
