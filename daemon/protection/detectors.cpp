@@ -36,7 +36,7 @@ void ProtectionSupervisor::updateDetectors(const Inputs& in, double MeasuredAmps
     boot_ = in.now;
     now_ = in.now;
   }
-  dtSec_ = std::clamp(toSec(in.now - now_), 0.0, 1.0);
+  prevNow_ = now_;  // dtSec() = clamp(toSec(now_ - prevNow_), 0, 1), as it was stored here per tick
   now_ = in.now;
   IBV_ = in.IBV.value;
   BatteryV_ = in.BatteryV.value;

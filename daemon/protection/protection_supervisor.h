@@ -53,6 +53,7 @@
 // Commands (between ticks): CommandType::ReenableField -> prot.reenableField();
 // CommandType::ResetAlarmLatch -> prot.resetAlarmLatch(). setParams() on every
 // Regulator::setParams().
+#include <algorithm>
 #include <array>
 #include <cstdint>
 
@@ -198,7 +199,10 @@ class ProtectionSupervisor {
   ProtectionFlags flags_;
   TimeNs now_ = 0;
   TimeNs boot_ = -1;
-  double dtSec_ = 0.0;
+  // The previous tick's now_: the sequencer's ramp step dtSec() is computed
+  // from it only on the ticks that ramp, not on every tick.
+  TimeNs prevNow_ = 0;
+  double dtSec() const { return std::clamp(toSec(now_ - prevNow_), 0.0, 1.0); }
 
   // Latest values seen by the detectors (telemetry, alarms, accelerator).
   double IBV_ = kNoValue, BatteryV_ = kNoValue, Bcur_ = kNoValue, MeasuredAmps_ = kNoValue;
