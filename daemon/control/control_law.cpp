@@ -1,6 +1,7 @@
 #include "control/control_law.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "control/rpm_tables.h"
@@ -21,15 +22,56 @@ constexpr double kNoCeiling = 1e300;
 }  // namespace
 
 ControlLaw::ControlLaw(const Params& p) : currentPID_(p.PidKp, p.PidKi, p.PidKd, Pid::DIRECT) {
+  derive(p);
   configurePid(p);
   currentPID_.SetMode(Pid::MANUAL);
   ChargingVoltageTarget_ = p.BulkVoltage;
 }
 
+void ControlLaw::derive(const Params& p) {
+  d_.overrideNow = p.MaintainMode || p.TargetVoltageMode || p.CVTuningMode;
+  d_.overrideTargets = d_.overrideNow || p.TuningMode;
+  d_.pidOutMax = std::max(p.MinDuty + 1e-6, p.MaxDuty);
+  d_.majorOvV = alternatorHardShutdownV(p) + k::HARD_SHUTDOWN_BYPASS_OFFSET_V;
+  d_.baseCeilingA = std::min(p.MaxTableValue, p.MaximumAllowedBatteryAmps);
+  d_.pidDivisor = std::max(1, p.PidSampleDivisor);
+  pidTuningsStale_ = true;
+  rpm_.valid = false;  // the tables may have changed
+}
+
+// Same search and interpolation as getMinDutyForRPM / capCurrentAt, done
+// only when rpm differs from the last call (by its bits, so NaN and -0.0 are
+// handled exactly) or the Params were replaced since.
+[[gnu::always_inline]] inline const ControlLaw::RpmLookup& ControlLaw::rpmLookup(const Params& p,
+                                                                                 double rpm) {
+  const std::uint64_t bits = std::bit_cast<std::uint64_t>(rpm);
+  if (!rpm_.valid || bits != rpm_.rpmBits) {
+    const RpmPosition at = locateRpm(p.rpmTableRPMPoints, rpm);
+    rpm_.minDuty = rpmTableValue(activeMinDutyTable(p), at);
+    rpm_.capTable = capTableValueAt(p, at);
+    rpm_.rpmBits = bits;
+    rpm_.valid = true;
+  }
+  return rpm_;
+}
+
+void ControlLaw::setParams(const Params& p) {
+  derive(p);
+  thermal_.paramsChanged();
+}
+
 [[gnu::always_inline]] inline void ControlLaw::configurePid(const Params& p) {
-  currentPID_.SetOutputLimits(p.MinDuty, std::max(p.MinDuty + 1e-6, p.MaxDuty));
-  currentPID_.SetTunings(p.PidKp, p.PidKi, p.PidKd);
-  currentPID_.SetTrackingGain(p.PIDTrackingGain);
+  // The limits are applied on every call: SetOutputLimits also re-clamps
+  // output / outputSum, which the MANUAL, shutdown and SystemID paths write
+  // unclamped. The gains only change with the Params; nothing else sets them
+  // (setting them again with the same values is a no-op, so applying them
+  // once per setParams gives the same Pid state bit for bit).
+  currentPID_.SetOutputLimits(p.MinDuty, d_.pidOutMax);
+  if (pidTuningsStale_) {
+    currentPID_.SetTunings(p.PidKp, p.PidKi, p.PidKd);
+    currentPID_.SetTrackingGain(p.PIDTrackingGain);
+    pidTuningsStale_ = false;
+  }
 }
 
 void ControlLaw::updateFilters(const ControlSensors& s, const Params& p) {
@@ -59,7 +101,7 @@ void ControlLaw::updateFilters(const ControlSensors& s, const Params& p) {
 
 void ControlLaw::updateChargingStage(const ControlSensors& s, const Params& p, bool manualMode,
                                      EventBatch& ev) {
-  const bool overrideNow = p.MaintainMode || p.TargetVoltageMode || p.CVTuningMode;
+  const bool overrideNow = d_.overrideNow;
   // The stage machine only advances while charging in AUTO (IDLE keeps its
   // re-bulk watch while the field is off); override modes and manual hold it.
   const bool running = sysMode_ == SysMode::SYS_MODE_AUTO || stages_.inIdleStage();
@@ -94,7 +136,7 @@ void ControlLaw::updateChargingStage(const ControlSensors& s, const Params& p, b
   // 40 Ah AGM bank at 50 A). Once IBV reaches BulkVoltage in BULK, the CV loop
   // engages at the bulk target (bumpless seed, Groups 1-3 armed) until IBV
   // falls BULK_V_BAND_EXIT below it; the stage machine is untouched.
-  const bool overrideTargets = p.MaintainMode || p.TargetVoltageMode || p.CVTuningMode || p.TuningMode;
+  const bool overrideTargets = d_.overrideTargets;
   if (stages_.inBulkStage() && !overrideTargets && finite(s.IBV)) {
     if (!bulkVoltageLimitActive_ && s.IBV >= p.BulkVoltage)
       bulkVoltageLimitActive_ = true;
@@ -124,9 +166,9 @@ void ControlLaw::updateChargingStage(const ControlSensors& s, const Params& p, b
 
 double ControlLaw::computeUTarget(const ControlSensors& s, const Params& p) {
   // getMinDutyForRPM + getCapCurrentForRPM, sharing one breakpoint search.
-  const RpmPosition at = locateRpm(p.rpmTableRPMPoints, s.rpm);
-  rpmMinDuty_ = rpmTableValue(activeMinDutyTable(p), at);
-  I_cap_ = capCurrentAt(p, at, s.IBV);
+  const RpmLookup& at = rpmLookup(p, s.rpm);
+  rpmMinDuty_ = at.minDuty;
+  I_cap_ = capCurrentFromTable(p, at.capTable, s.IBV);
 
   // T0 on its own cadence; the penalty holds on stale input.
   ThermalInputs ti;
@@ -161,9 +203,8 @@ double ControlLaw::computeUTarget(const ControlSensors& s, const Params& p) {
   return uTargetRaw_;
 }
 
-[[gnu::always_inline]] inline void ControlLaw::updateGovMode(const ControlSensors& s, const Params& p,
-                                                             const FastOvApply& fa) {
-  const bool majorOV = finite(s.IBV) && s.IBV > alternatorHardShutdownV(p) + k::HARD_SHUTDOWN_BYPASS_OFFSET_V;
+[[gnu::always_inline]] inline void ControlLaw::updateGovMode(const ControlSensors& s, const FastOvApply& fa) {
+  const bool majorOV = finite(s.IBV) && s.IBV > d_.majorOvV;
   // CV overshoot latch: set when fast-OV fires in CV, released once IBV is
   // back under target + 20 mV (hysteresis stops chatter as the field collapses).
   if (cvOvershootBypass_ && (!voltageControlActive_ || !finite(s.IBV) ||
@@ -189,7 +230,7 @@ double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const Fa
   uTargetAmps_ = std::max(0.0, std::min(uTargetRaw_, fa.fastOvCurrentCap));
   if (fa.setCvI) cv_.setCvI(fa.cv_I);
   if (fa.zeroSetpointLimited) setpointLimited_ = 0.0;
-  updateGovMode(s, p, fa);
+  updateGovMode(s, fa);
 
   if (sysId_.sysIDRunning()) {
     // Plant-delay step test: setpoint machinery skipped, inner PID pinned.
@@ -257,7 +298,7 @@ double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const Fa
   if (currentPID_.GetMode() != Pid::AUTOMATIC) currentPID_.SetMode(Pid::AUTOMATIC);
   currentPID_.input = p.MaintainMode ? s.Bcur : pidSig_;
   currentPID_.setpoint = setpointLimited_;
-  if (++pidSampleCounter_ >= std::max(1, p.PidSampleDivisor)) {
+  if (++pidSampleCounter_ >= d_.pidDivisor) {
     pidSampleCounter_ = 0;
     const double pdt = lastPidCompute_ < 0 ? dt : toSec(s.now - lastPidCompute_);
     if (currentPID_.Compute(std::min(pdt, kMaxControlDtSec))) lastPidCompute_ = s.now;
@@ -272,7 +313,7 @@ double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const Fa
   if (p.CVTuningMode && finite(s.IBV)) cvTuning_.score(s.IBV, dt, p);
 
   // Non-thermal ceiling for T0's implied-penalty anti-windup (next tick).
-  double c = std::min(p.MaxTableValue, p.MaximumAllowedBatteryAmps);
+  double c = d_.baseCeilingA;
   if (warmupActive_) c = std::min(c, p.WarmupCeilingAmps);
   if (p.MaintainMode) c = 0.0;
   c = std::min(c, fa.fastOvCurrentCap);
@@ -282,7 +323,7 @@ double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const Fa
 }
 
 double ControlLaw::runManual(const ControlSensors& s, const Params& p, double manualDuty) {
-  rpmMinDuty_ = getMinDutyForRPM(p, s.rpm);
+  rpmMinDuty_ = rpmLookup(p, s.rpm).minDuty;
   govMode_ = GovMode::GOV_NORMAL_SLEW;  // manual still respects the tach floor
   dutyRequest_ = manualDuty;
   const double duty = governorStep(p, manualDuty, govMode_, tickDt_);
@@ -294,7 +335,7 @@ double ControlLaw::runManual(const ControlSensors& s, const Params& p, double ma
 }
 
 double ControlLaw::runLimpHome(const ControlSensors& s, const Params& p, EventBatch& ev) {
-  rpmMinDuty_ = getMinDutyForRPM(p, s.rpm);
+  rpmMinDuty_ = rpmLookup(p, s.rpm).minDuty;
   govMode_ = GovMode::GOV_NORMAL_SLEW;
   dutyRequest_ = k::LIMP_HOME_DUTY;
   GovernorLimits lim{p.MinDuty, p.MaxDuty, p.DutyRampRate};
@@ -305,7 +346,7 @@ double ControlLaw::runLimpHome(const ControlSensors& s, const Params& p, EventBa
 }
 
 void ControlLaw::trackShutdown(double appliedDuty, const Params& p, double rpm) {
-  rpmMinDuty_ = getMinDutyForRPM(p, rpm);
+  rpmMinDuty_ = rpmLookup(p, rpm).minDuty;
   lastAppliedDuty_ = appliedDuty;
   dutyRequest_ = appliedDuty;
   currentPID_.output = appliedDuty;

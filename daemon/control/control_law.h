@@ -12,6 +12,8 @@
 //   finishAuto()      : fastOvCurrentCap clamp => uTargetAmps -> CV (Icv) or
 //                       direct => setpointCommand -> slew => setpointLimited ->
 //                       currentPID -> governor_apply -> TrackAppliedOutput.
+#include <cstdint>
+
 #include "control/charging_stage.h"
 #include "control/control_telemetry.h"
 #include "control/cv_loop.h"
@@ -59,6 +61,13 @@ struct FastOvApply {
 class ControlLaw {
  public:
   explicit ControlLaw(const Params& p);
+
+  // The parameter set was replaced (Regulator::setParams). Contract: every
+  // per-tick call below is passed the Params last given here or to the
+  // constructor; values derived from them are cached between the two (see
+  // ParamsDerived). A caller that changes its Params in place between ticks
+  // (the unit-test rigs) calls this after each change, as Regulator does.
+  void setParams(const Params& p);
 
   // Every tick, first: filters on fresh CH1 / IBV, control dt bookkeeping.
   void updateFilters(const ControlSensors& s, const Params& p);
@@ -146,10 +155,40 @@ class ControlLaw {
   double pidFeedback(const Params& p) const;
   double governorStep(const Params& p, double request, GovMode mode, double dt);
   void enterManualLike(SysMode m);
-  void updateGovMode(const ControlSensors& s, const Params& p, const FastOvApply& fa);
+  void updateGovMode(const ControlSensors& s, const FastOvApply& fa);
   void fillLoopTelemetry(ControlTelemetry& t) const;
   void fillTuningTelemetry(ControlTelemetry& t) const;
   bool tuningActive() const { return tuning_.running() || cvTuning_.running() || sysId_.sysIDRunning(); }
+
+  // Values that depend only on the Params, computed by setParams() (and the
+  // constructor) instead of on every tick. They cannot be stale in
+  // production: Regulator owns the only Params copy, never mutates it, and
+  // its setParams() is the only place that replaces it, which calls ours
+  // (ControlSetParams.* fails if it does not).
+  struct ParamsDerived {
+    bool overrideNow = false;      // MaintainMode || TargetVoltageMode || CVTuningMode
+    bool overrideTargets = false;  // overrideNow || TuningMode
+    double pidOutMax = 100.0;      // max(MinDuty + 1e-6, MaxDuty)
+    double majorOvV = 0.0;         // alternatorHardShutdownV + HARD_SHUTDOWN_BYPASS_OFFSET_V
+    double baseCeilingA = 0.0;     // min(MaxTableValue, MaximumAllowedBatteryAmps)
+    int pidDivisor = 1;            // max(1, PidSampleDivisor)
+  };
+  void derive(const Params& p);
+  ParamsDerived d_;
+  // The RPM table lookups of the last rpm seen (bit for bit), for these
+  // Params: rpm is a slow ADS channel, so most ticks repeat the last value
+  // and the breakpoint search gives the same result. derive() drops it.
+  struct RpmLookup {
+    bool valid = false;
+    std::uint64_t rpmBits = 0;
+    double minDuty = 0.0;   // rpmTableValue(activeMinDutyTable)
+    double capTable = 0.0;  // capTableValueAt
+  };
+  const RpmLookup& rpmLookup(const Params& p, double rpm);
+  RpmLookup rpm_;
+  // currentPID_'s gains and tracking gain are (re)applied on the next
+  // configurePid() after a setParams() only.
+  bool pidTuningsStale_ = true;
 
   // Loops.
   Pid currentPID_;

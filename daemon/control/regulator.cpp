@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <type_traits>
 
@@ -33,6 +34,18 @@ bool isRampMode(FieldControlMode m) {
          m == FieldControlMode::MODE_LOCKOUT_RAMP;
 }
 }  // namespace
+
+// The bytes of TickSnapshot that selectFieldMode() reads: everything after
+// now, to the end of the struct. No implicit padding inside (it would make
+// equal snapshots compare unequal and read indeterminate bytes): the flags
+// are 20 bools (five named padding) and 2 enums with no gap, the operator
+// part 12 bools (three named padding). Adding a member anywhere changes a
+// size below and fails to compile until the key is looked at again.
+constexpr std::size_t kModeKeyBegin = offsetof(TickSnapshot, prot);
+constexpr std::size_t kModeKeyBytes = sizeof(TickSnapshot) - kModeKeyBegin;
+static_assert(sizeof(ProtectionFlags) == 20 * sizeof(bool) + sizeof(FieldControlMode) + sizeof(Reason));
+static_assert(kModeKeyBegin == sizeof(TimeNs) && offsetof(TickSnapshot, now) == 0);
+static_assert(kModeKeyBytes == sizeof(ProtectionFlags) + 12 * sizeof(bool));
 
 struct Regulator::State {
   explicit State(const Params& params) : p(params), law(params), prot(params), bat(params) {}
@@ -58,6 +71,14 @@ struct Regulator::State {
   TimeNs now = 0;
   GovMode tickGovMode = GovMode::GOV_NORMAL_SLEW;  // the last step's govMode (telemetry)
 
+  // Mode-selection memo: selectFieldMode() is a pure function of the
+  // snapshot and does not read snap.now, so the decision for the same bytes
+  // after snap.now (kModeKeyBytes, no padding) is the same decision; nearly
+  // every tick repeats the last one.
+  bool haveModeMemo = false;
+  std::array<unsigned char, kModeKeyBytes> modeKey{};
+  ModeDecision modeMemo;
+
   // Command results waiting for the next step's event batch.
   std::array<Event, 8> pending{};
   std::size_t pendingCount = 0;
@@ -75,6 +96,7 @@ Regulator::~Regulator() = default;
 void Regulator::setParams(const Params& params) {
   s_->p = params;
   s_->inaBovlVolts = voltageHardwareLimit(params);
+  s_->law.setParams(params);
   s_->prot.setParams(params);
   s_->bat.setParams(params);
 }
@@ -201,7 +223,13 @@ bool Regulator::command(const Command& cmd) {
   snap.weatherModeActive = p.weatherModeEnabled && s.currentWeatherMode;
   snap.idleStage = s.law.stages().inIdleStage();
   snap.autoZeroActive = autoZeroActive;
-  const ModeDecision d = selectFieldMode(snap);
+  const unsigned char* key = reinterpret_cast<const unsigned char*>(&snap) + kModeKeyBegin;
+  if (!s.haveModeMemo || std::memcmp(key, s.modeKey.data(), kModeKeyBytes) != 0) {
+    s.modeMemo = selectFieldMode(snap);
+    std::memcpy(s.modeKey.data(), key, kModeKeyBytes);
+    s.haveModeMemo = true;
+  }
+  const ModeDecision d = s.modeMemo;
 
   // 6. Mode transitions: bumpless enter_sys_* and the mode-change event.
   if (s.firstTick || d.mode != s.lastMode) {

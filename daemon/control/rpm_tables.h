@@ -52,13 +52,21 @@ inline const RpmTable& activeMinDutyTable(const Params& p) {
 // I_cap in amps. capLimitMode 0: rpmCapCurrentTable. capLimitMode 1:
 // rpmCapPowerTable (kW) converted through the live IBV; with no usable IBV the
 // cap is 0 A (safe: no current can be commanded without knowing the voltage).
-inline double capCurrentAt(const Params& p, const RpmPosition& at, double ibv) {
+// Split in two so the table part (a function of rpm and the Params only) can
+// be kept while rpm does not change: capTableValueAt() is the kW or A entry,
+// capCurrentFromTable() the conversion through this tick's IBV.
+inline double capTableValueAt(const Params& p, const RpmPosition& at) {
+  return rpmTableValue(p.capLimitMode == 1 ? activeCapPowerTable(p) : activeCapCurrentTable(p), at);
+}
+inline double capCurrentFromTable(const Params& p, double tableValue, double ibv) {
   if (p.capLimitMode == 1) {
-    const double kw = rpmTableValue(activeCapPowerTable(p), at);
     if (!std::isfinite(ibv) || ibv < 1.0) return 0.0;
-    return std::max(0.0, kw * 1000.0 / ibv);
+    return std::max(0.0, tableValue * 1000.0 / ibv);
   }
-  return std::max(0.0, rpmTableValue(activeCapCurrentTable(p), at));
+  return std::max(0.0, tableValue);
+}
+inline double capCurrentAt(const Params& p, const RpmPosition& at, double ibv) {
+  return capCurrentFromTable(p, capTableValueAt(p, at), ibv);
 }
 inline double getCapCurrentForRPM(const Params& p, double rpm, double ibv) {
   return capCurrentAt(p, locateRpm(p.rpmTableRPMPoints, rpm), ibv);

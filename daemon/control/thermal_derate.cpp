@@ -19,11 +19,20 @@ double ThermalDerate::update(const ThermalInputs& in, const Params& p) {
     holding_ = false;
     return thermalPenaltyAmps_;
   }
-  tempPID_.SetTunings(p.TempPIDKp, p.TempPIDKi, p.TempPIDKd);
-  tempPID_.SetOutputLimits(0.0, std::max(1.0, p.MaxTableValue));
-  tempPID_.SetTrackingGain(p.PIDTrackingGain);
-  tempPID_.setpoint = p.TemperatureLimitF;
-  if (tempPID_.GetMode() != Pid::AUTOMATIC) tempPID_.SetMode(Pid::AUTOMATIC);
+  // Configured once per Params (paramsChanged(), reset()) instead of every
+  // tick, with the same result: the setters are idempotent for equal values,
+  // nothing else writes the gains, limits or setpoint, and the re-clamp in
+  // SetOutputLimits is a no-op between changes because every writer of
+  // output / outputSum below (Compute, TrackIntegratorTo, ResetIntegratorTo,
+  // SetMode) clamps to these same limits. AUTOMATIC, once set, stays.
+  if (pidStale_) {
+    tempPID_.SetTunings(p.TempPIDKp, p.TempPIDKi, p.TempPIDKd);
+    tempPID_.SetOutputLimits(0.0, std::max(1.0, p.MaxTableValue));
+    tempPID_.SetTrackingGain(p.PIDTrackingGain);
+    tempPID_.setpoint = p.TemperatureLimitF;
+    if (tempPID_.GetMode() != Pid::AUTOMATIC) tempPID_.SetMode(Pid::AUTOMATIC);
+    pidStale_ = false;
+  }
 
   // Stale or implausible input: the PID halts and the penalty HOLDS its last
   // value (never zeroed); T5 cuts the field if it stays stale.

@@ -28,6 +28,9 @@ class ThermalDerate {
   // Once per control tick. Returns thermalPenaltyAmps.
   double update(const ThermalInputs& in, const Params& p);
   void reset();
+  // The Params changed: the temperature PID's gains and limits are applied
+  // again on the next update() (and only then; see there).
+  void paramsChanged() { pidStale_ = true; }
 
   double tempFiltered() const { return tempFiltered_; }
   double projectedTempF() const { return projectedTempF_; }
@@ -48,6 +51,7 @@ class ThermalDerate {
   std::array<TimeNs, k::THERMAL_SLOPE_BUF> slopeStamps_{};
   int slopeCount_ = 0, slopeHead_ = 0;
   bool holding_ = false;
+  bool pidStale_ = true;  // tempPID_ not yet configured from the current Params
 };
 
 }  // namespace xr

@@ -36,7 +36,7 @@ void ProtectionSupervisor::updateDetectors(const Inputs& in, double MeasuredAmps
     boot_ = in.now;
     now_ = in.now;
   }
-  dtSec_ = std::clamp(toSec(in.now - now_), 0.0, 1.0);
+  prevNow_ = now_;  // dtSec() = clamp(toSec(now_ - prevNow_), 0, 1), as it was stored here per tick
   now_ = in.now;
   IBV_ = in.IBV.value;
   BatteryV_ = in.BatteryV.value;
@@ -118,8 +118,7 @@ inline void ProtectionSupervisor::updateInaLatch(const Inputs& in, EventBatch& e
       disC = sustained(disagreeCritT_, !dead && diff > d_.criticalDisagreeV,
                        fromMs(k::VoltageDisagreeCriticalTimeoutMs)) ||
              dead;
-      disW = sustained(disagreeWarnT_, !dead && diff > p_.VoltageDisagreeThreshold,
-                       fromSec(p_.VoltageDisagreeTimeout));
+      disW = sustained(disagreeWarnT_, !dead && diff > p_.VoltageDisagreeThreshold, d_.disagreeWarnHold);
     }
     auto outside = [&](double v) { return !finite(v) || v < d_.plausibleMin || v > d_.plausibleMax; };
     impl = outside(IBV_) && outside(BatteryV_);  // single-sensor implausibility passes
@@ -206,8 +205,7 @@ inline void ProtectionSupervisor::updateInaLatch(const Inputs& in, EventBatch& e
 [[gnu::always_inline]] inline void ProtectionSupervisor::updateCurrent(const Inputs& in, double MeasuredAmps,
                                                                        EventBatch& ev) {
   const double trip = d_.hardOcTripA;
-  flags_.hardOvercurrent =
-      sustained(hardOcT_, finite(MeasuredAmps) && MeasuredAmps > trip, fromMs(p_.HardOCDebounceMs));
+  flags_.hardOvercurrent = sustained(hardOcT_, finite(MeasuredAmps) && MeasuredAmps > trip, d_.hardOcHold);
   edge(evHardOc_, flags_.hardOvercurrent, Reason::REASON_HARD_OVERCURRENT, MeasuredAmps, trip, ev,
        EventLevel::Critical);
 
@@ -219,12 +217,12 @@ inline void ProtectionSupervisor::updateInaLatch(const Inputs& in, EventBatch& e
   // sample for CurrentStaleMs, or no fresh INA228 sample for CurrentStaleMs
   // in fast mode / CurrentStaleMs + 2 slow periods in slow mode (field off,
   // ~1.05 s conversions) and for one slow period after switching to fast.
-  const TimeNs win = fromMs(p_.CurrentStaleMs);
+  const TimeNs win = d_.currentStaleWin;
   auto staleOf = [&](TimeNs stamp, TimeNs window) { return now_ - (stamp != 0 ? stamp : boot_) > window; };
   const bool ch1Stale = staleOf(in.altCurrentRaw.stamp, win);
   const bool settledFast =
       inaFastModeActive_ && inaFastSince_ >= 0 && now_ - inaFastSince_ >= fromMs(k::INA_SLOW_INTERVAL_MS);
-  const TimeNs inaWin = settledFast ? win : win + 2 * fromMs(k::INA_SLOW_INTERVAL_MS);
+  const TimeNs inaWin = settledFast ? win : d_.currentStaleWinSlow;
   const bool inaStale = !p_.INADisconnected && staleOf(std::max(in.IBV.stamp, in.Bcur.stamp), inaWin);
   flags_.currentStale = ch1Stale || inaStale;
   edge(evCur_, flags_.currentStale, Reason::REASON_CURRENT_STALE, ch1Stale ? 1.0 : 0.0, inaStale ? 1.0 : 0.0,

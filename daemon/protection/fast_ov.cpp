@@ -36,13 +36,13 @@ FastOvAction ProtectionSupervisor::runFastOvSupervisors(const FastOvInputs& x) {
   FastOvAction a;
   const double target = x.ChargingVoltageTarget;
   // nearBulk = (ProtectionProxGateV <= 0) OR (target >= BulkVoltage - ProtectionProxGateV)
-  a.nearBulk = p_.ProtectionProxGateV <= 0.0 || target >= p_.BulkVoltage - p_.ProtectionProxGateV;
+  a.nearBulk = d_.nearBulkAlways || target >= d_.nearBulkMinV;
   const double base = std::max(0.0, x.uTargetAmps);  // fastOvBaseCap
   a.fastOvCurrentCap = base;
   a.cv_I = x.cv_I;
 
   // Group 3 signal window is kept up to date whatever the gate says.
-  const int maN = std::clamp(p_.IExcessMA_N, 1, static_cast<int>(maBuf_.size()));
+  const int maN = d_.iexMaN;
   if (x.altCurrentFresh && std::isfinite(x.MeasuredAmps)) {
     maBuf_[static_cast<std::size_t>(maHead_)] = x.MeasuredAmps;
     maHead_ = (maHead_ + 1) % static_cast<int>(maBuf_.size());

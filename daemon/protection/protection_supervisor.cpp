@@ -5,6 +5,7 @@
 
 #include <algorithm>
 
+#include "params/constants.h"
 #include "params/derived.h"
 
 namespace xr {
@@ -28,6 +29,13 @@ void ProtectionSupervisor::computeDerived() {
   d_.plausibleMin = r.min;
   d_.plausibleMax = r.max;
   d_.hardOcTripA = hardOCTripAmps(p_);
+  d_.hardOcHold = fromMs(p_.HardOCDebounceMs);
+  d_.disagreeWarnHold = fromSec(p_.VoltageDisagreeTimeout);
+  d_.currentStaleWin = fromMs(p_.CurrentStaleMs);
+  d_.currentStaleWinSlow = d_.currentStaleWin + 2 * fromMs(k::INA_SLOW_INTERVAL_MS);
+  d_.nearBulkAlways = p_.ProtectionProxGateV <= 0.0;
+  d_.nearBulkMinV = p_.BulkVoltage - p_.ProtectionProxGateV;
+  d_.iexMaN = std::clamp(p_.IExcessMA_N, 1, static_cast<int>(maBuf_.size()));
 }
 
 void ProtectionSupervisor::push(EventBatch& ev, EventCode c, EventLevel l, Reason r, double a, double b,

@@ -53,6 +53,7 @@
 // Commands (between ticks): CommandType::ReenableField -> prot.reenableField();
 // CommandType::ResetAlarmLatch -> prot.resetAlarmLatch(). setParams() on every
 // Regulator::setParams().
+#include <algorithm>
 #include <array>
 #include <cstdint>
 
@@ -177,6 +178,15 @@ class ProtectionSupervisor {
     double criticalDisagreeV = 0.0;                 // criticalDisagreementThreshold
     double plausibleMin = 0.0, plausibleMax = 0.0;  // plausibleVoltageRange
     double hardOcTripA = 0.0;                       // hardOCTripAmps
+    // Unit conversions and clamps of parameters (exactly the expressions
+    // the detectors and supervisors evaluated per tick before).
+    TimeNs hardOcHold = 0;           // fromMs(HardOCDebounceMs)
+    TimeNs disagreeWarnHold = 0;     // fromSec(VoltageDisagreeTimeout)
+    TimeNs currentStaleWin = 0;      // fromMs(CurrentStaleMs)
+    TimeNs currentStaleWinSlow = 0;  // currentStaleWin + 2 slow INA228 periods
+    bool nearBulkAlways = false;     // ProtectionProxGateV <= 0
+    double nearBulkMinV = 0.0;       // BulkVoltage - ProtectionProxGateV
+    int iexMaN = 1;                  // IExcessMA_N clamped to the window
   };
   void computeDerived();
   void push(EventBatch& ev, EventCode c, EventLevel l, Reason r, double a = 0.0, double b = 0.0,
@@ -189,7 +199,10 @@ class ProtectionSupervisor {
   ProtectionFlags flags_;
   TimeNs now_ = 0;
   TimeNs boot_ = -1;
-  double dtSec_ = 0.0;
+  // The previous tick's now_: the sequencer's ramp step dtSec() is computed
+  // from it only on the ticks that ramp, not on every tick.
+  TimeNs prevNow_ = 0;
+  double dtSec() const { return std::clamp(toSec(now_ - prevNow_), 0.0, 1.0); }
 
   // Latest values seen by the detectors (telemetry, alarms, accelerator).
   double IBV_ = kNoValue, BatteryV_ = kNoValue, Bcur_ = kNoValue, MeasuredAmps_ = kNoValue;

@@ -134,7 +134,7 @@ ShutdownCommand ProtectionSupervisor::runShutdownPath(const ModeDecision& d, dou
     if (phase_ == ShutdownPhase::PHASE_1) {
       if (duty_ > floorDuty) {
         if (rampedThisTick) break;
-        duty_ = accel ? floorDuty : std::max(floorDuty, duty_ - p_.DutyRampRate * dtSec_);
+        duty_ = accel ? floorDuty : std::max(floorDuty, duty_ - p_.DutyRampRate * dtSec());
         rampedThisTick = true;
       }
       if (duty_ > floorDuty) break;
@@ -149,7 +149,7 @@ ShutdownCommand ProtectionSupervisor::runShutdownPath(const ModeDecision& d, dou
     if (phase_ == ShutdownPhase::PHASE_3) {
       if (duty_ > 0.0) {
         if (rampedThisTick) break;
-        duty_ = std::max(0.0, duty_ - p_.DutySlowRampRate * dtSec_);
+        duty_ = std::max(0.0, duty_ - p_.DutySlowRampRate * dtSec());
         rampedThisTick = true;
       }
       if (duty_ > 0.0) break;

@@ -38,6 +38,7 @@ struct LawRig {
   }
 
   void start() {
+    law.setParams(p);
     tempStamp = now;
     law.updateFilters(sensors(), p);
     law.enter_sys_auto(sensors(), p);
@@ -50,6 +51,9 @@ struct LawRig {
     now += fromSec(dt);
     if (now - tempStamp >= fromSec(1.0)) tempStamp = now;  // 1 Hz temperature samples
     ev.clear();
+    // Tests change p in place between ticks: hand it over as Regulator's
+    // setParams would (ControlLaw caches values derived from it).
+    law.setParams(p);
     const ControlSensors s = sensors(fresh);
     law.updateFilters(s, p);
     law.updateChargingStage(s, p, manual, ev);
