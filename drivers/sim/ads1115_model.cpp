@@ -27,7 +27,10 @@ std::uint16_t Ads1115Model::peekConfig() const noexcept {
   return static_cast<std::uint16_t>((config_ & ~OS) | (converting_ ? 0 : OS));
 }
 
-std::int16_t Ads1115Model::sample(std::uint16_t cfg) noexcept {
+// The per-conversion helpers are forced inline into convertTo() (their only
+// per-tick caller): ~2 conversions per control tick, and the calls with
+// their prologues were a third of the conversion's own instructions.
+[[gnu::always_inline]] inline std::int16_t Ads1115Model::sample(std::uint16_t cfg) noexcept {
   // MUX -> AINp, AINn (-1 = GND), as tables instead of a switch. The
   // positive input is sampled (and draws its noise) before the negative one.
   static constexpr std::int8_t kPos[8] = {0, 0, 1, 2, 0, 1, 2, 3};
@@ -41,7 +44,7 @@ std::int16_t Ads1115Model::sample(std::uint16_t cfg) noexcept {
   return static_cast<std::int16_t>(std::clamp(code, -32768.0, 32767.0));  // clips at ±FS
 }
 
-void Ads1115Model::startConversion(TimeNs at) noexcept {
+[[gnu::always_inline]] inline void Ads1115Model::startConversion(TimeNs at) noexcept {
   converting_ = true;
   convConfig_ = config_;  // settings in force for this conversion
   convEnd_ = at + period(drOf(config_));
@@ -49,7 +52,7 @@ void Ads1115Model::startConversion(TimeNs at) noexcept {
   if (readyMode() && queOf(config_) != 3 && (config_ & MODE_SINGLE)) alert_ = false;
 }
 
-void Ads1115Model::finishConversion() noexcept {
+[[gnu::always_inline]] inline void Ads1115Model::finishConversion() noexcept {
   conversion_ = sample(convConfig_);
   ++conversions_;
   converting_ = false;
@@ -148,6 +151,7 @@ inline int Ads1115Model::writeMsg(const std::uint8_t* buf, std::size_t len) noex
       startConversion(now_);  // single-shot start; ignored while busy
     }
   }
+  pulses_ = readyMode() && queOf(config_) != 3 && !(config_ & MODE_SINGLE);
   return 0;
 }
 
