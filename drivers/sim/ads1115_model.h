@@ -75,6 +75,8 @@ class Ads1115Model final : public SimI2cDevice {
   int writeMsg(const std::uint8_t* buf, std::size_t len) noexcept;
   void convertTo(TimeNs t) noexcept;  // update() with a conversion ending by t
   void startConversion(TimeNs at) noexcept;
+  std::uint16_t readConversion() noexcept;     // a read of the Conversion register, with its side effect
+  void writeConfig(std::uint16_t v) noexcept;  // a write of the Config register
   void finishConversion() noexcept;
   // Hi_thresh MSB = 1 and Lo_thresh MSB = 0: ALERT/RDY is the conversion-ready
   // pin. Held as a flag, set when a threshold is written (asked per conversion
