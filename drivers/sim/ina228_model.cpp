@@ -418,9 +418,37 @@ int Ina228Model::write(const std::uint8_t* buf, std::size_t len) noexcept { retu
 
 int Ina228Model::transact(TimeNs t, std::span<I2cMsg> msgs) noexcept {
   update(t);
+  // The driver's poll, every control tick: pointer + read pairs for
+  // DIAG_ALRT (2 bytes) and, when a result is due, VBUS and CURRENT (3
+  // bytes each). Each such pair is done as its two messages would be
+  // (pointer set, the register's bytes MSB first, DIAG_ALRT's read side
+  // effect; VBUS and CURRENT have none), without the per-message checks and
+  // dispatch; the first message that is not part of such a pair goes through
+  // the general loop.
+  I2cMsg* m = msgs.data();
+  std::size_t n = msgs.size();
+  while (n >= 2 && !m[0].read && m[0].len == 1 && m[0].buf != nullptr && m[1].read && m[1].buf != nullptr) {
+    const std::uint8_t reg = m[0].buf[0];
+    std::uint8_t* const b = m[1].buf;
+    if (reg == DIAG_ALRT && m[1].len == 2) {
+      b[0] = std::uint8_t(diag_ >> 8);
+      b[1] = std::uint8_t(diag_);
+      clearOnDiagRead();
+    } else if ((reg == VBUS || reg == CURRENT) && m[1].len == 3) {
+      const std::uint32_t v = (std::uint32_t(reg == VBUS ? vbus_ : current_) & 0xFFFFF) << 4;
+      b[0] = std::uint8_t(v >> 16);
+      b[1] = std::uint8_t(v >> 8);
+      b[2] = std::uint8_t(v);
+    } else {
+      break;
+    }
+    ptr_ = reg;
+    m += 2;
+    n -= 2;
+  }
   return runMessages(
-      msgs, [this](std::uint8_t* b, std::size_t n) { return readMsg(b, n); },
-      [this](const std::uint8_t* b, std::size_t n) { return writeMsg(b, n); });
+      std::span<I2cMsg>(m, n), [this](std::uint8_t* b, std::size_t len) { return readMsg(b, len); },
+      [this](const std::uint8_t* b, std::size_t len) { return writeMsg(b, len); });
 }
 
 }  // namespace xr::sim
