@@ -149,7 +149,9 @@ void Ina228Model::convertTo(TimeNs t) noexcept {
   now_ = t;
 }
 
-void Ina228Model::publish(double dt) noexcept {
+// Out of line: a result every ~1.8 control ticks, while convertTo() runs
+// ~2 times per tick and would pay for publish()'s registers on every call.
+[[gnu::noinline]] void Ina228Model::publish(double dt) noexcept {
   // The window holds exactly AVG samples (update() never overfills it), and
   // AVG is a power of two: multiplying by 1/n is exact, no division. The
   // integer sums (< 2^30) convert to double exactly: the same mean as a
@@ -215,7 +217,7 @@ void Ina228Model::publish(double dt) noexcept {
     }
   }
   diag_ |= CNVRF;
-  if (diag_ & SLOWALERT) compareLimits(vshunt_, vbus_, dietemp_, power_);
+  if (diag_ & SLOWALERT) compareLimitsInline(vshunt_, vbus_, dietemp_, power_);
 }
 
 void Ina228Model::refreshLimits() noexcept {
@@ -235,8 +237,9 @@ void Ina228Model::refreshLimits() noexcept {
   measured_ = measured;
 }
 
-void Ina228Model::compareLimits(std::int32_t vsh, std::int32_t vb, std::int32_t tcode,
-                                std::uint32_t pw) noexcept {
+[[gnu::always_inline]] inline void Ina228Model::compareLimitsInline(std::int32_t vsh, std::int32_t vb,
+                                                                    std::int32_t tcode,
+                                                                    std::uint32_t pw) noexcept {
   // The bounds of the channels measured, taken when a register was written
   // (refreshLimits), not per comparison.
   std::uint16_t cond = 0;
@@ -253,6 +256,13 @@ void Ina228Model::compareLimits(std::int32_t vsh, std::int32_t vb, std::int32_t 
     diag_ = static_cast<std::uint16_t>((diag_ & ~measured_) | cond);
   }
   limitActive_ = (diag_ & kLimitFlags) != 0;
+}
+
+// The per-raw-sample comparison (SLOWALERT = 0) stays a call: convertTo()
+// keeps its registers for the sample loop.
+void Ina228Model::compareLimits(std::int32_t vsh, std::int32_t vb, std::int32_t tcode,
+                                std::uint32_t pw) noexcept {
+  compareLimitsInline(vsh, vb, tcode, pw);
 }
 
 std::uint64_t Ina228Model::peek(std::uint8_t reg) const noexcept {
