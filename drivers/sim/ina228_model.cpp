@@ -100,6 +100,7 @@ void Ina228Model::restartConversions() noexcept {
   running_ = true;
   sampleTime_ = sampleTime();
   avg_ = kAvgSamples[adcConfig_ & 7];
+  publishDt_ = toSec(sampleTime_ * avg_);
   const TimeNs delay = fromMs(2 * ((config_ >> 6) & 0xFF));
   nextSample_ = now_ + delay + sampleTime_;
 }
@@ -112,8 +113,11 @@ void Ina228Model::convertTo(TimeNs t) noexcept {
     codesValid_ = true;
     vshCode_ = quantise20(analog_.vshunt_v, (config_ & 0x10) ? 78.125e-9 : 312.5e-9);
     vbusCode_ = quantise20(analog_.vbus_v, kVbusLsb);
-    const double tc = roundEven(analog_.dietemp_c / kTempLsb);
-    tcode_ = static_cast<std::int32_t>(std::clamp(tc == tc ? tc : 0.0, -32768.0, 32767.0));
+    if (!(analog_.dietemp_c == tcodeC_)) {  // the die temperature rarely moves (NaN: always redone)
+      tcodeC_ = analog_.dietemp_c;
+      const double tc = roundEven(analog_.dietemp_c / kTempLsb);
+      tcode_ = static_cast<std::int32_t>(std::clamp(tc == tc ? tc : 0.0, -32768.0, 32767.0));
+    }
     // The raw power only the SLOWALERT = 0 comparison uses (a DIAG_ALRT
     // write invalidates the codes, so it is computed when SLOWALERT clears).
     if (!(diag_ & SLOWALERT)) {
@@ -142,7 +146,7 @@ void Ina228Model::convertTo(TimeNs t) noexcept {
       compareLimits(vsh, vb, tcode, rawPower_);
     }
     if (samplesInWindow_ >= avg) {
-      publish(toSec(st * avg));
+      publish(publishDt_);
       if (!continuous()) running_ = false;  // triggered: one conversion, then shutdown
     }
   }

@@ -13,6 +13,7 @@
 // reserved register, a write of the wrong length, a read longer than the
 // register.
 #include <cstdint>
+#include <limits>
 
 #include "drivers/sim/sim_i2c_device.h"
 
@@ -145,12 +146,16 @@ class Ina228Model final : public SimI2cDevice {
   // Conversion engine state.
   bool running_ = false;
   TimeNs nextSample_ = 0;
-  TimeNs sampleTime_ = 1;  // sampleTime() while running (set when conversions restart)
-  int avg_ = 1;            // samples per result (AVG) while running, set with sampleTime_
+  TimeNs sampleTime_ = 1;   // sampleTime() while running (set when conversions restart)
+  int avg_ = 1;             // samples per result (AVG) while running, set with sampleTime_
+  double publishDt_ = 0.0;  // seconds per result (sampleTime_ x avg_), for ENERGY/CHARGE
   // Raw ADC codes of analog_ (constant until the next setAnalog() or an
   // ADCRANGE change): quantised once, not per raw sample batch.
   bool codesValid_ = false;
   std::int32_t vshCode_ = 0, vbusCode_ = 0, tcode_ = 0;
+  // The die temperature tcode_ was quantised from (NaN: none yet). A
+  // difference in the sign of zero alone gives the same code.
+  double tcodeC_ = std::numeric_limits<double>::quiet_NaN();
   std::uint32_t rawPower_ = 0;
   std::uint16_t curScaleCal_ = 0;  // SHUNT_CAL that curScale_ = 4096 / SHUNT_CAL was computed for
   double curScale_ = 0.0;          // POWER code of one raw sample (SLOWALERT = 0 limit)
