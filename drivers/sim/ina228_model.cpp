@@ -90,6 +90,7 @@ void Ina228Model::restartConversions() noexcept {
   // Writing ADC_CONFIG restarts the conversion (E2E228); CONVDLY delays the
   // first one in 2 ms steps.
   const int m = mode();
+  oneSampleUntil_ = 0;
   samplesInWindow_ = 0;
   sumVsh_ = sumVbus_ = sumTemp_ = 0;
   if (m == 0 || m == 8) {
@@ -105,27 +106,29 @@ void Ina228Model::restartConversions() noexcept {
   nextSample_ = now_ + delay + sampleTime_;
 }
 
+void Ina228Model::quantise() noexcept {
+  codesValid_ = true;
+  vshCode_ = quantise20(analog_.vshunt_v, (config_ & 0x10) ? 78.125e-9 : 312.5e-9);
+  vbusCode_ = quantise20(analog_.vbus_v, kVbusLsb);
+  if (!(analog_.dietemp_c == tcodeC_)) {  // the die temperature rarely moves (NaN: always redone)
+    tcodeC_ = analog_.dietemp_c;
+    const double tc = roundEven(analog_.dietemp_c / kTempLsb);
+    tcode_ = static_cast<std::int32_t>(std::clamp(tc == tc ? tc : 0.0, -32768.0, 32767.0));
+  }
+  // The raw power only the SLOWALERT = 0 comparison uses (a DIAG_ALRT
+  // write invalidates the codes, so it is computed when SLOWALERT clears).
+  if (!(diag_ & SLOWALERT)) {
+    const double curCode = shuntCal_ ? double(vshCode_) * 4096.0 / shuntCal_ : 0.0;
+    const double pw = std::fabs(curCode) * double(vbusCode_) / 16384.0;
+    rawPower_ = static_cast<std::uint32_t>(std::min(pw, double(0xFFFFFF)));
+  }
+}
+
 void Ina228Model::convertTo(TimeNs t) noexcept {
   // The analog inputs are constant between two updates (the plant changes
   // them only between steps), so every raw sample in [now_, t] sees the same
   // values: batch them instead of looping per sample.
-  if (running_ && nextSample_ <= t && !codesValid_) {
-    codesValid_ = true;
-    vshCode_ = quantise20(analog_.vshunt_v, (config_ & 0x10) ? 78.125e-9 : 312.5e-9);
-    vbusCode_ = quantise20(analog_.vbus_v, kVbusLsb);
-    if (!(analog_.dietemp_c == tcodeC_)) {  // the die temperature rarely moves (NaN: always redone)
-      tcodeC_ = analog_.dietemp_c;
-      const double tc = roundEven(analog_.dietemp_c / kTempLsb);
-      tcode_ = static_cast<std::int32_t>(std::clamp(tc == tc ? tc : 0.0, -32768.0, 32767.0));
-    }
-    // The raw power only the SLOWALERT = 0 comparison uses (a DIAG_ALRT
-    // write invalidates the codes, so it is computed when SLOWALERT clears).
-    if (!(diag_ & SLOWALERT)) {
-      const double curCode = shuntCal_ ? double(vshCode_) * 4096.0 / shuntCal_ : 0.0;
-      const double pw = std::fabs(curCode) * double(vbusCode_) / 16384.0;
-      rawPower_ = static_cast<std::uint32_t>(std::min(pw, double(0xFFFFFF)));
-    }
-  }
+  if (running_ && nextSample_ <= t && !codesValid_) quantise();  // after a register write
   while (running_ && nextSample_ <= t) {
     const TimeNs st = sampleTime_;
     const int avg = avg_;
@@ -151,6 +154,14 @@ void Ina228Model::convertTo(TimeNs t) noexcept {
     }
   }
   now_ = t;
+  // The next update() may take one raw sample inline if it is not the
+  // window's last (a result is due then) and SLOWALERT = 1 (no raw compare).
+  if (running_ && (diag_ & SLOWALERT) && codesValid_) {
+    windowLast_ = nextSample_ + TimeNs(avg_ - samplesInWindow_ - 1) * sampleTime_;
+    oneSampleUntil_ = std::min(nextSample_ + sampleTime_, windowLast_);
+  } else {
+    oneSampleUntil_ = 0;
+  }
 }
 
 // Out of line: a result every ~1.8 control ticks, while convertTo() runs
@@ -423,7 +434,8 @@ inline int Ina228Model::writeMsg(const std::uint8_t* buf, std::size_t len) noexc
     default:
       break;
   }
-  refreshLimits();  // any register write may move a limit or the active channels
+  refreshLimits();      // any register write may move a limit or the active channels
+  oneSampleUntil_ = 0;  // and the window, the codes or SLOWALERT: the next sample goes the full way
   return 0;
 }
 

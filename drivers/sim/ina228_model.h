@@ -66,15 +66,29 @@ class Ina228Model final : public SimI2cDevice {
  public:
   Ina228Model();
 
+  // The raw codes are quantised here, once per input change (a register
+  // write that changes the quantisation redoes them at the next sample).
   void setAnalog(const Ina228Analog& a) noexcept {
     analog_ = a;
-    codesValid_ = false;
+    quantise();
   }
   // Inline early-out: the board calls update() several times per control
   // tick, mostly with no raw sample due (or at an instant already reached).
+  // One raw sample that ends no window with SLOWALERT = 1 (no comparison) is
+  // summed right here: what convertTo() does for it, without the call.
   void update(TimeNs t) noexcept override {
     if (t <= now_) return;
     if (running_ && nextSample_ <= t) {
+      if (t < oneSampleUntil_) {
+        sumVsh_ += vshCode_;
+        sumVbus_ += vbusCode_;
+        sumTemp_ += tcode_;
+        ++samplesInWindow_;
+        nextSample_ += sampleTime_;
+        now_ = t;
+        oneSampleUntil_ = nextSample_ + sampleTime_ < windowLast_ ? nextSample_ + sampleTime_ : windowLast_;
+        return;
+      }
       convertTo(t);
     } else {
       now_ = t;
@@ -105,6 +119,7 @@ class Ina228Model final : public SimI2cDevice {
   int readMsg(std::uint8_t* buf, std::size_t len) noexcept;
   int writeMsg(const std::uint8_t* buf, std::size_t len) noexcept;
   void convertTo(TimeNs t) noexcept;  // update() with at least one raw sample due by t
+  void quantise() noexcept;           // the raw codes of analog_ (codesValid_)
   void reset() noexcept;
   void restartConversions() noexcept;
   void onSample() noexcept;                 // one raw sample of every active channel
@@ -160,6 +175,10 @@ class Ina228Model final : public SimI2cDevice {
   std::uint16_t curScaleCal_ = 0;  // SHUNT_CAL that curScale_ = 4096 / SHUNT_CAL was computed for
   double curScale_ = 0.0;          // POWER code of one raw sample (SLOWALERT = 0 limit)
   int samplesInWindow_ = 0;
+  // update() before oneSampleUntil_ has exactly one raw sample due and it is
+  // not the window's last (at windowLast_); 0 = take the full path (set by
+  // convertTo(), cleared by register writes and restarts).
+  TimeNs oneSampleUntil_ = 0, windowLast_ = 0;
   std::int64_t sumVsh_ = 0, sumVbus_ = 0, sumTemp_ = 0;  // raw codes of the window
   std::uint64_t conversions_ = 0;
 };

@@ -337,6 +337,42 @@ TEST(Ina228Model, PollTransactionMatchesMessagesOneByOne) {
   EXPECT_EQ(std::uint16_t((rx[0] << 8) | rx[1]), a.chip.peek(DIAG_ALRT));  // no sample since the last read
 }
 
+// update() sums one raw sample inline when it ends no window and SLOWALERT
+// = 1: a chip updated every few microseconds must end up exactly where one
+// updated only when its inputs change does (the same inputs for the same
+// samples), through SLOWALERT switches and an ADC_CONFIG restart.
+TEST(Ina228Model, FineUpdatesMatchCoarseUpdates) {
+  Rig fine, coarse;
+  for (Rig* r : {&fine, &coarse}) {
+    r->writeReg(DIAG_ALRT, SLOWALERT);
+    r->writeReg(BOVL, std::uint16_t(14.5 / 3.125e-3));
+    r->writeReg(ADC_CONFIG, (0xF << 12) | (1 << 9) | (1 << 6) | (0 << 3) | 2);  // 84+84+50 us, 16 avg
+  }
+  TimeNs t = 0;
+  for (int i = 0; i < 200; ++i) {
+    const Ina228Analog a{0.001 * (i % 7) - 0.002, 13.0 + 0.01 * (i % 13) + (i % 50 > 40 ? 2.0 : 0.0),
+                         25.0 + 0.5 * (i / 60)};
+    fine.chip.setAnalog(a);
+    coarse.chip.setAnalog(a);
+    const TimeNs next = t + fromUs(700 + 37 * (i % 5));
+    for (TimeNs u = t + fromUs(23); u < next; u += fromUs(23)) fine.chip.update(u);
+    t = next;
+    fine.now = coarse.now = t;
+    fine.chip.update(t);
+    coarse.chip.update(t);
+    if (i == 70 || i == 120) {  // SLOWALERT off, then on again (through the bus, as the driver would)
+      for (Rig* r : {&fine, &coarse}) r->writeReg(DIAG_ALRT, i == 70 ? 0 : SLOWALERT);
+    }
+    if (i == 150) {
+      for (Rig* r : {&fine, &coarse}) r->writeReg(ADC_CONFIG, (0xF << 12) | (2 << 9) | (1 << 6) | 1);
+    }
+    for (std::uint8_t reg : {VSHUNT, VBUS, DIETEMP, CURRENT, POWER, ENERGY, CHARGE, DIAG_ALRT})
+      ASSERT_EQ(fine.chip.peek(reg), coarse.chip.peek(reg)) << "i=" << i << " reg " << int(reg);
+    ASSERT_EQ(fine.chip.conversions(), coarse.chip.conversions()) << "i=" << i;
+  }
+  EXPECT_GT(fine.chip.conversions(), 40u);
+}
+
 }  // namespace
 }  // namespace xr::sim
 
