@@ -55,6 +55,16 @@ std::uint16_t Ads1115Model::peekConfig() const noexcept {
 [[gnu::always_inline]] inline void Ads1115Model::finishConversion() noexcept {
   conversion_ = sample(convConfig_);
   ++conversions_;
+  if (pulses_) {
+    // Continuous conversion-ready mode (the driver's): a ready pulse and the
+    // next conversion at once, what the general path below does in this
+    // mode, without re-deciding the mode from config_ per conversion.
+    ++readyPulses_;
+    alert_ = false;
+    convConfig_ = config_;
+    convEnd_ += period(drOf(config_));
+    return;
+  }
   converting_ = false;
   const std::uint16_t cfg = config_;
   if (queOf(cfg) != 3) {
