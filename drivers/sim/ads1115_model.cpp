@@ -27,7 +27,10 @@ std::uint16_t Ads1115Model::peekConfig() const noexcept {
   return static_cast<std::uint16_t>((config_ & ~OS) | (converting_ ? 0 : OS));
 }
 
-std::int16_t Ads1115Model::sample(std::uint16_t cfg) noexcept {
+// The per-conversion helpers are forced inline into convertTo() (their only
+// per-tick caller): ~2 conversions per control tick, and the calls with
+// their prologues were a third of the conversion's own instructions.
+[[gnu::always_inline]] inline std::int16_t Ads1115Model::sample(std::uint16_t cfg) noexcept {
   // MUX -> AINp, AINn (-1 = GND), as tables instead of a switch. The
   // positive input is sampled (and draws its noise) before the negative one.
   static constexpr std::int8_t kPos[8] = {0, 0, 1, 2, 0, 1, 2, 3};
@@ -41,7 +44,7 @@ std::int16_t Ads1115Model::sample(std::uint16_t cfg) noexcept {
   return static_cast<std::int16_t>(std::clamp(code, -32768.0, 32767.0));  // clips at ±FS
 }
 
-void Ads1115Model::startConversion(TimeNs at) noexcept {
+[[gnu::always_inline]] inline void Ads1115Model::startConversion(TimeNs at) noexcept {
   converting_ = true;
   convConfig_ = config_;  // settings in force for this conversion
   convEnd_ = at + period(drOf(config_));
@@ -49,9 +52,19 @@ void Ads1115Model::startConversion(TimeNs at) noexcept {
   if (readyMode() && queOf(config_) != 3 && (config_ & MODE_SINGLE)) alert_ = false;
 }
 
-void Ads1115Model::finishConversion() noexcept {
+[[gnu::always_inline]] inline void Ads1115Model::finishConversion() noexcept {
   conversion_ = sample(convConfig_);
   ++conversions_;
+  if (pulses_) {
+    // Continuous conversion-ready mode (the driver's): a ready pulse and the
+    // next conversion at once, what the general path below does in this
+    // mode, without re-deciding the mode from config_ per conversion.
+    ++readyPulses_;
+    alert_ = false;
+    convConfig_ = config_;
+    convEnd_ += period(drOf(config_));
+    return;
+  }
   converting_ = false;
   const std::uint16_t cfg = config_;
   if (queOf(cfg) != 3) {
@@ -98,9 +111,7 @@ inline int Ads1115Model::readMsg(std::uint8_t* buf, std::size_t len) noexcept {
   std::uint16_t v = 0;
   switch (ptr_) {
     case 0:
-      v = static_cast<std::uint16_t>(conversion_);
-      // A latched comparator alert clears when the Conversion register is read.
-      if ((config_ & 0x0004) && !readyMode()) alert_ = false;
+      v = readConversion();
       break;
     case 1:
       v = peekConfig();
@@ -136,19 +147,31 @@ inline int Ads1115Model::writeMsg(const std::uint8_t* buf, std::size_t len) noex
   if (reg >= 2) {
     (reg == 2 ? loThresh_ : hiThresh_) = v;
     ready_ = (hiThresh_ & 0x8000) && !(loThresh_ & 0x8000);
+    pulses_ = readyMode() && queOf(config_) != 3 && !(config_ & MODE_SINGLE);
   } else {
-    config_ = static_cast<std::uint16_t>(v & ~OS);
-    queueCount_ = 0;
-    if (queOf(config_) == 3) alert_ = false;
-    if (!(config_ & MODE_SINGLE)) {
-      // Continuous: start now if powered down; otherwise the running
-      // conversion finishes with its old settings and the next one uses these.
-      if (!converting_) startConversion(now_);
-    } else if ((v & OS) && !converting_) {
-      startConversion(now_);  // single-shot start; ignored while busy
-    }
+    writeConfig(v);
   }
   return 0;
+}
+
+[[gnu::always_inline]] inline std::uint16_t Ads1115Model::readConversion() noexcept {
+  // A latched comparator alert clears when the Conversion register is read.
+  if ((config_ & 0x0004) && !readyMode()) alert_ = false;
+  return static_cast<std::uint16_t>(conversion_);
+}
+
+[[gnu::always_inline]] inline void Ads1115Model::writeConfig(std::uint16_t v) noexcept {
+  config_ = static_cast<std::uint16_t>(v & ~OS);
+  queueCount_ = 0;
+  if (queOf(config_) == 3) alert_ = false;
+  if (!(config_ & MODE_SINGLE)) {
+    // Continuous: start now if powered down; otherwise the running
+    // conversion finishes with its old settings and the next one uses these.
+    if (!converting_) startConversion(now_);
+  } else if ((v & OS) && !converting_) {
+    startConversion(now_);  // single-shot start; ignored while busy
+  }
+  pulses_ = readyMode() && queOf(config_) != 3 && !(config_ & MODE_SINGLE);
 }
 
 int Ads1115Model::read(std::uint8_t* buf, std::size_t len) noexcept { return readMsg(buf, len); }
@@ -156,6 +179,28 @@ int Ads1115Model::write(const std::uint8_t* buf, std::size_t len) noexcept { ret
 
 int Ads1115Model::transact(TimeNs t, std::span<I2cMsg> msgs) noexcept {
   update(t);
+  if (msgs.size() == 3) {
+    // The driver's ready-edge transaction, ~2 per control tick: pointer to
+    // Conversion, a 2-byte read, a Config write. Done as those messages
+    // would be one by one (pointer 0, the read and its side effect, pointer
+    // 1 and the Config write), without the per-message checks and dispatch;
+    // anything else after the read goes through the general loop.
+    I2cMsg* const m = msgs.data();
+    if (!m[0].read && m[0].len == 1 && m[0].buf != nullptr && m[0].buf[0] == 0 && m[1].read &&
+        m[1].len == 2 && m[1].buf != nullptr) {
+      ptr_ = 0;
+      const std::uint16_t v = readConversion();
+      m[1].buf[0] = std::uint8_t(v >> 8);
+      m[1].buf[1] = std::uint8_t(v);
+      const std::uint8_t* const w = m[2].buf;
+      if (!m[2].read && m[2].len == 3 && w != nullptr && w[0] == 1) {
+        ptr_ = 1;
+        writeConfig(static_cast<std::uint16_t>((w[1] << 8) | w[2]));
+        return 0;
+      }
+      msgs = msgs.subspan(2);
+    }
+  }
   return runMessages(
       msgs, [this](std::uint8_t* b, std::size_t n) { return readMsg(b, n); },
       [this](const std::uint8_t* b, std::size_t n) { return writeMsg(b, n); });

@@ -64,10 +64,7 @@ class Ads1115Model final : public SimI2cDevice {
   // When the ALERT/RDY pin next pulses (end of the running conversion in
   // continuous conversion-ready mode), or -1 when it will not pulse on its
   // own. The simulated board's ALERT/RDY GPIO edges come from here.
-  TimeNs nextReadyEdge() const noexcept {
-    const bool pulses = converting_ && readyMode() && (config_ & 3) != 3 && !(config_ & 0x0100);
-    return pulses ? convEnd_ : -1;
-  }
+  TimeNs nextReadyEdge() const noexcept { return converting_ && pulses_ ? convEnd_ : -1; }
   // Data period of a data-rate code under this chip's oscillator.
   TimeNs period(int dr) const noexcept { return period_[dr & 7]; }
 
@@ -78,6 +75,8 @@ class Ads1115Model final : public SimI2cDevice {
   int writeMsg(const std::uint8_t* buf, std::size_t len) noexcept;
   void convertTo(TimeNs t) noexcept;  // update() with a conversion ending by t
   void startConversion(TimeNs at) noexcept;
+  std::uint16_t readConversion() noexcept;     // a read of the Conversion register, with its side effect
+  void writeConfig(std::uint16_t v) noexcept;  // a write of the Config register
   void finishConversion() noexcept;
   // Hi_thresh MSB = 1 and Lo_thresh MSB = 0: ALERT/RDY is the conversion-ready
   // pin. Held as a flag, set when a threshold is written (asked per conversion
@@ -104,6 +103,10 @@ class Ads1115Model final : public SimI2cDevice {
   std::int16_t conversion_ = 0;
   std::uint16_t loThresh_ = 0x8000, hiThresh_ = 0x7FFF;
   bool ready_ = false;  // readyMode() of the reset thresholds
+  // Continuous conversion-ready mode with the comparator on: the pin pulses
+  // at each conversion end. Set with ready_ and config_ (a register write),
+  // asked at every edge wait.
+  bool pulses_ = false;
   bool converting_ = false;
   std::uint16_t convConfig_ = 0;  // settings latched when the conversion started
   TimeNs convEnd_ = 0;

@@ -90,6 +90,7 @@ void Ina228Model::restartConversions() noexcept {
   // Writing ADC_CONFIG restarts the conversion (E2E228); CONVDLY delays the
   // first one in 2 ms steps.
   const int m = mode();
+  oneSampleUntil_ = 0;
   samplesInWindow_ = 0;
   sumVsh_ = sumVbus_ = sumTemp_ = 0;
   if (m == 0 || m == 8) {
@@ -100,28 +101,34 @@ void Ina228Model::restartConversions() noexcept {
   running_ = true;
   sampleTime_ = sampleTime();
   avg_ = kAvgSamples[adcConfig_ & 7];
+  publishDt_ = toSec(sampleTime_ * avg_);
   const TimeNs delay = fromMs(2 * ((config_ >> 6) & 0xFF));
   nextSample_ = now_ + delay + sampleTime_;
+}
+
+void Ina228Model::quantise() noexcept {
+  codesValid_ = true;
+  vshCode_ = quantise20(analog_.vshunt_v, (config_ & 0x10) ? 78.125e-9 : 312.5e-9);
+  vbusCode_ = quantise20(analog_.vbus_v, kVbusLsb);
+  if (!(analog_.dietemp_c == tcodeC_)) {  // the die temperature rarely moves (NaN: always redone)
+    tcodeC_ = analog_.dietemp_c;
+    const double tc = roundEven(analog_.dietemp_c / kTempLsb);
+    tcode_ = static_cast<std::int32_t>(std::clamp(tc == tc ? tc : 0.0, -32768.0, 32767.0));
+  }
+  // The raw power only the SLOWALERT = 0 comparison uses (a DIAG_ALRT
+  // write invalidates the codes, so it is computed when SLOWALERT clears).
+  if (!(diag_ & SLOWALERT)) {
+    const double curCode = shuntCal_ ? double(vshCode_) * 4096.0 / shuntCal_ : 0.0;
+    const double pw = std::fabs(curCode) * double(vbusCode_) / 16384.0;
+    rawPower_ = static_cast<std::uint32_t>(std::min(pw, double(0xFFFFFF)));
+  }
 }
 
 void Ina228Model::convertTo(TimeNs t) noexcept {
   // The analog inputs are constant between two updates (the plant changes
   // them only between steps), so every raw sample in [now_, t] sees the same
   // values: batch them instead of looping per sample.
-  if (running_ && nextSample_ <= t && !codesValid_) {
-    codesValid_ = true;
-    vshCode_ = quantise20(analog_.vshunt_v, (config_ & 0x10) ? 78.125e-9 : 312.5e-9);
-    vbusCode_ = quantise20(analog_.vbus_v, kVbusLsb);
-    const double tc = roundEven(analog_.dietemp_c / kTempLsb);
-    tcode_ = static_cast<std::int32_t>(std::clamp(tc == tc ? tc : 0.0, -32768.0, 32767.0));
-    // The raw power only the SLOWALERT = 0 comparison uses (a DIAG_ALRT
-    // write invalidates the codes, so it is computed when SLOWALERT clears).
-    if (!(diag_ & SLOWALERT)) {
-      const double curCode = shuntCal_ ? double(vshCode_) * 4096.0 / shuntCal_ : 0.0;
-      const double pw = std::fabs(curCode) * double(vbusCode_) / 16384.0;
-      rawPower_ = static_cast<std::uint32_t>(std::min(pw, double(0xFFFFFF)));
-    }
-  }
+  if (running_ && nextSample_ <= t && !codesValid_) quantise();  // after a register write
   while (running_ && nextSample_ <= t) {
     const TimeNs st = sampleTime_;
     const int avg = avg_;
@@ -142,14 +149,24 @@ void Ina228Model::convertTo(TimeNs t) noexcept {
       compareLimits(vsh, vb, tcode, rawPower_);
     }
     if (samplesInWindow_ >= avg) {
-      publish(toSec(st * avg));
+      publish(publishDt_);
       if (!continuous()) running_ = false;  // triggered: one conversion, then shutdown
     }
   }
   now_ = t;
+  // The next update() may take one raw sample inline if it is not the
+  // window's last (a result is due then) and SLOWALERT = 1 (no raw compare).
+  if (running_ && (diag_ & SLOWALERT) && codesValid_) {
+    windowLast_ = nextSample_ + TimeNs(avg_ - samplesInWindow_ - 1) * sampleTime_;
+    oneSampleUntil_ = std::min(nextSample_ + sampleTime_, windowLast_);
+  } else {
+    oneSampleUntil_ = 0;
+  }
 }
 
-void Ina228Model::publish(double dt) noexcept {
+// Out of line: a result every ~1.8 control ticks, while convertTo() runs
+// ~2 times per tick and would pay for publish()'s registers on every call.
+[[gnu::noinline]] void Ina228Model::publish(double dt) noexcept {
   // The window holds exactly AVG samples (update() never overfills it), and
   // AVG is a power of two: multiplying by 1/n is exact, no division. The
   // integer sums (< 2^30) convert to double exactly: the same mean as a
@@ -215,7 +232,7 @@ void Ina228Model::publish(double dt) noexcept {
     }
   }
   diag_ |= CNVRF;
-  if (diag_ & SLOWALERT) compareLimits(vshunt_, vbus_, dietemp_, power_);
+  if (diag_ & SLOWALERT) compareLimitsInline(vshunt_, vbus_, dietemp_, power_);
 }
 
 void Ina228Model::refreshLimits() noexcept {
@@ -235,8 +252,9 @@ void Ina228Model::refreshLimits() noexcept {
   measured_ = measured;
 }
 
-void Ina228Model::compareLimits(std::int32_t vsh, std::int32_t vb, std::int32_t tcode,
-                                std::uint32_t pw) noexcept {
+[[gnu::always_inline]] inline void Ina228Model::compareLimitsInline(std::int32_t vsh, std::int32_t vb,
+                                                                    std::int32_t tcode,
+                                                                    std::uint32_t pw) noexcept {
   // The bounds of the channels measured, taken when a register was written
   // (refreshLimits), not per comparison.
   std::uint16_t cond = 0;
@@ -253,6 +271,13 @@ void Ina228Model::compareLimits(std::int32_t vsh, std::int32_t vb, std::int32_t 
     diag_ = static_cast<std::uint16_t>((diag_ & ~measured_) | cond);
   }
   limitActive_ = (diag_ & kLimitFlags) != 0;
+}
+
+// The per-raw-sample comparison (SLOWALERT = 0) stays a call: convertTo()
+// keeps its registers for the sample loop.
+void Ina228Model::compareLimits(std::int32_t vsh, std::int32_t vb, std::int32_t tcode,
+                                std::uint32_t pw) noexcept {
+  compareLimitsInline(vsh, vb, tcode, pw);
 }
 
 std::uint64_t Ina228Model::peek(std::uint8_t reg) const noexcept {
@@ -409,7 +434,8 @@ inline int Ina228Model::writeMsg(const std::uint8_t* buf, std::size_t len) noexc
     default:
       break;
   }
-  refreshLimits();  // any register write may move a limit or the active channels
+  refreshLimits();      // any register write may move a limit or the active channels
+  oneSampleUntil_ = 0;  // and the window, the codes or SLOWALERT: the next sample goes the full way
   return 0;
 }
 
@@ -418,9 +444,37 @@ int Ina228Model::write(const std::uint8_t* buf, std::size_t len) noexcept { retu
 
 int Ina228Model::transact(TimeNs t, std::span<I2cMsg> msgs) noexcept {
   update(t);
+  // The driver's poll, every control tick: pointer + read pairs for
+  // DIAG_ALRT (2 bytes) and, when a result is due, VBUS and CURRENT (3
+  // bytes each). Each such pair is done as its two messages would be
+  // (pointer set, the register's bytes MSB first, DIAG_ALRT's read side
+  // effect; VBUS and CURRENT have none), without the per-message checks and
+  // dispatch; the first message that is not part of such a pair goes through
+  // the general loop.
+  I2cMsg* m = msgs.data();
+  std::size_t n = msgs.size();
+  while (n >= 2 && !m[0].read && m[0].len == 1 && m[0].buf != nullptr && m[1].read && m[1].buf != nullptr) {
+    const std::uint8_t reg = m[0].buf[0];
+    std::uint8_t* const b = m[1].buf;
+    if (reg == DIAG_ALRT && m[1].len == 2) {
+      b[0] = std::uint8_t(diag_ >> 8);
+      b[1] = std::uint8_t(diag_);
+      clearOnDiagRead();
+    } else if ((reg == VBUS || reg == CURRENT) && m[1].len == 3) {
+      const std::uint32_t v = (std::uint32_t(reg == VBUS ? vbus_ : current_) & 0xFFFFF) << 4;
+      b[0] = std::uint8_t(v >> 16);
+      b[1] = std::uint8_t(v >> 8);
+      b[2] = std::uint8_t(v);
+    } else {
+      break;
+    }
+    ptr_ = reg;
+    m += 2;
+    n -= 2;
+  }
   return runMessages(
-      msgs, [this](std::uint8_t* b, std::size_t n) { return readMsg(b, n); },
-      [this](const std::uint8_t* b, std::size_t n) { return writeMsg(b, n); });
+      std::span<I2cMsg>(m, n), [this](std::uint8_t* b, std::size_t len) { return readMsg(b, len); },
+      [this](const std::uint8_t* b, std::size_t len) { return writeMsg(b, len); });
 }
 
 }  // namespace xr::sim

@@ -13,6 +13,7 @@
 // reserved register, a write of the wrong length, a read longer than the
 // register.
 #include <cstdint>
+#include <limits>
 
 #include "drivers/sim/sim_i2c_device.h"
 
@@ -65,15 +66,29 @@ class Ina228Model final : public SimI2cDevice {
  public:
   Ina228Model();
 
+  // The raw codes are quantised here, once per input change (a register
+  // write that changes the quantisation redoes them at the next sample).
   void setAnalog(const Ina228Analog& a) noexcept {
     analog_ = a;
-    codesValid_ = false;
+    quantise();
   }
   // Inline early-out: the board calls update() several times per control
   // tick, mostly with no raw sample due (or at an instant already reached).
+  // One raw sample that ends no window with SLOWALERT = 1 (no comparison) is
+  // summed right here: what convertTo() does for it, without the call.
   void update(TimeNs t) noexcept override {
     if (t <= now_) return;
     if (running_ && nextSample_ <= t) {
+      if (t < oneSampleUntil_) {
+        sumVsh_ += vshCode_;
+        sumVbus_ += vbusCode_;
+        sumTemp_ += tcode_;
+        ++samplesInWindow_;
+        nextSample_ += sampleTime_;
+        now_ = t;
+        oneSampleUntil_ = nextSample_ + sampleTime_ < windowLast_ ? nextSample_ + sampleTime_ : windowLast_;
+        return;
+      }
       convertTo(t);
     } else {
       now_ = t;
@@ -104,6 +119,7 @@ class Ina228Model final : public SimI2cDevice {
   int readMsg(std::uint8_t* buf, std::size_t len) noexcept;
   int writeMsg(const std::uint8_t* buf, std::size_t len) noexcept;
   void convertTo(TimeNs t) noexcept;  // update() with at least one raw sample due by t
+  void quantise() noexcept;           // the raw codes of analog_ (codesValid_)
   void reset() noexcept;
   void restartConversions() noexcept;
   void onSample() noexcept;                 // one raw sample of every active channel
@@ -117,6 +133,8 @@ class Ina228Model final : public SimI2cDevice {
   }
   void compareLimits(std::int32_t vshCode, std::int32_t vbusCode, std::int32_t tempCode,
                      std::uint32_t powerCode) noexcept;
+  void compareLimitsInline(std::int32_t vshCode, std::int32_t vbusCode, std::int32_t tempCode,
+                           std::uint32_t powerCode) noexcept;  // the same, inlined into publish()
   int mode() const noexcept { return (adcConfig_ >> 12) & 0xF; }
   bool busActive() const noexcept { return mode() & 0x1; }
   bool shuntActive() const noexcept { return mode() & 0x2; }
@@ -143,16 +161,24 @@ class Ina228Model final : public SimI2cDevice {
   // Conversion engine state.
   bool running_ = false;
   TimeNs nextSample_ = 0;
-  TimeNs sampleTime_ = 1;  // sampleTime() while running (set when conversions restart)
-  int avg_ = 1;            // samples per result (AVG) while running, set with sampleTime_
+  TimeNs sampleTime_ = 1;   // sampleTime() while running (set when conversions restart)
+  int avg_ = 1;             // samples per result (AVG) while running, set with sampleTime_
+  double publishDt_ = 0.0;  // seconds per result (sampleTime_ x avg_), for ENERGY/CHARGE
   // Raw ADC codes of analog_ (constant until the next setAnalog() or an
   // ADCRANGE change): quantised once, not per raw sample batch.
   bool codesValid_ = false;
   std::int32_t vshCode_ = 0, vbusCode_ = 0, tcode_ = 0;
+  // The die temperature tcode_ was quantised from (NaN: none yet). A
+  // difference in the sign of zero alone gives the same code.
+  double tcodeC_ = std::numeric_limits<double>::quiet_NaN();
   std::uint32_t rawPower_ = 0;
   std::uint16_t curScaleCal_ = 0;  // SHUNT_CAL that curScale_ = 4096 / SHUNT_CAL was computed for
   double curScale_ = 0.0;          // POWER code of one raw sample (SLOWALERT = 0 limit)
   int samplesInWindow_ = 0;
+  // update() before oneSampleUntil_ has exactly one raw sample due and it is
+  // not the window's last (at windowLast_); 0 = take the full path (set by
+  // convertTo(), cleared by register writes and restarts).
+  TimeNs oneSampleUntil_ = 0, windowLast_ = 0;
   std::int64_t sumVsh_ = 0, sumVbus_ = 0, sumTemp_ = 0;  // raw codes of the window
   std::uint64_t conversions_ = 0;
 };

@@ -160,8 +160,7 @@ void SimWorld::stepPlant(TimeNs to) noexcept {
   ads_.update(now_);
 }
 
-void SimWorld::advanceTo(TimeNs t) noexcept {
-  if (t <= now_) return;
+void SimWorld::advanceStepping(TimeNs t) noexcept {
   for (;;) {
     // Finer steps while the battery is off the bus, so the INA228 ALERT
     // (BOVL) can act on the fast rise; a finer step never straddles a grid

@@ -84,39 +84,44 @@ void BatteryModel::setSocPct(double p) noexcept {
   refreshOcv();
 }
 
-void BatteryModel::refreshOcv() noexcept {
-  if (!(soc_ > segLo_ && soc_ <= segHi_)) {
-    // Left the cached segment: find the one holding soc_ (linear
-    // interpolation between the table points; flat outside the table).
-    const Pt* t = kLfp.data();
-    std::size_t n = kLfp.size();
-    switch (cfg_.chemistry) {
-      case Chemistry::lifepo4:
-        break;
-      case Chemistry::agm:
-        t = kAgm.data(), n = kAgm.size();
-        break;
-      case Chemistry::flooded:
-        t = kFlooded.data(), n = kFlooded.size();
-        break;
-      case Chemistry::gel:
-        t = kGel.data(), n = kGel.size();
-        break;
-    }
-    const double scale = cfg_.nominal_v / 12.0;
-    if (soc_ <= t[0].soc) {
-      segLo_ = -1e300, segHi_ = t[0].soc, segS0_ = 0.0, segV0_ = t[0].v * scale, segSlope_ = 0.0;
-    } else if (soc_ > t[n - 1].soc) {
-      segLo_ = t[n - 1].soc, segHi_ = 1e300, segS0_ = 0.0, segV0_ = t[n - 1].v * scale, segSlope_ = 0.0;
-    } else {
-      std::size_t i = 1;
-      while (soc_ > t[i].soc) ++i;
-      segLo_ = segS0_ = t[i - 1].soc;
-      segHi_ = t[i].soc;
-      segV0_ = t[i - 1].v * scale;
-      segSlope_ = (t[i].v - t[i - 1].v) / (t[i].soc - t[i - 1].soc) * scale;
-    }
+void BatteryModel::findSegment() noexcept {
+  // soc_ left the cached segment: find the one holding it (linear
+  // interpolation between the table points; flat outside the table).
+  const Pt* t = kLfp.data();
+  std::size_t n = kLfp.size();
+  switch (cfg_.chemistry) {
+    case Chemistry::lifepo4:
+      break;
+    case Chemistry::agm:
+      t = kAgm.data(), n = kAgm.size();
+      break;
+    case Chemistry::flooded:
+      t = kFlooded.data(), n = kFlooded.size();
+      break;
+    case Chemistry::gel:
+      t = kGel.data(), n = kGel.size();
+      break;
   }
+  const double scale = cfg_.nominal_v / 12.0;
+  if (soc_ <= t[0].soc) {
+    segLo_ = -1e300, segHi_ = t[0].soc, segS0_ = 0.0, segV0_ = t[0].v * scale, segSlope_ = 0.0;
+  } else if (soc_ > t[n - 1].soc) {
+    segLo_ = t[n - 1].soc, segHi_ = 1e300, segS0_ = 0.0, segV0_ = t[n - 1].v * scale, segSlope_ = 0.0;
+  } else {
+    std::size_t i = 1;
+    while (soc_ > t[i].soc) ++i;
+    segLo_ = segS0_ = t[i - 1].soc;
+    segHi_ = t[i].soc;
+    segV0_ = t[i - 1].v * scale;
+    segSlope_ = (t[i].v - t[i - 1].v) / (t[i].soc - t[i - 1].soc) * scale;
+  }
+}
+
+// Every step (SoC moves by parts per million): inline, the segment search
+// out of line.
+inline void BatteryModel::refreshOcv() noexcept {
+  if (!(soc_ > segLo_ && soc_ <= segHi_)) [[unlikely]]
+    findSegment();
   ocv_ = segV0_ + (soc_ - segS0_) * segSlope_;
   leadX_ = isLead(cfg_.chemistry) ? std::clamp((soc_ - 0.75) * 4.0, 0.0, 1.0) : 0.0;  // 0 at 75 %, 1 at full
 }

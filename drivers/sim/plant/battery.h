@@ -42,7 +42,8 @@ class BatteryModel {
 
  private:
   double chargeOverpotential(double amps) const noexcept;
-  void refreshOcv() noexcept;  // after every SoC change
+  void refreshOcv() noexcept;   // after every SoC change
+  void findSegment() noexcept;  // refreshOcv() when soc_ left the cached segment
   BatteryConfig cfg_;
   double soc_;                      // 0..1
   double r_;                        // series resistance, ohm

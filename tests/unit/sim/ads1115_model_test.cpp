@@ -326,5 +326,58 @@ TEST(Ads1115Model, InputNoiseIsDrawnForTheSampledPinOnlyAndClamped) {
   EXPECT_EQ(r.readReg(0), 0);
 }
 
+// The ready-edge transaction (pointer 0, 2-byte read, Config write) has a
+// fast path in transact(): it must leave the chip exactly as the same
+// messages sent one by one, and a third message that is not a Config write
+// must still be handled (and refused) as such.
+TEST(Ads1115Model, EdgeTransactionMatchesMessagesOneByOne) {
+  Rig a, b;
+  for (Rig* r : {&a, &b}) {
+    r->chip.setInputs({1.0, 2.0, 0.5, 3.0});
+    r->writeReg(3, 0x8000);
+    r->writeReg(2, 0x0000);
+    r->writeReg(1, cfg(0, 4, 1, 0, 7, 0));  // continuous, AIN0, ready pulses
+  }
+  for (int i = 0; i < 8; ++i) {
+    const std::uint16_t next = cfg(0, 4 + (i % 4), 1, 0, 7, 0);
+    a.advance(a.chip.period(7));
+    b.advance(b.chip.period(7));
+    std::uint8_t ptrA = 0, rxA[2] = {}, wrA[3] = {1, std::uint8_t(next >> 8), std::uint8_t(next)};
+    I2cMsg ma[3] = {{0x48, false, &ptrA, 1}, {0x48, true, rxA, 2}, {0x48, false, wrA, 3}};
+    ASSERT_EQ(a.bus.transfer(ma), 0);
+    std::uint8_t ptrB = 0, rxB[2] = {}, wrB[3] = {1, std::uint8_t(next >> 8), std::uint8_t(next)};
+    I2cMsg mb[3] = {{0x48, false, &ptrB, 1}, {0x48, true, rxB, 2}, {0x48, false, wrB, 3}};
+    for (I2cMsg& m : mb) ASSERT_EQ(b.bus.transfer({&m, 1}), 0);
+    EXPECT_EQ(rxA[0], rxB[0]);
+    EXPECT_EQ(rxA[1], rxB[1]);
+    EXPECT_EQ(a.chip.peekConfig(), b.chip.peekConfig());
+    EXPECT_EQ(a.chip.nextReadyEdge(), b.chip.nextReadyEdge());
+    EXPECT_EQ(a.chip.alertActive(), b.chip.alertActive());
+    // The retained pointer: a read without a pointer write.
+    std::uint8_t pa[2] = {}, pb[2] = {};
+    I2cMsg ra{0x48, true, pa, 2}, rb{0x48, true, pb, 2};
+    ASSERT_EQ(a.bus.transfer({&ra, 1}), 0);
+    ASSERT_EQ(b.bus.transfer({&rb, 1}), 0);
+    EXPECT_EQ(pa[0], pb[0]);
+    EXPECT_EQ(pa[1], pb[1]);
+  }
+  EXPECT_NE(a.chip.peekConversion(), 0);
+  // Pointer 0, read, then a write to the read-only Conversion register: the
+  // read happens, the write is refused, the pointer stays at 0.
+  std::uint8_t ptr = 0, rx[2] = {}, bad[3] = {0, 0x12, 0x34};
+  I2cMsg m[3] = {{0x48, false, &ptr, 1}, {0x48, true, rx, 2}, {0x48, false, bad, 3}};
+  const std::uint64_t errors = a.chip.protocolErrors();
+  EXPECT_EQ(a.bus.transfer(m), EREMOTEIO);
+  EXPECT_EQ(std::uint16_t((rx[0] << 8) | rx[1]), std::uint16_t(a.chip.peekConversion()));
+  EXPECT_EQ(a.chip.protocolErrors(), errors + 1);
+  // A threshold write as the third message takes effect as one: Lo_thresh
+  // MSB = 1 ends the conversion-ready function, so the pin stops pulsing.
+  std::uint8_t lo[3] = {2, 0x81, 0x00};
+  I2cMsg m2[3] = {{0x48, false, &ptr, 1}, {0x48, true, rx, 2}, {0x48, false, lo, 3}};
+  EXPECT_EQ(a.bus.transfer(m2), 0);
+  EXPECT_EQ(a.readReg(2), 0x8100);
+  EXPECT_EQ(a.chip.nextReadyEdge(), -1);
+}
+
 }  // namespace
 }  // namespace xr::sim

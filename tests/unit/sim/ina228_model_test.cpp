@@ -290,6 +290,89 @@ TEST(Ina228Model, PointerIsRetainedBetweenReads) {
   EXPECT_EQ(buf[1], 0x49);
 }
 
+// The driver's poll (pointer + read pairs for DIAG_ALRT, VBUS, CURRENT) has
+// a fast path in transact(): the bytes, the DIAG_ALRT read side effect
+// (latched flags clear) and the retained pointer must be those of the same
+// messages sent one by one; a pair it does not know goes the general way.
+TEST(Ina228Model, PollTransactionMatchesMessagesOneByOne) {
+  Rig a, b;
+  for (Rig* r : {&a, &b}) {
+    r->writeReg(ADC_CONFIG, (0xB << 12) | (1 << 9) | (1 << 6));  // bus + shunt, 84 us, 1 avg
+    r->writeReg(DIAG_ALRT, ALATCH);
+    r->writeReg(BOVL, std::uint16_t(14.8 / 3.125e-3));
+  }
+  const double vbus[] = {14.0, 15.0, 14.0, 14.2, -0.5};
+  const double vsh[] = {0.01, -0.02, 0.03, 0.0, 0.001};
+  for (int i = 0; i < 5; ++i) {
+    for (Rig* r : {&a, &b}) {
+      r->chip.setAnalog({vsh[i], vbus[i], 25.0});
+      r->advance(fromUs(500));
+    }
+    std::uint8_t pa[3] = {DIAG_ALRT, VBUS, CURRENT}, ra[8] = {};
+    I2cMsg ma[6] = {{0x40, false, &pa[0], 1}, {0x40, true, ra, 2},      {0x40, false, &pa[1], 1},
+                    {0x40, true, ra + 2, 3},  {0x40, false, &pa[2], 1}, {0x40, true, ra + 5, 3}};
+    ASSERT_EQ(a.bus.transfer(ma), 0);
+    std::uint8_t pb[3] = {DIAG_ALRT, VBUS, CURRENT}, rb[8] = {};
+    I2cMsg mb[6] = {{0x40, false, &pb[0], 1}, {0x40, true, rb, 2},      {0x40, false, &pb[1], 1},
+                    {0x40, true, rb + 2, 3},  {0x40, false, &pb[2], 1}, {0x40, true, rb + 5, 3}};
+    for (I2cMsg& m : mb) ASSERT_EQ(b.bus.transfer({&m, 1}), 0);
+    for (int k = 0; k < 8; ++k) EXPECT_EQ(ra[k], rb[k]) << "i=" << i << " byte " << k;
+    EXPECT_EQ(a.chip.peek(DIAG_ALRT), b.chip.peek(DIAG_ALRT));
+    EXPECT_EQ(a.chip.alertActive(), b.chip.alertActive());
+    // The retained pointer (CURRENT): a read without a pointer write.
+    std::uint8_t xa[3] = {}, xb[3] = {};
+    I2cMsg rda{0x40, true, xa, 3}, rdb{0x40, true, xb, 3};
+    ASSERT_EQ(a.bus.transfer({&rda, 1}), 0);
+    ASSERT_EQ(b.bus.transfer({&rdb, 1}), 0);
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(xa[k], xb[k]);
+  }
+  // DIAG_ALRT, then a pair the fast path does not take (POWER) and a read
+  // longer than the register: refused after the first pair took effect.
+  std::uint8_t p[2] = {DIAG_ALRT, POWER}, rx[8] = {};
+  I2cMsg m[4] = {
+      {0x40, false, &p[0], 1}, {0x40, true, rx, 2}, {0x40, false, &p[1], 1}, {0x40, true, rx + 2, 4}};
+  const std::uint64_t errors = a.chip.protocolErrors();
+  EXPECT_EQ(a.bus.transfer(m), EREMOTEIO);
+  EXPECT_EQ(a.chip.protocolErrors(), errors + 1);
+  EXPECT_EQ(std::uint16_t((rx[0] << 8) | rx[1]), a.chip.peek(DIAG_ALRT));  // no sample since the last read
+}
+
+// update() sums one raw sample inline when it ends no window and SLOWALERT
+// = 1: a chip updated every few microseconds must end up exactly where one
+// updated only when its inputs change does (the same inputs for the same
+// samples), through SLOWALERT switches and an ADC_CONFIG restart.
+TEST(Ina228Model, FineUpdatesMatchCoarseUpdates) {
+  Rig fine, coarse;
+  for (Rig* r : {&fine, &coarse}) {
+    r->writeReg(DIAG_ALRT, SLOWALERT);
+    r->writeReg(BOVL, std::uint16_t(14.5 / 3.125e-3));
+    r->writeReg(ADC_CONFIG, (0xF << 12) | (1 << 9) | (1 << 6) | (0 << 3) | 2);  // 84+84+50 us, 16 avg
+  }
+  TimeNs t = 0;
+  for (int i = 0; i < 200; ++i) {
+    const Ina228Analog a{0.001 * (i % 7) - 0.002, 13.0 + 0.01 * (i % 13) + (i % 50 > 40 ? 2.0 : 0.0),
+                         25.0 + 0.5 * (i / 60)};
+    fine.chip.setAnalog(a);
+    coarse.chip.setAnalog(a);
+    const TimeNs next = t + fromUs(700 + 37 * (i % 5));
+    for (TimeNs u = t + fromUs(23); u < next; u += fromUs(23)) fine.chip.update(u);
+    t = next;
+    fine.now = coarse.now = t;
+    fine.chip.update(t);
+    coarse.chip.update(t);
+    if (i == 70 || i == 120) {  // SLOWALERT off, then on again (through the bus, as the driver would)
+      for (Rig* r : {&fine, &coarse}) r->writeReg(DIAG_ALRT, i == 70 ? 0 : SLOWALERT);
+    }
+    if (i == 150) {
+      for (Rig* r : {&fine, &coarse}) r->writeReg(ADC_CONFIG, (0xF << 12) | (2 << 9) | (1 << 6) | 1);
+    }
+    for (std::uint8_t reg : {VSHUNT, VBUS, DIETEMP, CURRENT, POWER, ENERGY, CHARGE, DIAG_ALRT})
+      ASSERT_EQ(fine.chip.peek(reg), coarse.chip.peek(reg)) << "i=" << i << " reg " << int(reg);
+    ASSERT_EQ(fine.chip.conversions(), coarse.chip.conversions()) << "i=" << i;
+  }
+  EXPECT_GT(fine.chip.conversions(), 40u);
+}
+
 }  // namespace
 }  // namespace xr::sim
 
