@@ -209,11 +209,9 @@ bool ControlCycle::tick(TimeNs now) {
     stats_.onCompute(t2 - t1);
   }
   stats_.onTick();
-  SampleCounts counts;
-  dev_.sensors->sampleCounts(counts);
-  if (counts.valid) {
-    health_.adsEdgeFallback = counts.readyEdgeFallback;
-    stats_.onSampleTotals(now, counts.ads, in_.IBV.fresh);
+  if (const SampleCounts* counts = dev_.sensors->sampleCounts()) {
+    health_.adsEdgeFallback = counts->readyEdgeFallback;
+    stats_.onSampleTotals(now, counts->ads, in_.IBV.fresh);
   } else {
     freshTotals_[0] += in_.BatteryV.fresh;
     freshTotals_[1] += in_.altCurrentRaw.fresh;
