@@ -8,7 +8,14 @@ namespace xr::rt {
 
 ControlCycle::ControlCycle(ControlCore& core, const CycleDevices& devices, Handoffs& handoffs,
                            LoopStats& stats, const Clock& timing, CycleConfig config)
-    : core_(core), dev_(devices), h_(handoffs), stats_(stats), timing_(timing), cfg_(config) {
+    : core_(core),
+      dev_(devices),
+      h_(handoffs),
+      stats_(stats),
+      timing_(timing),
+      cfg_(config),
+      bmsCell_(dev_.bms ? dev_.bms->levelCell() : nullptr),
+      ignitionCell_(dev_.ignition ? dev_.ignition->levelCell() : nullptr) {
   planExtras();  // tick 0: every extra falls on it
 }
 
@@ -97,11 +104,16 @@ void ControlCycle::mergeVictron() noexcept {
 
 inline void ControlCycle::readDiscreteInputs() noexcept {
   // A read error counts as the safe level: charging disabled / ignition off.
-  if (dev_.bms)
+  // A level in memory (simulation) is read in place: what get() returns.
+  if (bmsCell_)
+    in_.bmsChargeEnabled = !*bmsCell_;
+  else if (dev_.bms)
     in_.bmsChargeEnabled = dev_.bms->get() == 0;
   else
     in_.bmsChargeEnabled = true;
-  if (dev_.ignition)
+  if (ignitionCell_)
+    in_.ignitionOn = *ignitionCell_;
+  else if (dev_.ignition)
     in_.ignitionOn = dev_.ignition->get() == 1;
   else
     in_.ignitionOn = true;

@@ -153,6 +153,11 @@ class ControlCycle {
   TimeNs lastInaStamp_ = 0;
   std::array<std::uint32_t, 4> freshTotals_{};  // sensors that do not count: fresh flags summed
 
+  // The discrete inputs' levels in memory (DigitalInput::levelCell()), or
+  // nullptr: read with get() (or not wired).
+  const bool* bmsCell_;
+  const bool* ignitionCell_;
+
   // What the outputs are known to be (written successfully).
   bool outputsKnown_ = false;
   bool lastEnable_ = false;

@@ -88,7 +88,10 @@ class SimDigitalOutput final : public DigitalOutput {
 // A discrete input the world drives (ignition, BMS charge-enable line).
 class SimDigitalInput final : public DigitalInput {
  public:
-  explicit SimDigitalInput(bool level = true) : level_(level) {}
+  explicit SimDigitalInput(bool level = true) : level_(level) { cell_ = &level_; }
+  // Not copyable: levelCell() points into the object.
+  SimDigitalInput(const SimDigitalInput&) = delete;
+  SimDigitalInput& operator=(const SimDigitalInput&) = delete;
   int get() noexcept override { return level_ ? 1 : 0; }
   void setLevel(bool l) noexcept { level_ = l; }
 

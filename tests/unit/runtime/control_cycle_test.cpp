@@ -219,6 +219,38 @@ TEST(ControlCycle, DiscreteInputErrorsReadAsTheSafeLevel) {
   EXPECT_FALSE(r.core.lastInputs.ignitionOn);
 }
 
+// A discrete input whose level is plain memory, like the simulator's lines.
+struct CellDigitalIn final : DigitalInput {
+  explicit CellDigitalIn(bool l) : level(l) { cell_ = &level; }
+  int get() noexcept override {
+    ++gets;
+    return level ? 1 : 0;
+  }
+  bool level;
+  int gets = 0;
+};
+
+TEST(ControlCycle, DiscreteInputLevelsInMemoryAreReadInPlaceEveryTick) {
+  CycleRig r;
+  CellDigitalIn bms(false), ign(true);
+  r.dev.bms = &bms;
+  r.dev.ignition = &ign;
+  r.cycle = std::make_unique<ControlCycle>(r.core, r.dev, r.handoffs, r.stats, r.timing, r.cfg);
+  r.tick();
+  EXPECT_TRUE(r.core.lastInputs.bmsChargeEnabled);
+  EXPECT_TRUE(r.core.lastInputs.ignitionOn);
+  bms.level = true;  // BMS asserts charge disabled
+  ign.level = false;
+  r.tick();
+  EXPECT_FALSE(r.core.lastInputs.bmsChargeEnabled);
+  EXPECT_FALSE(r.core.lastInputs.ignitionOn);
+  bms.level = false;
+  r.tick();
+  EXPECT_TRUE(r.core.lastInputs.bmsChargeEnabled);
+  EXPECT_FALSE(r.core.lastInputs.ignitionOn);
+  EXPECT_EQ(bms.gets + ign.gets, 0);  // no virtual call per tick
+}
+
 TEST(ControlCycle, PublishesSnapshotWithTelemetryAndTick) {
   CycleRig r;
   r.sensors.ibv = 13.7;
