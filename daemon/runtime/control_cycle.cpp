@@ -8,7 +8,34 @@ namespace xr::rt {
 
 ControlCycle::ControlCycle(ControlCore& core, const CycleDevices& devices, Handoffs& handoffs,
                            LoopStats& stats, const Clock& timing, CycleConfig config)
-    : core_(core), dev_(devices), h_(handoffs), stats_(stats), timing_(timing), cfg_(config) {}
+    : core_(core),
+      dev_(devices),
+      h_(handoffs),
+      stats_(stats),
+      timing_(timing),
+      cfg_(config),
+      bmsCell_(dev_.bms ? dev_.bms->levelCell() : nullptr),
+      ignitionCell_(dev_.ignition ? dev_.ignition->levelCell() : nullptr) {
+  planExtras();  // tick 0: every extra falls on it
+}
+
+void ControlCycle::planExtras() noexcept {
+  const auto period = [](int every) { return every > 1 ? static_cast<std::uint64_t>(every) : 1u; };
+  const std::uint64_t t = tick_;
+  // Each next* is the first multiple of its period >= t (every tick is
+  // planned here or passed as quiet): it is due now when equal to t.
+  const auto due = [t](std::uint64_t& next, std::uint64_t every) {
+    if (next != t) return false;
+    next += every;
+    return true;
+  };
+  extras_.timed = due(nextTimed_, period(cfg_.timeEveryTicks));
+  extras_.store = due(nextStore_, period(cfg_.publishEveryTicks));
+  extras_.ledger = due(nextLedger_, kLedgerEveryTicks);
+  extras_.summary = due(nextSummary_, kSummaryEveryTicks);
+  const std::uint64_t next = std::min(std::min(nextTimed_, nextStore_), std::min(nextLedger_, nextSummary_));
+  quietTicks_ = next - t - 1;
+}
 
 inline void ControlCycle::applyBetweenTicks() noexcept {
   // Almost every tick has neither new Params nor a command: two loads, and
@@ -77,11 +104,16 @@ void ControlCycle::mergeVictron() noexcept {
 
 inline void ControlCycle::readDiscreteInputs() noexcept {
   // A read error counts as the safe level: charging disabled / ignition off.
-  if (dev_.bms)
+  // A level in memory (simulation) is read in place: what get() returns.
+  if (bmsCell_)
+    in_.bmsChargeEnabled = !*bmsCell_;
+  else if (dev_.bms)
     in_.bmsChargeEnabled = dev_.bms->get() == 0;
   else
     in_.bmsChargeEnabled = true;
-  if (dev_.ignition)
+  if (ignitionCell_)
+    in_.ignitionOn = *ignitionCell_;
+  else if (dev_.ignition)
     in_.ignitionOn = dev_.ignition->get() == 1;
   else
     in_.ignitionOn = true;
@@ -125,12 +157,12 @@ inline bool ControlCycle::writeOutputs(const Outputs& out) noexcept {
 }
 
 inline ControlCycle::PublishPlan ControlCycle::planPublish(TimeNs now) const noexcept {
-  // The snapshot is stored when publishPhase_, as advanceTick() will leave
-  // it, is 1; a row is due on the row grid.
-  const int nextPublishPhase = publishPhase_ + 1 >= cfg_.publishEveryTicks ? 0 : publishPhase_ + 1;
+  // The snapshot is stored on the tick's thinning grid (every tick while
+  // stopping); a row is due on the row grid.
   PublishPlan p;
-  p.store = cfg_.publishEveryTicks <= 1 || stopping_ || nextPublishPhase == 1;
+  p.store = extras_.store || stopping_;
   p.row = cfg_.rowPeriod > 0 && (!rowsStarted_ || now - lastRow_ >= cfg_.rowPeriod);
+  p.summary = extras_.summary;
   return p;
 }
 
@@ -160,7 +192,7 @@ void ControlCycle::publishLatest() noexcept {
 inline void ControlCycle::publish(const Outputs& out, TimeNs now, PublishPlan plan) noexcept {
   lastOut_ = &out;
   lastNow_ = now;
-  if ((tick_ & 63) == 1) summary_ = stats_.summary();  // quantiles are not free: ~6 Hz at 400 Hz
+  if (plan.summary) summary_ = stats_.summary();  // every kSummaryEveryTicks
   // The row carries this tick's state: it needs the snapshot even when the
   // thinned store would skip this tick.
   if (plan.store || plan.row) storeSnapshot(out, now);
@@ -209,11 +241,9 @@ bool ControlCycle::tick(TimeNs now) {
     stats_.onCompute(t2 - t1);
   }
   stats_.onTick();
-  SampleCounts counts;
-  dev_.sensors->sampleCounts(counts);
-  if (counts.valid) {
-    health_.adsEdgeFallback = counts.readyEdgeFallback;
-    stats_.onSampleTotals(now, counts.ads, in_.IBV.fresh);
+  if (const SampleCounts* counts = dev_.sensors->sampleCounts()) {
+    health_.adsEdgeFallback = counts->readyEdgeFallback;
+    stats_.onSampleTotals(now, counts->ads, in_.IBV.fresh);
   } else {
     freshTotals_[0] += in_.BatteryV.fresh;
     freshTotals_[1] += in_.altCurrentRaw.fresh;
@@ -227,8 +257,9 @@ bool ControlCycle::tick(TimeNs now) {
     if (dev_.watchdog->keepAlive()) ++health_.watchdogFeeds;
   }
   h_.events.pushBatch(out.events);
+  const bool ledgerDue = extras_.ledger;  // this tick's, before advanceTick() plans the next
   advanceTick();
-  if (ledgerPhase_ == 1) {
+  if (ledgerDue) {
     BatteryLedger l;
     if (core_.ledger(l)) h_.ledger.store(l);
   }

@@ -15,7 +15,6 @@ namespace xr::rt {
 // one tick with ready-edge pacing, so the per-tick fresh flags undercount).
 struct SampleCounts {
   std::array<std::uint32_t, 4> ads{};
-  bool valid = false;              // false: the sensors do not count; use the fresh flags
   bool readyEdgeFallback = false;  // ALERT/RDY configured but silent: single-shot pacing
 };
 
@@ -33,7 +32,14 @@ class FastSensors {
   // One ADS1115 ALERT/RDY edge (ready-edge pacing), `edge` = its timestamp
   // on the loop clock. Called between ticks on the control thread.
   virtual void onReadyEdge(TimeNs edge) noexcept { (void)edge; }
-  virtual void sampleCounts(SampleCounts& c) const noexcept { c.valid = false; }
+  // The counts as of the last read(), or nullptr when the sensors do not
+  // count (the cycle then sums the fresh flags). Not virtual: the cycle
+  // reads it after every read(), and an implementation that counts keeps
+  // counts_ pointing at its own SampleCounts, current after each read().
+  const SampleCounts* sampleCounts() const noexcept { return counts_; }
+
+ protected:
+  const SampleCounts* counts_ = nullptr;
 };
 
 // ADS1115 ALERT/RDY edges: libgpiod line events on the board, the chip

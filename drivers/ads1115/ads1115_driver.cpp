@@ -128,7 +128,7 @@ int Ads1115Driver::start(TimeNs now) noexcept {
   inProgress_ = -1;
   nextUp_ = -1;
   nextVerify_ = now + kVerifyInterval;
-  lastEdge_ = 0;
+  missedAfter_ = kNoEdgeYet;
   return 0;
 }
 
@@ -307,8 +307,10 @@ void Ads1115Driver::skipResultAndWriteMux(TimeNs edge, int c, std::uint16_t cfg)
 
 void Ads1115Driver::onReadyEdge(TimeNs edge) noexcept {
   if (!present_ || pacing_ != AdsPacing::ReadyEdge) return;
-  const bool missed = lastEdge_ != 0 && edge - lastEdge_ > kMissedEdgeGap;
-  lastEdge_ = edge;
+  // edge - lastEdge > kMissedEdgeGap, with the bound added once per edge
+  // (a stamp of 0 stands for "no edge yet", as start() leaves it).
+  const bool missed = edge > missedAfter_;
+  missedAfter_ = edge != 0 ? edge + kMissedEdgeGap : kNoEdgeYet;
   const bool late = clock_.now() - edge > kEdgeBudget;
   const std::size_t pos = seqPos_;
   const int c = nextChannel();

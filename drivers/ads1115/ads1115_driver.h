@@ -21,6 +21,7 @@
 // Not thread-safe: call from the control thread only.
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <span>
 
 #include "config/settings.h"
@@ -166,7 +167,9 @@ class Ads1115Driver {
   // ReadyEdge: channel of the conversion in progress, and of the next one.
   int inProgress_ = -1;
   int nextUp_ = -1;
-  TimeNs lastEdge_ = 0;
+  // Last edge + the missed-edge gap: a later edge means one was missed.
+  static constexpr TimeNs kNoEdgeYet = std::numeric_limits<TimeNs>::max();
+  TimeNs missedAfter_ = kNoEdgeYet;
   TimeNs nextRedetect_ = 0;
   TimeNs nextVerify_ = 0;
   std::uint16_t lastWritten_ = 0;  // last Config written successfully

@@ -8,7 +8,9 @@ namespace xr {
 DriverSensors::DriverSensors(I2cBus& bus, const HardwareSettings& hw, const Clock& clock, bool readyEdges)
     : ina_(bus, hw.ina228_address, hw.shunt_resistance_ohm, hw.shunt_max_current_a),
       ads_(bus, hw.ads1115_address, hw.ads_channel_sequence, hw.frontend, clock,
-           readyEdges ? AdsPacing::ReadyEdge : AdsPacing::SingleShot) {}
+           readyEdges ? AdsPacing::ReadyEdge : AdsPacing::SingleShot) {
+  counts_ = &sampleCounts_;
+}
 
 DriverSensors::StartReport DriverSensors::start(TimeNs now, double bovlVolts) noexcept {
   StartReport r;
@@ -36,6 +38,7 @@ bool DriverSensors::read(TimeNs now, Inputs& in) noexcept {
         lastEdge_ = now;
       } else {
         edgeFallback_ = true;
+        sampleCounts_.readyEdgeFallback = true;
         ads_.setPacing(AdsPacing::SingleShot, now);
       }
     }
@@ -44,7 +47,7 @@ bool DriverSensors::read(TimeNs now, Inputs& in) noexcept {
   fillInaInputs(ina_, in);
   const Ads1115Samples& ads = ads_.service(now);
   fillAdsInputs(ads, in);
-  for (std::size_t i = 0; i < 4; ++i) counts_[i] = ads.ch[i].count;
+  for (std::size_t i = 0; i < 4; ++i) sampleCounts_.ads[i] = ads.ch[i].count;
   ads_.clearFresh();
   const bool ok =
       ina_.stats().failedReads == lastInaFailures_ && ads_.stats().failedReads == lastAdsFailures_;
@@ -57,12 +60,6 @@ void DriverSensors::onReadyEdge(TimeNs edge) noexcept {
   lastEdge_ = edge;
   silenceRestarted_ = false;
   ads_.onReadyEdge(edge);
-}
-
-void DriverSensors::sampleCounts(rt::SampleCounts& c) const noexcept {
-  c.ads = counts_;
-  c.valid = true;
-  c.readyEdgeFallback = edgeFallback_;
 }
 
 void DriverSensors::apply(const Outputs& out) noexcept {

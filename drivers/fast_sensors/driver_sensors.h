@@ -43,7 +43,6 @@ class DriverSensors final : public rt::FastSensors {
   bool read(TimeNs now, Inputs& in) noexcept override;
   void apply(const Outputs& out) noexcept override;
   void onReadyEdge(TimeNs edge) noexcept override;
-  void sampleCounts(rt::SampleCounts& c) const noexcept override;
 
   // True once ready-edge pacing was abandoned for lack of edges.
   bool edgeFallback() const noexcept { return edgeFallback_; }
@@ -53,7 +52,9 @@ class DriverSensors final : public rt::FastSensors {
  private:
   Ina228Driver ina_;
   Ads1115Driver ads_;
-  std::array<std::uint32_t, 4> counts_{};  // per-channel result counts as of the last read()
+  // Per-channel result counts as of the last read() and the fallback flag:
+  // what FastSensors::sampleCounts() points at.
+  rt::SampleCounts sampleCounts_{};
   double bovl_ = 0.0;
   TimeNs lastEdge_ = 0;  // last edge, or when edge pacing (re)started
   bool edgeFallback_ = false;

@@ -15,7 +15,8 @@ namespace xr::sim {
 class SimI2cBus final : public I2cBus {
  public:
   // `now` is read before each transfer so chips convert up to that instant.
-  explicit SimI2cBus(const TimeNs* now) : now_(now) {}
+  // A null `now` reads as time 0.
+  explicit SimI2cBus(const TimeNs* now) : now_(now ? now : &kTimeZero) {}
 
   // The device is not owned. Attaching at an occupied address replaces it.
   void attach(std::uint16_t addr, SimI2cDevice* dev) noexcept;
@@ -30,6 +31,10 @@ class SimI2cBus final : public I2cBus {
   std::uint64_t failedTransfers() const noexcept { return failed_; }
 
  private:
+  static constexpr TimeNs kTimeZero = 0;
+  // A transaction addressed to more than one chip: one transact() per run.
+  int transferRuns(std::span<I2cMsg> msgs) noexcept;
+
   const TimeNs* now_;
   std::array<SimI2cDevice*, 128> devs_{};
   std::array<bool, 128> nack_{};

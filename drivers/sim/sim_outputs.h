@@ -26,18 +26,19 @@ class ChangeLog {
   explicit ChangeLog(std::size_t capacity = 1u << 16) : cap_(capacity) {}
   void record(TimeNs t, double v) {
     ++count_;
-    if (cap_ == 0) return;
-    if (!ring_) [[unlikely]]
+    if (!ring_) [[unlikely]] {
+      if (cap_ == 0) return;
       ring_ = std::make_unique<Change[]>(cap_);
+    }
     ring_[head_] = {t, v};
     head_ = head_ + 1 == cap_ ? 0 : head_ + 1;
-    if (size_ < cap_) ++size_;
   }
-  // The kept changes, oldest first: [0, size()).
-  std::size_t size() const noexcept { return size_; }
-  bool empty() const noexcept { return size_ == 0; }
+  // The kept changes, oldest first: [0, size()). The ring holds the newest
+  // min(count, capacity) changes, so its fill level is not tracked apart.
+  std::size_t size() const noexcept { return count_ < cap_ ? static_cast<std::size_t>(count_) : cap_; }
+  bool empty() const noexcept { return size() == 0; }
   const Change& operator[](std::size_t i) const noexcept {
-    const std::size_t k = (size_ < cap_ ? 0 : head_) + i;  // the oldest is at head_ once full
+    const std::size_t k = (count_ < cap_ ? 0 : head_) + i;  // the oldest is at head_ once full
     return ring_[k < cap_ ? k : k - cap_];
   }
   const Change& back() const noexcept { return ring_[head_ == 0 ? cap_ - 1 : head_ - 1]; }
@@ -47,7 +48,6 @@ class ChangeLog {
   std::size_t cap_;
   std::unique_ptr<Change[]> ring_;
   std::size_t head_ = 0;  // where the next change goes
-  std::size_t size_ = 0;
   std::uint64_t count_ = 0;
 };
 
@@ -88,7 +88,10 @@ class SimDigitalOutput final : public DigitalOutput {
 // A discrete input the world drives (ignition, BMS charge-enable line).
 class SimDigitalInput final : public DigitalInput {
  public:
-  explicit SimDigitalInput(bool level = true) : level_(level) {}
+  explicit SimDigitalInput(bool level = true) : level_(level) { cell_ = &level_; }
+  // Not copyable: levelCell() points into the object.
+  SimDigitalInput(const SimDigitalInput&) = delete;
+  SimDigitalInput& operator=(const SimDigitalInput&) = delete;
   int get() noexcept override { return level_ ? 1 : 0; }
   void setLevel(bool l) noexcept { level_ = l; }
 

@@ -31,11 +31,7 @@ struct Board {
     world.advanceTo(deadline);
     sensors.read(world.now(), in);
   }
-  std::uint32_t ch1() const {
-    rt::SampleCounts c;
-    sensors.sampleCounts(c);
-    return c.ads[1];
-  }
+  std::uint32_t ch1() const { return sensors.sampleCounts()->ads[1]; }
   HardwareSettings hw;
   sim::SimWorld world;
   sim::SimClock clock;
@@ -70,9 +66,8 @@ TEST(DriverSensors, SilentReadyLineFallsBackToSingleShot) {
   for (int i = 0; i < 100; ++i) b.period(false);
   EXPECT_TRUE(b.sensors.edgeFallback());
   EXPECT_EQ(b.sensors.ads().pacing(), AdsPacing::SingleShot);
-  rt::SampleCounts c;
-  b.sensors.sampleCounts(c);
-  EXPECT_TRUE(c.readyEdgeFallback);
+  ASSERT_NE(b.sensors.sampleCounts(), nullptr);
+  EXPECT_TRUE(b.sensors.sampleCounts()->readyEdgeFallback);
   const std::uint32_t before = b.ch1();
   for (int i = 0; i < 400; ++i) b.period(false);  // 1 s of single-shot pacing
   EXPECT_GE(b.ch1() - before, 190u);              // one conversion per tick, CH1 every other

@@ -219,6 +219,38 @@ TEST(ControlCycle, DiscreteInputErrorsReadAsTheSafeLevel) {
   EXPECT_FALSE(r.core.lastInputs.ignitionOn);
 }
 
+// A discrete input whose level is plain memory, like the simulator's lines.
+struct CellDigitalIn final : DigitalInput {
+  explicit CellDigitalIn(bool l) : level(l) { cell_ = &level; }
+  int get() noexcept override {
+    ++gets;
+    return level ? 1 : 0;
+  }
+  bool level;
+  int gets = 0;
+};
+
+TEST(ControlCycle, DiscreteInputLevelsInMemoryAreReadInPlaceEveryTick) {
+  CycleRig r;
+  CellDigitalIn bms(false), ign(true);
+  r.dev.bms = &bms;
+  r.dev.ignition = &ign;
+  r.cycle = std::make_unique<ControlCycle>(r.core, r.dev, r.handoffs, r.stats, r.timing, r.cfg);
+  r.tick();
+  EXPECT_TRUE(r.core.lastInputs.bmsChargeEnabled);
+  EXPECT_TRUE(r.core.lastInputs.ignitionOn);
+  bms.level = true;  // BMS asserts charge disabled
+  ign.level = false;
+  r.tick();
+  EXPECT_FALSE(r.core.lastInputs.bmsChargeEnabled);
+  EXPECT_FALSE(r.core.lastInputs.ignitionOn);
+  bms.level = false;
+  r.tick();
+  EXPECT_TRUE(r.core.lastInputs.bmsChargeEnabled);
+  EXPECT_FALSE(r.core.lastInputs.ignitionOn);
+  EXPECT_EQ(bms.gets + ign.gets, 0);  // no virtual call per tick
+}
+
 TEST(ControlCycle, PublishesSnapshotWithTelemetryAndTick) {
   CycleRig r;
   r.sensors.ibv = 13.7;
@@ -369,9 +401,10 @@ class LedgerCore final : public ControlCore {
 };
 
 TEST(ControlCycle, ThinnedRunTimesStoresAndCopiesTheLedgerOnTheirTicks) {
-  // The cadences are phase counters standing for tick % N: timed when
-  // (ticks before) % timeEveryTicks == 0, snapshot stored when
-  // (ticks after) % publishEveryTicks == 1, ledger when (ticks after) % 100 == 1.
+  // Each extra falls on the ticks numbered (from 0) by multiples of its
+  // period: timed when (ticks before) % timeEveryTicks == 0, snapshot stored
+  // when (ticks after) % publishEveryTicks == 1, ledger when (ticks after) %
+  // 100 == 1, loop summary refreshed when (ticks after) % 64 == 1.
   CycleRig r;
   CountingClock timing;
   LedgerCore core(r.core);
@@ -381,7 +414,7 @@ TEST(ControlCycle, ThinnedRunTimesStoresAndCopiesTheLedgerOnTheirTicks) {
   ASSERT_EQ(cfg.publishEveryTicks, 40);
   ASSERT_EQ(cfg.timeEveryTicks, 16);
   ControlCycle cycle(core, r.dev, r.handoffs, r.stats, timing, cfg);
-  std::uint64_t lastStored = 0;
+  std::uint64_t lastStored = 0, lastSummary = 0;
   for (std::uint64_t k = 1; k <= 1000; ++k) {
     const int readsBefore = timing.reads;
     const int ledgersBefore = core.ledgers;
@@ -390,7 +423,14 @@ TEST(ControlCycle, ThinnedRunTimesStoresAndCopiesTheLedgerOnTheirTicks) {
     EXPECT_EQ(timing.reads - readsBefore, (k - 1) % 16 == 0 ? 4 : 0) << "tick " << k;
     EXPECT_EQ(core.ledgers - ledgersBefore, k % 100 == 1 ? 1 : 0) << "tick " << k;
     if (k % 40 == 1) lastStored = k;
-    EXPECT_EQ(r.handoffs.snapshot.load().tick, lastStored) << "tick " << k;
+    if (k % 64 == 1) lastSummary = k;
+    const RuntimeSnapshot snap = r.handoffs.snapshot.load();
+    EXPECT_EQ(snap.tick, lastStored) << "tick " << k;
+    // The stored snapshot carries the summary as last refreshed (after that
+    // tick was counted), not a fresher one.
+    if (k == lastStored) {
+      EXPECT_EQ(snap.loop.ticks, lastSummary) << "tick " << k;
+    }
   }
 }
 

@@ -86,6 +86,7 @@ class ScriptedCore final : public ControlCore {
 struct FakeSensors final : FastSensors {
   bool read(TimeNs now, Inputs& in) noexcept override {
     ++reads;
+    counts_ = counting ? &counts : nullptr;
     in.inaPresent = true;
     in.IBV = Reading{ibv, now, true};
     in.altCurrentRaw = Reading{10.0, now, true};
@@ -101,10 +102,6 @@ struct FakeSensors final : FastSensors {
   void onReadyEdge(TimeNs edge) noexcept override {
     edges.push_back(edge);
     ++counts.ads[1];
-  }
-  void sampleCounts(SampleCounts& c) const noexcept override {
-    c = counts;
-    c.valid = counting;
   }
   double ibv = 13.2;
   bool ok = true;

@@ -96,6 +96,21 @@ TEST(SimI2cBus, TransactionAcrossTwoChipsStopsAtTheNackingOne) {
   // Detached: absent.
   b.bus.detach(0x40);
   EXPECT_EQ(b.bus.transfer(m), EREMOTEIO);
+  // Each transaction counts once, whichever path (one chip or several) ran
+  // it: two-chip m three times, one-chip rd once; two of them failed.
+  EXPECT_EQ(b.bus.transfers(), 4u);
+  EXPECT_EQ(b.bus.failedTransfers(), 2u);
+}
+
+TEST(SimI2cBus, NullClockReadsAsTimeZero) {
+  SimI2cBus bus{nullptr};
+  Ads1115Model ads;
+  bus.attach(0x48, &ads);
+  std::uint8_t p = 2, rx[2] = {};
+  I2cMsg rd[2] = {{0x48, false, &p, 1}, {0x48, true, rx, 2}};
+  ASSERT_EQ(bus.transfer(rd), 0);
+  EXPECT_EQ(bus.transfers(), 1u);
+  EXPECT_EQ(bus.failedTransfers(), 0u);
 }
 
 TEST(SimI2cBus, TransactBringsTheChipToTheBusTime) {
