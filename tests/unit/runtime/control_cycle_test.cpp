@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <initializer_list>
+
 #include "fakes.h"
 
 namespace xr::rt {
@@ -16,7 +19,25 @@ struct CycleRig {
     dev.fieldEnable = &enable;
     dev.buzzer = &buzzer;
     dev.watchdog = &watchdog;
-    cycle = std::make_unique<ControlCycle>(core, dev, handoffs, stats, timing, cfg);
+    rebuild();
+  }
+  // A new cycle over the rig's devices and config, after a test changed them.
+  void rebuild() { cycle = std::make_unique<ControlCycle>(core, dev, handoffs, stats, timing, cfg); }
+  // The BMS and ignition lines, then a tick with each (bms, ignition) level
+  // pair, checking what the core saw: charge enabled and ignition on.
+  template <class Set>
+  void expectDiscrete(DigitalInput& bms, DigitalInput& ign, Set&& set,
+                      std::initializer_list<std::array<bool, 2>> seen) {
+    dev.bms = &bms;
+    dev.ignition = &ign;
+    rebuild();
+    int step = 0;
+    for (const auto& want : seen) {
+      set(step++);
+      tick();
+      EXPECT_EQ(core.lastInputs.bmsChargeEnabled, want[0]) << "step " << step - 1;
+      EXPECT_EQ(core.lastInputs.ignitionOn, want[1]) << "step " << step - 1;
+    }
   }
   bool tick() {
     clock.t += fromUs(2500);
@@ -201,22 +222,16 @@ TEST(ControlCycle, VictronSamplesReachTheInputs) {
 TEST(ControlCycle, DiscreteInputErrorsReadAsTheSafeLevel) {
   CycleRig r;
   test::FakeDigitalIn bms, ign;
-  bms.value = 0;  // BMS not asserting "charge disabled"
-  r.dev.bms = &bms;
-  r.dev.ignition = &ign;
-  r.cycle = std::make_unique<ControlCycle>(r.core, r.dev, r.handoffs, r.stats, r.timing, r.cfg);
-  r.tick();
-  EXPECT_TRUE(r.core.lastInputs.bmsChargeEnabled);
-  EXPECT_TRUE(r.core.lastInputs.ignitionOn);
-  bms.value = -1;  // read error
-  ign.value = 0;
-  r.tick();
-  EXPECT_FALSE(r.core.lastInputs.bmsChargeEnabled);
-  EXPECT_FALSE(r.core.lastInputs.ignitionOn);
-  bms.value = 1;  // BMS asserts charge disabled
-  r.tick();
-  EXPECT_FALSE(r.core.lastInputs.bmsChargeEnabled);
-  EXPECT_FALSE(r.core.lastInputs.ignitionOn);
+  r.expectDiscrete(bms, ign,
+                   [&](int step) {
+                     if (step == 0) bms.value = 0;  // BMS not asserting "charge disabled"
+                     if (step == 1) {
+                       bms.value = -1;  // read error
+                       ign.value = 0;
+                     }
+                     if (step == 2) bms.value = 1;  // BMS asserts charge disabled
+                   },
+                   {{true, true}, {false, false}, {false, false}});
 }
 
 // A discrete input whose level is plain memory, like the simulator's lines.
@@ -233,21 +248,15 @@ struct CellDigitalIn final : DigitalInput {
 TEST(ControlCycle, DiscreteInputLevelsInMemoryAreReadInPlaceEveryTick) {
   CycleRig r;
   CellDigitalIn bms(false), ign(true);
-  r.dev.bms = &bms;
-  r.dev.ignition = &ign;
-  r.cycle = std::make_unique<ControlCycle>(r.core, r.dev, r.handoffs, r.stats, r.timing, r.cfg);
-  r.tick();
-  EXPECT_TRUE(r.core.lastInputs.bmsChargeEnabled);
-  EXPECT_TRUE(r.core.lastInputs.ignitionOn);
-  bms.level = true;  // BMS asserts charge disabled
-  ign.level = false;
-  r.tick();
-  EXPECT_FALSE(r.core.lastInputs.bmsChargeEnabled);
-  EXPECT_FALSE(r.core.lastInputs.ignitionOn);
-  bms.level = false;
-  r.tick();
-  EXPECT_TRUE(r.core.lastInputs.bmsChargeEnabled);
-  EXPECT_FALSE(r.core.lastInputs.ignitionOn);
+  r.expectDiscrete(bms, ign,
+                   [&](int step) {
+                     if (step == 1) {
+                       bms.level = true;  // BMS asserts charge disabled
+                       ign.level = false;
+                     }
+                     if (step == 2) bms.level = false;
+                   },
+                   {{true, true}, {false, false}, {true, false}});
   EXPECT_EQ(bms.gets + ign.gets, 0);  // no virtual call per tick
 }
 
@@ -275,7 +284,7 @@ TEST(ControlCycle, EventsGoToTheRingAndOverflowIsCounted) {
 TEST(ControlCycle, RowsFollowTheTelemetryRate) {
   CycleRig r;
   r.cfg.rowPeriod = fromMs(100);
-  r.cycle = std::make_unique<ControlCycle>(r.core, r.dev, r.handoffs, r.stats, r.timing, r.cfg);
+  r.rebuild();
   for (int i = 0; i < 400; ++i) r.tick();  // 1 s of 2.5 ms ticks
   EXPECT_EQ(r.handoffs.rows.size(), 10u);
 }
@@ -283,7 +292,7 @@ TEST(ControlCycle, RowsFollowTheTelemetryRate) {
 TEST(ControlCycle, RowsAreDroppedAndCountedWhenTheWriterFallsBehind) {
   CycleRig r;
   r.cfg.rowPeriod = fromUs(2500);  // one per tick
-  r.cycle = std::make_unique<ControlCycle>(r.core, r.dev, r.handoffs, r.stats, r.timing, r.cfg);
+  r.rebuild();
   const int ticks = static_cast<int>(decltype(r.handoffs.rows)::capacity()) + 5;
   for (int i = 0; i < ticks; ++i) r.tick();
   EXPECT_EQ(r.cycle->health().rowsDropped, 5u);
@@ -321,7 +330,7 @@ TEST(ControlCycle, ServicesReadyEdgesUntilTheDeadlineAndCountsEverySample) {
   test::FakeEdges edges(r.clock.t);
   r.dev.adsReady = &edges;
   r.sensors.counting = true;
-  r.cycle = std::make_unique<ControlCycle>(r.core, r.dev, r.handoffs, r.stats, r.timing, r.cfg);
+  r.rebuild();
   TimeNs next = r.clock.t;
   for (int i = 0; i < 801; ++i) {  // 2 s at 400 Hz, as ControlLoop does it
     next += fromUs(2500);
@@ -353,7 +362,7 @@ TEST(ControlCycle, EdgeErrorsAreCountedAndDoNotBlockTheTick) {
   test::FakeEdges edges(r.clock.t);
   edges.fail = true;
   r.dev.adsReady = &edges;
-  r.cycle = std::make_unique<ControlCycle>(r.core, r.dev, r.handoffs, r.stats, r.timing, r.cfg);
+  r.rebuild();
   r.cycle->serviceEdges(r.clock.t + fromUs(2500));
   EXPECT_EQ(edges.waits, 1);
   EXPECT_EQ(r.cycle->health().edgeErrors, 1u);
@@ -365,7 +374,7 @@ TEST(ControlCycle, AnEdgeStormCannotStarveTheTick) {
   test::FakeEdges edges(r.clock.t);
   edges.period = 1;  // a noisy line: an edge every nanosecond
   r.dev.adsReady = &edges;
-  r.cycle = std::make_unique<ControlCycle>(r.core, r.dev, r.handoffs, r.stats, r.timing, r.cfg);
+  r.rebuild();
   r.cycle->serviceEdges(r.clock.t + fromUs(2500));
   EXPECT_EQ(r.sensors.edges.size(), 16u);  // bounded per period
 }
