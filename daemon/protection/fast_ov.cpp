@@ -30,7 +30,9 @@ void ProtectionSupervisor::resetFastOv() {
 
 FastOvAction ProtectionSupervisor::runFastOvSupervisors(const FastOvInputs& x) {
   if (lastFastOvCall_ < 0 || now_ - lastFastOvCall_ > kFastOvGap || now_ < lastFastOvCall_) resetFastOv();
-  const double dt = lastFastOvCall_ >= 0 ? std::clamp(toSec(now_ - lastFastOvCall_), 0.0, 0.1) : 0.0;
+  // The step since the last call is needed only by the Group 3 bleed; it is
+  // computed there from this (the same value as computing it here).
+  const TimeNs prevCall = lastFastOvCall_;
   lastFastOvCall_ = now_;
 
   FastOvAction a;
@@ -41,21 +43,24 @@ FastOvAction ProtectionSupervisor::runFastOvSupervisors(const FastOvInputs& x) {
   a.fastOvCurrentCap = base;
   a.cv_I = x.cv_I;
 
-  // Group 3 signal window is kept up to date whatever the gate says.
+  const bool armed = x.voltageControlActive && a.nearBulk && std::isfinite(IBV_);
+  if (!armed) {
+    // CV inactive or far from bulk: nothing throttles; the CV tracker owns cv_I.
+    // resetFastOv() empties the Group 3 window (maCount_ = maHead_ = 0), so a
+    // sample pushed on this tick could never be read: the window is fed only
+    // on armed ticks below, with the same contents wherever it is read.
+    resetFastOv();
+    Vpred_ = std::isfinite(IBV_) ? IBV_ + p_.TdPred * std::max(0.0, dvdt_) : 0.0;
+    lastFastOv_ = a;
+    return a;
+  }
+
+  // Group 3 signal window: every fresh sample since the last reset.
   const int maN = d_.iexMaN;
   if (x.altCurrentFresh && std::isfinite(x.MeasuredAmps)) {
     maBuf_[static_cast<std::size_t>(maHead_)] = x.MeasuredAmps;
     maHead_ = (maHead_ + 1) % static_cast<int>(maBuf_.size());
     maCount_ = std::min(maCount_ + 1, static_cast<int>(maBuf_.size()));
-  }
-
-  const bool armed = x.voltageControlActive && a.nearBulk && std::isfinite(IBV_);
-  if (!armed) {
-    // CV inactive or far from bulk: nothing throttles; the CV tracker owns cv_I.
-    resetFastOv();
-    Vpred_ = std::isfinite(IBV_) ? IBV_ + p_.TdPred * std::max(0.0, dvdt_) : 0.0;
-    lastFastOv_ = a;
-    return a;
   }
 
   double cap = fastOvWasActive_ ? std::min(fastOvCap_, base) : base;
@@ -122,6 +127,7 @@ FastOvAction ProtectionSupervisor::runFastOvSupervisors(const FastOvInputs& x) {
     const double excess = std::max(0.0, sig - x.setpointLimited);
     if (p_.IExcessKBleed > 0.0) {
       a.cvIAction = CvIAction::Bleed;
+      const double dt = prevCall >= 0 ? std::clamp(toSec(now_ - prevCall), 0.0, 0.1) : 0.0;
       a.cv_I = std::max(0.0, x.cv_I - p_.IExcessKBleed * excess * dt);
     }
     cap = std::min(cap, std::max(0.0, base - k::K_IE * excess));
