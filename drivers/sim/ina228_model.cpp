@@ -281,7 +281,6 @@ void Ina228Model::compareLimits(std::int32_t vsh, std::int32_t vb, std::int32_t 
 }
 
 std::uint64_t Ina228Model::peek(std::uint8_t reg) const noexcept {
-  auto r20 = [](std::int32_t c) { return std::uint64_t(std::uint32_t(c) & 0xFFFFF) << 4; };
   switch (reg) {
     case CONFIG:
       return config_;
@@ -292,13 +291,13 @@ std::uint64_t Ina228Model::peek(std::uint8_t reg) const noexcept {
     case SHUNT_TEMPCO:
       return tempco_;
     case VSHUNT:
-      return r20(vshunt_);
+      return reg20(vshunt_);
     case VBUS:
-      return r20(vbus_);
+      return reg20(vbus_);
     case DIETEMP:
       return std::uint16_t(dietemp_);
     case CURRENT:
-      return r20(current_);
+      return reg20(current_);
     case POWER:
       return power_;
     case ENERGY:
@@ -332,9 +331,7 @@ inline int Ina228Model::readMsg(std::uint8_t* buf, std::size_t len) noexcept {
   if (ptr_ == DIAG_ALRT && len == 2) [[likely]] {
     // The read of every control tick, straight from diag_ (the general path
     // below gives the same bytes and side effects).
-    buf[0] = std::uint8_t(diag_ >> 8);
-    buf[1] = std::uint8_t(diag_);
-    clearOnDiagRead();
+    readDiag(buf);
     return 0;
   }
   const int size = regSize(ptr_);
@@ -457,11 +454,9 @@ int Ina228Model::transact(TimeNs t, std::span<I2cMsg> msgs) noexcept {
     const std::uint8_t reg = m[0].buf[0];
     std::uint8_t* const b = m[1].buf;
     if (reg == DIAG_ALRT && m[1].len == 2) {
-      b[0] = std::uint8_t(diag_ >> 8);
-      b[1] = std::uint8_t(diag_);
-      clearOnDiagRead();
+      readDiag(b);
     } else if ((reg == VBUS || reg == CURRENT) && m[1].len == 3) {
-      const std::uint32_t v = (std::uint32_t(reg == VBUS ? vbus_ : current_) & 0xFFFFF) << 4;
+      const std::uint32_t v = reg20(reg == VBUS ? vbus_ : current_);
       b[0] = std::uint8_t(v >> 16);
       b[1] = std::uint8_t(v >> 8);
       b[2] = std::uint8_t(v);

@@ -125,6 +125,16 @@ class Ina228Model final : public SimI2cDevice {
   void onSample() noexcept;                 // one raw sample of every active channel
   void publish(double dtSeconds) noexcept;  // the averaged result is ready
   void refreshLimits() noexcept;            // after any register write or reset
+  // A 2-byte read of DIAG_ALRT: its bytes MSB first, then the read's side
+  // effect (every control tick, from readMsg() and the poll in transact()).
+  void readDiag(std::uint8_t* b) noexcept {
+    b[0] = std::uint8_t(diag_ >> 8);
+    b[1] = std::uint8_t(diag_);
+    clearOnDiagRead();
+  }
+  // A 20-bit result (VSHUNT, VBUS, CURRENT) as its 24-bit register: the code
+  // in bits 23..4.
+  static std::uint32_t reg20(std::int32_t code) noexcept { return (std::uint32_t(code) & 0xFFFFF) << 4; }
   // The side effect of reading DIAG_ALRT: latched limit flags (ALATCH = 1)
   // and CNVRF clear.
   void clearOnDiagRead() noexcept {
