@@ -170,12 +170,7 @@ void SimWorld::advanceStepping(TimeNs t) noexcept {
     if (next > t) break;
     stepPlant(next);
   }
-  if (now_ < t) {
-    // Between grid points: only the chips move, on the last plant step's inputs.
-    now_ = t;
-    ina_.update(t);
-    ads_.update(t);
-  }
+  if (now_ < t) advanceChips(t);
 }
 
 }  // namespace xr::sim

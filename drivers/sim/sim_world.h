@@ -82,9 +82,7 @@ class SimWorld {
   void advanceTo(TimeNs t) noexcept {
     if (t <= now_) return;
     if (t < gridNext_ && plant_.truth().bms_connected) {
-      now_ = t;
-      ina_.update(t);
-      ads_.update(t);
+      advanceChips(t);
       return;
     }
     advanceStepping(t);
@@ -126,6 +124,12 @@ class SimWorld {
 
  private:
   void advanceStepping(TimeNs t) noexcept;  // advanceTo() with a plant step due by t
+  // Between grid points: only the chips move, on the last plant step's inputs.
+  void advanceChips(TimeNs t) noexcept {
+    now_ = t;
+    ina_.update(t);
+    ads_.update(t);
+  }
   void refreshAnalog(double dt) noexcept;
   void stepPlant(TimeNs to) noexcept;
   double fieldCommand() const noexcept;
