@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <ctime>
 
@@ -21,7 +22,33 @@ Ds18b20Reader::Ds18b20Reader(std::string root, std::string sensorId, TimeNs peri
   if (!now_) now_ = monotonicNow;
 }
 
-Ds18b20Reader::~Ds18b20Reader() { stop(); }
+Ds18b20Reader::~Ds18b20Reader() {
+  stop();
+  closeSlave();
+}
+
+void Ds18b20Reader::closeSlave() noexcept {
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+}
+
+long Ds18b20Reader::readSlave(int fd, char* buf, std::size_t cap) noexcept {
+  // w1_slave is two lines; the kernel hands both over in one read, so the
+  // loop normally runs once (a short read would be continued from its end).
+  std::size_t len = 0;
+  int lines = 0;
+  while (len < cap && lines < 2) {
+    const ssize_t n = ::pread(fd, buf + len, cap - len, off_t(len));
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return -1;
+    }
+    if (n == 0) break;
+    for (ssize_t i = 0; i < n; ++i) lines += buf[len + std::size_t(i)] == '\n';
+    len += std::size_t(n);
+  }
+  return long(len);
+}
 
 void Ds18b20Reader::start() {
   if (thread_.joinable()) return;
@@ -48,18 +75,20 @@ void Ds18b20Reader::readOnce() {
   if (!path_.empty()) {
     // A read triggers the conversion (~750 ms at 12 bits): this is why it
     // lives on its own thread, never on the control thread.
-    const int fd = ::open(path_.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd >= 0) {
-      char buf[256];
-      std::size_t len = 0;
-      for (;;) {
-        const ssize_t n = ::read(fd, buf + len, sizeof(buf) - 1 - len);
-        if (n <= 0) break;
-        len += static_cast<std::size_t>(n);
-        if (len >= sizeof(buf) - 1) break;
-      }
-      ::close(fd);
-      r = w1::parseW1Slave(std::string_view(buf, len));
+    // The file stays open between readings: a sysfs attribute runs its show()
+    // (here the conversion) again on every read from offset 0, so one pread
+    // replaces open/read/close and the path lookup. Once the slave is gone its
+    // attribute fails to read (ENODEV) or reads empty; then the path is opened
+    // afresh, which also finds a sensor that came back.
+    char buf[256];
+    long len = fd_ >= 0 ? readSlave(fd_, buf, sizeof buf) : -1;
+    if (len <= 0) {
+      closeSlave();
+      fd_ = ::open(path_.c_str(), O_RDONLY | O_CLOEXEC);
+      if (fd_ >= 0) len = readSlave(fd_, buf, sizeof buf);
+    }
+    if (fd_ >= 0) {
+      r = w1::parseW1Slave(std::string_view(buf, len > 0 ? std::size_t(len) : 0));
       state_.sensorFound = true;
     } else {
       state_.sensorFound = false;

@@ -45,9 +45,13 @@ class Ds18b20Reader {
 
  private:
   void run();
+  // One reading from the held descriptor: -1 on a read error, else bytes.
+  static long readSlave(int fd, char* buf, std::size_t cap) noexcept;
+  void closeSlave() noexcept;
   std::string root_;
   std::string id_;
   std::string path_;
+  int fd_ = -1;  // w1_slave, held open between readings
   TimeNs period_;
   NowFn now_;
   Ds18b20Sample state_;

@@ -20,7 +20,7 @@ SimOneWire::SimOneWire(fs::path root, std::string id) : root_(std::move(root)), 
   fs::create_directories(root_ / id_, ec);
 }
 
-SimOneWire::~SimOneWire() = default;
+SimOneWire::~SimOneWire() { closeFile(); }
 
 std::uint8_t SimOneWire::crc8(const std::uint8_t* p, std::size_t n) {
   // Dallas/Maxim CRC8: x^8 + x^5 + x^4 + 1, LSB first (reflected 0x8C).
@@ -68,29 +68,32 @@ std::string SimOneWire::formatW1Slave(std::int16_t raw, bool corrupt) {
 }
 
 void SimOneWire::writeFile(const std::string& content) {
-  std::error_code ec;
-  if (!written_) fs::create_directories(root_ / id_, ec);  // after a reconnect
-  // Plain open/write/close/rename on paths built once (no iostream, no
-  // path concatenation per write): this runs every 750 ms of virtual time.
-  if (tmpPath_.empty()) {
-    tmpPath_ = (root_ / id_ / ".w1_slave.tmp").string();
-    slavePath_ = slavePath().string();
+  if (fd_ < 0) {
+    std::error_code ec;
+    fs::create_directories(root_ / id_, ec);  // first write, or after a reconnect
+    if (slavePath_.empty()) slavePath_ = slavePath().string();
+    fd_ = ::open(slavePath_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    size_ = 0;
   }
-  const int fd = ::open(tmpPath_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd >= 0) {
+  if (fd_ >= 0) {
     const char* p = content.data();
-    std::size_t left = content.size();
-    while (left > 0) {
-      const ssize_t n = ::write(fd, p, left);
+    std::size_t done = 0;
+    while (done < content.size()) {
+      const ssize_t n = ::pwrite(fd_, p + done, content.size() - done, off_t(done));
       if (n < 0 && errno == EINTR) continue;
       if (n <= 0) break;
-      p += n;
-      left -= std::size_t(n);
+      done += std::size_t(n);
     }
-    ::close(fd);
+    // A shorter reading (fewer t= digits) leaves the old tail behind.
+    if (done < size_ && ::ftruncate(fd_, off_t(done)) != 0) closeFile();
+    size_ = done;
   }
-  ::rename(tmpPath_.c_str(), slavePath_.c_str());
   ++writes_;
+}
+
+void SimOneWire::closeFile() noexcept {
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
 }
 
 void SimOneWire::setPresent(bool present) {
@@ -98,6 +101,11 @@ void SimOneWire::setPresent(bool present) {
   present_ = present;
   std::error_code ec;
   if (!present) {
+    if (fd_ >= 0) {
+      const int rc = ::ftruncate(fd_, 0);  // a reader holding it open reads nothing
+      (void)rc;                            // the unlink below follows either way
+    }
+    closeFile();
     fs::remove_all(root_ / id_, ec);
     written_ = false;
   } else {

@@ -5,8 +5,12 @@
 //   "2c 01 4b 46 7f ff 0c 10 61 : crc=61 YES"
 //   "2c 01 4b 46 7f ff 0c 10 61 t=18750"
 // The file is refreshed once per conversion (750 ms at 12 bits) and only
-// rewritten when its content changes; it is replaced atomically (rename) so a
-// reader never sees half a file. Disconnecting removes the device directory.
+// rewritten when its content changes. It is rewritten in place through a
+// descriptor held open (one pwrite per new reading): the simulator and the
+// reader it feeds run on the same thread, so no reader ever sees half a file.
+// Disconnecting empties the file first, then removes the device directory:
+// a reader holding the file open reads nothing, as a removed sysfs attribute
+// fails to read, and opens the path afresh.
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -47,7 +51,10 @@ class SimOneWire {
   void writeFile(const std::string& content);
   std::filesystem::path root_;
   std::string id_;
-  std::string tmpPath_, slavePath_;  // built at the first write
+  void closeFile() noexcept;
+  std::string slavePath_;  // built at the first write
+  int fd_ = -1;            // slavePath_, held open between writes
+  std::size_t size_ = 0;   // bytes in the file
   bool present_ = true;
   bool corrupt_ = false;
   bool written_ = false;

@@ -1,8 +1,8 @@
 #pragma once
-// Where a simulation keeps its 1-Wire sysfs tree: tmpfs when there is one.
-// On ext4 each atomic replace of w1_slave (rename over an existing file)
-// forces a data writeback: that dominated long runs and, in real-time runs,
-// stalled the control thread for tens of milliseconds.
+// Where a simulation keeps its 1-Wire sysfs tree: tmpfs when there is one,
+// so a reading rewritten every 750 ms of virtual time never reaches a disk
+// (when w1_slave was replaced by rename, ext4 forced a writeback each time,
+// which dominated long runs and stalled real-time runs for tens of ms).
 #include <stdlib.h>
 
 #include <filesystem>

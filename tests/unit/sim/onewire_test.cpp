@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "drivers/onewire/ds18b20_reader.h"
 #include "drivers/sim/sim_onewire.h"
 
 namespace xr::sim {
@@ -94,6 +95,61 @@ TEST(SimOneWire, DisconnectRemovesTheDevice) {
   w.setPresent(true);
   w.update(fromSec(6), 31.0);
   EXPECT_TRUE(fs::exists(w.slavePath()));
+}
+
+TEST(SimOneWire, AShorterReadingLeavesNoOldTail) {
+  TempDir d;
+  SimOneWire w(d.p);
+  w.update(0, 100.0);          // t=100000
+  w.update(fromMs(800), 5.0);  // t=5000, rewritten in place
+  EXPECT_EQ(slurp(w.slavePath()), SimOneWire::formatW1Slave(5 * 16, false));
+  w.update(fromMs(1600), -10.0);
+  EXPECT_EQ(slurp(w.slavePath()), SimOneWire::formatW1Slave(-10 * 16, false));
+}
+
+// The real reader keeps w1_slave open between readings; the simulated tree
+// must still show it every new reading, a disconnect and a reconnect.
+TEST(SimOneWire, HeldOpenReaderSeesRewritesDisconnectAndReconnect) {
+  TempDir d;
+  SimOneWire w(d.p);
+  TimeNs now = fromSec(1);
+  Ds18b20Reader r(d.p.string(), w.deviceId(), fromSec(1), [&] { return now; });
+  w.update(0, 100.0);
+  r.readOnce();
+  EXPECT_TRUE(r.latest().sensorFound);
+  EXPECT_DOUBLE_EQ(r.latest().tempF, 212.0);
+
+  w.update(fromSec(1), 5.0);
+  now = fromSec(2);
+  r.readOnce();
+  EXPECT_DOUBLE_EQ(r.latest().tempF, 41.0);
+  EXPECT_EQ(r.latest().good, 2u);
+
+  w.setPresent(false);
+  now = fromSec(3);
+  r.readOnce();
+  EXPECT_FALSE(r.latest().sensorFound);
+  EXPECT_EQ(r.latest().bad, 1u);
+  EXPECT_EQ(r.latest().stamp, fromSec(2)) << "no reading while the sensor is gone";
+
+  w.setPresent(true);
+  w.update(fromSec(4), 20.0);
+  now = fromSec(4);
+  r.readOnce();
+  EXPECT_TRUE(r.latest().sensorFound);
+  EXPECT_DOUBLE_EQ(r.latest().tempF, 68.0);
+  EXPECT_EQ(r.latest().stamp, fromSec(4));
+
+  // Gone and back between two readings: the held file is the old, emptied
+  // one; the reader must find the new file, not report the sensor missing.
+  w.setPresent(false);
+  w.setPresent(true);
+  w.update(fromSec(5), 30.0);
+  now = fromSec(5);
+  r.readOnce();
+  EXPECT_TRUE(r.latest().sensorFound);
+  EXPECT_DOUBLE_EQ(r.latest().tempF, 86.0);
+  EXPECT_EQ(r.latest().good, 4u);
 }
 
 // The kernel's format through printf, as the simulator wrote it before it
