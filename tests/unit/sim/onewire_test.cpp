@@ -112,30 +112,30 @@ TEST(SimOneWire, AShorterReadingLeavesNoOldTail) {
 TEST(SimOneWire, HeldOpenReaderSeesRewritesDisconnectAndReconnect) {
   TempDir d;
   SimOneWire w(d.p);
-  TimeNs now = fromSec(1);
+  TimeNs now = 0;
   Ds18b20Reader r(d.p.string(), w.deviceId(), fromSec(1), [&] { return now; });
-  w.update(0, 100.0);
-  r.readOnce();
+  // The sensor converts tempC at second s and the reader reads right after.
+  auto convertAndRead = [&](int s, double tempC) {
+    now = fromSec(s);
+    w.update(now, tempC);
+    r.readOnce();
+  };
+  convertAndRead(1, 100.0);
   EXPECT_TRUE(r.latest().sensorFound);
   EXPECT_DOUBLE_EQ(r.latest().tempF, 212.0);
 
-  w.update(fromSec(1), 5.0);
-  now = fromSec(2);
-  r.readOnce();
+  convertAndRead(2, 5.0);  // a shorter file, rewritten under the open reader
   EXPECT_DOUBLE_EQ(r.latest().tempF, 41.0);
   EXPECT_EQ(r.latest().good, 2u);
 
   w.setPresent(false);
-  now = fromSec(3);
-  r.readOnce();
+  convertAndRead(3, 50.0);  // absent: nothing converts
   EXPECT_FALSE(r.latest().sensorFound);
   EXPECT_EQ(r.latest().bad, 1u);
   EXPECT_EQ(r.latest().stamp, fromSec(2)) << "no reading while the sensor is gone";
 
   w.setPresent(true);
-  w.update(fromSec(4), 20.0);
-  now = fromSec(4);
-  r.readOnce();
+  convertAndRead(4, 20.0);
   EXPECT_TRUE(r.latest().sensorFound);
   EXPECT_DOUBLE_EQ(r.latest().tempF, 68.0);
   EXPECT_EQ(r.latest().stamp, fromSec(4));
@@ -144,9 +144,7 @@ TEST(SimOneWire, HeldOpenReaderSeesRewritesDisconnectAndReconnect) {
   // one; the reader must find the new file, not report the sensor missing.
   w.setPresent(false);
   w.setPresent(true);
-  w.update(fromSec(5), 30.0);
-  now = fromSec(5);
-  r.readOnce();
+  convertAndRead(5, 30.0);
   EXPECT_TRUE(r.latest().sensorFound);
   EXPECT_DOUBLE_EQ(r.latest().tempF, 86.0);
   EXPECT_EQ(r.latest().good, 4u);
