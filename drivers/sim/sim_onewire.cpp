@@ -1,10 +1,12 @@
 #include "drivers/sim/sim_onewire.h"
 
 #include <fcntl.h>
+#include <sys/mman.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <string>
 #include <system_error>
 
@@ -67,31 +69,52 @@ std::string SimOneWire::formatW1Slave(std::int16_t raw, bool corrupt) {
   return out;
 }
 
+void SimOneWire::openFile() {
+  std::error_code ec;
+  fs::create_directories(root_ / id_, ec);  // first write, or after a reconnect
+  if (slavePath_.empty()) slavePath_ = slavePath().string();
+  fd_ = ::open(slavePath_.c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  size_ = 0;
+  if (fd_ < 0) return;
+  // The file's page, shared with the page cache that the reader's pread
+  // copies from: a new reading is a memcpy instead of a system call.
+  void* m = ::mmap(nullptr, kMapBytes, PROT_READ | PROT_WRITE, MAP_SHARED, fd_, 0);
+  map_ = m == MAP_FAILED ? nullptr : static_cast<char*>(m);
+}
+
 void SimOneWire::writeFile(const std::string& content) {
-  if (fd_ < 0) {
-    std::error_code ec;
-    fs::create_directories(root_ / id_, ec);  // first write, or after a reconnect
-    if (slavePath_.empty()) slavePath_ = slavePath().string();
-    fd_ = ::open(slavePath_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    size_ = 0;
-  }
-  if (fd_ >= 0) {
-    const char* p = content.data();
-    std::size_t done = 0;
-    while (done < content.size()) {
-      const ssize_t n = ::pwrite(fd_, p + done, content.size() - done, off_t(done));
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) break;
-      done += std::size_t(n);
-    }
-    // A shorter reading (fewer t= digits) leaves the old tail behind.
-    if (done < size_ && ::ftruncate(fd_, off_t(done)) != 0) closeFile();
-    size_ = done;
-  }
   ++writes_;
+  if (fd_ < 0) openFile();
+  if (fd_ < 0) return;
+  if (map_ != nullptr && content.size() <= kMapBytes) {
+    // The size first: a shorter file must not keep the old tail, and the
+    // mapping may only be touched below the end of the file.
+    if (content.size() != size_ && ::ftruncate(fd_, off_t(content.size())) != 0) {
+      closeFile();
+      return;
+    }
+    std::memcpy(map_, content.data(), content.size());
+    size_ = content.size();
+    return;
+  }
+  // No mapping: write the bytes, then cut what is left of a longer reading.
+  std::size_t done = 0;
+  while (done < content.size()) {
+    const ssize_t n = ::pwrite(fd_, content.data() + done, content.size() - done, off_t(done));
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    done += std::size_t(n);
+  }
+  if (done < size_ && ::ftruncate(fd_, off_t(done)) != 0) {
+    closeFile();
+    return;
+  }
+  size_ = done;
 }
 
 void SimOneWire::closeFile() noexcept {
+  if (map_ != nullptr) ::munmap(map_, kMapBytes);
+  map_ = nullptr;
   if (fd_ >= 0) ::close(fd_);
   fd_ = -1;
 }

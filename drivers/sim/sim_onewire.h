@@ -6,8 +6,9 @@
 //   "2c 01 4b 46 7f ff 0c 10 61 t=18750"
 // The file is refreshed once per conversion (750 ms at 12 bits) and only
 // rewritten when its content changes. It is rewritten in place through a
-// descriptor held open (one pwrite per new reading): the simulator and the
-// reader it feeds run on the same thread, so no reader ever sees half a file.
+// shared mapping of the file held open (a memcpy per new reading, an
+// ftruncate when its length changes): the simulator and the reader it feeds
+// run on the same thread, so no reader ever sees half a file.
 // Disconnecting empties the file first, then removes the device directory:
 // a reader holding the file open reads nothing, as a removed sysfs attribute
 // fails to read, and opens the path afresh.
@@ -51,10 +52,13 @@ class SimOneWire {
   void writeFile(const std::string& content);
   std::filesystem::path root_;
   std::string id_;
+  void openFile();
   void closeFile() noexcept;
-  std::string slavePath_;  // built at the first write
-  int fd_ = -1;            // slavePath_, held open between writes
-  std::size_t size_ = 0;   // bytes in the file
+  static constexpr std::size_t kMapBytes = 4096;  // one page; a reading is < 100 bytes
+  std::string slavePath_;                         // built at the first write
+  int fd_ = -1;                                   // slavePath_, held open between writes
+  char* map_ = nullptr;                           // its first page, MAP_SHARED (null: pwrite instead)
+  std::size_t size_ = 0;                          // bytes in the file
   bool present_ = true;
   bool corrupt_ = false;
   bool written_ = false;
