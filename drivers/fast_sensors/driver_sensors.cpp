@@ -37,7 +37,6 @@ bool DriverSensors::read(TimeNs now, Inputs& in) noexcept {
         ads_.setPacing(AdsPacing::ReadyEdge, now);
         lastEdge_ = now;
       } else {
-        edgeFallback_ = true;
         sampleCounts_.readyEdgeFallback = true;
         ads_.setPacing(AdsPacing::SingleShot, now);
       }

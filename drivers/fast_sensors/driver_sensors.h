@@ -45,19 +45,18 @@ class DriverSensors final : public rt::FastSensors {
   void onReadyEdge(TimeNs edge) noexcept override;
 
   // True once ready-edge pacing was abandoned for lack of edges.
-  bool edgeFallback() const noexcept { return edgeFallback_; }
+  bool edgeFallback() const noexcept { return sampleCounts_.readyEdgeFallback; }
   Ina228Driver& ina() noexcept { return ina_; }
   Ads1115Driver& ads() noexcept { return ads_; }
 
  private:
   Ina228Driver ina_;
   Ads1115Driver ads_;
-  // Per-channel result counts as of the last read() and the fallback flag:
-  // what FastSensors::sampleCounts() points at.
+  // Per-channel result counts as of the last read() and the fallback flag
+  // (edgeFallback()): what FastSensors::sampleCounts() points at.
   rt::SampleCounts sampleCounts_{};
   double bovl_ = 0.0;
-  TimeNs lastEdge_ = 0;  // last edge, or when edge pacing (re)started
-  bool edgeFallback_ = false;
+  TimeNs lastEdge_ = 0;            // last edge, or when edge pacing (re)started
   bool silenceRestarted_ = false;  // one restart in ready mode already tried
   unsigned long lastInaFailures_ = 0, lastAdsFailures_ = 0;
 };
