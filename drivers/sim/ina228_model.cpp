@@ -158,7 +158,7 @@ void Ina228Model::convertTo(TimeNs t) noexcept {
   // window's last (a result is due then) and SLOWALERT = 1 (no raw compare).
   if (running_ && (diag_ & SLOWALERT) && codesValid_) {
     windowLast_ = nextSample_ + TimeNs(avg_ - samplesInWindow_ - 1) * sampleTime_;
-    oneSampleUntil_ = std::min(nextSample_ + sampleTime_, windowLast_);
+    armOneSample();
   } else {
     oneSampleUntil_ = 0;
   }

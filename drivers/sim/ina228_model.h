@@ -12,6 +12,7 @@
 // Refused (NACK + protocolErrors): a bad pointer, a write to a read-only or
 // reserved register, a write of the wrong length, a read longer than the
 // register.
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 
@@ -86,7 +87,7 @@ class Ina228Model final : public SimI2cDevice {
         ++samplesInWindow_;
         nextSample_ += sampleTime_;
         now_ = t;
-        oneSampleUntil_ = nextSample_ + sampleTime_ < windowLast_ ? nextSample_ + sampleTime_ : windowLast_;
+        armOneSample();
         return;
       }
       convertTo(t);
@@ -125,6 +126,9 @@ class Ina228Model final : public SimI2cDevice {
   void onSample() noexcept;                 // one raw sample of every active channel
   void publish(double dtSeconds) noexcept;  // the averaged result is ready
   void refreshLimits() noexcept;            // after any register write or reset
+  // The next raw sample may be summed inline by update() until then: it is
+  // not the window's last (windowLast_).
+  void armOneSample() noexcept { oneSampleUntil_ = std::min(nextSample_ + sampleTime_, windowLast_); }
   // A 2-byte read of DIAG_ALRT: its bytes MSB first, then the read's side
   // effect (every control tick, from readMsg() and the poll in transact()).
   void readDiag(std::uint8_t* b) noexcept {
