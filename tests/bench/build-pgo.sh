@@ -5,6 +5,9 @@
 # thermal derate, load dump), then everything is rebuilt with that profile.
 # The headline scenario (scenarios/lfp-charge.toml) is left out of the
 # training on purpose, so the figure is not tuned to its own input.
+# The tree is compiled for this machine's CPU (XR_HOST_CPU, -march=native
+# with FMA contraction off, so every result is the baseline build's): the
+# figure is what the simulator does on the machine that runs make bench.
 # Usage: build-pgo.sh BUILD_DIR JOBS
 set -euo pipefail
 build=${1:-build-bench}
@@ -15,7 +18,7 @@ stamp=$profile/trained-at-commit
 
 configure() {
   cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
-    -DXR_PGO="$1" -DXR_PGO_DIR="$profile" >/dev/null
+    -DXR_PGO="$1" -DXR_PGO_DIR="$profile" -DXR_HOST_CPU=ON >/dev/null
 }
 
 # A profile is only valid for the sources it was recorded on.
