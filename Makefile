@@ -48,9 +48,10 @@ run: build
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS) --timeout 900
 
-# make bench measures its own optimised tree (Release, LTO, profile-guided:
-# tests/bench/build-pgo.sh) so the figures are what the code can do, not what
-# a debug-info build happens to do; results in $(BENCH_BUILD)/bench-results.
+# make bench measures its own optimised tree (Release, LTO, profile-guided,
+# for this machine's CPU: tests/bench/build-pgo.sh) so the figures are what the
+# code can do, not what a debug-info build happens to do; results in
+# $(BENCH_BUILD)/bench-results.
 BENCH_BUILD ?= build-bench
 bench: deps
 	tests/bench/build-pgo.sh $(BENCH_BUILD) $(JOBS)
