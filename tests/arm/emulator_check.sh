@@ -24,7 +24,7 @@ fail() { echo "FAIL [$mode]: $*" >&2; exit 1; }
 
 # What qemu-user opens for a guest path: the copy under -L PREFIX if there
 # is one, else the host's file of that name.
-host_path() { if [ -e "$prefix$1" ]; then echo "$prefix$1"; else echo "$1"; fi; }
+host_path() { if [ "$prefix" != / ] && [ -e "$prefix$1" ]; then echo "$prefix$1"; else echo "$1"; fi; }
 
 # "Debian GLIBC 2.36-9+deb12u14" from a loader or a libc.so.6.
 glibc_build() { grep -aoE -m1 '\(Debian GLIBC [^)]*\)' "$1" | head -1 | tr -d '()'; }
@@ -37,7 +37,9 @@ resolve_pair() {
   # The loader's own resolution (LD_TRACE_LOADED_OBJECTS, like ldd): maps
   # nothing but the libraries, starts no thread, so it works even when the
   # pair is mismatched.
-  libc=$(LD_TRACE_LOADED_OBJECTS=1 timeout 60 "$qemu" -L "$prefix" "$bin" 2>&1 |
+  # The variable is set for qemu's guest only (via env): set on `timeout`, the
+  # host's loader would trace timeout itself and print the host's libc.
+  libc=$(timeout 60 env LD_TRACE_LOADED_OBJECTS=1 "$qemu" -L "$prefix" "$bin" 2>&1 |
     sed -n 's/.*libc\.so\.6 => \([^ ]*\) .*/\1/p')
   [ -n "$libc" ] || fail "the loader did not resolve libc.so.6 under -L $prefix"
   local lp cp
