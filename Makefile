@@ -97,11 +97,12 @@ deps-cross: deps
 # cross-build stays short.
 ARM64_BUILD ?= build-arm64
 QEMU_AARCH64 ?= qemu-aarch64-static
-test-arm64: deps-cross build
+test-arm64: deps-cross $(BUILD)/CMakeCache.txt
 	[ -f $(ARM64_BUILD)/CMakeCache.txt ] || cmake -S . -B $(ARM64_BUILD) -G Ninja \
 	  -DCMAKE_TOOLCHAIN_FILE=cmake/toolchain-aarch64.cmake -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -DNDEBUG" -DXR_LTO=OFF -DXR_BUILD_TESTS=OFF -DXR_BUILD_BENCH=OFF
 	cmake --build $(ARM64_BUILD) -j $(JOBS) --target xregulatord
+	cmake --build $(BUILD) -j $(JOBS) --target xregulatord
 	tests/arm/emulator_check.sh pairing $(QEMU_AARCH64) / $(ARM64_BUILD)/daemon/app/xregulatord
 	tests/arm/emulator_check.sh daemon $(QEMU_AARCH64) / $(ARM64_BUILD)/daemon/app/xregulatord
 	@tests/arm/emulator_check.sh detects-mismatch $(QEMU_AARCH64) aarch64-linux-gnu $(ARM64_BUILD)/daemon/app/xregulatord; \
