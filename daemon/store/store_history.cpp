@@ -1,0 +1,240 @@
+// Store: chart history. Samples are buffered per minute (1 s table) and
+// averaged per minute (1 min table), written in one transaction per flush,
+// trimmed by compact() and read back binned by queryHistory().
+#include <sqlite3.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "store/floor_div.h"
+#include "store/schema.h"
+#include "store/store.h"
+
+namespace xr {
+
+using store::floorDiv;
+
+namespace {
+
+constexpr int kSlots = 60;  // samples per bucket: 60 s per 1 s-row, 60 min per 1 min-row
+
+}  // namespace
+
+std::vector<std::string> defaultHistorySeries() {
+  return {"ibv_v", "bcur_a", "alt_a", "soc_pct", "temp_f", "duty_pct", "rpm", "target_v"};
+}
+
+int Store::seriesId(std::string_view name) {
+  sql::Stmt ins(db_, "INSERT OR IGNORE INTO series(name) VALUES(?1)");
+  ins.bind(1, name).step();
+  sql::Stmt sel(db_, "SELECT id FROM series WHERE name = ?1");
+  if (sel.bind(1, name).step() == SQLITE_ROW) {
+    const auto id = sel.colInt(0);
+    if (id >= 0 && id < store::kSeriesSlots) return static_cast<int>(id);
+  }
+  return -1;
+}
+
+void Store::closeMinute() {
+  if (aggMinute_ < 0) return;
+  const std::size_t n = opt_.historySeries.size();
+  const std::int64_t hour = floorDiv(aggMinute_, 60) * 60;  // minute index -> hour bucket (in minutes)
+  Bucket& b = pending1m_[hour * 60];
+  if (b.data.empty()) b.data.assign(n * kSlots, NAN);
+  const int slot = static_cast<int>(aggMinute_ - hour);
+  for (std::size_t s = 0; s < n; ++s)
+    if (aggCount_[s] > 0) b.data[s * kSlots + slot] = static_cast<float>(aggSum_[s] / aggCount_[s]);
+  aggMinute_ = -1;
+}
+
+StoreStatus Store::appendHistory(std::int64_t tUnixMs, std::span<const double> values) {
+  const std::lock_guard<std::recursive_mutex> lock(mu_);
+  const std::size_t n = opt_.historySeries.size();
+  if (values.size() != n) return status(SQLITE_MISUSE, "appendHistory: wrong number of series");
+  const std::int64_t sec = floorDiv(tUnixMs, 1000);
+  const std::int64_t minute = floorDiv(sec, 60);
+  Bucket& b = pending1s_[minute * 60];
+  if (b.data.empty()) b.data.assign(n * kSlots, NAN);
+  const int slot = static_cast<int>(sec - minute * 60);
+  for (std::size_t s = 0; s < n; ++s) b.data[s * kSlots + slot] = static_cast<float>(values[s]);
+
+  // Downsample on insert: the 1 min table gets each finished minute's mean.
+  if (minute != aggMinute_) {
+    closeMinute();
+    aggMinute_ = minute;
+    aggSum_.assign(n, 0.0);
+    aggCount_.assign(n, 0);
+  }
+  for (std::size_t s = 0; s < n; ++s)
+    if (std::isfinite(values[s])) {
+      aggSum_[s] += values[s];
+      ++aggCount_[s];
+    }
+
+  if (lastFlushS_ < 0) lastFlushS_ = sec;
+  if (sec - lastFlushS_ >= opt_.historyFlushS) {
+    lastFlushS_ = sec;
+    StoreStatus st = flushPending(false);
+    if (st && sec - lastCompactS_ >= 3600) {
+      lastCompactS_ = sec;
+      st = compact(tUnixMs);
+    }
+    return st;
+  }
+  return {};
+}
+
+int Store::writeBuckets(std::string_view table, std::map<std::int64_t, Bucket>& pending, std::int64_t) {
+  const std::size_t n = opt_.historySeries.size();
+  sql::Stmt sel(db_, "SELECT data FROM " + std::string(table) + " WHERE key = ?1");
+  sql::Stmt ins(db_, "INSERT OR REPLACE INTO " + std::string(table) + "(key, data) VALUES(?1, ?2)");
+  if (!sel.ok()) return sel.prepareRc();
+  if (!ins.ok()) return ins.prepareRc();
+  std::vector<float> row(kSlots);
+  for (auto& [bucket, b] : pending) {
+    for (std::size_t s = 0; s < n; ++s) {
+      if (s >= seriesIds_.size() || seriesIds_[s] < 0) continue;  // no id: series not recorded
+      const float* src = &b.data[s * kSlots];
+      if (std::none_of(src, src + kSlots, [](float v) { return !std::isnan(v); })) continue;
+      std::fill(row.begin(), row.end(), NAN);
+      const std::int64_t key = bucket * store::kSeriesSlots + seriesIds_[s];
+      sel.reset();
+      if (sel.bind(1, key).step() == SQLITE_ROW) {
+        const auto blob = sel.colBlob(0);
+        if (blob.size() == kSlots * sizeof(float)) std::memcpy(row.data(), blob.data(), blob.size());
+      }
+      for (int i = 0; i < kSlots; ++i)
+        if (!std::isnan(src[i])) row[i] = src[i];
+      ins.reset();
+      const auto* bytes = reinterpret_cast<const std::uint8_t*>(row.data());
+      const int rc =
+          ins.bind(1, key).bindBlob(2, std::span<const std::uint8_t>(bytes, kSlots * sizeof(float))).step();
+      if (rc != SQLITE_DONE) return rc;
+    }
+  }
+  return SQLITE_OK;
+}
+
+StoreStatus Store::flushHistory() {
+  const std::lock_guard<std::recursive_mutex> lock(mu_);
+  return flushPending(true);
+}
+
+StoreStatus Store::flushPending(bool all) {
+  const std::lock_guard<std::recursive_mutex> lock(mu_);
+  // The periodic flush writes a 1 min row only once its hour is complete:
+  // rewriting the open hour's rows every flush would cost pages for data the
+  // 1 s table already holds. flushHistory()/close() write everything.
+  std::map<std::int64_t, Bucket> keep1m;
+  if (!all && aggMinute_ >= 0) {
+    const std::int64_t openHour = floorDiv(aggMinute_, 60) * 3600;
+    for (auto it = pending1m_.lower_bound(openHour); it != pending1m_.end();) {
+      keep1m.insert(std::move(*it));
+      it = pending1m_.erase(it);
+    }
+  }
+  StoreStatus st;
+  if (!pending1s_.empty() || !pending1m_.empty()) {
+    if (!db_.isOpen()) {
+      st = status(SQLITE_MISUSE, "flushHistory");
+    } else {
+      sql::Transaction tx(db_);
+      int rc = tx.beginRc();
+      if (rc == SQLITE_OK) rc = writeBuckets("history_1s", pending1s_, 60);
+      if (rc == SQLITE_OK) rc = writeBuckets("history_1m", pending1m_, 3600);
+      if (rc == SQLITE_OK) rc = tx.commit();
+      st = status(rc, "flushHistory");
+    }
+  }
+  // On error the buffer is dropped anyway: bounded memory beats chart history.
+  pending1s_.clear();
+  pending1m_ = std::move(keep1m);
+  return st;
+}
+
+StoreStatus Store::compact(std::int64_t nowUnixMs) {
+  const std::lock_guard<std::recursive_mutex> lock(mu_);
+  if (!db_.isOpen()) return status(SQLITE_MISUSE, "compact");
+  const std::int64_t nowS = floorDiv(nowUnixMs, 1000);
+  sql::Transaction tx(db_);
+  int rc = tx.beginRc();
+  if (rc == SQLITE_OK) {
+    sql::Stmt st(db_, "DELETE FROM history_1s WHERE key < ?1");
+    rc = st.bind(1, (nowS - opt_.history1sKeepS - 60) * store::kSeriesSlots).step();
+  }
+  if (rc == SQLITE_DONE) {
+    sql::Stmt st(db_, "DELETE FROM history_1m WHERE key < ?1");
+    rc = st.bind(1, (nowS - opt_.history1mKeepS - 3600) * store::kSeriesSlots).step();
+  }
+  if (rc == SQLITE_DONE) {
+    sql::Stmt st(db_, "DELETE FROM events WHERE id <= (SELECT max(id) FROM events) - ?1");
+    rc = st.bind(1, opt_.maxEvents).step();
+  }
+  if (rc == SQLITE_DONE) rc = tx.commit();
+  return status(rc, "compact");
+}
+
+std::vector<HistoryPoint> Store::queryHistory(std::string_view series, std::int64_t fromMs, std::int64_t toMs,
+                                              std::int64_t stepMs) {
+  const std::lock_guard<std::recursive_mutex> lock(mu_);
+  std::vector<HistoryPoint> out;
+  const auto it = std::find(opt_.historySeries.begin(), opt_.historySeries.end(), series);
+  if (it == opt_.historySeries.end() || toMs < fromMs || !db_.isOpen()) return out;
+  const std::size_t s = static_cast<std::size_t>(it - opt_.historySeries.begin());
+  if (s >= seriesIds_.size() || seriesIds_[s] < 0) return out;
+  const std::int64_t newest =
+      pending1s_.empty() ? toMs : std::max(toMs, (pending1s_.rbegin()->first + 60) * 1000);
+  const bool fine = stepMs < 60000 && fromMs >= (newest - opt_.history1sKeepS * 1000);
+  const std::int64_t slotS = fine ? 1 : 60;
+  const std::int64_t spanS = slotS * kSlots;
+  const std::int64_t fromS = floorDiv(fromMs, 1000), toS = floorDiv(toMs, 1000);
+
+  std::map<std::int64_t, float> points;  // t (s) -> value
+  auto take = [&](std::int64_t bucket, const float* row) {
+    for (int i = 0; i < kSlots; ++i) {
+      const std::int64_t t = bucket + i * slotS;
+      if (t >= fromS && t <= toS && !std::isnan(row[i])) points[t] = row[i];
+    }
+  };
+  {
+    sql::Stmt st(db_, std::string("SELECT key, data FROM ") + (fine ? "history_1s" : "history_1m") +
+                          " WHERE key >= ?1 AND key <= ?2 AND key % ?3 = ?4 ORDER BY key");
+    st.bind(1, floorDiv(fromS, spanS) * spanS * store::kSeriesSlots)
+        .bind(2, toS * store::kSeriesSlots + store::kSeriesSlots - 1)
+        .bind(3, store::kSeriesSlots)
+        .bind(4, seriesIds_[s]);
+    std::vector<float> row(kSlots);
+    while (st.ok() && st.step() == SQLITE_ROW) {
+      const auto blob = st.colBlob(1);
+      if (blob.size() != kSlots * sizeof(float)) continue;
+      std::memcpy(row.data(), blob.data(), blob.size());
+      take(floorDiv(st.colInt(0), store::kSeriesSlots), row.data());
+    }
+  }
+  for (const auto& [bucket, b] : fine ? pending1s_ : pending1m_) take(bucket, &b.data[s * kSlots]);
+
+  const std::int64_t stepS = std::max<std::int64_t>(slotS, stepMs / 1000);
+  if (stepS <= slotS) {
+    for (const auto& [t, v] : points) out.push_back({t * 1000, v});
+    return out;
+  }
+  std::int64_t bin = INT64_MIN;
+  double sum = 0.0;
+  int count = 0;
+  for (const auto& [t, v] : points) {
+    const std::int64_t b = fromS + floorDiv(t - fromS, stepS) * stepS;
+    if (b != bin && count > 0) {
+      out.push_back({bin * 1000, sum / count});
+      sum = 0.0;
+      count = 0;
+    }
+    bin = b;
+    sum += v;
+    ++count;
+  }
+  if (count > 0) out.push_back({bin * 1000, sum / count});
+  return out;
+}
+
+}  // namespace xr
