@@ -1,0 +1,100 @@
+// GET /api/events and /api/history: paged event log and binned chart
+// history, with the query limits that keep one request cheap.
+#include <algorithm>
+#include <boost/json.hpp>
+#include <chrono>
+#include <cstdint>
+#include <string_view>
+
+#include "web/server/api_handler.h"
+#include "web/server/api_reply.h"
+#include "web/server/json_format.h"
+
+namespace xr::web {
+
+using namespace api;
+
+namespace {
+
+constexpr std::size_t kMaxEventLimit = 1000;
+constexpr std::size_t kMaxHistorySeries = 16;
+constexpr double kMaxHistoryPoints = 10000.0;
+
+double nowEpochS() {
+  using namespace std::chrono;
+  return duration<double>(system_clock::now().time_since_epoch()).count();
+}
+
+}  // namespace
+
+Response ApiHandler::getEvents(const Request& req, std::string_view query) {
+  EventQuery q;
+  if (auto s = queryParam(query, "limit")) {
+    auto v = parseInt(*s);
+    if (!v || *v < 1) return error(req, http::status::bad_request, "limit must be a positive whole number");
+    q.limit = static_cast<std::size_t>(std::min<std::int64_t>(*v, kMaxEventLimit));
+  }
+  if (auto s = queryParam(query, "before")) {
+    auto v = parseInt(*s);
+    if (!v) return error(req, http::status::bad_request, "before must be an event id (whole number)");
+    q.before = *v;
+  }
+  json::array a;
+  for (const auto& e : api_.events(q)) a.push_back(eventToJson(e));
+  json::object o;
+  o["events"] = std::move(a);
+  return jsonReply(req, http::status::ok, o);
+}
+
+Response ApiHandler::getHistory(const Request& req, std::string_view query) {
+  HistoryQuery q;
+  const auto series = queryParam(query, "series");
+  if (!series || series->empty())
+    return error(req, http::status::bad_request, "series is required (comma-separated column names)");
+  std::string_view rest = *series;
+  while (true) {
+    const auto comma = rest.find(',');
+    const std::string_view one = rest.substr(0, comma);
+    if (one.empty()) return error(req, http::status::bad_request, "empty series name");
+    q.series.emplace_back(one);
+    if (q.series.size() > kMaxHistorySeries)
+      return error(req, http::status::bad_request, "at most 16 series per request");
+    if (comma == std::string_view::npos) break;
+    rest.remove_prefix(comma + 1);
+  }
+  const double now = nowEpochS();
+  // Times are Unix epoch seconds; zero or negative means relative to now.
+  auto timeParam = [&](std::string_view key, double dflt, double& out) -> bool {
+    const auto s = queryParam(query, key);
+    if (!s) {
+      out = dflt;
+      return true;
+    }
+    const auto v = parseDouble(*s);
+    if (!v) return false;
+    out = *v <= 0.0 ? now + *v : *v;
+    return true;
+  };
+  if (!timeParam("to", now, q.to_s)) return error(req, http::status::bad_request, "to must be a number");
+  if (!timeParam("from", q.to_s - 3600.0, q.from_s))
+    return error(req, http::status::bad_request, "from must be a number");
+  if (!(q.from_s < q.to_s)) return error(req, http::status::bad_request, "from must be before to");
+  q.step_s = std::max(1.0, (q.to_s - q.from_s) / 600.0);
+  if (auto s = queryParam(query, "step")) {
+    const auto v = parseDouble(*s);
+    if (!v || *v <= 0.0)
+      return error(req, http::status::bad_request, "step must be a positive number of seconds");
+    q.step_s = *v;
+  }
+  if ((q.to_s - q.from_s) / q.step_s > kMaxHistoryPoints)
+    return error(req, http::status::bad_request, "too many points: raise step or narrow from/to");
+  HistoryResult r = api_.history(q);
+  if (!r.error.empty()) return error(req, http::status::bad_request, r.error);
+  auto o = historyToJson(r);
+  o["from"] = q.from_s;
+  o["to"] = q.to_s;
+  o["step"] = q.step_s;
+  return jsonReply(req, http::status::ok, o);
+}
+
+}  // namespace xr::web
