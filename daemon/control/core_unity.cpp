@@ -3,7 +3,9 @@
 // without LTO GCC can only inline across these calls when it sees their
 // bodies. xr_protection and xr_battery stay separate libraries for their own
 // tests; xr_control does not link them (it contains them).
+#include "battery/battery_auto_zero.cpp"
 #include "battery/battery_monitor.cpp"
+#include "battery/battery_soc.cpp"
 #include "control/charging_stage.cpp"
 #include "control/control_law.cpp"
 #include "control/cv_loop.cpp"
