@@ -1,31 +1,15 @@
+// TI INA228 model: the conversion engine (raw samples, averaging windows,
+// CURRENT/POWER/ENERGY/CHARGE arithmetic, limit comparisons). The register
+// map and the I2C messages are in ina228_registers.cpp.
 #include "drivers/sim/ina228_model.h"
 
 #include <algorithm>
-#include <array>
-#include <cerrno>
 #include <climits>
 #include <cmath>
 
 #include "drivers/sim/fast_math.h"
 
 namespace xr::sim {
-namespace ina228 {
-namespace {
-// Register size in bytes by pointer value, 0 = reserved (read and write
-// both look it up once per message: a table, not a switch).
-constexpr std::array<std::uint8_t, 64> kRegSize = [] {
-  std::array<std::uint8_t, 64> t{};
-  for (std::uint8_t r : {CONFIG, ADC_CONFIG, SHUNT_CAL, SHUNT_TEMPCO, DIETEMP, DIAG_ALRT, SOVL, SUVL, BOVL,
-                         BUVL, TEMP_LIMIT, PWR_LIMIT, MANUFACTURER_ID, DEVICE_ID})
-    t[r] = 2;
-  for (std::uint8_t r : {VSHUNT, VBUS, CURRENT, POWER}) t[r] = 3;
-  for (std::uint8_t r : {ENERGY, CHARGE}) t[r] = 5;
-  return t;
-}();
-}  // namespace
-
-int regSize(std::uint8_t reg) noexcept { return reg < kRegSize.size() ? kRegSize[reg] : 0; }
-}  // namespace ina228
 
 using namespace ina228;
 
@@ -34,7 +18,6 @@ constexpr std::int32_t kMax20 = (1 << 19) - 1;
 constexpr std::int32_t kMin20 = -(1 << 19);
 constexpr double kVbusLsb = 195.3125e-6;  // V
 constexpr double kTempLsb = 7.8125e-3;    // °C
-constexpr std::uint64_t kMask40 = (std::uint64_t{1} << 40) - 1;
 constexpr double kInvAvg[8] = {1.0, 1.0 / 4, 1.0 / 16, 1.0 / 64, 1.0 / 128, 1.0 / 256, 1.0 / 512, 1.0 / 1024};
 
 [[gnu::always_inline]] inline std::int32_t quantise20(double v, double lsb) {
@@ -42,35 +25,9 @@ constexpr double kInvAvg[8] = {1.0, 1.0 / 4, 1.0 / 16, 1.0 / 64, 1.0 / 128, 1.0 
   if (!(c == c)) return 0;  // NaN input: the ADC reads 0
   return static_cast<std::int32_t>(std::clamp(c, double(kMin20), double(kMax20)));
 }
-bool isReadOnly(std::uint8_t reg) {
-  return (reg >= VSHUNT && reg <= CHARGE) || reg == MANUFACTURER_ID || reg == DEVICE_ID;
-}
 }  // namespace
 
 Ina228Model::Ina228Model() { reset(); }
-
-void Ina228Model::reset() noexcept {
-  config_ = 0x0000;
-  codesValid_ = false;
-  adcConfig_ = 0xFB68;
-  shuntCal_ = 0x1000;
-  tempco_ = 0;
-  vshunt_ = vbus_ = current_ = 0;
-  dietemp_ = 0;
-  power_ = 0;
-  energyAcc_ = chargeAcc_ = 0.0;
-  diag_ = MEMSTAT;
-  sovl_ = 0x7FFF;
-  suvl_ = 0x8000;
-  bovl_ = 0x7FFF;
-  buvl_ = 0x0000;
-  tempLimit_ = 0x7FFF;
-  pwrLimit_ = 0xFFFF;
-  limitActive_ = false;
-  ptr_ = 0;
-  restartConversions();  // power-on default is continuous bus + shunt + temperature
-  refreshLimits();
-}
 
 TimeNs Ina228Model::sampleTime() const noexcept {
   TimeNs us = 0;
@@ -278,198 +235,6 @@ void Ina228Model::refreshLimits() noexcept {
 void Ina228Model::compareLimits(std::int32_t vsh, std::int32_t vb, std::int32_t tcode,
                                 std::uint32_t pw) noexcept {
   compareLimitsInline(vsh, vb, tcode, pw);
-}
-
-std::uint64_t Ina228Model::peek(std::uint8_t reg) const noexcept {
-  switch (reg) {
-    case CONFIG:
-      return config_;
-    case ADC_CONFIG:
-      return adcConfig_;
-    case SHUNT_CAL:
-      return shuntCal_;
-    case SHUNT_TEMPCO:
-      return tempco_;
-    case VSHUNT:
-      return reg20(vshunt_);
-    case VBUS:
-      return reg20(vbus_);
-    case DIETEMP:
-      return std::uint16_t(dietemp_);
-    case CURRENT:
-      return reg20(current_);
-    case POWER:
-      return power_;
-    case ENERGY:
-      return std::uint64_t(energyAcc_) & kMask40;  // integer part (>= 0)
-    case CHARGE:
-      return std::uint64_t(std::int64_t(chargeAcc_)) & kMask40;  // truncated toward 0
-    case DIAG_ALRT:
-      return diag_;
-    case SOVL:
-      return sovl_;
-    case SUVL:
-      return suvl_;
-    case BOVL:
-      return bovl_;
-    case BUVL:
-      return buvl_;
-    case TEMP_LIMIT:
-      return tempLimit_;
-    case PWR_LIMIT:
-      return pwrLimit_;
-    case MANUFACTURER_ID:
-      return 0x5449;
-    case DEVICE_ID:
-      return 0x2281;
-    default:
-      return 0;
-  }
-}
-
-inline int Ina228Model::readMsg(std::uint8_t* buf, std::size_t len) noexcept {
-  if (ptr_ == DIAG_ALRT && len == 2) [[likely]] {
-    // The read of every control tick, straight from diag_ (the general path
-    // below gives the same bytes and side effects).
-    readDiag(buf);
-    return 0;
-  }
-  const int size = regSize(ptr_);
-  if (len == 0 || size == 0 || len > std::size_t(size)) {
-    ++protocolErrors_;
-    return EREMOTEIO;
-  }
-  const std::uint64_t v = peek(ptr_);
-  // MSB first, the first `len` bytes. Register MSB moved to bit 63 (size is
-  // 2, 3 or 5), then fixed shifts: no per-byte variable shift loop.
-  const std::uint64_t a = v << (64 - 8 * size);
-  buf[0] = std::uint8_t(a >> 56);
-  if (len > 1) buf[1] = std::uint8_t(a >> 48);
-  if (len > 2) buf[2] = std::uint8_t(a >> 40);
-  if (len > 3) buf[3] = std::uint8_t(a >> 32);
-  if (len > 4) buf[4] = std::uint8_t(a >> 24);
-  // Read side effects.
-  if (ptr_ == DIAG_ALRT) {
-    clearOnDiagRead();
-  } else if (ptr_ == ENERGY) {
-    diag_ &= ~ENERGYOF;
-  } else if (ptr_ == CHARGE) {
-    diag_ &= ~CHARGEOF;
-  }
-  return 0;
-}
-
-inline int Ina228Model::writeMsg(const std::uint8_t* buf, std::size_t len) noexcept {
-  if (len == 0) {
-    ++protocolErrors_;
-    return EREMOTEIO;
-  }
-  const std::uint8_t reg = buf[0];
-  const int size = regSize(reg);
-  if (size == 0) {  // reserved pointer: not acknowledged
-    ++protocolErrors_;
-    return EREMOTEIO;
-  }
-  if (len == 1) {  // pointer only (a read follows)
-    ptr_ = reg;
-    return 0;
-  }
-  if (isReadOnly(reg) || len != std::size_t(1 + size)) {
-    ++protocolErrors_;
-    return EREMOTEIO;
-  }
-  ptr_ = reg;
-  const std::uint16_t v = static_cast<std::uint16_t>((buf[1] << 8) | buf[2]);
-  switch (reg) {
-    case CONFIG:
-      if (v & 0x8000) {  // RST: same as power-on, bit clears itself
-        reset();
-        return 0;
-      }
-      if (v & 0x4000) {  // RSTACC
-        energyAcc_ = chargeAcc_ = 0.0;
-        diag_ &= ~(ENERGYOF | CHARGEOF | MATHOF);
-      }
-      config_ = v & 0x3FF0;  // RST/RSTACC self-clear; bits 3:0 reserved
-      codesValid_ = false;   // ADCRANGE sets the shunt LSB
-      break;
-    case ADC_CONFIG:
-      adcConfig_ = v;
-      restartConversions();
-      break;
-    case SHUNT_CAL:
-      shuntCal_ = v & 0x7FFF;
-      codesValid_ = false;  // the raw power code depends on it
-      break;
-    case SHUNT_TEMPCO:
-      tempco_ = v & 0x3FFF;
-      break;
-    case DIAG_ALRT:
-      // Only the four control bits are writable; the rest are status.
-      diag_ = static_cast<std::uint16_t>((diag_ & 0x0FFF) | (v & 0xF000));
-      limitActive_ = (diag_ & kLimitFlags) != 0;
-      codesValid_ = false;  // SLOWALERT decides whether the raw power is needed
-      break;
-    case SOVL:
-      sovl_ = v;
-      break;
-    case SUVL:
-      suvl_ = v;
-      break;
-    case BOVL:
-      bovl_ = v & 0x7FFF;
-      break;
-    case BUVL:
-      buvl_ = v & 0x7FFF;
-      break;
-    case TEMP_LIMIT:
-      tempLimit_ = v;
-      break;
-    case PWR_LIMIT:
-      pwrLimit_ = v;
-      break;
-    default:
-      break;
-  }
-  refreshLimits();      // any register write may move a limit or the active channels
-  oneSampleUntil_ = 0;  // and the window, the codes or SLOWALERT: the next sample goes the full way
-  return 0;
-}
-
-int Ina228Model::read(std::uint8_t* buf, std::size_t len) noexcept { return readMsg(buf, len); }
-int Ina228Model::write(const std::uint8_t* buf, std::size_t len) noexcept { return writeMsg(buf, len); }
-
-int Ina228Model::transact(TimeNs t, std::span<I2cMsg> msgs) noexcept {
-  update(t);
-  // The driver's poll, every control tick: pointer + read pairs for
-  // DIAG_ALRT (2 bytes) and, when a result is due, VBUS and CURRENT (3
-  // bytes each). Each such pair is done as its two messages would be
-  // (pointer set, the register's bytes MSB first, DIAG_ALRT's read side
-  // effect; VBUS and CURRENT have none), without the per-message checks and
-  // dispatch; the first message that is not part of such a pair goes through
-  // the general loop.
-  I2cMsg* m = msgs.data();
-  std::size_t n = msgs.size();
-  while (n >= 2 && !m[0].read && m[0].len == 1 && m[0].buf != nullptr && m[1].read && m[1].buf != nullptr) {
-    const std::uint8_t reg = m[0].buf[0];
-    std::uint8_t* const b = m[1].buf;
-    if (reg == DIAG_ALRT && m[1].len == 2) {
-      readDiag(b);
-    } else if ((reg == VBUS || reg == CURRENT) && m[1].len == 3) {
-      const std::uint32_t v = reg20(reg == VBUS ? vbus_ : current_);
-      b[0] = std::uint8_t(v >> 16);
-      b[1] = std::uint8_t(v >> 8);
-      b[2] = std::uint8_t(v);
-    } else {
-      break;
-    }
-    ptr_ = reg;
-    m += 2;
-    n -= 2;
-  }
-  return runMessages(
-      std::span<I2cMsg>(m, n), [this](std::uint8_t* b, std::size_t len) { return readMsg(b, len); },
-      [this](const std::uint8_t* b, std::size_t len) { return writeMsg(b, len); });
 }
 
 }  // namespace xr::sim
