@@ -3,7 +3,7 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "drivers/onewire/ds18b20_handoff.h"
+#include "runtime/ds18b20_handoff.h"
 #include "runtime/fatal_guard.h"
 
 namespace xr::app {

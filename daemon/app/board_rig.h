@@ -6,13 +6,13 @@
 #include <memory>
 
 #include "config/settings.h"
-#include "drivers/fast_sensors/driver_sensors.h"
 #include "drivers/gpio/gpio_libgpiod.h"
 #include "drivers/i2c/linux_i2c_bus.h"
 #include "drivers/onewire/ds18b20_reader.h"
 #include "drivers/pwm/pwm_sysfs.h"
 #include "drivers/vedirect/vedirect_reader.h"
 #include "drivers/watchdog/linux_watchdog.h"
+#include "runtime/driver_sensors.h"
 #include "runtime/handoffs.h"
 #include "runtime/monotonic_clock.h"
 

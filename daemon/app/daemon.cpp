@@ -16,8 +16,7 @@
 
 #include "app/board_rig.h"
 #include "app/csv_writer.h"
-#include "app/regulator_core.h"
-#include "app/sim_rig.h"
+#include "app/sim_wiring.h"
 #include "app/status_source.h"
 #include "app/store_service.h"
 #include "app/thread_names.h"
@@ -30,6 +29,7 @@
 #include "runtime/control_loop.h"
 #include "runtime/event_pump.h"
 #include "runtime/fatal_guard.h"
+#include "runtime/regulator_core.h"
 #include "runtime/rt_setup.h"
 #include "web/server/web_server.h"
 
@@ -99,11 +99,11 @@ int Daemon::run() {
   // ---- the core and the hand-offs ----
   Regulator regulator(params);
   if (restored) regulator.restoreLedger(*restored);
-  RegulatorCore core(regulator);
+  rt::RegulatorCore core(regulator);
   auto handoffs = std::make_unique<rt::Handoffs>(params);
 
   // ---- the rig ----
-  std::unique_ptr<SimRig> simRig;
+  std::unique_ptr<SimWiring> simRig;
   std::unique_ptr<BoardRig> boardRig;
   rt::CycleDevices devices;
   Clock* loopClock = nullptr;
@@ -111,7 +111,7 @@ int Daemon::run() {
   std::function<TimeNs(TimeNs)> wallDeadlineOf;
   try {
     if (cli_.sim) {
-      simRig = std::make_unique<SimRig>(*scenario, settings, cli_);
+      simRig = std::make_unique<SimWiring>(*scenario, settings, cli_);
       simRig->attach(*handoffs);
       devices = simRig->devices();
       loopClock = &simRig->loopClock();

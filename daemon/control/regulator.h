@@ -10,9 +10,9 @@
 #include <memory>
 
 #include "battery/ledger.h"
+#include "control/outputs.h"
 #include "core/commands.h"
 #include "core/inputs.h"
-#include "core/outputs.h"
 #include "params/params.h"
 
 namespace xr {

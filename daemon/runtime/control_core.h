@@ -3,9 +3,9 @@
 // the runtime is tested with a scripted core and runs the real Regulator in
 // the daemon (RegulatorCore in regulator_core.h).
 #include "battery/ledger.h"
+#include "control/outputs.h"
 #include "core/commands.h"
 #include "core/inputs.h"
-#include "core/outputs.h"
 #include "params/params.h"
 
 namespace xr::rt {

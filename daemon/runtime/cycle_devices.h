@@ -5,8 +5,8 @@
 #include <array>
 #include <cstdint>
 
+#include "control/outputs.h"
 #include "core/inputs.h"
-#include "core/outputs.h"
 #include "drivers/hal/outputs.h"
 
 namespace xr::rt {

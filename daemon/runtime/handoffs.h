@@ -12,9 +12,9 @@
 #include <mutex>
 
 #include "battery/ledger.h"
+#include "control/telemetry.h"
 #include "core/commands.h"
 #include "core/inputs.h"
-#include "core/telemetry.h"
 #include "params/params.h"
 #include "runtime/event_pump.h"
 #include "runtime/loop_stats.h"

@@ -44,7 +44,7 @@ struct StoreOptions {
   // History is buffered in memory and written in one transaction this often:
   // a power cut loses at most this much chart history (the ledger has its own
   // checkpoints), and the SD card sees a few pages per flush instead of a few
-  // pages per second (docs/performance.md "Storage writes").
+  // pages per second (docs/performance.md, storage writes).
   int historyFlushS = 600;
   std::int64_t history1sKeepS = 48 * 3600;          // 1 s resolution kept 48 h
   std::int64_t history1mKeepS = 366LL * 24 * 3600;  // 1 min resolution kept a year

@@ -3,10 +3,10 @@
 // pulses falls back to single-shot pacing instead of starving the regulator.
 #include <gtest/gtest.h>
 
-#include "drivers/fast_sensors/driver_sensors.h"
-#include "drivers/sim/runner/sim_ready_edges.h"
 #include "drivers/sim/sim_clock.h"
 #include "drivers/sim/sim_world.h"
+#include "runtime/driver_sensors.h"
+#include "sim_rig/sim_ready_edges.h"
 
 namespace xr {
 namespace {

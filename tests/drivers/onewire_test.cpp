@@ -146,7 +146,7 @@ TEST(LatestValue, ReadersNeverSeeATornValue) {
 }  // namespace
 }  // namespace xr
 
-#include "drivers/onewire/slow_inputs.h"
+#include "runtime/slow_inputs.h"
 
 namespace xr {
 namespace {

@@ -10,7 +10,7 @@
 #include <sstream>
 #include <string>
 
-#include "drivers/sim/runner/sim_runner.h"
+#include "sim_rig/sim_runner.h"
 
 namespace xr::sim::test {
 
@@ -37,7 +37,8 @@ inline const SimRow* at(const SimRunResult& r, double t) {
 }
 
 // First time pred holds (at or after `from`), or -1.
-inline double firstTime(const SimRunResult& r, const std::function<bool(const SimRow&)>& pred, double from = 0.0) {
+inline double firstTime(const SimRunResult& r, const std::function<bool(const SimRow&)>& pred,
+                        double from = 0.0) {
   for (const auto& row : r.rows)
     if (row.t_s >= from && pred(row)) return row.t_s;
   return -1.0;
@@ -68,9 +69,9 @@ inline std::string trace(const SimRunResult& r, double every = 30.0) {
     const auto& t = row.telemetry;
     os << row.t_s << "s " << toString(t.mode) << ' ' << toString(t.stage) << ' ' << toString(t.reason)
        << " ibv=" << t.ibv_v << " bcur=" << t.bcur_a << " alt=" << t.alt_a << " duty=" << t.duty_pct
-       << " en=" << t.field_enable << " soc=" << t.soc_pct << " tF=" << t.temp_f << " pen=" << t.thermal_penalty_a
-       << " | V=" << row.plant.battery_v << " Ib=" << row.plant.battery_a << " Ia=" << row.plant.alt_a
-       << " T=" << row.plant.alt_temp_f << " soc=" << row.plant.soc_pct << '\n';
+       << " en=" << t.field_enable << " soc=" << t.soc_pct << " tF=" << t.temp_f
+       << " pen=" << t.thermal_penalty_a << " | V=" << row.plant.battery_v << " Ib=" << row.plant.battery_a
+       << " Ia=" << row.plant.alt_a << " T=" << row.plant.alt_temp_f << " soc=" << row.plant.soc_pct << '\n';
   }
   return os.str();
 }

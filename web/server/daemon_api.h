@@ -17,9 +17,9 @@
 #include <string>
 #include <vector>
 
+#include "control/telemetry.h"
 #include "core/commands.h"
 #include "core/events.h"
-#include "core/telemetry.h"
 #include "core/time.h"
 #include "params/params.h"
 

@@ -7,8 +7,8 @@
 #include <algorithm>
 
 #include "drivers/sim/ina228_model.h"
-#include "drivers/sim/runner/sim_runner.h"
 #include "drivers/sim/sim_world.h"
+#include "sim_rig/sim_runner.h"
 
 namespace {
 using namespace xr;

@@ -13,7 +13,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "core/telemetry.h"
+#include "control/telemetry.h"
 #include "reg_rig.h"
 
 namespace xr::test {

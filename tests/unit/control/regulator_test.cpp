@@ -4,7 +4,7 @@
 #include <set>
 #include <string>
 
-#include "core/telemetry.h"
+#include "control/telemetry.h"
 #include "params/derived.h"
 #include "reg_rig.h"
 

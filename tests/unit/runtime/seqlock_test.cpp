@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <thread>
 
-#include "core/telemetry.h"
+#include "control/telemetry.h"
 
 namespace xr::rt {
 namespace {

@@ -1,6 +1,8 @@
 #pragma once
 // Telemetry of one tick: the DESIGN.md CSV columns at the top level, then the
-// per-module detail. Plain data: copied out of the RT thread whole.
+// per-module detail. Plain data: copied out of the RT thread whole. It lives
+// beside the Regulator, where control, protection and battery meet: the
+// aggregate needs all three, and daemon/core (below them) must not.
 #include <string_view>
 #include <variant>
 
@@ -31,7 +33,7 @@ struct Telemetry {
   double thermal_penalty_a = 0.0;  // thermalPenaltyAmps
   bool fast_ov_active = false;     // fastOvClampActive
   double soc_pct = 0.0;
-  bool alarm = false;              // buzzer
+  bool alarm = false;  // buzzer
   double charged_wh_lifetime = 0.0;
   double alt_charged_wh_lifetime = 0.0;
 

@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "config/settings.h"
+#include "control/telemetry.h"
 #include "core/events.h"
-#include "core/telemetry.h"
 #include "drivers/sim/scenario.h"
 #include "drivers/sim/sim_world.h"
 #include "params/params.h"

@@ -1,11 +1,12 @@
 #pragma once
-// The real pure core behind the runtime's ControlCore seam.
+// The real pure core behind the runtime's ControlCore seam (the daemon and
+// the simulator rig's headless runner share it).
 #include "control/regulator.h"
 #include "runtime/control_core.h"
 
-namespace xr::app {
+namespace xr::rt {
 
-class RegulatorCore final : public rt::ControlCore {
+class RegulatorCore final : public ControlCore {
  public:
   explicit RegulatorCore(Regulator& r) : r_(r) {}
   const Outputs& step(const Inputs& in) override { return r_.step(in); }
@@ -21,4 +22,4 @@ class RegulatorCore final : public rt::ControlCore {
   Regulator& r_;
 };
 
-}  // namespace xr::app
+}  // namespace xr::rt

@@ -1,7 +1,7 @@
 #pragma once
-// Copies the slow sensors' published samples into the core's Inputs
-// (RT-safe, inline). `fresh` is true when the sample's stamp moved since the
-// previous tick; the caller keeps the previous stamps in SlowInputsState.
+// The runtime's adapter of the slow sensor readers to the core: copies their
+// published samples into the core's Inputs (RT-safe, inline). `fresh` is true when the sample's stamp moved
+// since the previous tick; the caller keeps the previous stamps in SlowInputsState.
 #include "core/inputs.h"
 #include "drivers/onewire/ds18b20_reader.h"
 #include "drivers/vedirect/vedirect_reader.h"

@@ -1,9 +1,10 @@
 #pragma once
 // Outputs of one control tick. The runtime writes dutyPct to the PWM,
 // fieldEnable to GPIO4 and buzzer to GPIO21, and asks the INA228 driver for
-// the requested conversion mode and BOVL threshold.
+// the requested conversion mode and BOVL threshold. Beside the Regulator
+// (not in daemon/core) because it carries the whole Telemetry.
+#include "control/telemetry.h"
 #include "core/events.h"
-#include "core/telemetry.h"
 
 namespace xr {
 

@@ -1,4 +1,4 @@
-#include "drivers/fast_sensors/driver_sensors.h"
+#include "runtime/driver_sensors.h"
 
 #include "drivers/ads1115/ads1115_inputs.h"
 #include "drivers/ina228/ina228_inputs.h"

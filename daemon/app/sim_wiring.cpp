@@ -1,0 +1,74 @@
+#include "app/sim_wiring.h"
+
+#include <spdlog/spdlog.h>
+
+#include <csignal>
+#include <cstdlib>
+#include <exception>
+#include <stdexcept>
+
+namespace xr::app {
+
+namespace {
+sim::SimRigOptions rigOptions(const CliOptions& cli) {
+  sim::SimRigOptions o;
+  if (cli.seed) o.seed = *cli.seed;
+  o.speed = 0.0;  // pacing is ours (PacedClock) so the period error is measured
+  return o;
+}
+}  // namespace
+
+SimWiring::SimWiring(const sim::Scenario& scenario, const Settings& settings, const CliOptions& cli)
+    : cli_(cli), rig_(scenario, settings, rigOptions(cli)) {
+  rig_.onScenarioProblem(
+      [](int line, const std::string& what) { spdlog::error("scenario line {}: {}", line, what); });
+  if (cli.speed > 0.0) paced_ = std::make_unique<rt::PacedClock>(rig_.clock(), wall_, cli.speed);
+  if (cli.simOutputs) {
+    sim::SimWorld& w = rig_.world();
+    mirror_ = std::make_unique<rt::OutputMirror>(*cli.simOutputs);
+    mPwm_ = std::make_unique<rt::MirroredPwm>(w.pwm(), *mirror_);
+    mEnable_ = std::make_unique<rt::MirroredDigitalOutput>(w.fieldEnable(), *mirror_,
+                                                           rt::MirroredDigitalOutput::Role::FieldEnable);
+    mBuzzer_ = std::make_unique<rt::MirroredDigitalOutput>(w.buzzer(), *mirror_,
+                                                           rt::MirroredDigitalOutput::Role::Buzzer);
+  }
+}
+
+rt::CycleDevices SimWiring::devices() {
+  rt::CycleDevices d = rig_.devices();
+  if (mPwm_) d.pwm = mPwm_.get();
+  if (mEnable_) d.fieldEnable = mEnable_.get();
+  if (mBuzzer_) d.buzzer = mBuzzer_.get();
+  d.hook = this;
+  return d;
+}
+
+std::function<TimeNs(TimeNs)> SimWiring::wallDeadlineOf() {
+  if (!paced_) return {};
+  rt::PacedClock* p = paced_.get();
+  return [p](TimeNs t) { return p->wallDeadline(t); };
+}
+
+void SimWiring::beforeTick(TimeNs now) {
+  if (cli_.testFault == TestFault::None || faultFired_ || toSec(now - rig_.start()) < cli_.testFaultAtS)
+    return;
+  switch (cli_.testFault) {
+    case TestFault::Segv:
+      faultFired_ = true;
+      std::raise(SIGSEGV);
+      break;
+    case TestFault::Abort:
+      faultFired_ = true;
+      std::abort();
+    case TestFault::Terminate:
+      faultFired_ = true;
+      std::terminate();
+    case TestFault::ThrowInControl:
+      faultFired_ = true;
+      throw std::runtime_error("test fault: exception in the control thread");
+    default:
+      break;  // Throw is raised on the main thread
+  }
+}
+
+}  // namespace xr::app

@@ -1,0 +1,49 @@
+#pragma once
+// --sim: the one simulator rig (daemon/sim_rig) plus what only the daemon
+// adds around it: pacing against wall time (--speed X; none under --speed
+// max), the --sim-outputs mirror of the field outputs, and the hidden test
+// faults that prove every exit path leaves the field off.
+#include <functional>
+#include <memory>
+
+#include "app/cli.h"
+#include "config/settings.h"
+#include "drivers/sim/scenario.h"
+#include "runtime/cycle_devices.h"
+#include "runtime/handoffs.h"
+#include "runtime/monotonic_clock.h"
+#include "runtime/output_mirror.h"
+#include "sim_rig/sim_rig.h"
+
+namespace xr::app {
+
+class SimWiring final : public rt::TickHook {
+ public:
+  // Throws std::runtime_error (with a clear message) on setup errors.
+  SimWiring(const sim::Scenario& scenario, const Settings& settings, const CliOptions& cli);
+
+  // The rig's devices, outputs mirrored to --sim-outputs when given.
+  rt::CycleDevices devices();
+  Clock& loopClock() { return paced_ ? static_cast<Clock&>(*paced_) : rig_.clock(); }
+  // Maps a loop deadline to wall time (empty under --speed max).
+  std::function<TimeNs(TimeNs)> wallDeadlineOf();
+  rt::MonotonicClock& wall() { return wall_; }
+  DriverSensors::StartReport startSensors(double bovlVolts) { return rig_.startSensors(bovlVolts); }
+  void attach(rt::Handoffs& h) { rig_.attach(h); }
+  rt::OutputMirror* mirror() { return mirror_.get(); }
+
+  // TickHook: the test faults (--test-fault), at their simulated time.
+  void beforeTick(TimeNs now) override;
+
+ private:
+  CliOptions cli_;
+  sim::SimRig rig_;
+  rt::MonotonicClock wall_;
+  std::unique_ptr<rt::PacedClock> paced_;
+  std::unique_ptr<rt::OutputMirror> mirror_;
+  std::unique_ptr<rt::MirroredPwm> mPwm_;
+  std::unique_ptr<rt::MirroredDigitalOutput> mEnable_, mBuzzer_;
+  bool faultFired_ = false;
+};
+
+}  // namespace xr::app
