@@ -15,7 +15,7 @@ DEB_PACKAGES := build-essential cmake pkg-config ninja-build \
   libspdlog-dev libfmt-dev libtomlplusplus-dev \
   libgtest-dev libgmock-dev googletest libbenchmark-dev \
   libsystemd-dev systemd \
-  chromium wrk curl python3 clang libclang-rt-14-dev valgrind clang-format \
+  chromium wrk curl python3 clang libclang-rt-14-dev valgrind clang-format graphviz \
   debhelper devscripts lintian fakeroot dpkg-dev
 
 .PHONY: all deps build run test bench deb clean format deps-cross test-arm64

@@ -1,0 +1,240 @@
+#!/usr/bin/env python3
+"""The layers of xregulator as data, and the checks that keep the code in them.
+
+The table LAYERS below is the picture in docs/architecture.md: each folder,
+its job, and the folders its files may #include (besides their own). The
+picture (docs/architecture.dot, rendered to docs/architecture.svg) is
+generated from this table, so the two cannot drift apart.
+
+  layout_rules.py check ROOT      every include follows the table, no source
+                                  includes a .cpp, no non-test source over
+                                  MAX_LINES lines (exit 1 and a list if not)
+  layout_rules.py dot             print the Graphviz source of the picture
+  layout_rules.py dot-check ROOT  docs/architecture.dot matches this table
+  layout_rules.py self-test       the checks catch a planted violation of each
+                                  rule in a scratch tree
+"""
+import os
+import re
+import sys
+import tempfile
+
+# (folder, job, folders it may include). Include paths are written from
+# daemon/ ("core/...", "runtime/...") or from the repository root
+# ("drivers/...", "web/..."); a folder may always include itself.
+CORE = ["daemon/params", "daemon/core"]
+DRIVERS = [
+    "drivers/hal", "drivers/i2c", "drivers/ina228", "drivers/ads1115", "drivers/frontend",
+    "drivers/pwm", "drivers/gpio", "drivers/watchdog", "drivers/onewire", "drivers/vedirect",
+    "drivers/probe", "drivers/sim",
+]
+LAYERS = [
+    ("daemon/params", "parameter catalogue, seed constants, derived values", []),
+    ("daemon/core", "shared vocabulary: time, modes, reasons, inputs, outputs, events, commands",
+     ["daemon/params"]),
+    ("daemon/protection", "detectors, fast over-voltage, mode selection, shutdown sequencer (pure)", CORE),
+    ("daemon/battery", "SoC, Peukert, energy, auto-zero, auto-gain (pure)", CORE),
+    ("daemon/control", "loops, governor, stages, tuning; the Regulator and its telemetry (pure)",
+     CORE + ["daemon/protection", "daemon/battery"]),
+    ("daemon/config", "TOML settings: loading and checks", ["daemon/params"]),
+    ("daemon/logging", "spdlog / journald", CORE + ["daemon/config"]),
+    ("drivers/hal", "small device interfaces: I2C bus, outputs, clock", ["daemon/core"]),
+    ("drivers/i2c", "Linux i2c-dev bus", ["drivers/hal"]),
+    ("drivers/frontend", "analog front end: raw codes to volts, amps, rpm", CORE + ["daemon/config"]),
+    ("drivers/ina228", "INA228 driver", ["daemon/core", "drivers/hal", "drivers/i2c"]),
+    ("drivers/ads1115", "ADS1115 driver and its pacing",
+     CORE + ["daemon/config", "drivers/hal", "drivers/i2c", "drivers/frontend"]),
+    ("drivers/pwm", "sysfs PWM", ["drivers/hal"]),
+    ("drivers/gpio", "libgpiod lines and edges", CORE + ["daemon/config", "drivers/hal"]),
+    ("drivers/watchdog", "/dev/watchdog", ["drivers/hal"]),
+    ("drivers/onewire", "DS18B20 reader (w1 sysfs)", CORE),
+    ("drivers/vedirect", "VE.Direct serial reader", CORE + ["drivers/onewire"]),
+    ("drivers/probe", "--probe: which devices answer",
+     CORE + ["daemon/config", "drivers/i2c", "drivers/ina228", "drivers/ads1115", "drivers/onewire",
+             "drivers/vedirect"]),
+    ("drivers/sim", "chip models, plant, simulated world and clock, scenarios",
+     CORE + ["daemon/config", "drivers/hal", "drivers/frontend"]),
+    ("daemon/runtime", "RT loop and cycle, hand-offs, thread setup; adapts drivers to the hand-offs",
+     CORE + ["daemon/config", "daemon/battery", "daemon/control", "drivers/hal", "drivers/i2c",
+             "drivers/ina228", "drivers/ads1115", "drivers/onewire", "drivers/vedirect"]),
+    ("daemon/sim_rig", "the one simulator rig (--sim, headless runs, tests)",
+     CORE + ["daemon/config", "daemon/control", "daemon/runtime", "drivers/hal", "drivers/onewire",
+             "drivers/ads1115", "drivers/sim"]),
+    ("daemon/store", "SQLite persistence", CORE + ["daemon/battery"]),
+    ("web/server", "HTTP / WebSocket API and dashboard server", CORE + ["daemon/config", "daemon/control"]),
+    ("daemon/app", "xregulatord: command line and wiring",
+     CORE + ["daemon/config", "daemon/logging", "daemon/protection", "daemon/battery", "daemon/control",
+             "daemon/runtime", "daemon/sim_rig", "daemon/store", "web/server"] + DRIVERS),
+    ("tools", "xr_gendocs, xregulator-field-off", CORE + ["daemon/config"]),
+]
+
+SOURCE_ROOTS = ["daemon", "drivers", "web", "tools"]
+SOURCE_EXT = (".h", ".cpp", ".def")
+MAX_LINES = 400
+# Non-test sources allowed over MAX_LINES for now, with the reason.
+LONG_FILE_EXEMPTIONS = {
+    "daemon/control/control_law.cpp": "split by the control helper (issue 19), on its own branch",
+}
+# Sources allowed to include a .cpp for now, with the reason.
+CPP_INCLUDE_EXEMPTIONS = {
+    "daemon/control/core_unity.cpp": "removed by the control helper (issue 19), on its own branch",
+}
+DAEMON_FOLDERS = {f.split("/")[1] for f, _, _ in LAYERS if f.startswith("daemon/")}
+INCLUDE_RE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
+
+
+def folder_of_file(rel):
+    parts = rel.split("/")
+    if parts[0] in ("daemon", "drivers", "web") and len(parts) > 2:
+        return parts[0] + "/" + parts[1]
+    return parts[0]
+
+
+def folder_of_include(inc):
+    """The folder an include names, or None (system or generated header)."""
+    parts = inc.split("/")
+    if len(parts) < 2:
+        return None
+    if parts[0] in DAEMON_FOLDERS:
+        return "daemon/" + parts[0]
+    if parts[0] in ("drivers", "web", "daemon") and len(parts) > 2:
+        return parts[0] + "/" + parts[1]
+    return None
+
+
+def sources(root):
+    for top in SOURCE_ROOTS:
+        for d, dirs, files in os.walk(os.path.join(root, top)):
+            dirs[:] = sorted(x for x in dirs if x not in ("node_modules", "www"))
+            for f in sorted(files):
+                if f.endswith(SOURCE_EXT):
+                    path = os.path.join(d, f)
+                    yield os.path.relpath(path, root).replace(os.sep, "/"), path
+
+
+def check(root):
+    allowed = {f: set(deps) | {f} for f, _, deps in LAYERS}
+    problems = []
+    for rel, path in sources(root):
+        with open(path, encoding="utf-8") as fh:
+            text = fh.read()
+        here = folder_of_file(rel)
+        if here not in allowed:
+            problems.append(f"{rel}: folder {here} is not in the layer table (tests/layout/layout_rules.py)")
+            continue
+        for m in INCLUDE_RE.finditer(text):
+            inc = m.group(1)
+            line = text.count("\n", 0, m.start()) + 1
+            if inc.endswith(".cpp") and rel not in CPP_INCLUDE_EXEMPTIONS:
+                problems.append(f"{rel}:{line}: includes a source file ({inc})")
+            target = folder_of_include(inc)
+            if target is not None and target not in allowed[here]:
+                problems.append(f"{rel}:{line}: {here} may not include {target} ({inc})")
+        lines = text.count("\n")
+        if rel.endswith((".h", ".cpp")) and lines > MAX_LINES and rel not in LONG_FILE_EXEMPTIONS:
+            problems.append(f"{rel}: {lines} lines (more than {MAX_LINES}: split it along its jobs)")
+    return problems
+
+
+def transitive_reduction(graph):
+    """Edges a -> b not implied by a longer path: the picture shows these."""
+    def reach(start, skip_edge):
+        seen, todo = set(), [n for n in graph[start] if (start, n) != skip_edge]
+        while todo:
+            n = todo.pop()
+            if n not in seen:
+                seen.add(n)
+                todo.extend(graph.get(n, ()))
+        return seen
+    return {a: [b for b in deps if b not in reach(a, (a, b))] for a, deps in graph.items()}
+
+
+def dot():
+    graph = {f: sorted(set(deps)) for f, _, deps in LAYERS}
+    direct = transitive_reduction(graph)
+    out = [
+        "// Generated by tests/layout/layout_rules.py dot (the layer table); do not edit.",
+        "// Render: dot -Tsvg docs/architecture.dot -o docs/architecture.svg",
+        "digraph layers {",
+        '  graph [rankdir=BT, fontname="Helvetica", nodesep=0.25, ranksep=0.45,',
+        '         label="An arrow A -> B: files in A may include B (and whatever B may include).", labelloc=b];',
+        '  node [shape=box, style="rounded,filled", fontname="Helvetica", fontsize=10];',
+        '  edge [color="#555555", arrowsize=0.6];',
+    ]
+    colour = {"daemon/params": "#e8f0fe", "daemon/core": "#e8f0fe", "daemon/protection": "#d2e3fc",
+              "daemon/battery": "#d2e3fc", "daemon/control": "#d2e3fc"}
+    for f, job, _ in LAYERS:
+        fill = colour.get(f, "#fef7e0" if f.startswith("drivers/") else "#e6f4ea")
+        label = f"{f}\\n{job}"
+        out.append(f'  "{f}" [label="{label}", fillcolor="{fill}"];')
+    for f, _, _ in LAYERS:
+        for b in direct[f]:
+            out.append(f'  "{f}" -> "{b}";')
+    out.append("}")
+    return "\n".join(out) + "\n"
+
+
+def dot_check(root):
+    path = os.path.join(root, "docs", "architecture.dot")
+    try:
+        with open(path, encoding="utf-8") as fh:
+            current = fh.read()
+    except OSError as e:
+        return [f"{path}: {e}"]
+    if current != dot():
+        return ["docs/architecture.dot differs from the layer table: run "
+                "tests/layout/layout_rules.py dot > docs/architecture.dot and render the SVG again"]
+    return []
+
+
+def self_test():
+    """Each rule must catch a planted violation (and a clean tree passes)."""
+    cases = {
+        "drivers/ina228/x.h": '#include "runtime/handoffs.h"\n',        # driver reaching up
+        "drivers/sim/y.cpp": '#include "app/cli.h"\n',                  # driver reaching the app
+        "drivers/i2c/z.cpp": '#include "web/server/auth.h"\n',          # driver reaching the web
+        "daemon/core/a.h": '#include "control/control_telemetry.h"\n',  # core reaching up
+        "daemon/core/b.h": '#include "runtime/seqlock.h"\n',
+        "daemon/store/c.cpp": '#include "store/other.cpp"\n',           # a .cpp included
+        "web/server/d.cpp": "// long\n" * (MAX_LINES + 1),             # too long
+        "daemon/nowhere/e.h": "",                                     # folder not in the table
+    }
+    failures = []
+    with tempfile.TemporaryDirectory() as tmp:
+        clean = os.path.join(tmp, "daemon", "core", "ok.h")
+        os.makedirs(os.path.dirname(clean))
+        with open(clean, "w") as fh:
+            fh.write('#include "core/time.h"\n#include "params/params.h"\n#include <vector>\n')
+        if check(tmp):
+            failures.append(f"a clean tree is reported: {check(tmp)}")
+        for rel, text in cases.items():
+            path = os.path.join(tmp, rel)
+            os.makedirs(os.path.dirname(path), exist_ok=True)
+            with open(path, "w") as fh:
+                fh.write(text)
+            found = [p for p in check(tmp) if p.startswith(rel)]
+            if len(found) != 1:
+                failures.append(f"{rel}: expected one problem, got {found}")
+            os.remove(path)
+    return failures
+
+
+def main(argv):
+    if len(argv) >= 2 and argv[1] == "dot":
+        sys.stdout.write(dot())
+        return 0
+    if len(argv) == 3 and argv[1] in ("check", "dot-check"):
+        problems = check(argv[2]) if argv[1] == "check" else dot_check(argv[2])
+    elif len(argv) == 2 and argv[1] == "self-test":
+        problems = self_test()
+    else:
+        sys.stderr.write(__doc__)
+        return 2
+    for p in problems:
+        print(p)
+    print(f"{argv[1]}: {len(problems)} problem(s)")
+    return 1 if problems else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
