@@ -1,4 +1,4 @@
-// DriverSensors (drivers/fast_sensors) against the simulated board: ready-edge
+// DriverSensors (runtime/driver_sensors.h) against the simulated board: ready-edge
 // pacing uses every conversion; a configured ALERT/RDY line that never
 // pulses falls back to single-shot pacing instead of starving the regulator.
 #include <gtest/gtest.h>
