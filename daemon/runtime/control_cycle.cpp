@@ -37,7 +37,7 @@ void ControlCycle::planExtras() noexcept {
   quietTicks_ = next - t - 1;
 }
 
-inline void ControlCycle::applyBetweenTicks() noexcept {
+void ControlCycle::applyBetweenTicks() noexcept {
   // Almost every tick has neither new Params nor a command: two loads, and
   // the swap/drain out of line only when there is something to apply.
   if (h_.params.pending() || !h_.commands.emptyForConsumer()) applyPending();
@@ -58,7 +58,7 @@ void ControlCycle::applyPending() noexcept {
   }
 }
 
-inline void ControlCycle::mergeSlowInputs() noexcept {
+void ControlCycle::mergeSlowInputs() noexcept {
   // The slow sensors post about once a second: while a hand-off's version
   // has not moved, its sample is the one already merged (only no longer
   // fresh), so the copy out of the seqlock is skipped.
@@ -102,7 +102,7 @@ void ControlCycle::mergeVictron() noexcept {
   lastVictronStamp_ = v.stamp;
 }
 
-inline void ControlCycle::readDiscreteInputs() noexcept {
+void ControlCycle::readDiscreteInputs() noexcept {
   // A read error counts as the safe level: charging disabled / ignition off.
   // A level in memory (simulation) is read in place: what get() returns.
   if (bmsCell_)
@@ -119,7 +119,7 @@ inline void ControlCycle::readDiscreteInputs() noexcept {
     in_.ignitionOn = true;
 }
 
-inline bool ControlCycle::writeOutputs(const Outputs& out) noexcept {
+bool ControlCycle::writeOutputs(const Outputs& out) noexcept {
   const bool enable = out.fieldEnable;
   double duty = out.dutyPct;
   if (!std::isfinite(duty)) duty = 0.0;
@@ -156,7 +156,7 @@ inline bool ControlCycle::writeOutputs(const Outputs& out) noexcept {
   return ok;
 }
 
-inline ControlCycle::PublishPlan ControlCycle::planPublish(TimeNs now) const noexcept {
+ControlCycle::PublishPlan ControlCycle::planPublish(TimeNs now) const noexcept {
   // The snapshot is stored on the tick's thinning grid (every tick while
   // stopping); a row is due on the row grid.
   PublishPlan p;
@@ -189,7 +189,7 @@ void ControlCycle::publishLatest() noexcept {
   storeSnapshot(*lastOut_, lastNow_);
 }
 
-inline void ControlCycle::publish(const Outputs& out, TimeNs now, PublishPlan plan) noexcept {
+void ControlCycle::publish(const Outputs& out, TimeNs now, PublishPlan plan) noexcept {
   lastOut_ = &out;
   lastNow_ = now;
   if (plan.summary) summary_ = stats_.summary();  // every kSummaryEveryTicks

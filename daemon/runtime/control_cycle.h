@@ -98,15 +98,14 @@ class ControlCycle {
     }
   }
   void planExtras() noexcept;
-  // The per-tick helpers below run once per tick from tick() only: forced
-  // inline (GCC keeps them as calls with a prologue/epilogue each otherwise).
-  [[gnu::always_inline]] inline void applyBetweenTicks() noexcept;
+  // The per-tick helpers below run once per tick from tick() only.
+  void applyBetweenTicks() noexcept;
   void applyPending() noexcept;
-  [[gnu::always_inline]] inline void mergeSlowInputs() noexcept;
+  void mergeSlowInputs() noexcept;
   void mergeTemperature() noexcept;
   void mergeVictron() noexcept;
-  [[gnu::always_inline]] inline void readDiscreteInputs() noexcept;
-  [[gnu::always_inline]] inline bool writeOutputs(const Outputs& out) noexcept;
+  void readDiscreteInputs() noexcept;
+  bool writeOutputs(const Outputs& out) noexcept;
   // What this tick publishes: the snapshot store and/or a telemetry row.
   // Decided ONCE per tick, before the step (so the step knows whether its
   // telemetry is observed), and used by publish() after it: nothing the two
@@ -117,8 +116,8 @@ class ControlCycle {
     bool row = false;
     bool summary = false;  // refresh summary_ first (the tick's Extras::summary)
   };
-  [[gnu::always_inline]] inline PublishPlan planPublish(TimeNs now) const noexcept;
-  [[gnu::always_inline]] inline void publish(const Outputs& out, TimeNs now, PublishPlan plan) noexcept;
+  PublishPlan planPublish(TimeNs now) const noexcept;
+  void publish(const Outputs& out, TimeNs now, PublishPlan plan) noexcept;
   void publishRow(TimeNs now) noexcept;
   void storeSnapshot(const Outputs& out, TimeNs now) noexcept;
 

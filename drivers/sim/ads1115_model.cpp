@@ -27,10 +27,7 @@ std::uint16_t Ads1115Model::peekConfig() const noexcept {
   return static_cast<std::uint16_t>((config_ & ~OS) | (converting_ ? 0 : OS));
 }
 
-// The per-conversion helpers are forced inline into convertTo() (their only
-// per-tick caller): ~2 conversions per control tick, and the calls with
-// their prologues were a third of the conversion's own instructions.
-[[gnu::always_inline]] inline std::int16_t Ads1115Model::sample(std::uint16_t cfg) noexcept {
+std::int16_t Ads1115Model::sample(std::uint16_t cfg) noexcept {
   // MUX -> AINp, AINn (-1 = GND), as tables instead of a switch. The
   // positive input is sampled (and draws its noise) before the negative one.
   static constexpr std::int8_t kPos[8] = {0, 0, 1, 2, 0, 1, 2, 3};
@@ -44,7 +41,7 @@ std::uint16_t Ads1115Model::peekConfig() const noexcept {
   return static_cast<std::int16_t>(std::clamp(code, -32768.0, 32767.0));  // clips at ±FS
 }
 
-[[gnu::always_inline]] inline void Ads1115Model::startConversion(TimeNs at) noexcept {
+void Ads1115Model::startConversion(TimeNs at) noexcept {
   converting_ = true;
   convConfig_ = config_;  // settings in force for this conversion
   convEnd_ = at + period(drOf(config_));
@@ -52,7 +49,7 @@ std::uint16_t Ads1115Model::peekConfig() const noexcept {
   if (readyMode() && queOf(config_) != 3 && (config_ & MODE_SINGLE)) alert_ = false;
 }
 
-[[gnu::always_inline]] inline void Ads1115Model::finishConversion() noexcept {
+void Ads1115Model::finishConversion() noexcept {
   conversion_ = sample(convConfig_);
   ++conversions_;
   if (pulses_) {
@@ -154,13 +151,13 @@ inline int Ads1115Model::writeMsg(const std::uint8_t* buf, std::size_t len) noex
   return 0;
 }
 
-[[gnu::always_inline]] inline std::uint16_t Ads1115Model::readConversion() noexcept {
+std::uint16_t Ads1115Model::readConversion() noexcept {
   // A latched comparator alert clears when the Conversion register is read.
   if ((config_ & 0x0004) && !readyMode()) alert_ = false;
   return static_cast<std::uint16_t>(conversion_);
 }
 
-[[gnu::always_inline]] inline void Ads1115Model::writeConfig(std::uint16_t v) noexcept {
+void Ads1115Model::writeConfig(std::uint16_t v) noexcept {
   config_ = static_cast<std::uint16_t>(v & ~OS);
   queueCount_ = 0;
   if (queOf(config_) == 3) alert_ = false;

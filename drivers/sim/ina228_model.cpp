@@ -20,7 +20,7 @@ constexpr double kVbusLsb = 195.3125e-6;  // V
 constexpr double kTempLsb = 7.8125e-3;    // °C
 constexpr double kInvAvg[8] = {1.0, 1.0 / 4, 1.0 / 16, 1.0 / 64, 1.0 / 128, 1.0 / 256, 1.0 / 512, 1.0 / 1024};
 
-[[gnu::always_inline]] inline std::int32_t quantise20(double v, double lsb) {
+std::int32_t quantise20(double v, double lsb) {
   const double c = roundEven(v / lsb);
   if (!(c == c)) return 0;  // NaN input: the ADC reads 0
   return static_cast<std::int32_t>(std::clamp(c, double(kMin20), double(kMax20)));
@@ -121,9 +121,7 @@ void Ina228Model::convertTo(TimeNs t) noexcept {
   }
 }
 
-// Out of line: a result every ~1.8 control ticks, while convertTo() runs
-// ~2 times per tick and would pay for publish()'s registers on every call.
-[[gnu::noinline]] void Ina228Model::publish(double dt) noexcept {
+void Ina228Model::publish(double dt) noexcept {
   // The window holds exactly AVG samples (update() never overfills it), and
   // AVG is a power of two: multiplying by 1/n is exact, no division. The
   // integer sums (< 2^30) convert to double exactly: the same mean as a
@@ -189,7 +187,7 @@ void Ina228Model::convertTo(TimeNs t) noexcept {
     }
   }
   diag_ |= CNVRF;
-  if (diag_ & SLOWALERT) compareLimitsInline(vshunt_, vbus_, dietemp_, power_);
+  if (diag_ & SLOWALERT) compareLimits(vshunt_, vbus_, dietemp_, power_);
 }
 
 void Ina228Model::refreshLimits() noexcept {
@@ -209,9 +207,8 @@ void Ina228Model::refreshLimits() noexcept {
   measured_ = measured;
 }
 
-[[gnu::always_inline]] inline void Ina228Model::compareLimitsInline(std::int32_t vsh, std::int32_t vb,
-                                                                    std::int32_t tcode,
-                                                                    std::uint32_t pw) noexcept {
+void Ina228Model::compareLimits(std::int32_t vsh, std::int32_t vb, std::int32_t tcode,
+                                std::uint32_t pw) noexcept {
   // The bounds of the channels measured, taken when a register was written
   // (refreshLimits), not per comparison.
   std::uint16_t cond = 0;
@@ -228,13 +225,6 @@ void Ina228Model::refreshLimits() noexcept {
     diag_ = static_cast<std::uint16_t>((diag_ & ~measured_) | cond);
   }
   limitActive_ = (diag_ & kLimitFlags) != 0;
-}
-
-// The per-raw-sample comparison (SLOWALERT = 0) stays a call: convertTo()
-// keeps its registers for the sample loop.
-void Ina228Model::compareLimits(std::int32_t vsh, std::int32_t vb, std::int32_t tcode,
-                                std::uint32_t pw) noexcept {
-  compareLimitsInline(vsh, vb, tcode, pw);
 }
 
 }  // namespace xr::sim

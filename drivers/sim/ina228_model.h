@@ -147,8 +147,6 @@ class Ina228Model final : public SimI2cDevice {
   }
   void compareLimits(std::int32_t vshCode, std::int32_t vbusCode, std::int32_t tempCode,
                      std::uint32_t powerCode) noexcept;
-  void compareLimitsInline(std::int32_t vshCode, std::int32_t vbusCode, std::int32_t tempCode,
-                           std::uint32_t powerCode) noexcept;  // the same, inlined into publish()
   int mode() const noexcept { return (adcConfig_ >> 12) & 0xF; }
   bool busActive() const noexcept { return mode() & 0x1; }
   bool shuntActive() const noexcept { return mode() & 0x2; }
