@@ -99,8 +99,11 @@ def settled_mask(run: Run, settle_s: float, event_times: list[float]) -> list[bo
 
 def voltage_loop_holds(run: Run, i: int) -> bool:
     """The voltage loop, not a current cap, decides the field at row i: the
-    governed setpoint sits below the current target by more than 1 A."""
-    return run.setpoint_a[i] < run.target_a[i] - 1.0 and run.mode[i] == "MODE_NORMAL_AUTO_PID"
+    field is on and the governed setpoint sits below the current target by
+    more than 1 A. (A resting field holds nothing: a full bank then sits at
+    its own voltage, which may be above the target.)"""
+    return (run.field_on[i] == 1 and run.setpoint_a[i] < run.target_a[i] - 1.0
+            and run.mode[i] == "MODE_NORMAL_AUTO_PID")
 
 
 def regulation_error_mv(run: Run, settled: list[bool]) -> float | None:
@@ -113,19 +116,23 @@ def regulation_error_mv(run: Run, settled: list[bool]) -> float | None:
 
 
 def float_creep_mv(run: Run, float_v: float, window_s: float = 600.0) -> float | None:
-    """Highest mean of V - FloatVoltage over any window_s of continuous FLOAT."""
-    best, start, acc, n = None, 0, 0.0, 0
+    """Highest mean of V - FloatVoltage over any window_s of continuous FLOAT
+    in which the field was on at least half the time (the regulator, not the
+    bank's own rest voltage, set the level)."""
+    best, start, acc, n, on = None, 0, 0.0, 0, 0
     for i in range(len(run.t)):
         if run.stage[i] != "FLOAT":
-            start, acc, n = i + 1, 0.0, 0
+            start, acc, n, on = i + 1, 0.0, 0, 0
             continue
         acc += run.v[i]
         n += 1
+        on += run.field_on[i]
         while run.t[i] - run.t[start] > window_s:
             acc -= run.v[start]
+            on -= run.field_on[start]
             n -= 1
             start += 1
-        if run.t[i] - run.t[start] >= window_s * 0.95:
+        if run.t[i] - run.t[start] >= window_s * 0.95 and on * 2 >= n:
             mean_mv = (acc / n - float_v) * 1000.0
             best = mean_mv if best is None else max(best, mean_mv)
     return best
@@ -134,7 +141,8 @@ def float_creep_mv(run: Run, float_v: float, window_s: float = 600.0) -> float |
 def absorption_exits(run: Run, tail_a: float, timeout_s: float) -> list[tuple[float, str]]:
     """Each ABSORPTION -> FLOAT change, judged: 'tail' when the bank was
     charging at or under the tail current at the target voltage over the last
-    30 s, 'timeout' when absorption lasted its timeout, else 'early'."""
+    30 s (or held the target with the field resting), 'timeout' when
+    absorption lasted its timeout, else 'early'."""
     out, entered = [], None
     for i in range(1, len(run.t)):
         if run.stage[i] == "ABSORPTION" and run.stage[i - 1] != "ABSORPTION":
@@ -147,7 +155,11 @@ def absorption_exits(run: Run, tail_a: float, timeout_s: float) -> list[tuple[fl
             lasted = t - entered if entered is not None else 0.0
             if lasted >= timeout_s - 1.0:
                 kind = "timeout"
-            elif -0.5 <= cur <= tail_a * 1.5 and dv <= 0.1:
+            elif -tail_a <= cur <= tail_a * 1.5 and dv <= 0.1:
+                kind = "tail"
+            elif idx and all(run.field_on[j] == 0 and run.v[j] >= run.target_v[j] - 0.05 for j in idx):
+                # The field rested and the bank still held the target with
+                # no charge at all: it accepts nothing more, the fullest tail.
                 kind = "tail"
             else:
                 kind = "early"
@@ -178,3 +190,11 @@ def field_off_after(run: Run, at_s: float) -> float | None:
         if t >= at_s and not on:
             return t - at_s
     return None
+
+
+def thermal_utilisation(run: Run, ambient_f: float, limit_f: float, window_s: float) -> float:
+    """Mean plant temperature rise over the last window_s, as a share of the
+    rise TemperatureLimitF allows above ambient."""
+    end = run.t[-1]
+    temps = [x for t, x in zip(run.t, run.alt_temp_f) if t >= end - window_s]
+    return (statistics.mean(temps) - ambient_f) / (limit_f - ambient_f)

@@ -43,6 +43,14 @@ class Regulation(unittest.TestCase):
         r.v = [14.2 + 0.021] * 10 + [13.0] * 10
         self.assertGreater(C.regulation_error_mv(r, [True] * 20), 20.0)
 
+    def test_resting_field_is_not_judged(self):
+        # A full bank resting above its target with the field off is not the
+        # voltage loop failing to hold it; the same rows with the field on are.
+        r = make_run(20, v=14.5, setpoint_a=0.0, field_on=[0] * 20)
+        self.assertIsNone(C.regulation_error_mv(r, [True] * 20))
+        r.field_on = [1] * 20
+        self.assertAlmostEqual(C.regulation_error_mv(r, [True] * 20), 300.0, places=3)
+
     def test_settling_after_stage_change_and_event(self):
         stages = ["BULK"] * 5 + ["ABSORPTION"] * 15
         r = make_run(20, stage=stages)
@@ -58,8 +66,25 @@ class FloatCreep(unittest.TestCase):
         r.v = [13.5] * 600 + [13.56] * 700  # the last 600 s sit 60 mV high
         self.assertAlmostEqual(C.float_creep_mv(r, 13.5), 60.0, places=3)
 
+    def test_windows_with_the_field_resting_throughout_are_not_judged(self):
+        r = make_run(1300, stage="FLOAT", v=13.9, target_v=13.5, field_on=0)
+        self.assertIsNone(C.float_creep_mv(r, 13.5))
+        r.field_on = [0] * 1050 + [1] * 250  # on for under half of every window
+        self.assertIsNone(C.float_creep_mv(r, 13.5))
+        r.field_on = [0] * 700 + [1] * 600  # the last window: on for half of it
+        self.assertAlmostEqual(C.float_creep_mv(r, 13.5), 400.0, places=3)
+
     def test_short_float_is_not_judged(self):
         self.assertIsNone(C.float_creep_mv(make_run(100, stage="FLOAT", v=14.0), 13.5))
+
+
+class ThermalUtilisation(unittest.TestCase):
+    def test_share_of_the_allowed_rise_over_the_last_window(self):
+        temps = [150.0] * 100 + [197.0] * 900  # 140 ambient, 200 limit: 57 of 60 degF
+        r = make_run(1000, alt_temp_f=temps)
+        self.assertAlmostEqual(C.thermal_utilisation(r, 140.0, 200.0, window_s=899.0), 0.95, places=6)
+        r.alt_temp_f = [196.9] * 1000
+        self.assertLess(C.thermal_utilisation(r, 140.0, 200.0, window_s=899.0), 0.95)
 
 
 class AbsorptionExit(unittest.TestCase):
@@ -73,8 +98,21 @@ class AbsorptionExit(unittest.TestCase):
     def test_discharging_bank_is_early(self):
         self.assertEqual(self.run_exit(bcur=-39.0)[0][1], "early")
 
+    def test_small_discharge_at_the_target_is_a_tail(self):
+        # At the RPM duty floor a full bank can discharge a little into the
+        # house load while the voltage stays at the target.
+        self.assertEqual(self.run_exit(bcur=-3.9)[0][1], "tail")
+        self.assertEqual(self.run_exit(bcur=-4.1)[0][1], "early")
+
     def test_not_at_voltage_is_early(self):
         self.assertEqual(self.run_exit(bcur=3.0, v=14.0)[0][1], "early")
+
+    def test_resting_field_above_target_is_a_tail(self):
+        stages = ["BULK"] * 10 + ["ABSORPTION"] * 100 + ["FLOAT"] * 10
+        r = make_run(len(stages), stage=stages, bcur=-5.0, v=14.25, field_on=0)
+        self.assertEqual(C.absorption_exits(r, tail_a=4.0, timeout_s=3600)[0][1], "tail")
+        r.v = [14.14] * len(stages)  # resting but sagging under the target: not a tail
+        self.assertEqual(C.absorption_exits(r, tail_a=4.0, timeout_s=3600)[0][1], "early")
 
     def test_timeout(self):
         self.assertEqual(self.run_exit(bcur=-39.0, n_abs=3600)[0][1], "timeout")

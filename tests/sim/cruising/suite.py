@@ -76,6 +76,17 @@ def judge(run: C.Run, crit: dict, params: dict, scenario: dict) -> C.Verdict:
     if fault_at == float("inf") and hottest > limit + crit["temp_margin_f"]:
         v.failures.append(f"alternator reached {hottest:.1f} F, limit {limit:.0f} + {crit['temp_margin_f']}")
 
+    if "thermal_utilisation_min" in crit:
+        # Steady thermal utilisation, plant-neutral: the temperature rise the
+        # last 15 min held, as a share of the rise the limit allows. Heating
+        # grows at least linearly with current, so this share is a lower
+        # bound of the share of the current that holds the limit.
+        ambient = float(scenario["alternator"]["ambient_f"])
+        util = C.thermal_utilisation(run, ambient, limit, window_s=900.0)
+        v.figures["thermal util"] = f"{util * 100:.1f}%"
+        if util < crit["thermal_utilisation_min"]:
+            v.failures.append(f"thermal utilisation {util * 100:.1f} % (min {crit['thermal_utilisation_min'] * 100:.0f} %)")
+
     events = [e["at_s"] for e in scenario.get("events", [])]
     settled = C.settled_mask(run, crit["settle_s"], events)
     med = C.regulation_error_mv(run, settled)
@@ -139,7 +150,7 @@ def run_one(daemon: str, toml_path: Path, out: Path, table: dict, plot: bool) ->
 
 
 def print_table(results: list[tuple[str, C.Verdict, str]]) -> None:
-    keys = ["trips", "alt max F", "reg mV", "float creep mV", "abs exits", "dump peak mV", "dump back s",
+    keys = ["trips", "alt max F", "thermal util", "reg mV", "float creep mV", "abs exits", "dump peak mV", "dump back s",
             "field off s", "end"]
     print(f"{'scenario':<28} {'result':<6} " + " ".join(f"{k:>14}" for k in keys))
     for name, v, _ in results:
