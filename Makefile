@@ -15,10 +15,10 @@ DEB_PACKAGES := build-essential cmake pkg-config ninja-build \
   libspdlog-dev libfmt-dev libtomlplusplus-dev \
   libgtest-dev libgmock-dev googletest libbenchmark-dev \
   libsystemd-dev systemd \
-  chromium wrk curl python3 clang libclang-rt-14-dev valgrind clang-format graphviz \
+  chromium wrk curl python3 python3-matplotlib clang libclang-rt-14-dev valgrind clang-format graphviz \
   debhelper devscripts lintian fakeroot dpkg-dev
 
-.PHONY: all deps build run test bench deb clean format deps-cross test-arm64
+.PHONY: all deps build run test bench deb clean format deps-cross test-arm64 scenarios
 
 all: build
 
@@ -47,6 +47,12 @@ run: build
 
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS) --timeout 900
+
+# The cruising-day suite (issue 27): every scenarios/cruising/*.toml through
+# the daemon, one table of pass/fail and key figures, a PNG plot per scenario
+# in $(BUILD)/scenarios. Exits non-zero when a scenario fails.
+scenarios: build
+	python3 tests/sim/cruising/suite.py --daemon $(BUILD)/daemon/app/xregulatord --out $(BUILD)/scenarios
 
 # make bench measures its own optimised tree (Release, LTO, profile-guided,
 # for this machine's CPU: tests/bench/build-pgo.sh) so the figures are what the

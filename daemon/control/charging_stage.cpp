@@ -21,6 +21,18 @@ void ChargingStageMachine::resetToBulk(TimeNs now) {
   tailThermalSuppressed_ = rebulkBlockedBySoc_ = false;
 }
 
+bool ChargingStageMachine::resumeOrBulk(TimeNs now, TimeNs away, const Params& p) {
+  const bool resumable = stage_ == ChargeStage::ABSORPTION || stage_ == ChargeStage::FLOAT;
+  if (resumable && p.StageResumeMaxSec > 0.0 && away >= 0 && away <= fromSec(p.StageResumeMaxSec)) {
+    // Timers keep running from their stage start (an absorption's timeout
+    // counts the pause); the debounces restart.
+    bulkHoldArmed_ = tailArmed_ = rebulkArmed_ = false;
+    return true;
+  }
+  resetToBulk(now);
+  return false;
+}
+
 // FLOAT / IDLE re-bulk: after MinFloatTime, voltage sag OR significant
 // discharge, confirmed continuously for rebulkDebounceTime, with SOC gating.
 bool ChargingStageMachine::rebulkDue(const StageInputs& in, const Params& p) {
@@ -74,7 +86,7 @@ bool ChargingStageMachine::updateChargingStage(const StageInputs& in, const Para
       // Low current from thermal derating is not "battery full".
       tailThermalSuppressed_ =
           in.thermalPenaltyAmps > k::TAIL_THERMAL_PENALTY_A && in.uTargetAmps <= 2.0 * p.TailCurrent_A;
-      const bool tail = !tailThermalSuppressed_ && in.Bcur <= p.TailCurrent_A;
+      const bool tail = !tailThermalSuppressed_ && in.voltageHeld && in.Bcur <= p.TailCurrent_A;
       if (tail) {
         if (!tailArmed_) {
           tailArmed_ = true;

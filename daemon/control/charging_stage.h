@@ -17,6 +17,9 @@ struct StageInputs {
   double uTargetAmps = 0.0;
   double SOC_percent = 0.0;
   bool socValid = false;  // SOC gating only with a real SoC
+  // The voltage loop holds the absorption target (not a current ceiling):
+  // only then is a low Bcur a tail (docs/deviations.md "Tail current").
+  bool voltageHeld = true;
   // MaintainMode / TargetVoltageMode / CVTuningMode / manual: those set the
   // target themselves and the stage machine holds (timers cleared).
   bool suppressed = false;
@@ -26,8 +29,12 @@ class ChargingStageMachine {
  public:
   // Returns true when the stage changed this call.
   bool updateChargingStage(const StageInputs& in, const Params& p);
-  // enter_sys_auto(): always BULK, timers reset.
+  // enter_sys_auto(): BULK, timers reset.
   void resetToBulk(TimeNs now);
+  // Back in AUTO after `away` out of it: resume ABSORPTION / FLOAT when the
+  // absence was short (StageResumeMaxSec), else BULK (docs/deviations.md
+  // "Return to AUTO"). Returns true when the stage was kept.
+  bool resumeOrBulk(TimeNs now, TimeNs away, const Params& p);
 
   ChargeStage stage() const { return stage_; }
   ChargeStage previousStage() const { return previous_; }
@@ -40,7 +47,6 @@ class ChargingStageMachine {
   bool voltageControlActive() const {
     return stage_ == ChargeStage::ABSORPTION || stage_ == ChargeStage::FLOAT;
   }
-  // Inline: read on every tick by the control law.
   double ChargingVoltageTarget(const Params& p) const {
     switch (stage_) {
       case ChargeStage::ABSORPTION:

@@ -12,8 +12,6 @@
 //   finishAuto()      : fastOvCurrentCap clamp => uTargetAmps -> CV (Icv) or
 //                       direct => setpointCommand -> slew => setpointLimited ->
 //                       currentPID -> governor_apply -> TrackAppliedOutput.
-#include <cstdint>
-
 #include "control/charging_stage.h"
 #include "control/control_telemetry.h"
 #include "control/cv_loop.h"
@@ -62,13 +60,6 @@ class ControlLaw {
  public:
   explicit ControlLaw(const Params& p);
 
-  // The parameter set was replaced (Regulator::setParams). Contract: every
-  // per-tick call below is passed the Params last given here or to the
-  // constructor; values derived from them are cached between the two (see
-  // ParamsDerived). A caller that changes its Params in place between ticks
-  // (the unit-test rigs) calls this after each change, as Regulator does.
-  void setParams(const Params& p);
-
   // Every tick, first: filters on fresh CH1 / IBV, control dt bookkeeping.
   void updateFilters(const ControlSensors& s, const Params& p);
   // Step 3 (before mode selection): stage machine and override targets.
@@ -104,14 +95,8 @@ class ControlLaw {
 
   // ---- commands ----------------------------------------------------------
   bool startSystemId(TimeNs now, bool autoRunning);
-  bool commitTuning(TimeNs now, const Params& p) {
-    slowTelemetryStale_ = true;
-    return tuning_.commit(now, p);
-  }
-  bool commitCvTuning(TimeNs now, const Params& p) {
-    slowTelemetryStale_ = true;
-    return cvTuning_.commit(now, p);
-  }
+  bool commitTuning(TimeNs now, const Params& p) { return tuning_.commit(now, p); }
+  bool commitCvTuning(TimeNs now, const Params& p) { return cvTuning_.commit(now, p); }
 
   // ---- read-back -----------------------------------------------------------
   SysMode sysMode() const { return sysMode_; }
@@ -121,6 +106,9 @@ class ControlLaw {
   double uTargetAmps() const { return uTargetAmps_; }
   double ChargingVoltageTarget() const { return ChargingVoltageTarget_; }
   bool voltageControlActive() const { return voltageControlActive_; }
+  // Full bank at the RPM duty floor: the field rests (enable LOW) in AUTO
+  // (docs/deviations.md "Full bank at light load").
+  bool fieldResting() const { return fieldResting_; }
   double thermalPenaltyAmps() const { return thermal_.thermalPenaltyAmps(); }
   double MeasuredAmps_filtered() const { return emaInput_.value(); }
   double g_pidI_filtered() const { return emaPid_.value(); }
@@ -140,55 +128,28 @@ class ControlLaw {
   double dutyRequest() const { return dutyRequest_; }
   double setpointCommand() const { return setpointCommand_; }
   void fillTelemetry(ControlTelemetry& t) const;
-  // Per-tick telemetry for a struct that lives from tick to tick and that
-  // only this call writes (Regulator's Outputs). The TuningMode, CVTuningMode
-  // and SystemID fields only move while one of those runs (or by a command),
-  // so they are rewritten only then and on the tick after; the result always
-  // equals fillTelemetry() (control_test checks it).
-  void updateTelemetry(ControlTelemetry& t);
-  // A tick passed without updateTelemetry(): a tuning run may have started
-  // and stopped unseen, so the next update rewrites the slow fields.
-  void telemetrySkipped() { slowTelemetryStale_ = true; }
 
  private:
+  // A control dt longer than this is not integrated as-is: such a gap means
+  // the sensor stalled (current-stale protection acts on it); integrating it
+  // would kick every loop.
+  static constexpr double kMaxControlDtSec = 0.25;
+  static constexpr double kNoCeiling = 1e300;
+  // The CV loop is "at its ceiling" when its command is within this of it.
+  static constexpr double kTailHeadroomA = 1.0;
+
   void configurePid(const Params& p);
-  double pidFeedback(const Params& p) const;
   double governorStep(const Params& p, double request, GovMode mode, double dt);
   void enterManualLike(SysMode m);
-  void updateGovMode(const ControlSensors& s, const FastOvApply& fa);
+  void leaveAuto(TimeNs now);
   void fillLoopTelemetry(ControlTelemetry& t) const;
   void fillTuningTelemetry(ControlTelemetry& t) const;
-  bool tuningActive() const { return tuning_.running() || cvTuning_.running() || sysId_.sysIDRunning(); }
-
-  // Values that depend only on the Params, computed by setParams() (and the
-  // constructor) instead of on every tick. They cannot be stale in
-  // production: Regulator owns the only Params copy, never mutates it, and
-  // its setParams() is the only place that replaces it, which calls ours
-  // (ControlSetParams.* fails if it does not).
-  struct ParamsDerived {
-    bool overrideNow = false;      // MaintainMode || TargetVoltageMode || CVTuningMode
-    bool overrideTargets = false;  // overrideNow || TuningMode
-    double pidOutMax = 100.0;      // max(MinDuty + 1e-6, MaxDuty)
-    double majorOvV = 0.0;         // alternatorHardShutdownV + HARD_SHUTDOWN_BYPASS_OFFSET_V
-    double baseCeilingA = 0.0;     // min(MaxTableValue, MaximumAllowedBatteryAmps)
-    int pidDivisor = 1;            // max(1, PidSampleDivisor)
-  };
-  void derive(const Params& p);
-  ParamsDerived d_;
-  // The RPM table lookups of the last rpm seen (bit for bit), for these
-  // Params: rpm is a slow ADS channel, so most ticks repeat the last value
-  // and the breakpoint search gives the same result. derive() drops it.
-  struct RpmLookup {
-    bool valid = false;
-    std::uint64_t rpmBits = 0;
-    double minDuty = 0.0;   // rpmTableValue(activeMinDutyTable)
-    double capTable = 0.0;  // capTableValueAt
-  };
-  const RpmLookup& rpmLookup(const Params& p, double rpm);
-  RpmLookup rpm_;
-  // currentPID_'s gains and tracking gain are (re)applied on the next
-  // configurePid() after a setParams() only.
-  bool pidTuningsStale_ = true;
+  // Field rest (field_rest.cpp): when to start and end one, and the loops'
+  // state while it lasts.
+  bool restDue(const ControlSensors& s, const Params& p);
+  bool restOver(const ControlSensors& s, const Params& p) const;
+  double holdAtRest();
+  void updateGovMode(const ControlSensors& s, const Params& p, const FastOvApply& fa);
 
   // Loops.
   Pid currentPID_;
@@ -227,15 +188,19 @@ class ControlLaw {
   TimeNs protectionClearedAt_ = 0;
   bool haveProtectionCleared_ = false;
   bool fastOvClampActive_ = false, fastOvWasActive_ = false;
+  bool loadDumpInEpisode_ = false;  // a load dump acted since the fast-OV clamp engaged
   bool cvOvershootBypass_ = false;
   bool fastRiseActive_ = false;
   bool warmupActive_ = false;
   bool bulkVoltageLimitActive_ = false;
   bool overrideWasActive_ = false;
+  TimeNs overrideSince_ = -1;
+  TimeNs leftAutoAt_ = -1;  // when sysMode_ last left AUTO (-1: never was in AUTO)
+  bool fieldResting_ = false;
+  TimeNs restArmedAt_ = -1;  // the rest condition holds since (-1: not holding)
+  double ibvSlope_ = 0.0;    // cvDSlope: dV/dt of IBV_filtered between fresh IBV samples
+  double lastFiltV_ = 0.0;
   double sysIdDutyOut_ = 0.0;
-  // A tuning/SystemID telemetry field may have moved since the last
-  // updateTelemetry() (see there).
-  bool slowTelemetryStale_ = true;
 };
 
 }  // namespace xr

@@ -77,15 +77,14 @@ double VoltageCvLoop::update(const CvLoopInputs& in, const Params& p) {
   if (cv_I_aw_cap_ < 0.0) cv_I_aw_cap_ = p.MaxTableValue;
   const double uT = std::max(0.0, in.uTargetAmps);
 
-  // cvDSlope: backward difference of getFiltV() per tick (V/s).
-  if (haveFiltV_ && dt > 0.0 && std::isfinite(in.filtV)) cvDSlope_ = (in.filtV - lastFiltV_) / dt;
-  if (std::isfinite(in.filtV)) {
-    lastFiltV_ = in.filtV;
-    haveFiltV_ = true;
-  }
+  // cvDSlope comes from the caller, taken between fresh IBV samples (ours:
+  // the seed's per-tick difference of a value that changes every ~4.5 ms
+  // alternates between 0 and twice the slope).
+  cvDSlope_ = std::isfinite(in.cvDSlope) ? in.cvDSlope : 0.0;
 
-  const bool entering = in.voltageControlActive && !wasActive_;
+  const bool entering = in.voltageControlActive && (!wasActive_ || reseedPending_);
   wasActive_ = in.voltageControlActive;
+  if (!in.voltageControlActive || entering) reseedPending_ = false;
   if (entering) seedOnEntry(in, p);
   const bool seedProtect =
       awSeedProtectStartNs_ >= 0 && (in.now - awSeedProtectStartNs_) < fromMs(p.AwSeedProtectMs);
@@ -128,7 +127,9 @@ double VoltageCvLoop::update(const CvLoopInputs& in, const Params& p) {
   if (!entering && in.now - lastVoltageLoopNs_ >= interval) {
     const double actual = toSec(in.now - lastVoltageLoopNs_);
     g_voltLoopActualIntervalMs_ = actual * 1e3;
-    fire(in, p, actual);
+    // Ours: a gap (the loop did not run) is not integrated as one long step;
+    // at most two intervals' worth (30 s of OnOff = 0 moved cv_I 9 -> 33 A).
+    fire(in, p, std::min(actual, 2.0 * toSec(interval)));
     lastVoltageLoopNs_ = in.now;
   }
   // The ceiling can fall between fires (fast-OV cap): honour it every tick.

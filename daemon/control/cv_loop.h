@@ -13,7 +13,7 @@ struct CvLoopInputs {
   bool voltageControlActive = false;
   double ChargingVoltageTarget = 0.0;
   double IBV = 0.0;              // INA228 bus voltage
-  double filtV = 0.0;            // getFiltV() = IBV_filtered (slope bleed only)
+  double cvDSlope = 0.0;         // dV/dt of getFiltV() between fresh IBV samples (slope bleed only)
   double g_pidI_filtered = 0.0;  // inner-loop feedback (bumpless seed / tracker)
   double uTargetAmps = 0.0;      // ceiling after fastOvCurrentCap
   double uTargetRaw = 0.0;       // ceiling before fastOvCurrentCap (uTargetRaw_cached)
@@ -30,6 +30,10 @@ class VoltageCvLoop {
   double cv_I() const { return cv_I_; }
   // Bumpless restore (SystemID): integrator and tracker to v.
   void restore(double v);
+  // After a protection event (fast-OV clamp cleared, back in AUTO): the next
+  // active update seeds cv_I as on CV entry (bumpless, AW cap cleared)
+  // instead of crawling back from the event's state.
+  void requestReseed() { reseedPending_ = true; }
   void reset();
 
   double Icv() const { return Icv_; }
@@ -53,8 +57,8 @@ class VoltageCvLoop {
   double Icv_ = 0.0, e_ = 0.0;
   double voltageTargetSlewed_ = 0.0;
   int g_awState_ = 4;
-  double cvDSlope_ = 0.0, lastFiltV_ = 0.0;
-  bool haveFiltV_ = false;
+  double cvDSlope_ = 0.0;
+  bool reseedPending_ = false;
   double g_voltLoopActualIntervalMs_ = 0.0;
 };
 

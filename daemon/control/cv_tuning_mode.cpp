@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "params/constants.h"
+#include "params/derived.h"
+
 namespace xr {
 
 void CvTuningModeRunner::reset() {
@@ -28,7 +31,12 @@ double CvTuningModeRunner::target(TimeNs now, double normalTarget, const Params&
     settledThisPhase_ = false;
     consecutive_ = 0;
   }
-  target_ = normalTarget + (high_ ? p.cvWaveAmplitudeV : 0.0);
+  // Ours (docs/deviations.md "CVTuningMode high target"): the HIGH phase
+  // never asks for more than the hard-shutdown trip less a margin for the
+  // loop's overshoot; the seed's 14.5 + 0.2 V sat 0.1 V under a 14.8 V trip.
+  const double ceiling = alternatorHardShutdownV(p) - k::CV_TUNING_TRIP_MARGIN_V;
+  target_ =
+      high_ ? std::max(normalTarget, std::min(normalTarget + p.cvWaveAmplitudeV, ceiling)) : normalTarget;
   return target_;
 }
 

@@ -17,7 +17,6 @@ struct GovernorLimits {
 
 // finalMin = max(rpmMinDuty, MinDuty): even GOV_BYPASS_SLEW respects the tach
 // floor and the hard bounds; only the descent speed is unrestricted.
-// Inline: it runs on every tick of every normal mode (Regulator::step cost).
 inline double governor_apply(double lastApplied, double request, GovMode govMode, double rpmMinDuty,
                              double dtSec, const GovernorLimits& lim) {
   const double hardMax = std::clamp(lim.MaxDuty, 0.0, 100.0);

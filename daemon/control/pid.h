@@ -12,11 +12,6 @@
 // Unlike the library, Compute() takes the real dt of this compute, so the
 // same gains give the same response at any tick rate (the library assumes its
 // nominal SampleTime). Plain state, no allocation.
-//
-// The setters, the clamp and the trackers are defined here, inline: the
-// control law re-applies its tunings and limits on every AUTO tick (the
-// parameters may change between any two ticks), and as out-of-line calls
-// they were a measurable share of Regulator::step.
 #include <algorithm>
 #include <cmath>
 

@@ -17,8 +17,6 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
-#include <cstring>
-#include <type_traits>
 
 #include "battery/battery_monitor.h"
 #include "control/control_law.h"
@@ -35,23 +33,10 @@ bool isRampMode(FieldControlMode m) {
 }
 }  // namespace
 
-// The bytes of TickSnapshot that selectFieldMode() reads: everything after
-// now, to the end of the struct. No implicit padding inside (it would make
-// equal snapshots compare unequal and read indeterminate bytes): the flags
-// are 20 bools (five named padding) and 2 enums with no gap, the operator
-// part 12 bools (three named padding). Adding a member anywhere changes a
-// size below and fails to compile until the key is looked at again.
-constexpr std::size_t kModeKeyBegin = offsetof(TickSnapshot, prot);
-constexpr std::size_t kModeKeyBytes = sizeof(TickSnapshot) - kModeKeyBegin;
-static_assert(sizeof(ProtectionFlags) == 20 * sizeof(bool) + sizeof(FieldControlMode) + sizeof(Reason));
-static_assert(kModeKeyBegin == sizeof(TimeNs) && offsetof(TickSnapshot, now) == 0);
-static_assert(kModeKeyBytes == sizeof(ProtectionFlags) + 12 * sizeof(bool));
-
 struct Regulator::State {
   explicit State(const Params& params) : p(params), law(params), prot(params), bat(params) {}
 
   Params p;
-  double inaBovlVolts = 0.0;  // voltageHardwareLimit(p), computed at setParams (not per tick)
   ControlLaw law;
   ProtectionSupervisor prot;
   BatteryMonitor bat;
@@ -71,14 +56,6 @@ struct Regulator::State {
   TimeNs now = 0;
   GovMode tickGovMode = GovMode::GOV_NORMAL_SLEW;  // the last step's govMode (telemetry)
 
-  // Mode-selection memo: selectFieldMode() is a pure function of the
-  // snapshot and does not read snap.now, so the decision for the same bytes
-  // after snap.now (kModeKeyBytes, no padding) is the same decision; nearly
-  // every tick repeats the last one.
-  bool haveModeMemo = false;
-  std::array<unsigned char, kModeKeyBytes> modeKey{};
-  ModeDecision modeMemo;
-
   // Command results waiting for the next step's event batch.
   std::array<Event, 8> pending{};
   std::size_t pendingCount = 0;
@@ -88,15 +65,12 @@ struct Regulator::State {
 };
 
 Regulator::Regulator(const Params& params) : s_(std::make_unique<State>(params)) {
-  s_->inaBovlVolts = voltageHardwareLimit(params);
-  s_->out.inaBovlVolts = s_->inaBovlVolts;
+  s_->out.inaBovlVolts = voltageHardwareLimit(params);
 }
 Regulator::~Regulator() = default;
 
 void Regulator::setParams(const Params& params) {
   s_->p = params;
-  s_->inaBovlVolts = voltageHardwareLimit(params);
-  s_->law.setParams(params);
   s_->prot.setParams(params);
   s_->bat.setParams(params);
 }
@@ -167,7 +141,7 @@ bool Regulator::command(const Command& cmd) {
   return ok;
 }
 
-[[gnu::flatten]] const Outputs& Regulator::step(const Inputs& in) {
+const Outputs& Regulator::step(const Inputs& in) {
   State& s = *s_;
   const Params& p = s.p;
   Outputs& out = s.out;
@@ -200,7 +174,9 @@ bool Regulator::command(const Command& cmd) {
   cs.socKnown = s.bat.socKnown();
   s.law.updateFilters(cs, p);
 
-  // 3. Protection detectors and sustained timers.
+  // 3. Protection detectors and sustained timers. A resting field (last
+  // tick) quiets the tach: the RPM gate must know it is not a stopped engine.
+  s.prot.setFieldResting(s.law.fieldResting());
   s.prot.updateDetectors(in, MeasuredAmps, ev);
 
   // 4. Charging stage (suppressed in override modes and manual).
@@ -210,10 +186,7 @@ bool Regulator::command(const Command& cmd) {
   // 5. Immutable snapshot and mode selection by priority.
   TickSnapshot snap;
   snap.now = in.now;
-  // One block copy: the member-wise assignment of these plain bools and
-  // enums cost ~6 more instructions per tick once Regulator::step is flattened.
-  static_assert(std::is_trivially_copyable_v<ProtectionFlags>);
-  std::memcpy(&snap.prot, &s.prot.flags(), sizeof(ProtectionFlags));
+  snap.prot = s.prot.flags();
   snap.limpHome = s.limpHome;
   snap.manualMode = manualMode;
   snap.sysOff = s.opOff;
@@ -223,13 +196,7 @@ bool Regulator::command(const Command& cmd) {
   snap.weatherModeActive = p.weatherModeEnabled && s.currentWeatherMode;
   snap.idleStage = s.law.stages().inIdleStage();
   snap.autoZeroActive = autoZeroActive;
-  const unsigned char* key = reinterpret_cast<const unsigned char*>(&snap) + kModeKeyBegin;
-  if (!s.haveModeMemo || std::memcmp(key, s.modeKey.data(), kModeKeyBytes) != 0) {
-    s.modeMemo = selectFieldMode(snap);
-    std::memcpy(s.modeKey.data(), key, kModeKeyBytes);
-    s.haveModeMemo = true;
-  }
-  const ModeDecision d = s.modeMemo;
+  const ModeDecision d = selectFieldMode(snap);
 
   // 6. Mode transitions: bumpless enter_sys_* and the mode-change event.
   if (s.firstTick || d.mode != s.lastMode) {
@@ -278,6 +245,7 @@ bool Regulator::command(const Command& cmd) {
     const double uTargetRaw = s.law.computeUTarget(cs, p);
     FastOvInputs fi;
     fi.voltageControlActive = s.law.voltageControlActive();
+    fi.floatStage = s.law.stages().inFloatStage();
     fi.ChargingVoltageTarget = s.law.ChargingVoltageTarget();
     fi.uTargetAmps = uTargetRaw;
     fi.setpointLimited = s.law.setpointLimited();
@@ -295,7 +263,7 @@ bool Regulator::command(const Command& cmd) {
     apply.forceBypassSlew = fa.forceBypassSlew;
     apply.sensorFailureBypass = snap.prot.voltageImplausible || snap.prot.voltageDisagreeCritical;
     duty = s.law.finishAuto(cs, p, apply, ev);
-    field = true;
+    field = !s.law.fieldResting();  // a full bank at the RPM floor rests the field
     fastOvActive = fa.fastOvClampActive;
     govMode = s.law.govMode();
   } else {
@@ -327,7 +295,7 @@ bool Regulator::command(const Command& cmd) {
   out.dutyPct = field ? std::clamp(duty, 0.0, 100.0) : 0.0;
   out.fieldEnable = field;
   out.inaFastMode = field;  // fast conversions while the field is on (Group 1 dv/dt, ALERT speed)
-  out.inaBovlVolts = s.inaBovlVolts;
+  out.inaBovlVolts = voltageHardwareLimit(p);
 
   // 8. SoC and energy.
   s.bat.UpdateBatterySOC(in, MeasuredAmps, ev);
@@ -354,10 +322,7 @@ bool Regulator::command(const Command& cmd) {
   t.fast_ov_active = fastOvActive;
   t.alarm = out.buzzer;
   s.tickGovMode = govMode;
-  if (in.telemetryWanted)
-    fillStateTelemetry();
-  else
-    s.law.telemetrySkipped();
+  if (in.telemetryWanted) fillStateTelemetry();
   return out;
 }
 
@@ -372,7 +337,7 @@ const Outputs& Regulator::completeTelemetry() {
 void Regulator::fillStateTelemetry() {
   State& s = *s_;
   Telemetry& t = s.out.telemetry;
-  s.law.updateTelemetry(t.control);
+  s.law.fillTelemetry(t.control);
   t.control.govMode = s.tickGovMode;
   t.control.limpHome = s.lastMode == FieldControlMode::MODE_LIMP_HOME;
   s.prot.fillTelemetry(t.protection);

@@ -7,6 +7,13 @@
 
 namespace xr {
 
+namespace {
+// The time base of TempPIDFilterAlpha (the DS18B20 task's nominal period).
+constexpr double kFilterSecond = 1.0;
+// Far above any alternator's heating or cooling rate (~0.1 degF/s at most).
+constexpr double kMaxPlausibleSlopeFPerSec = 1.0;
+}  // namespace
+
 ThermalDerate::ThermalDerate() : tempPID_(0, 0, 0, Pid::REVERSE) {}
 
 void ThermalDerate::reset() { *this = ThermalDerate(); }
@@ -19,30 +26,30 @@ double ThermalDerate::update(const ThermalInputs& in, const Params& p) {
     holding_ = false;
     return thermalPenaltyAmps_;
   }
-  // Configured once per Params (paramsChanged(), reset()) instead of every
-  // tick, with the same result: the setters are idempotent for equal values,
-  // nothing else writes the gains, limits or setpoint, and the re-clamp in
-  // SetOutputLimits is a no-op between changes because every writer of
-  // output / outputSum below (Compute, TrackIntegratorTo, ResetIntegratorTo,
-  // SetMode) clamps to these same limits. AUTOMATIC, once set, stays.
-  if (pidStale_) {
-    tempPID_.SetTunings(p.TempPIDKp, p.TempPIDKi, p.TempPIDKd);
-    tempPID_.SetOutputLimits(0.0, std::max(1.0, p.MaxTableValue));
-    tempPID_.SetTrackingGain(p.PIDTrackingGain);
-    tempPID_.setpoint = p.TemperatureLimitF;
-    if (tempPID_.GetMode() != Pid::AUTOMATIC) tempPID_.SetMode(Pid::AUTOMATIC);
-    pidStale_ = false;
-  }
+  tempPID_.SetTunings(p.TempPIDKp, p.TempPIDKi, p.TempPIDKd);
+  tempPID_.SetOutputLimits(0.0, std::max(1.0, p.MaxTableValue));
+  tempPID_.SetTrackingGain(p.PIDTrackingGain);
+  // Regulate with a margin under the limit: T1 warns at the limit +
+  // TempWarnExcess (2 degF by default), closer than the loop's own ripple.
+  tempPID_.setpoint = p.TemperatureLimitF - p.TempRegulationMarginF;
+  if (tempPID_.GetMode() != Pid::AUTOMATIC) tempPID_.SetMode(Pid::AUTOMATIC);
 
   // Stale or implausible input: the PID halts and the penalty HOLDS its last
   // value (never zeroed); T5 cuts the field if it stays stale.
   holding_ = !in.tempValid || !std::isfinite(in.TempToUse);
   if (holding_) return thermalPenaltyAmps_;
 
-  if (in.tempFresh || !primed_) {
-    tempFiltered_ =
-        primed_ ? tempFiltered_ + p.TempPIDFilterAlpha * (in.TempToUse - tempFiltered_) : in.TempToUse;
+  if (!primed_) {
+    tempFiltered_ = in.TempToUse;
+    lastSampleNs_ = in.now;
     primed_ = true;
+  } else if (in.tempFresh) {
+    // TempPIDFilterAlpha is the weight of one second: a sensor read twice as
+    // often gets half the step per sample twice, the same smoothing in time.
+    const double dt = std::max(0.0, toSec(in.now - lastSampleNs_));
+    const double alpha = 1.0 - std::pow(1.0 - std::clamp(p.TempPIDFilterAlpha, 0.0, 1.0), dt / kFilterSecond);
+    tempFiltered_ += alpha * (in.TempToUse - tempFiltered_);
+    lastSampleNs_ = in.now;
   }
 
   const TimeNs interval = fromMs(p.TempPIDIntervalMs);
@@ -57,11 +64,16 @@ double ThermalDerate::update(const ThermalInputs& in, const Params& p) {
       const int newest = (slopeHead_ + k::THERMAL_SLOPE_BUF - 1) % k::THERMAL_SLOPE_BUF;
       const int oldest = (slopeHead_ + k::THERMAL_SLOPE_BUF - slopeCount_) % k::THERMAL_SLOPE_BUF;
       const double span = toSec(slopeStamps_[newest] - slopeStamps_[oldest]);
-      thermalSlopeFPerSec_ =
+      const double slope =
           span > 0 ? (thermalSlopeBuffer_[newest] - thermalSlopeBuffer_[oldest]) / span : 0.0;
+      // An alternator cannot heat or cool this fast: such a slope is a sensor
+      // glitch in the window, and the last plausible slope stands.
+      if (std::fabs(slope) <= kMaxPlausibleSlopeFPerSec) thermalSlopeFPerSec_ = slope;
     }
     projectedTempF_ = tempFiltered_ + thermalSlopeFPerSec_ * p.ThermalLookaheadSec;
-    tempPID_.input = projectedTempF_;
+    // A falling projection must not hide a present temperature already
+    // over the setpoint (cooling slope while still too hot).
+    tempPID_.input = std::max(projectedTempF_, tempFiltered_);
     tempPID_.Compute(dt);
     lastComputeNs_ = in.now;
     haveCompute_ = true;

@@ -2,6 +2,10 @@
 // T0: the temperature PID (field-control.md "Temperature PID (tempPID)",
 // safeties-and-protections.md "T0 — Thermal PID"). REVERSE action on the
 // predictive projectedTempF; output thermalPenaltyAmps, slew-limited.
+// Ours (docs/deviations.md "Thermal loop"): it regulates at
+// TemperatureLimitF - TempRegulationMarginF, on max(projected, present), with
+// a filter whose smoothing is per second (not per sample) and a slope that
+// ignores physically impossible jumps.
 #include <array>
 
 #include "control/pid.h"
@@ -28,9 +32,6 @@ class ThermalDerate {
   // Once per control tick. Returns thermalPenaltyAmps.
   double update(const ThermalInputs& in, const Params& p);
   void reset();
-  // The Params changed: the temperature PID's gains and limits are applied
-  // again on the next update() (and only then; see there).
-  void paramsChanged() { pidStale_ = true; }
 
   double tempFiltered() const { return tempFiltered_; }
   double projectedTempF() const { return projectedTempF_; }
@@ -50,8 +51,8 @@ class ThermalDerate {
   std::array<double, k::THERMAL_SLOPE_BUF> thermalSlopeBuffer_{};
   std::array<TimeNs, k::THERMAL_SLOPE_BUF> slopeStamps_{};
   int slopeCount_ = 0, slopeHead_ = 0;
+  TimeNs lastSampleNs_ = 0;  // the last temperature sample taken into tempFiltered
   bool holding_ = false;
-  bool pidStale_ = true;  // tempPID_ not yet configured from the current Params
 };
 
 }  // namespace xr

@@ -52,6 +52,12 @@ inline constexpr double CV_E_NEEDED_MIN_V = 0.02;
 inline constexpr double CV_OVERSHOOT_RELEASE_V = 0.02;  // GOV bypass latch release
 // "Absorption": tail exit suppressed while thermally constrained.
 inline constexpr double TAIL_THERMAL_PENALTY_A = 2.0;
+// Ours (docs/deviations.md "Tail current"): the tail counts only while IBV is
+// within this of the absorption target (the voltage loop holds it).
+inline constexpr double TAIL_HOLD_BAND_V = 0.05;
+// Ours ("Full bank"): after a field rest ends, the RPM gate keeps trusting the
+// pre-rest RPM this long while the tach signal comes back (LM2907 ~2 s).
+inline constexpr std::int64_t RPM_REST_GRACE_MS = 3000;
 // "Temperature PID": slope ring buffer.
 inline constexpr int THERMAL_SLOPE_BUF = 13;
 // "CVTuningMode".
@@ -60,6 +66,8 @@ inline constexpr double CV_LOW_GRACE_SEC = 1.0;
 inline constexpr double CV_LOW_RAMP_SEC = 10.0;
 inline constexpr double CV_SETTLE_V_THRESH = 0.05;
 inline constexpr int TUNING_LOG_SIZE = 50;
+// Ours: CVTuningMode's HIGH target stays this far under AlternatorHardShutdownV.
+inline constexpr double CV_TUNING_TRIP_MARGIN_V = 0.2;
 // "TuningMode": base of the square wave.
 inline constexpr double TUNING_BASE_A = 5.0;
 inline constexpr double TUNING_SCORE_SLEW_A_PER_S = 1.0;

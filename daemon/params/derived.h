@@ -20,9 +20,8 @@ struct VoltageRange {
 VoltageRange plausibleVoltageRange(const Params& p);
 // 1 / 2 / 4 V by system class.
 double criticalDisagreementThreshold(const Params& p);
-// AlternatorHardShutdownV, or BulkVoltage + 0.3 V when it is 0 (first boot).
-// Inline: the control law reads it on every tick (an out-of-line call cost
-// more than the comparison it feeds).
+// AlternatorHardShutdownV, or BulkVoltage + 0.3 V when it is 0 (it then
+// follows BulkVoltage; docs/deviations.md "AlternatorHardShutdownV").
 inline double alternatorHardShutdownV(const Params& p) {
   return p.AlternatorHardShutdownV > 0.0 ? p.AlternatorHardShutdownV
                                          : p.BulkVoltage + k::HARD_SHUTDOWN_DEFAULT_OFFSET_V;

@@ -2,11 +2,11 @@
 // safeties-and-protections.md, with its sustained timer. Flags only: which
 // mode each flag acts in is decided by selectFieldMode().
 #include <algorithm>
-#include <bit>
 #include <cmath>
 
 #include "core/finite.h"
 #include "params/constants.h"
+#include "params/derived.h"
 #include "protection/protection_supervisor.h"
 
 namespace xr {
@@ -19,10 +19,7 @@ constexpr std::int64_t kSensorBootGraceMs = 2000;
 
 }  // namespace
 
-// The detector steps below are `inline` (defined and used only in this file)
-// so they fold into updateDetectors(): one call per tick instead of six.
-
-inline bool ProtectionSupervisor::sustained(TimerState& t, bool cond, TimeNs hold) const {
+bool ProtectionSupervisor::sustained(TimerState& t, bool cond, TimeNs hold) const {
   if (!cond) {
     t.since = -1;
     return false;
@@ -64,13 +61,15 @@ void ProtectionSupervisor::updateDetectors(const Inputs& in, double MeasuredAmps
 // release check 3 s after latching, then a definitive recheck every 10 s.
 // The seed's 5 s new-event poll is tightened to every 250 ms check (the
 // hardware has already cut GPIO4; the sooner the software agrees the better).
-inline void ProtectionSupervisor::updateInaLatch(const Inputs& in, EventBatch& ev) {
+void ProtectionSupervisor::updateInaLatch(const Inputs& in, EventBatch& ev) {
+  flags_.inaAbsent = p_.INADisconnected;
   if (p_.INADisconnected) {
     flags_.inaOvervoltageLatched = false;
     return;
   }
-  if (now_ < inaNextCheck_) return;
-  inaNextCheck_ = now_ + fromMs(k::ALARM_CHECK_MS);
+  // Ours: the alert is looked at on every tick the driver read DIAG_ALRT
+  // (the chip's alert does not latch, so a 50 ms pulse polled every 250 ms
+  // was missed 8 times in 10); the release checks keep the seed's cadence.
   if (!flags_.inaOvervoltageLatched) {
     if (in.inaBusOvervoltage) {
       flags_.inaOvervoltageLatched = true;
@@ -79,7 +78,7 @@ inline void ProtectionSupervisor::updateInaLatch(const Inputs& in, EventBatch& e
       lastTripReason_ = Reason::REASON_INA_OVERVOLTAGE;
       lastTripTime_ = now_;
       push(ev, EventCode::InaLatchSet, EventLevel::Critical, Reason::REASON_INA_OVERVOLTAGE, IBV_,
-           d_.hwLimitV);
+           voltageHardwareLimit(p_));
     }
   } else if (now_ >= inaNextRelease_) {
     if (!in.inaBusOvervoltage) {
@@ -94,10 +93,9 @@ inline void ProtectionSupervisor::updateInaLatch(const Inputs& in, EventBatch& e
 }
 
 // Alternator hard shutdown, disagreement warning/critical, implausibility.
-[[gnu::always_inline]] inline void ProtectionSupervisor::updateVoltageSensors(const Inputs& in,
-                                                                              EventBatch& ev) {
+void ProtectionSupervisor::updateVoltageSensors(const Inputs& in, EventBatch& ev) {
   // Alternator Hard Shutdown: IBV > AlternatorHardShutdownV.
-  const double hs = d_.hardShutdownV;
+  const double hs = alternatorHardShutdownV(p_);
   flags_.altHardShutdown = finite(IBV_) && IBV_ > hs;
   // Co-firing with the INA228 alert: one log line (InaLatchSet), not two.
   if (!(flags_.altHardShutdown && flags_.inaOvervoltageLatched))
@@ -115,12 +113,14 @@ inline void ProtectionSupervisor::updateInaLatch(const Inputs& in, EventBatch& e
           !finite(BatteryV_) || !finite(IBV_) || BatteryV_ < k::SENSOR_DEAD_V || IBV_ < k::SENSOR_DEAD_V;
       const double diff = dead ? 0.0 : std::fabs(BatteryV_ - IBV_);
       // NaN / < 0.1 V: critical at once, no debounce.
-      disC = sustained(disagreeCritT_, !dead && diff > d_.criticalDisagreeV,
+      disC = sustained(disagreeCritT_, !dead && diff > criticalDisagreementThreshold(p_),
                        fromMs(k::VoltageDisagreeCriticalTimeoutMs)) ||
              dead;
-      disW = sustained(disagreeWarnT_, !dead && diff > p_.VoltageDisagreeThreshold, d_.disagreeWarnHold);
+      disW = sustained(disagreeWarnT_, !dead && diff > p_.VoltageDisagreeThreshold,
+                       fromSec(p_.VoltageDisagreeTimeout));
     }
-    auto outside = [&](double v) { return !finite(v) || v < d_.plausibleMin || v > d_.plausibleMax; };
+    const VoltageRange range = plausibleVoltageRange(p_);
+    auto outside = [&](double v) { return !finite(v) || v < range.min || v > range.max; };
     impl = outside(IBV_) && outside(BatteryV_);  // single-sensor implausibility passes
   }
   if (!inaUsable || notReadYet || suppress) {
@@ -142,15 +142,8 @@ inline void ProtectionSupervisor::updateInaLatch(const Inputs& in, EventBatch& e
 }
 
 // T1, T2, T3 (IgnoreTemperature), T4 and T5 (not ignorable, see docs).
-[[gnu::always_inline]] inline void ProtectionSupervisor::updateTemperature(const Inputs& in, EventBatch& ev) {
+void ProtectionSupervisor::updateTemperature(const Inputs& in, EventBatch& ev) {
   const Reading& tr = p_.TempSource == 0 ? in.AlternatorTemperatureF : in.thermistorF;
-  // Quiet fast path: nothing tripped, logged or timing on the last full
-  // evaluation, the same value (bit for bit), a reading and a heartbeat no
-  // older than then, and before the first instant T5 or T4 could fire with
-  // those older stamps: every result below would be the same again.
-  if (tempQuiet_ && now_ <= tempQuietUntil_ && std::bit_cast<std::uint64_t>(tr.value) == tempQuietBits_ &&
-      tr.stamp >= tempQuietStamp_ && in.tempTaskHeartbeat >= tempQuietHb_)
-    return;
   TempToUse_ = tr.value;
   const bool inRange = finite(tr.value) && tr.value >= k::TEMP_VALID_MIN_F && tr.value <= k::TEMP_VALID_MAX_F;
   // T5: never read after 60 s of uptime; older than 20 s; NaN / out of range.
@@ -161,7 +154,10 @@ inline void ProtectionSupervisor::updateInaLatch(const Inputs& in, EventBatch& e
   const double t = tr.value;
 
   const bool t1 = usable && t > p_.TemperatureLimitF + p_.TempWarnExcess;
-  const bool t3 = usable && t > p_.TemperatureLimitF + p_.TempCritExcess;
+  // Ours: a T3 that fired is not released by a reading going stale or out
+  // of range (MANUAL has no T5 to stop it); only a usable cooler reading does.
+  const bool t3 =
+      usable ? t > p_.TemperatureLimitF + p_.TempCritExcess : flags_.tempCritical && !p_.IgnoreTemperature;
   // T2: the T1 condition held continuously; latched until reenable_field.
   if (sustained(t1T_, t1, fromSec(p_.TempSustainedTimeout)) && !flags_.tempSustained) {
     flags_.tempSustained = true;
@@ -189,40 +185,40 @@ inline void ProtectionSupervisor::updateInaLatch(const Inputs& in, EventBatch& e
     push(ev, EventCode::TempTaskHung, EventLevel::Critical, Reason::NONE, toSec(now_ - hb));
   evT4_.logged = hung;
   flags_.tempTaskAlarm = hung;
-
-  tempQuiet_ = tr.stamp > 0 && !stale && !t1 && !t3 && !hung && t1T_.since < 0 && !evT1_.logged &&
-               !evT3_.logged && !evT5_.logged;
-  if (tempQuiet_) {
-    tempQuietBits_ = std::bit_cast<std::uint64_t>(tr.value);
-    tempQuietStamp_ = tr.stamp;
-    tempQuietHb_ = in.tempTaskHeartbeat;
-    // stale needs now - stamp > TEMP_STALE_MS; hung needs now - hb > TEMP_TASK_TIMEOUT.
-    tempQuietUntil_ = std::min(tr.stamp + fromMs(k::TEMP_STALE_MS), hb + fromMs(k::TEMP_TASK_TIMEOUT));
-  }
 }
 
 // Hard overcurrent, RPM gate, current data stale.
-[[gnu::always_inline]] inline void ProtectionSupervisor::updateCurrent(const Inputs& in, double MeasuredAmps,
-                                                                       EventBatch& ev) {
-  const double trip = d_.hardOcTripA;
-  flags_.hardOvercurrent = sustained(hardOcT_, finite(MeasuredAmps) && MeasuredAmps > trip, d_.hardOcHold);
+void ProtectionSupervisor::updateCurrent(const Inputs& in, double MeasuredAmps, EventBatch& ev) {
+  const double trip = hardOCTripAmps(p_);
+  flags_.hardOvercurrent =
+      sustained(hardOcT_, finite(MeasuredAmps) && MeasuredAmps > trip, fromMs(p_.HardOCDebounceMs));
   edge(evHardOc_, flags_.hardOvercurrent, Reason::REASON_HARD_OVERCURRENT, MeasuredAmps, trip, ev,
        EventLevel::Critical);
 
   // RPM < MinRPMForField; an unknown RPM counts as below (field stays off).
-  flags_.rpmBelowMin = !p_.IgnoreRPM && !(finite(rpm_) && rpm_ >= p_.MinRPMForField);
+  // Ours: a resting field (control's full-bank rest) quiets a stator tach;
+  // during the rest and RPM_REST_GRACE_MS after, an RPM that was fine when
+  // the rest began still counts (docs/deviations.md "Full bank at light load").
+  const bool rpmLive = finite(rpm_) && rpm_ >= p_.MinRPMForField;
+  if (fieldResting_ && !wasResting_) rpmOkAtRestStart_ = !flags_.rpmBelowMin;
+  if (!fieldResting_ && wasResting_) restEndedAt_ = now_;
+  wasResting_ = fieldResting_;
+  const bool restHold =
+      rpmOkAtRestStart_ &&
+      (fieldResting_ || (restEndedAt_ >= 0 && now_ - restEndedAt_ < fromMs(k::RPM_REST_GRACE_MS)));
+  flags_.rpmBelowMin = !p_.IgnoreRPM && !rpmLive && !restHold;
   edge(evRpm_, flags_.rpmBelowMin, Reason::REASON_RPM_LOW, rpm_, p_.MinRPMForField, ev, EventLevel::Info);
 
   // Current data stale (our definition, docs/protections.md): no fresh CH1
   // sample for CurrentStaleMs, or no fresh INA228 sample for CurrentStaleMs
   // in fast mode / CurrentStaleMs + 2 slow periods in slow mode (field off,
   // ~1.05 s conversions) and for one slow period after switching to fast.
-  const TimeNs win = d_.currentStaleWin;
+  const TimeNs win = fromMs(p_.CurrentStaleMs);
   auto staleOf = [&](TimeNs stamp, TimeNs window) { return now_ - (stamp != 0 ? stamp : boot_) > window; };
   const bool ch1Stale = staleOf(in.altCurrentRaw.stamp, win);
   const bool settledFast =
       inaFastModeActive_ && inaFastSince_ >= 0 && now_ - inaFastSince_ >= fromMs(k::INA_SLOW_INTERVAL_MS);
-  const TimeNs inaWin = settledFast ? win : d_.currentStaleWinSlow;
+  const TimeNs inaWin = settledFast ? win : win + 2 * fromMs(k::INA_SLOW_INTERVAL_MS);
   const bool inaStale = !p_.INADisconnected && staleOf(std::max(in.IBV.stamp, in.Bcur.stamp), inaWin);
   flags_.currentStale = ch1Stale || inaStale;
   edge(evCur_, flags_.currentStale, Reason::REASON_CURRENT_STALE, ch1Stale ? 1.0 : 0.0, inaStale ? 1.0 : 0.0,
@@ -232,7 +228,7 @@ inline void ProtectionSupervisor::updateInaLatch(const Inputs& in, EventBatch& e
 // Fresh INA228 samples feed the Group 1 dv/dt EMA and the load-dump dBcur/dt.
 // "dvdt sample window: 1–100 ms between INA samples ... slow mode rejected —
 // dvdt holds last value."
-inline void ProtectionSupervisor::updateFastSamples(const Inputs& in) {
+void ProtectionSupervisor::updateFastSamples(const Inputs& in) {
   if (in.IBV.fresh && in.IBV.stamp != lastIbvStamp_ && finite(in.IBV.value)) {
     if (lastIbvStamp_ != 0 && finite(lastIbvSample_)) {
       const double dt = toSec(in.IBV.stamp - lastIbvStamp_);

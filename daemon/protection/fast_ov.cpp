@@ -38,12 +38,15 @@ FastOvAction ProtectionSupervisor::runFastOvSupervisors(const FastOvInputs& x) {
   FastOvAction a;
   const double target = x.ChargingVoltageTarget;
   // nearBulk = (ProtectionProxGateV <= 0) OR (target >= BulkVoltage - ProtectionProxGateV)
-  a.nearBulk = d_.nearBulkAlways || target >= d_.nearBulkMinV;
+  a.nearBulk = p_.ProtectionProxGateV <= 0.0 || target >= p_.BulkVoltage - p_.ProtectionProxGateV;
   const double base = std::max(0.0, x.uTargetAmps);  // fastOvBaseCap
   a.fastOvCurrentCap = base;
   a.cv_I = x.cv_I;
 
-  const bool armed = x.voltageControlActive && a.nearBulk && std::isfinite(IBV_);
+  // Ours (docs/deviations.md "Fast over-voltage supervisors in float"): FLOAT
+  // arms them too, whatever its distance from BulkVoltage. A load dump or a
+  // surplus of field in float is as real as in absorption.
+  const bool armed = x.voltageControlActive && (a.nearBulk || x.floatStage) && std::isfinite(IBV_);
   if (!armed) {
     // CV inactive or far from bulk: nothing throttles; the CV tracker owns cv_I.
     // resetFastOv() empties the Group 3 window (maCount_ = maHead_ = 0), so a
@@ -56,7 +59,7 @@ FastOvAction ProtectionSupervisor::runFastOvSupervisors(const FastOvInputs& x) {
   }
 
   // Group 3 signal window: every fresh sample since the last reset.
-  const int maN = d_.iexMaN;
+  const int maN = std::clamp(p_.IExcessMA_N, 1, static_cast<int>(maBuf_.size()));
   if (x.altCurrentFresh && std::isfinite(x.MeasuredAmps)) {
     maBuf_[static_cast<std::size_t>(maHead_)] = x.MeasuredAmps;
     maHead_ = (maHead_ + 1) % static_cast<int>(maBuf_.size());
@@ -86,11 +89,8 @@ FastOvAction ProtectionSupervisor::runFastOvSupervisors(const FastOvInputs& x) {
     const int n = std::min(maN, maCount_);
     if (n > 0) {
       double sum = 0.0;
-      // Newest to oldest, as before; the ring size is a power of two, so the
-      // wrap is a mask instead of a signed modulo (same index, same sum).
-      static_assert((std::tuple_size_v<decltype(maBuf_)> & (std::tuple_size_v<decltype(maBuf_)> - 1)) == 0);
-      constexpr int kMask = static_cast<int>(std::tuple_size_v<decltype(maBuf_)>) - 1;
-      for (int i = 1; i <= n; ++i) sum += maBuf_[static_cast<std::size_t>((maHead_ - i) & kMask)];
+      const int size = static_cast<int>(maBuf_.size());
+      for (int i = 1; i <= n; ++i) sum += maBuf_[static_cast<std::size_t>((maHead_ - i + size) % size)];
       sig = sum / n;
     }
   } else if (p_.IExcessSigSrc == 1) {

@@ -32,6 +32,10 @@ ModeDecision selectFieldMode(const TickSnapshot& s) {
   const ProtectionFlags& f = s.prot;
   // 0. INA228 latch: all modes, Limp Home included (pre-gate).
   if (f.inaOvervoltageLatched) return {M::MODE_CRITICAL_RAMP, Reason::REASON_INA_OVERVOLTAGE};
+  // 0b. Alternator hard shutdown: an immediate cut in every mode (ours, after
+  // the original firmware's later versions; the seed's warning ramp went on
+  // feeding a bank already over its trip for seconds).
+  if (f.altHardShutdown) return {M::MODE_CRITICAL_RAMP, Reason::REASON_ALT_HARD_SHUTDOWN};
   // L. Limp Home bypasses the whole protection chain.
   if (s.limpHome) {
     if (Reason r = hardDisableReason(s); r != Reason::NONE) return {M::MODE_DISABLED_RAMP, r};
@@ -56,13 +60,15 @@ ModeDecision selectFieldMode(const TickSnapshot& s) {
   if (f.currentStale) return {M::MODE_CRITICAL_RAMP, Reason::REASON_CURRENT_STALE};
   if (latched(f, M::MODE_CRITICAL_RAMP)) return {M::MODE_CRITICAL_RAMP, f.rampLatchedReason};
   // 5. Warning ramp.
-  if (f.altHardShutdown) return {M::MODE_WARNING_RAMP_AND_LOCKOUT, Reason::REASON_ALT_HARD_SHUTDOWN};
   if (f.tempSustained) return {M::MODE_WARNING_RAMP_AND_LOCKOUT, Reason::REASON_TEMP_SUSTAINED};
   if (f.tempWarning) return {M::MODE_WARNING_RAMP_AND_LOCKOUT, Reason::REASON_TEMP_WARNING};
   if (f.voltageDisagreeWarning)
     return {M::MODE_WARNING_RAMP_AND_LOCKOUT, Reason::REASON_VOLTAGE_DISAGREE_WARNING};
   if (latched(f, M::MODE_WARNING_RAMP_AND_LOCKOUT))
     return {M::MODE_WARNING_RAMP_AND_LOCKOUT, f.rampLatchedReason};
+  // 5b. No INA228 (INADisconnected): AUTO has no voltage feedback and does
+  // not run; MANUAL and Limp Home above still do.
+  if (f.inaAbsent) return {M::MODE_DISABLED_RAMP, Reason::REASON_VOLTAGE_IMPLAUSIBLE};
   // 6. Auto-zero needs the field off.
   if (s.autoZeroActive) return {M::MODE_LOCKOUT_RAMP, Reason::REASON_AUTO_ZERO};
   // 7. Charging disabled: clean ramp, no alarm.
@@ -76,7 +82,8 @@ Reason selectFieldEventReason(const TickSnapshot& s) { return selectFieldMode(s)
 
 bool isImmediateCutReason(Reason r) {
   return r == Reason::REASON_INA_OVERVOLTAGE || r == Reason::REASON_HARD_OVERCURRENT ||
-         r == Reason::REASON_TEMP_CRITICAL || r == Reason::REASON_RPM_LOW;
+         r == Reason::REASON_TEMP_CRITICAL || r == Reason::REASON_RPM_LOW ||
+         r == Reason::REASON_ALT_HARD_SHUTDOWN;
 }
 
 bool isNormalMode(FieldControlMode m) {

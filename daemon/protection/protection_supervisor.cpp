@@ -10,33 +10,9 @@
 
 namespace xr {
 
-ProtectionSupervisor::ProtectionSupervisor(const Params& p) : p_(p) {
-  alarmMsgAt_.fill(-1);
-  computeDerived();
-}
+ProtectionSupervisor::ProtectionSupervisor(const Params& p) : p_(p) { alarmMsgAt_.fill(-1); }
 
-void ProtectionSupervisor::setParams(const Params& p) {
-  p_ = p;
-  computeDerived();
-  tempQuiet_ = false;
-}
-
-void ProtectionSupervisor::computeDerived() {
-  d_.hardShutdownV = alternatorHardShutdownV(p_);
-  d_.hwLimitV = voltageHardwareLimit(p_);
-  d_.criticalDisagreeV = criticalDisagreementThreshold(p_);
-  const VoltageRange r = plausibleVoltageRange(p_);
-  d_.plausibleMin = r.min;
-  d_.plausibleMax = r.max;
-  d_.hardOcTripA = hardOCTripAmps(p_);
-  d_.hardOcHold = fromMs(p_.HardOCDebounceMs);
-  d_.disagreeWarnHold = fromSec(p_.VoltageDisagreeTimeout);
-  d_.currentStaleWin = fromMs(p_.CurrentStaleMs);
-  d_.currentStaleWinSlow = d_.currentStaleWin + 2 * fromMs(k::INA_SLOW_INTERVAL_MS);
-  d_.nearBulkAlways = p_.ProtectionProxGateV <= 0.0;
-  d_.nearBulkMinV = p_.BulkVoltage - p_.ProtectionProxGateV;
-  d_.iexMaN = std::clamp(p_.IExcessMA_N, 1, static_cast<int>(maBuf_.size()));
-}
+void ProtectionSupervisor::setParams(const Params& p) { p_ = p; }
 
 void ProtectionSupervisor::push(EventBatch& ev, EventCode c, EventLevel l, Reason r, double a, double b,
                                 int detail) const {
@@ -46,8 +22,8 @@ void ProtectionSupervisor::push(EventBatch& ev, EventCode c, EventLevel l, Reaso
 // Trip / clear events of one detector: the trip on its rising edge, the
 // clear once the condition has stayed false for kEventClearHold (a re-trip
 // inside that window is the same event, not a new one).
-void ProtectionSupervisor::edgeChanged(EventEdge& e, bool now, Reason r, double a, double b, EventBatch& ev,
-                                       EventLevel level, bool logTrip) {
+void ProtectionSupervisor::edge(EventEdge& e, bool now, Reason r, double a, double b, EventBatch& ev,
+                                EventLevel level, bool logTrip) {
   if (now) {
     e.falseSince = -1;
     if (e.logged) return;
@@ -68,7 +44,6 @@ void ProtectionSupervisor::edgeChanged(EventEdge& e, bool now, Reason r, double 
 // "T2 ... No auto-restart — field stays off until manual re-enable or reboot."
 void ProtectionSupervisor::reenableField() {
   flags_.tempSustained = false;
-  tempQuiet_ = false;
   t1T_.since = -1;  // the sustained timer restarts from the re-enable
   if (flags_.rampLatched && flags_.rampLatchedReason == Reason::REASON_TEMP_SUSTAINED)
     flags_.rampLatched = false;

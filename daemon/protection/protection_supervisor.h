@@ -82,6 +82,7 @@ struct ShutdownCommand {
 // Control values the fast-OV supervisors read (AUTO path only).
 struct FastOvInputs {
   bool voltageControlActive = false;
+  bool floatStage = false;  // FLOAT arms the supervisors whatever its target
   double ChargingVoltageTarget = 0.0;
   double uTargetAmps = 0.0;            // fastOvBaseCap: the request before the fast-OV clamp
   double setpointLimited = 0.0;        // slewed setpoint of the previous tick
@@ -115,6 +116,9 @@ class ProtectionSupervisor {
   // (250 ms cadence, release check 3 s, recheck 10 s), dv/dt EMA and
   // dBcur/dt on fresh INA samples, lockout expiry.
   void updateDetectors(const Inputs& in, double MeasuredAmps, EventBatch& ev);
+  // Control's field rest (AUTO, full bank) of the last tick: while it lasts,
+  // and RPM_REST_GRACE_MS after, the RPM gate trusts the RPM seen before it.
+  void setFieldResting(bool resting) { fieldResting_ = resting; }
   const ProtectionFlags& flags() const { return flags_; }
 
   // Step 7: the shutdown sequencer (three paths + lockout + disabled ramp).
@@ -157,45 +161,14 @@ class ProtectionSupervisor {
     TimeNs falseSince = -1;
   };
   static constexpr TimeNs kEventClearHold = 1'000'000'000;
-  // Inline hot path: nearly every tick every detector is idle (or still
-  // holding an already logged trip), which needs no event and no call.
   void edge(EventEdge& e, bool now, Reason r, double a, double b, EventBatch& ev,
-            EventLevel level = EventLevel::Warning, bool logTrip = true) {
-    if (now && e.logged) {
-      e.falseSince = -1;
-      return;
-    }
-    if (!now && !e.logged) return;
-    edgeChanged(e, now, r, a, b, ev, level, logTrip);
-  }
-  void edgeChanged(EventEdge& e, bool now, Reason r, double a, double b, EventBatch& ev, EventLevel level,
-                   bool logTrip);
-  // Parameter-derived values (params/derived.h), computed once per
-  // setParams() instead of on every tick by the detectors.
-  struct Derived {
-    double hardShutdownV = 0.0;                     // alternatorHardShutdownV
-    double hwLimitV = 0.0;                          // voltageHardwareLimit
-    double criticalDisagreeV = 0.0;                 // criticalDisagreementThreshold
-    double plausibleMin = 0.0, plausibleMax = 0.0;  // plausibleVoltageRange
-    double hardOcTripA = 0.0;                       // hardOCTripAmps
-    // Unit conversions and clamps of parameters (exactly the expressions
-    // the detectors and supervisors evaluated per tick before).
-    TimeNs hardOcHold = 0;           // fromMs(HardOCDebounceMs)
-    TimeNs disagreeWarnHold = 0;     // fromSec(VoltageDisagreeTimeout)
-    TimeNs currentStaleWin = 0;      // fromMs(CurrentStaleMs)
-    TimeNs currentStaleWinSlow = 0;  // currentStaleWin + 2 slow INA228 periods
-    bool nearBulkAlways = false;     // ProtectionProxGateV <= 0
-    double nearBulkMinV = 0.0;       // BulkVoltage - ProtectionProxGateV
-    int iexMaN = 1;                  // IExcessMA_N clamped to the window
-  };
-  void computeDerived();
+            EventLevel level = EventLevel::Warning, bool logTrip = true);
   void push(EventBatch& ev, EventCode c, EventLevel l, Reason r, double a = 0.0, double b = 0.0,
             int detail = 0) const;
   void startLockout(EventBatch& ev);
   void resetFastOv();
 
   Params p_;
-  Derived d_;
   ProtectionFlags flags_;
   TimeNs now_ = 0;
   TimeNs boot_ = -1;
@@ -208,17 +181,15 @@ class ProtectionSupervisor {
   double IBV_ = kNoValue, BatteryV_ = kNoValue, Bcur_ = kNoValue, MeasuredAmps_ = kNoValue;
   double TempToUse_ = kNoValue;
   double rpm_ = kNoValue;
+  bool fieldResting_ = false;
+  bool rpmOkAtRestStart_ = false;
+  TimeNs restEndedAt_ = -1;
+  bool wasResting_ = false;
   bool inaFastModeActive_ = false;
   TimeNs inaFastSince_ = -1;   // when the INA228 last entered fast mode (stale window)
   bool tempStaleRaw_ = false;  // "no valid read > 20 s" for the buzzer
-  // updateTemperature's quiet state (skip while nothing can change; cleared by
-  // setParams and reenableField).
-  bool tempQuiet_ = false;
-  std::uint64_t tempQuietBits_ = 0;
-  TimeNs tempQuietStamp_ = 0, tempQuietHb_ = 0, tempQuietUntil_ = 0;
 
   // INA228 software latch.
-  TimeNs inaNextCheck_ = 0;
   TimeNs inaLatchedAt_ = 0;
   TimeNs inaNextRelease_ = 0;
   TimeNs inaClearedAt_ = -1;

@@ -2,9 +2,10 @@
 // ("Three shutdown paths", "Cooldown lockout") plus MODE_DISABLED_RAMP.
 //
 //   immediate cut  -> duty 0 and GPIO4 LOW this tick, phase jumps to PHASE_4,
-//                     no cooldown (INA OV, hard OC, T3, RPM gate)
-//   warning ramp   -> P1 slew to rpmMinDuty at DutyRampRate (instant above
-//                     AlternatorHardShutdownV + 0.5 V), P2 hold
+//                     no cooldown (INA OV, hard OC, T3, RPM gate); the
+//                     alternator hard shutdown (ours: an immediate cut) keeps
+//                     its lockout
+//   warning ramp   -> P1 slew to rpmMinDuty at DutyRampRate, P2 hold
 //                     ShutdownPhase2HoldMs, P3 slew to 0 at DutySlowRampRate,
 //                     P4 hold SettleTimeBeforeCut then GPIO4 LOW, then the
 //                     FIELD_COLLAPSE_DELAY lockout (T2: no lockout, no restart)
@@ -14,6 +15,7 @@
 #include <cmath>
 
 #include "params/constants.h"
+#include "params/derived.h"
 #include "protection/protection_supervisor.h"
 
 namespace xr {
@@ -69,6 +71,8 @@ ShutdownCommand ProtectionSupervisor::runShutdownPath(const ModeDecision& d, dou
       push(ev, EventCode::ImmediateCut,
            d.reason == Reason::REASON_RPM_LOW ? EventLevel::Info : EventLevel::Critical, d.reason,
            lastAppliedDuty);
+    // The hard over-voltage cut keeps the seed's cooldown lockout.
+    if (!fieldCut_ && d.reason == Reason::REASON_ALT_HARD_SHUTDOWN) startLockout(ev);
     fieldCut_ = true;
     duty_ = 0.0;
     phase_ = ShutdownPhase::PHASE_4;  // a later re-entry never re-runs the ramp
@@ -123,10 +127,9 @@ ShutdownCommand ProtectionSupervisor::runShutdownPath(const ModeDecision& d, dou
     phase_ = ShutdownPhase::PHASE_4;  // skip phases 1-3, slew limiter off
     phaseStart_ = now_;
   }
-  // Slew-bypass accelerator: far above the hard-shutdown threshold phase 1 is instant.
-  const bool accel = d.reason == Reason::REASON_ALT_HARD_SHUTDOWN && std::isfinite(IBV_) &&
-                     IBV_ > d_.hardShutdownV + k::HARD_SHUTDOWN_BYPASS_OFFSET_V;
-  c.govMode = (critical || accel) ? GovMode::GOV_BYPASS_SLEW : GovMode::GOV_NORMAL_SLEW;
+  // (The seed's slew-bypass accelerator for the hard-shutdown warning ramp is
+  // gone with that ramp: the hard shutdown is an immediate cut.)
+  c.govMode = critical ? GovMode::GOV_BYPASS_SLEW : GovMode::GOV_NORMAL_SLEW;
   const double floorDuty = std::max(0.0, rpmMinDuty);
 
   bool rampedThisTick = false;
@@ -134,7 +137,7 @@ ShutdownCommand ProtectionSupervisor::runShutdownPath(const ModeDecision& d, dou
     if (phase_ == ShutdownPhase::PHASE_1) {
       if (duty_ > floorDuty) {
         if (rampedThisTick) break;
-        duty_ = accel ? floorDuty : std::max(floorDuty, duty_ - p_.DutyRampRate * dtSec());
+        duty_ = std::max(floorDuty, duty_ - p_.DutyRampRate * dtSec());
         rampedThisTick = true;
       }
       if (duty_ > floorDuty) break;

@@ -33,8 +33,12 @@ struct ProtectionFlags {
   bool tempStale = false;                // T5
   bool currentStale = false;             // no fresh INA228 / CH1 sample in CurrentStaleMs
 
+  // Immediate cut in every mode, then the lockout (ours).
+  bool altHardShutdown = false;  // IBV > AlternatorHardShutdownV
+  // INADisconnected: AUTO refuses to run without voltage feedback.
+  bool inaAbsent = false;
+
   // AUTO-only, warning ramp (phases 1-4, then lockout).
-  bool altHardShutdown = false;         // IBV > AlternatorHardShutdownV
   bool voltageDisagreeWarning = false;  // > VoltageDisagreeThreshold for VoltageDisagreeTimeout
   bool tempWarning = false;             // T1
   bool tempSustained = false;           // T2: latched until reenable_field
@@ -44,8 +48,6 @@ struct ProtectionFlags {
   // fell would never reach the lockout). Set by the supervisor, cleared when
   // the lockout begins or a normal mode is selected.
   bool rampLatched = false;
-  // Named padding (always false; see the end of the struct).
-  bool unused0_ = false, unused1_ = false, unused2_ = false;
   FieldControlMode rampLatchedMode = FieldControlMode::MODE_WARNING_RAMP_AND_LOCKOUT;
   Reason rampLatchedReason = Reason::NONE;
 
@@ -54,9 +56,6 @@ struct ProtectionFlags {
 
   // T4: TempTask heartbeat older than TEMP_TASK_TIMEOUT (buzzer only).
   bool tempTaskAlarm = false;
-  // Named padding (always false): the struct has no implicit padding, so
-  // Regulator::step can compare snapshots bytewise (mode-selection memo).
-  bool unused3_ = false, unused4_ = false;
 };
 
 struct TickSnapshot {
@@ -78,9 +77,6 @@ struct TickSnapshot {
 
   // MODE_LOCKOUT_RAMP also covers an auto-zero measurement (field must be off).
   bool autoZeroActive = false;
-  // Named padding (always false): Regulator::step compares everything after
-  // `now` bytewise (mode-selection memo), so there are no implicit gaps.
-  bool unused0_ = false, unused1_ = false, unused2_ = false;
 };
 
 }  // namespace xr

@@ -291,7 +291,9 @@ TEST(ChargingStage, BulkVoltageCeilingIdleFarBelowBulk) {
   EXPECT_FALSE(rig.law.voltageControlActive());
 }
 
-TEST(ChargingStage, EnterSysAutoAlwaysStartsInBulk) {
+// Ours (docs/deviations.md "Return to AUTO"): back in AUTO within
+// StageResumeMaxSec the stage it left resumes; later, or with 0, BULK.
+TEST(ChargingStage, EnterSysAutoResumesAfterAShortAbsence) {
   test::LawRig rig;
   rig.p.bulkVoltageHoldMs = 1000;
   rig.plant.Vocv = 14.6;
@@ -299,10 +301,37 @@ TEST(ChargingStage, EnterSysAutoAlwaysStartsInBulk) {
   rig.run(2.0);
   ASSERT_EQ(rig.law.stages().stage(), ChargeStage::ABSORPTION);
   rig.law.enter_sys_off();
+  rig.now += fromSec(rig.p.StageResumeMaxSec);  // exactly at the limit: still resumes
+  rig.law.enter_sys_auto(rig.sensors(), rig.p);
+  EXPECT_EQ(rig.law.stages().stage(), ChargeStage::ABSORPTION);
+}
+
+TEST(ChargingStage, EnterSysAutoStartsInBulkAfterALongAbsence) {
+  test::LawRig rig;
+  rig.p.bulkVoltageHoldMs = 1000;
+  rig.plant.Vocv = 14.6;
+  rig.start();
+  rig.run(2.0);
+  ASSERT_EQ(rig.law.stages().stage(), ChargeStage::ABSORPTION);
+  rig.law.enter_sys_off();
+  rig.now += fromSec(rig.p.StageResumeMaxSec + 0.01);
   rig.law.enter_sys_auto(rig.sensors(), rig.p);
   EXPECT_EQ(rig.law.stages().stage(), ChargeStage::BULK);
   rig.run(2.0);  // and fast-forwards again when the battery is already up
   EXPECT_EQ(rig.law.stages().stage(), ChargeStage::ABSORPTION);
+}
+
+TEST(ChargingStage, StageResumeZeroKeepsTheSeedsAlwaysBulk) {
+  test::LawRig rig;
+  rig.p.bulkVoltageHoldMs = 1000;
+  rig.p.StageResumeMaxSec = 0.0;
+  rig.plant.Vocv = 14.6;
+  rig.start();
+  rig.run(2.0);
+  ASSERT_EQ(rig.law.stages().stage(), ChargeStage::ABSORPTION);
+  rig.law.enter_sys_off();
+  rig.law.enter_sys_auto(rig.sensors(), rig.p);
+  EXPECT_EQ(rig.law.stages().stage(), ChargeStage::BULK);
 }
 
 }  // namespace

@@ -22,7 +22,6 @@ struct CvRig {
     in.voltageControlActive = true;
     in.ChargingVoltageTarget = 14.4;
     in.IBV = 14.3;
-    in.filtV = 14.3;
     in.g_pidI_filtered = 30.0;
     in.uTargetAmps = 100.0;
     in.uTargetRaw = 100.0;
@@ -48,8 +47,8 @@ TEST(CvLoop, BumplessSeedMakesIcvEqualMeasuredCurrentOnEntry) {
 
 TEST(CvLoop, UnwindsSevenTimesFasterAboveTargetThanItWindsUpBelow) {
   CvRig up, down;
-  up.in.IBV = up.in.filtV = 14.3;      // e = +0.1
-  down.in.IBV = down.in.filtV = 14.5;  // e = -0.1
+  up.in.IBV = 14.3;    // e = +0.1
+  down.in.IBV = 14.5;  // e = -0.1
   up.cv.update(up.in, up.p);
   down.cv.update(down.in, down.p);
   const double up0 = up.cv.cv_I(), down0 = down.cv.cv_I();
@@ -68,12 +67,11 @@ double cvIChangeWithSlope(double e, bool rising) {
   CvRig r;
   r.p.AwSeedProtectMs = 0;
   r.in.IBV = 14.4 - e;
-  r.in.filtV = r.in.IBV;
+  r.in.cvDSlope = rising ? 1.0 : 0.0;  // V/s, as ControlLaw measures it between fresh samples
   r.cv.update(r.in, r.p);
   const double before = r.cv.cv_I();
   for (int i = 0; i < 40; ++i) {  // exactly one 100 ms fire
     r.in.now += fromSec(0.0025);
-    if (rising) r.in.filtV += 0.0025;
     r.cv.update(r.in, r.p);
   }
   return r.cv.cv_I() - before;
@@ -94,7 +92,7 @@ TEST(CvLoop, SlopeBleedActsNearTarget) {
 TEST(CvLoop, VoltageTargetSlewedRisesOnlyAsFastAsCvICanSupport) {
   CvRig r;
   r.in.uTargetAmps = r.in.uTargetRaw = 10.0;
-  r.in.IBV = r.in.filtV = 13.0;
+  r.in.IBV = 13.0;
   r.in.g_pidI_filtered = 0.0;
   r.cv.update(r.in, r.p);
   r.run(0.5);
@@ -117,7 +115,7 @@ TEST(CvLoop, VoltageTargetSlewedFallsInstantly) {
 TEST(CvLoop, AwState4WhileCvInactiveAndTrackerFollowsAt2PerSecond) {
   CvRig r;
   r.in.voltageControlActive = false;
-  r.in.IBV = r.in.filtV = 13.9;  // e_bt = 0.5 -> target cv_I = 30 - 10 = 20
+  r.in.IBV = 13.9;  // e_bt = 0.5 -> target cv_I = 30 - 10 = 20
   r.p.AwSeedProtectMs = 0;
   r.cv.update(r.in, r.p);
   EXPECT_EQ(r.cv.g_awState(), 4);
@@ -130,7 +128,7 @@ TEST(CvLoop, AwState2FreezesIntegrationWhenSaturatedHigh) {
   CvRig r;
   r.in.uTargetAmps = r.in.uTargetRaw = 20.0;
   r.in.g_pidI_filtered = 20.0;
-  r.in.IBV = r.in.filtV = 13.0;  // far below: Icv pinned at the ceiling
+  r.in.IBV = 13.0;  // far below: Icv pinned at the ceiling
   r.cv.update(r.in, r.p);
   const double before = r.cv.cv_I();
   r.run(0.1);

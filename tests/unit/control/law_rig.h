@@ -38,7 +38,6 @@ struct LawRig {
   }
 
   void start() {
-    law.setParams(p);
     tempStamp = now;
     law.updateFilters(sensors(), p);
     law.enter_sys_auto(sensors(), p);
@@ -51,9 +50,6 @@ struct LawRig {
     now += fromSec(dt);
     if (now - tempStamp >= fromSec(1.0)) tempStamp = now;  // 1 Hz temperature samples
     ev.clear();
-    // Tests change p in place between ticks: hand it over as Regulator's
-    // setParams would (ControlLaw caches values derived from it).
-    law.setParams(p);
     const ControlSensors s = sensors(fresh);
     law.updateFilters(s, p);
     law.updateChargingStage(s, p, manual, ev);

@@ -1,8 +1,10 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "law_rig.h"
+#include "params/constants.h"
 
 namespace xr {
 namespace {
@@ -35,7 +37,9 @@ TEST(TargetVoltageMode, HoldsTheUserSetpointWithCvForced) {
   EXPECT_NEAR(rig.plant.V(), 13.6, 0.03);
 }
 
-TEST(TargetVoltageMode, ExitResumesFromBulk) {
+// Ours: a short override resumes the stage it interrupted; a long one (over
+// StageResumeMaxSec) restarts in BULK as the seed does.
+TEST(TargetVoltageMode, ShortExitResumesTheStage) {
   test::LawRig rig;
   rig.p.bulkVoltageHoldMs = 500;
   rig.plant.Vocv = 14.6;
@@ -44,6 +48,21 @@ TEST(TargetVoltageMode, ExitResumesFromBulk) {
   ASSERT_EQ(rig.law.stages().stage(), ChargeStage::ABSORPTION);
   rig.p.TargetVoltageMode = 1;
   rig.run(0.1);
+  rig.p.TargetVoltageMode = 0;
+  rig.tick();
+  EXPECT_EQ(rig.law.stages().stage(), ChargeStage::ABSORPTION);
+}
+
+TEST(TargetVoltageMode, LongExitResumesFromBulk) {
+  test::LawRig rig;
+  rig.p.bulkVoltageHoldMs = 500;
+  rig.p.StageResumeMaxSec = 0.5;
+  rig.plant.Vocv = 14.6;
+  rig.start();
+  rig.run(1.0);
+  ASSERT_EQ(rig.law.stages().stage(), ChargeStage::ABSORPTION);
+  rig.p.TargetVoltageMode = 1;
+  rig.run(1.0);
   rig.p.TargetVoltageMode = 0;
   rig.tick();
   EXPECT_EQ(rig.law.stages().stage(), ChargeStage::BULK);
@@ -122,6 +141,17 @@ TEST(CvTuningMode, FirstMillivoltsOfHighOvershootAreFree) {
   EXPECT_DOUBLE_EQ(r.currentScore(), 0.0);
 }
 
+TEST(CvTuningMode, HighTargetStaysUnderTheHardShutdownTrip) {
+  Params p;  // BulkVoltage 14.5: trip 14.8, HIGH ceiling 14.6
+  CvTuningModeRunner r;
+  r.target(fromSec(0), 14.3, p);
+  p.cvWaveAmplitudeV = 0.3;  // 14.6 exactly at the ceiling: allowed
+  EXPECT_DOUBLE_EQ(r.target(fromSec(15), 14.3, p), 14.3 + 0.3);
+  p.cvWaveAmplitudeV = 0.31;  // just over: held at the ceiling
+  EXPECT_DOUBLE_EQ(r.target(fromSec(15), 14.3, p), 14.8 - k::CV_TUNING_TRIP_MARGIN_V);
+  EXPECT_DOUBLE_EQ(r.target(fromSec(25), 14.3, p), 14.3);  // LOW phase untouched
+}
+
 TEST(CvTuningMode, LowPhaseUndershootGraceThenRamp) {
   Params p;
   CvTuningModeRunner r;
@@ -156,7 +186,10 @@ TEST(CvTuningMode, DrivesTheLawTargetAndCommitsToLog) {
   EXPECT_TRUE(rig.law.voltageControlActive());
   EXPECT_DOUBLE_EQ(rig.law.ChargingVoltageTarget(), rig.p.BulkVoltage);
   rig.run(10.0);
-  EXPECT_DOUBLE_EQ(rig.law.ChargingVoltageTarget(), rig.p.BulkVoltage + rig.p.cvWaveAmplitudeV);
+  // Ours: the HIGH target stays CV_TUNING_TRIP_MARGIN_V under the hard
+  // shutdown (14.8 V): 14.5 + 0.2 is held at 14.6.
+  EXPECT_DOUBLE_EQ(rig.law.ChargingVoltageTarget(),
+                   std::min(rig.p.BulkVoltage + rig.p.cvWaveAmplitudeV, 14.8 - k::CV_TUNING_TRIP_MARGIN_V));
   EXPECT_TRUE(rig.law.commitCvTuning(rig.now, rig.p));
   EXPECT_EQ(rig.law.cvTuning().logCount(), 1);
 }

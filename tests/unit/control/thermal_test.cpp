@@ -26,7 +26,6 @@ struct ThermalRig {
       in.now += fromSec(in.dtSec);
       in.tempFresh = (i % 100) == 0;
       if (in.tempFresh) in.TempToUse = tempAt(toSec(in.now));
-      t.paramsChanged();  // tests change p in place between runs
       t.update(in, p);
     }
   }

@@ -35,7 +35,8 @@ class AlarmRowTest : public ::testing::TestWithParam<AlarmCase> {};
 Params alarmParams() {
   Params p;
   p.IgnoreTemperature = true;
-  p.MaxTableValue = 200.0;  // hard OC far above the current alarm
+  p.MaxTableValue = 200.0;           // hard OC far above the current alarm
+  p.AlternatorHardShutdownV = 15.5;  // the hard over-voltage cut (all modes) above the voltage alarm
   return p;
 }
 

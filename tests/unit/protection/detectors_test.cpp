@@ -28,6 +28,42 @@ TEST(InaLatch, StillAssertedAt3sIsRecheckedEvery10s) {
   EXPECT_EQ(r.count(EventCode::InaLatchCleared), 1u);
 }
 
+// Ours: the alert is looked at on every tick (the chip's alert does not
+// latch): one 5 ms tick of it latches; no tick of it does not.
+TEST(InaLatch, ShortPulseLatches) {
+  Rig r;
+  r.warmUp();
+  r.inaAlert = true;
+  r.tick();
+  r.inaAlert = false;
+  r.tick();
+  EXPECT_TRUE(r.sup.flags().inaOvervoltageLatched);
+  EXPECT_EQ(r.d.reason, Reason::REASON_INA_OVERVOLTAGE);
+  Rig quiet;
+  quiet.warmUp();
+  quiet.run(fromSec(1.0));
+  EXPECT_FALSE(quiet.sup.flags().inaOvervoltageLatched);
+}
+
+// Ours: T3 that fired is not released by the reading going bad (MANUAL has
+// no T5 to stop the field); a usable cooler reading releases it.
+TEST(Detectors, T3HeldWhileTheReadingIsStale) {
+  Rig r;
+  r.manual = true;
+  r.warmUp();
+  r.tempF = 160.1;  // TemperatureLimitF 150 + TempCritExcess 10
+  r.tick();
+  ASSERT_EQ(r.d.reason, Reason::REASON_TEMP_CRITICAL);
+  r.tempF = -60.0;  // out of range: the sensor died
+  r.run(fromSec(2.0));
+  EXPECT_TRUE(r.sup.flags().tempCritical);
+  EXPECT_EQ(r.d.reason, Reason::REASON_TEMP_CRITICAL);
+  r.tempF = 159.9;  // usable and just under: released
+  r.tick();
+  EXPECT_FALSE(r.sup.flags().tempCritical);
+  EXPECT_EQ(r.d.mode, M::MODE_NORMAL_MANUAL);
+}
+
 TEST(InaLatch, DisagreementSuppressedWhileLatchedAndFor10sAfterClear) {
   Rig r;
   r.warmUp();
@@ -48,7 +84,7 @@ TEST(InaLatch, DisabledWhenInaDisconnected) {
   Params p;
   p.INADisconnected = true;
   Rig r(p);
-  r.limp = true;  // the only way to run without the INA228
+  r.limp = true;  // one way to run without the INA228 (MANUAL the other)
   r.warmUp();
   r.inaAlert = true;
   r.run(fromSec(1.0));

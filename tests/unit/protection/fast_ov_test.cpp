@@ -54,6 +54,28 @@ TEST(NearBulk, ArmsOnlyWithinProtectionProxGateVOfBulk) {
   EXPECT_TRUE(r.a.group2);
 }
 
+// Ours (docs/deviations.md): FLOAT arms the supervisors whatever the
+// distance from BulkVoltage; outside FLOAT the nearBulk gate still decides.
+TEST(FastOv, ArmedInFloat) {
+  FastRig r;
+  r.altAmps = 40.0;
+  r.x.ChargingVoltageTarget = 13.5;  // float, 1 V under bulk: nearBulk false
+  r.ibv = r.batteryV = 13.61;        // just over target + OvMeasMarginV
+  r.x.floatStage = true;
+  r.steps(3);
+  EXPECT_FALSE(r.a.nearBulk);
+  EXPECT_TRUE(r.a.group2);
+  EXPECT_TRUE(r.a.fastOvClampActive);
+  r.ibv = r.batteryV = 13.59;  // just under: nothing
+  r.steps(3);
+  EXPECT_FALSE(r.a.group2);
+  r.ibv = r.batteryV = 13.61;
+  r.x.floatStage = false;  // the same target outside FLOAT: not armed
+  r.steps(3);
+  EXPECT_FALSE(r.a.group2);
+  EXPECT_FALSE(r.a.fastOvClampActive);
+}
+
 TEST(Group2, FiresAboveTargetPlusMarginAndTrimsCap) {
   Params p;
   p.OvGroup1Enable = false;  // the step would also trip the prediction

@@ -38,7 +38,11 @@ TEST(ModeSelection, TwoSimultaneousFaultsHigherPriorityWins) {
       {[](ProtectionFlags& f) { f.rpmBelowMin = f.tempStale = true; }, Reason::REASON_RPM_LOW},
       {[](ProtectionFlags& f) { f.tempCritical = f.rpmBelowMin = true; }, Reason::REASON_TEMP_CRITICAL},
       {[](ProtectionFlags& f) { f.voltageImplausible = f.altHardShutdown = true; },
-       Reason::REASON_VOLTAGE_IMPLAUSIBLE},
+       Reason::REASON_ALT_HARD_SHUTDOWN},
+      {[](ProtectionFlags& f) { f.hardOvercurrent = f.altHardShutdown = true; },
+       Reason::REASON_ALT_HARD_SHUTDOWN},
+      {[](ProtectionFlags& f) { f.inaOvervoltageLatched = f.altHardShutdown = true; },
+       Reason::REASON_INA_OVERVOLTAGE},
       {[](ProtectionFlags& f) { f.currentStale = f.tempWarning = true; }, Reason::REASON_CURRENT_STALE},
       {[](ProtectionFlags& f) { f.altHardShutdown = f.tempWarning = true; },
        Reason::REASON_ALT_HARD_SHUTDOWN},
@@ -57,10 +61,34 @@ TEST(ModeSelection, TwoSimultaneousFaultsHigherPriorityWins) {
 TEST(ModeSelection, ManualBypassesAutoOnlyProtectionsButNotPriorityOne) {
   TickSnapshot s = healthy();
   s.manualMode = true;
-  s.prot.altHardShutdown = s.prot.voltageDisagreeCritical = s.prot.tempStale = s.prot.lockoutActive = true;
+  s.prot.voltageDisagreeCritical = s.prot.tempStale = s.prot.lockoutActive = s.prot.inaAbsent = true;
   EXPECT_EQ(selectFieldControlMode(s), M::MODE_NORMAL_MANUAL);
   s.prot.tempCritical = true;
   EXPECT_EQ(selectFieldEventReason(s), Reason::REASON_TEMP_CRITICAL);
+  s.prot.altHardShutdown = true;  // ours: the hard over-voltage cut acts in MANUAL too
+  EXPECT_EQ(selectFieldEventReason(s), Reason::REASON_ALT_HARD_SHUTDOWN);
+  EXPECT_EQ(selectFieldControlMode(s), M::MODE_CRITICAL_RAMP);
+}
+
+// Ours: the alternator hard shutdown cuts in every mode, Limp Home included.
+TEST(ModeSelection, AltHardShutdownCutsInLimpHome) {
+  TickSnapshot s = healthy();
+  s.limpHome = true;
+  EXPECT_EQ(selectFieldControlMode(s), M::MODE_LIMP_HOME);
+  s.prot.altHardShutdown = true;
+  EXPECT_EQ(selectFieldEventReason(s), Reason::REASON_ALT_HARD_SHUTDOWN);
+  EXPECT_TRUE(isImmediateCutReason(selectFieldEventReason(s)));
+}
+
+// Ours: INADisconnected leaves AUTO without voltage feedback, so AUTO does
+// not run (a clean disabled ramp, no alarm); MANUAL still does.
+TEST(ModeSelection, NoInaMeansNoAuto) {
+  TickSnapshot s = healthy();
+  s.prot.inaAbsent = true;
+  EXPECT_EQ(selectFieldControlMode(s), M::MODE_DISABLED_RAMP);
+  EXPECT_EQ(selectFieldEventReason(s), Reason::REASON_VOLTAGE_IMPLAUSIBLE);
+  s.manualMode = true;
+  EXPECT_EQ(selectFieldControlMode(s), M::MODE_NORMAL_MANUAL);
 }
 
 TEST(ModeSelection, ChargingDisabledGivesDisabledRampWithItsReason) {
@@ -125,7 +153,7 @@ TEST(ModeSelection, ImmediateCutReasons) {
   EXPECT_TRUE(isImmediateCutReason(Reason::REASON_HARD_OVERCURRENT));
   EXPECT_TRUE(isImmediateCutReason(Reason::REASON_TEMP_CRITICAL));
   EXPECT_TRUE(isImmediateCutReason(Reason::REASON_RPM_LOW));
-  EXPECT_FALSE(isImmediateCutReason(Reason::REASON_ALT_HARD_SHUTDOWN));
+  EXPECT_TRUE(isImmediateCutReason(Reason::REASON_ALT_HARD_SHUTDOWN));  // ours
   EXPECT_FALSE(isImmediateCutReason(Reason::REASON_TEMP_STALE));
 }
 

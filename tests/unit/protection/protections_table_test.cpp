@@ -14,7 +14,9 @@ namespace xr::test {
 namespace {
 
 using M = FieldControlMode;
-enum class Path { Immediate, Warning, Critical };
+// ImmediateLockout: the immediate cut followed by the cooldown lockout (the
+// alternator hard shutdown, ours: docs/deviations.md).
+enum class Path { Immediate, ImmediateLockout, Warning, Critical };
 
 struct Row {
   const char* name;
@@ -46,8 +48,8 @@ const Row kRows[] = {
      [](Rig& r, bool f) { r.tempF = f ? 160.1 : 159.9; }, 0, fromMs(10), true, true, false},
     {"RpmGate", Reason::REASON_RPM_LOW, M::MODE_DISABLED_RAMP, Path::Immediate,
      [](Rig& r, bool f) { r.rpm = f ? 199.9 : 200.0; }, 0, fromMs(10), true, true, false},
-    {"AltHardShutdown", Reason::REASON_ALT_HARD_SHUTDOWN, M::MODE_WARNING_RAMP_AND_LOCKOUT, Path::Warning,
-     [](Rig& r, bool f) { r.ibv = r.batteryV = f ? 14.81 : 14.79; }, 0, fromMs(10), true, false, false},
+    {"AltHardShutdown", Reason::REASON_ALT_HARD_SHUTDOWN, M::MODE_CRITICAL_RAMP, Path::ImmediateLockout,
+     [](Rig& r, bool f) { r.ibv = r.batteryV = f ? 14.81 : 14.79; }, 0, fromMs(10), true, true, true},
     {"DisagreeWarning", Reason::REASON_VOLTAGE_DISAGREE_WARNING, M::MODE_WARNING_RAMP_AND_LOCKOUT,
      Path::Warning, [](Rig& r, bool f) { r.batteryV = r.ibv + (f ? 0.16 : 0.14); }, fromSec(10.0),
      fromSec(10.01), true, false, false},
@@ -112,6 +114,15 @@ TEST_P(ProtectionRow, TakesItsShutdownPath) {
       EXPECT_EQ(r.count(EventCode::LockoutStarted), 0u);
       EXPECT_FALSE(r.sup.flags().lockoutActive);
       break;
+    case Path::ImmediateLockout:
+      // Cut within the tick, and the lockout starts with the cut.
+      EXPECT_TRUE(r.sc.active);
+      EXPECT_TRUE(r.sc.applyImmediateCut);
+      EXPECT_FALSE(r.sc.fieldEnable);
+      EXPECT_EQ(r.sc.dutyPct, 0.0);
+      EXPECT_EQ(r.count(EventCode::LockoutStarted), 1u);
+      EXPECT_TRUE(r.sup.flags().lockoutActive);
+      break;
     case Path::Warning:
       // Phase 1: GPIO4 still HIGH, duty slewing at DutyRampRate (50 %/s).
       EXPECT_TRUE(r.sc.fieldEnable);
@@ -127,7 +138,7 @@ TEST_P(ProtectionRow, TakesItsShutdownPath) {
       EXPECT_EQ(r.sc.govMode, GovMode::GOV_BYPASS_SLEW);
       break;
   }
-  if (row.path != Path::Immediate) {
+  if (row.path == Path::Warning || row.path == Path::Critical) {
     // GPIO4 LOW after the ramp, then the FIELD_COLLAPSE_DELAY lockout.
     ASSERT_GE(r.runUntil([&] { return !r.sc.fieldEnable; }, fromSec(10.0)), 0);
     EXPECT_EQ(r.count(EventCode::CutAfterSettle, row.reason), 1u);
@@ -157,6 +168,16 @@ TEST_P(ProtectionRow, ClearsAsSpecified) {
       EXPECT_TRUE(r.sc.fieldEnable);
     }
     EXPECT_EQ(r.count(EventCode::LockoutStarted), 0u);
+  } else if (row.path == Path::ImmediateLockout) {
+    // Field stays off through the lockout counted from the cut, then normal.
+    r.tick();
+    EXPECT_EQ(r.d.mode, M::MODE_LOCKOUT_RAMP);
+    EXPECT_FALSE(r.sc.fieldEnable);
+    const TimeNs back = r.runUntil([&] { return r.d.mode == M::MODE_NORMAL_AUTO_PID; }, fromSec(40.0));
+    ASSERT_GE(back, 0);
+    EXPECT_GE(back, fromMs(r.p.FIELD_COLLAPSE_DELAY) - 3 * kTick);
+    EXPECT_LE(back, fromMs(r.p.FIELD_COLLAPSE_DELAY) + 2 * kTick);
+    EXPECT_TRUE(r.sc.fieldEnable);
   } else {
     // The ramp, once started, runs to its cut; then 30 s lockout; then normal.
     const TimeNs cut = r.runUntil([&] { return !r.sc.fieldEnable; }, fromSec(10.0));

@@ -79,24 +79,45 @@ TEST(WarningRamp, DutyBelowRpmMinDutyNeverRampsUp) {
   EXPECT_LE(r.sc.dutyPct, 3.0);
 }
 
-TEST(WarningRamp, SlewBypassAcceleratorMakesPhase1Instant) {
+// Ours (docs/deviations.md "Hard over-voltage"): the seed's warning ramp
+// with its slew-bypass accelerator is now an immediate cut at the trip, in
+// the very tick, with the lockout after it.
+TEST(HardOverVoltage, ImmediateCutInTheTickThenLockout) {
   Rig r;
   r.warmUp();
-  r.ibv = r.batteryV = 15.31;  // AlternatorHardShutdownV (14.8) + 0.5 exceeded
+  r.ibv = r.batteryV = 14.81;  // AlternatorHardShutdownV (BulkVoltage 14.5 + 0.3) exceeded
   r.tick();
   EXPECT_EQ(r.d.reason, Reason::REASON_ALT_HARD_SHUTDOWN);
-  EXPECT_EQ(r.sc.govMode, GovMode::GOV_BYPASS_SLEW);
-  EXPECT_DOUBLE_EQ(r.sc.dutyPct, 5.0);  // rpmMinDuty in one tick
-  EXPECT_NE(r.sc.phase, ShutdownPhase::PHASE_1);
+  EXPECT_TRUE(r.sc.applyImmediateCut);
+  EXPECT_FALSE(r.sc.fieldEnable);
+  EXPECT_EQ(r.sc.dutyPct, 0.0);
+  EXPECT_TRUE(r.sup.flags().lockoutActive);
+  r.ibv = r.batteryV = 13.5;
+  r.tick();
+  EXPECT_EQ(r.d.mode, M::MODE_LOCKOUT_RAMP);
+  EXPECT_FALSE(r.sc.fieldEnable);
 }
 
-TEST(WarningRamp, JustUnderTheAcceleratorSlews) {
+TEST(HardOverVoltage, JustUnderTheTripNothingHappens) {
   Rig r;
   r.warmUp();
-  r.ibv = r.batteryV = 15.29;
+  r.ibv = r.batteryV = 14.79;
+  r.run(fromSec(2.0));
+  EXPECT_EQ(r.d.mode, M::MODE_NORMAL_AUTO_PID);
+  EXPECT_TRUE(r.sc.fieldEnable);
+}
+
+TEST(HardOverVoltage, CutsInManualWithoutLockingManualOut) {
+  Rig r;
+  r.manual = true;
+  r.warmUp();
+  r.ibv = r.batteryV = 14.81;
   r.tick();
-  EXPECT_EQ(r.sc.govMode, GovMode::GOV_NORMAL_SLEW);
-  EXPECT_NEAR(r.sc.dutyPct, 50.0 - 0.25, 1e-9);
+  EXPECT_EQ(r.d.reason, Reason::REASON_ALT_HARD_SHUTDOWN);
+  EXPECT_FALSE(r.sc.fieldEnable);
+  r.ibv = r.batteryV = 13.5;  // MANUAL bypasses the lockout: the operator's duty resumes
+  r.tick();
+  EXPECT_EQ(r.d.mode, M::MODE_NORMAL_MANUAL);
 }
 
 TEST(CriticalRamp, PhaseFourDirectThenCutAfterSettleThenLockout) {
@@ -193,13 +214,13 @@ TEST(Lockout, HoldsEvenWhenTheFaultClearsAndNotAfterImmediateCut) {
 TEST(Lockout, FaultClearingMidRampStillCompletesTheRamp) {
   Rig r;
   r.warmUp();
-  r.ibv = r.batteryV = 14.85;
+  r.tempF = 152.5;  // T1
   r.tick();
   ASSERT_EQ(r.d.mode, M::MODE_WARNING_RAMP_AND_LOCKOUT);
-  r.ibv = r.batteryV = 13.5;  // the trip clears as the duty falls
+  r.tempF = 140.0;  // the trip clears as the duty falls
   r.run(fromSec(0.5));
   EXPECT_EQ(r.d.mode, M::MODE_WARNING_RAMP_AND_LOCKOUT);
-  EXPECT_EQ(r.d.reason, Reason::REASON_ALT_HARD_SHUTDOWN);
+  EXPECT_EQ(r.d.reason, Reason::REASON_TEMP_WARNING);
   ASSERT_GE(r.runUntil([&] { return r.sup.flags().lockoutActive; }, fromSec(10.0)), 0);
 }
 

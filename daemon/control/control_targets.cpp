@@ -1,0 +1,83 @@
+// ControlLaw::updateChargingStage(): the stage machine's step and the
+// voltage target / voltageControlActive of this tick, override modes
+// included (field-control.md "Charging-Stage State Machine", "Override Modes").
+#include <cmath>
+
+#include "control/control_law.h"
+#include "core/finite.h"
+#include "params/constants.h"
+
+namespace xr {
+
+void ControlLaw::updateChargingStage(const ControlSensors& s, const Params& p, bool manualMode,
+                                     EventBatch& ev) {
+  const bool overrideNow = p.MaintainMode || p.TargetVoltageMode || p.CVTuningMode;
+  // The stage machine only advances while charging in AUTO (IDLE keeps its
+  // re-bulk watch while the field is off); override modes and manual hold it.
+  const bool running = sysMode_ == SysMode::SYS_MODE_AUTO || stages_.inIdleStage();
+  StageInputs si;
+  si.now = s.now;
+  si.v = s.IBV;
+  si.Bcur = s.Bcur;
+  si.thermalPenaltyAmps = thermal_.thermalPenaltyAmps();
+  si.uTargetAmps = uTargetAmps_;
+  si.SOC_percent = s.SOC_percent;
+  si.socValid = finite(s.SOC_percent) && s.socKnown;
+  // The tail counts only while the voltage loop holds the absorption target
+  // (last tick's loop state): a bank discharging into a load the alternator
+  // cannot carry is below its target with the CV loop at its ceiling.
+  si.voltageHeld = finite(s.IBV) && s.IBV >= p.AbsorptionVoltage - k::TAIL_HOLD_BAND_V &&
+                   (fieldResting_ || setpointCommand_ < uTargetAmps_ - kTailHeadroomA);
+  si.suppressed = overrideNow || manualMode || !running || !finite(s.IBV);
+  const ChargeStage before = stages_.stage();
+  stages_.updateChargingStage(si, p);
+  // Leaving an override: the seed restarts in BULK (TargetVoltageMode exit ->
+  // enter_sys_auto()); ours resumes the stage after a short one.
+  if (overrideNow && !overrideWasActive_) overrideSince_ = s.now;
+  if (overrideWasActive_ && !overrideNow) stages_.resumeOrBulk(s.now, s.now - overrideSince_, p);
+  overrideWasActive_ = overrideNow;
+  if (stages_.stage() != before) {
+    ev.push(makeEvent(s.now, EventLevel::Info, EventCode::StageChanged, Reason::NONE,
+                      static_cast<double>(before), static_cast<double>(stages_.stage())));
+  }
+
+  voltageControlActive_ = stages_.voltageControlActive();
+  ChargingVoltageTarget_ = stages_.ChargingVoltageTarget(p);
+  // Bulk voltage ceiling (ours; the legacy seed's "voltage soft limiter (bulk
+  // only)" recast as a setpoint ceiling, as that seed's cap chain asks). The
+  // newer seed runs BULK as pure CC with the hold timer, so a small or
+  // high-resistance bank can climb from BulkVoltage to the hard-shutdown trip
+  // (Bulk + 0.3 V) before bulkVoltageHoldMs elapses and cycle through warning
+  // ramps and lockouts forever, never charging (seen in the simulator with a
+  // 40 Ah AGM bank at 50 A). Once IBV reaches BulkVoltage in BULK, the CV loop
+  // engages at the bulk target (bumpless seed, Groups 1-3 armed) until IBV
+  // falls BULK_V_BAND_EXIT below it; the stage machine is untouched.
+  const bool overrideTargets = overrideNow || p.TuningMode;
+  if (stages_.inBulkStage() && !overrideTargets && finite(s.IBV)) {
+    if (!bulkVoltageLimitActive_ && s.IBV >= p.BulkVoltage)
+      bulkVoltageLimitActive_ = true;
+    else if (bulkVoltageLimitActive_ && s.IBV < p.BulkVoltage - k::BULK_V_BAND_EXIT)
+      bulkVoltageLimitActive_ = false;
+  } else {
+    bulkVoltageLimitActive_ = false;
+  }
+  if (bulkVoltageLimitActive_) voltageControlActive_ = true;
+  if (p.CVTuningMode) {
+    ChargingVoltageTarget_ = cvTuning_.target(s.now, ChargingVoltageTarget_, p);
+    voltageControlActive_ = true;
+  } else if (cvTuning_.running()) {
+    cvTuning_.reset();  // nothing to clear unless a run is in progress (score/commit need one)
+  }
+  if (p.TargetVoltageMode) {
+    ChargingVoltageTarget_ = p.TargetVoltageSetpoint;
+    voltageControlActive_ = true;
+  }
+  if (p.MaintainMode) {
+    // CV runs at the bulk target so Groups 1/2 stay armed; the ceiling is 0.
+    ChargingVoltageTarget_ = p.BulkVoltage;
+    voltageControlActive_ = true;
+  }
+  if (p.TuningMode) voltageControlActive_ = false;  // characterise the inner loop alone
+}
+
+}  // namespace xr

@@ -1,0 +1,47 @@
+// Field rest (ours; docs/deviations.md "Full bank at light load"). The RPM
+// duty floor (rpmMinDutyTable, for the tach signal) can push more current
+// than a full bank at light load takes: the voltage then climbs past the
+// target into the over-voltage protections. When the voltage loop asks for
+// less than the floor and the bank still sits above its target, the field
+// rests (enable LOW, duty 0) until the voltage falls back under the target.
+#include <algorithm>
+
+#include "control/control_law.h"
+#include "core/finite.h"
+
+namespace xr {
+
+bool ControlLaw::restDue(const ControlSensors& s, const Params& p) {
+  const bool tuning = p.TuningMode || p.CVTuningMode || sysId_.sysIDRunning();
+  const bool cond = !tuning && voltageControlActive_ && rpmMinDuty_ > 0.0 && dutyRequest_ <= rpmMinDuty_ &&
+                    finite(s.IBV) && s.IBV > ChargingVoltageTarget_ + p.FieldRestMarginV;
+  if (!cond) {
+    restArmedAt_ = -1;
+    return false;
+  }
+  if (restArmedAt_ < 0) restArmedAt_ = s.now;
+  if (s.now - restArmedAt_ < fromMs(p.FieldRestDelayMs)) return false;
+  restArmedAt_ = -1;
+  return true;
+}
+
+bool ControlLaw::restOver(const ControlSensors& s, const Params& p) const {
+  // The stage or an override changed what the loop holds, the voltage is
+  // unknown, or the bank has come down under its target: the field works again.
+  return !voltageControlActive_ || p.TuningMode || p.CVTuningMode || !finite(s.IBV) ||
+         s.IBV < ChargingVoltageTarget_ - p.FieldRestWakeV;
+}
+
+double ControlLaw::holdAtRest() {
+  // Everything waits at zero, so the field-on edge starts from the floor
+  // with the startup ramp, and the CV integrator is seeded afresh then.
+  lastAppliedDuty_ = 0.0;
+  dutyRequest_ = 0.0;
+  setpointLimited_ = 0.0;
+  setpointCommand_ = 0.0;
+  currentPID_.ResetIntegratorTo(0.0);
+  cv_.requestReseed();
+  return 0.0;
+}
+
+}  // namespace xr
