@@ -34,15 +34,16 @@ Chem chemOf(Chemistry c) {
     // the cells' 4 x 0.2 mΩ AC (EVE LF105) and drop-in packs' <= 15-20 mΩ
     // (UPOW, VEND-12V). tau2 15 min: a charged bank settles in 30 min
     // (deespaek) to an hour or two (KiloVault). End-of-charge constants
-    // fitted so a 0.5C charge at 14.2 V holds CV 20-30 min (Battle Born >=
-    // 20 min, Mastervolt ~30 min) before 0.02C. Hysteresis gap 15 mV/cell,
+    // chosen so a 0.5C charge at 14.2 V holds CV 20-60 min (Battle Born >=
+    // 20 min, Mastervolt ~30 min) before 0.02C, and a full bank takes no
+    // more than ~0.03C at 14.5 V (no gassing in LiFePO4). Hysteresis gap 15 mV/cell,
     // the middle of ACCURE's 5-25 mV. Efficiency 0.99 (plant-facts §3.9).
-    return {3.2, 0.1, 0.5, 0.5, 30.0, 900.0, 0.5, 0.015, 0.0015, 1.5, 0.002, 0.015, 0.99, 8.0, 0.0025};
+    return {3.2, 0.1, 0.5, 0.5, 30.0, 900.0, 0.5, 0.11, 3.0, 1.3, 0.006, 0.015, 0.99, 8.0, 0.0025};
   }
   // Lead-acid (AGM fit; flooded and gel share it, with their OCV tables).
   // R0 0.5 Ω·Ah per 12 V (UNCONFIRMED: plant-facts has no lead DC figure).
   // tau2 2 h: rest 6 h or more before an OCV reading (Trojan, Odyssey).
-  // End-of-charge constants fitted (tools/plots/fit_battery.py) to Rod
+  // End-of-charge constants fitted (tools/plots/fit_agm_taper.cpp) to Rod
   // Collins' Lifeline GPL-31T at 14.4 V from 50 %: absorption reached at
   // ~63 % SoC at 0.4C and ~77 % at 0.2C, full (0.5 % C tail) after ~5.5 h.
   // Efficiency 0.95 (Odyssey, Victron BMV default); flooded 0.85 below.
