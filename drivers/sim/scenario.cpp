@@ -93,7 +93,7 @@ std::vector<double> numbers(const Ctx& c, const toml::key& k, const toml::node& 
 
 void parseBattery(const Ctx& c, const toml::table& t, BatteryConfig& b) {
   std::vector<double> socs, volts;
-  int ocvLine = lineOf(t);
+  int ocvLine = lineOf(t), socLine = lineOf(t), voltLine = lineOf(t);
   for (auto&& [k, v] : t) {
     const auto n = k.str();
     if (n == "chemistry") {
@@ -116,10 +116,10 @@ void parseBattery(const Ctx& c, const toml::table& t, BatteryConfig& b) {
       b.temp_c = number(c, k, v, -40.0, 80.0);
     } else if (n == "ocv_soc_pct") {
       socs = numbers(c, k, v, 0.0, 100.0);
-      ocvLine = lineOf(v);
+      ocvLine = socLine = lineOf(v);
     } else if (n == "ocv_cell_v") {
       volts = numbers(c, k, v, 0.0, 10.0);
-      ocvLine = lineOf(v);
+      ocvLine = voltLine = lineOf(v);
     } else {
       unknownKey(c, k, "[battery]");
     }
@@ -130,7 +130,8 @@ void parseBattery(const Ctx& c, const toml::table& t, BatteryConfig& b) {
     b.ocv.clear();
     for (std::size_t i = 0; i < socs.size(); ++i) b.ocv.push_back({socs[i] / 100.0, volts[i]});
     const auto why = ocvTableProblem(b.ocv);
-    if (!why.empty()) c.fail(ocvLine, "[battery] OCV table: " + std::string(why));
+    const bool aboutVolts = why.find("voltage") != std::string_view::npos;
+    if (!why.empty()) c.fail(aboutVolts ? voltLine : socLine, "[battery] OCV table: " + std::string(why));
   }
 }
 
