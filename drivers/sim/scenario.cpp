@@ -165,7 +165,8 @@ void parseAlternator(const Ctx& c, const toml::table& t, AlternatorConfig& a) {
     if (k.str() == "preset") {
       const auto s = text(c, k, v);
       if (!parseAlternatorPreset(s.c_str(), a.preset))
-        c.fail(lineOf(v), "unknown alternator preset '" + s + "' (bosch-lix-180 | westerbeke-48 | ford-130)");
+        c.fail(lineOf(v), "unknown alternator preset '" + s +
+                              "' (bosch-lix-180 | westerbeke-48 | ford-130 | mercury-52)");
       continue;
     }
     bool found = false;

@@ -106,6 +106,26 @@ def fit_wb33():
     print("westerbeke-48: flux_k %.7g flux_sat_a %.6g stator_l_h %.6g copper_r_ohm %.6g (error %.4f)" % (*x, e))
 
 
+def fit_merc():
+    # Engine rpm, belt ratio unknown (fitted), 12.6 V, temperature unknown (25 °C).
+    pts = [(600, 21), (1000, 37), (1500, 44), (2000, 48), (2500, 50), (3000, 51), (4000, 52), (5000, 52)]
+    f25 = 1 + ALPHA * 5
+
+    def model(x, rpm):
+        k, i_s, ls, r, ratio = x
+        return amps(rpm * ratio, 12.6 / (3.05 * f25), 12.6, 6, k, i_s, ls, r * f25, 1.0)
+
+    def err(x):
+        if min(x) <= 0:
+            return 1e9
+        return sum(((model(x, n) - a) / a) ** 2 for n, a in pts)
+
+    x, e = best_of(err, ([0.01, 1, 300e-6, 0.1, 2.5], [0.02, 0.5, 500e-6, 0.05, 3.0], [0.008, 2, 200e-6, 0.2, 2.0]))
+    print("mercury-52: flux_k %.7g flux_sat_a %.6g stator_l_h %.6g copper_r_ohm %.6g belt %.4g (error %.5f)"
+          % (*x, e))
+
+
 if __name__ == "__main__":
     fit_sara()
     fit_wb33()
+    fit_merc()

@@ -27,6 +27,14 @@ void alternatorCurves(std::ofstream& f) {
   }
 }
 
+void mercuryCurve(std::ofstream& f) {
+  f << "engine_rpm,amps\n";
+  const LundellParams m = presetParams(AlternatorPreset::mercury_52);
+  for (double rpm = 0; rpm <= 6000; rpm += 25)
+    f << rpm << ',' << outputAmps(m, rpm * 2.329, 12.6 / (m.field_r_ohm * copperFactor(25.0)), 12.6, 25.0)
+      << '\n';
+}
+
 void kneeCurve(std::ofstream& f) {
   f << "preset,rpm,knee_field_a\n";
   for (auto p : {AlternatorPreset::bosch_lix_180, AlternatorPreset::ford_130}) {
@@ -123,6 +131,8 @@ int main(int argc, char** argv) {
   std::ofstream alt(dir / "alternator.csv"), knee(dir / "knee.csv"), ocv(dir / "ocv.csv"),
       charge(dir / "charge.csv"), th(dir / "thermal.csv"), ld(dir / "load_dump.csv");
   alternatorCurves(alt);
+  std::ofstream merc(dir / "mercury.csv");
+  mercuryCurve(merc);
   kneeCurve(knee);
   ocvCurves(ocv);
   charge << "run,t_s,volts,amps,soc_pct,charging\n";

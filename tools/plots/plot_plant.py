@@ -25,6 +25,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 SARA_FULL = [(2000, 120), (4000, 170), (6000, 180)]  # Bosch LiX 180 A, 25 °C, full field
 WB33_COLD = [(1300, 24), (2500, 50)]
 WB33_HOT = [(1300, 16), (2500, 41), (5000, 48)]
+MERC = [(600, 21), (1000, 37), (1500, 44), (2000, 48), (2500, 50), (3000, 51), (4000, 52), (5000, 52)]  # engine rpm, 12.6 V
 # plant-facts §2.7, Ford 130 A (RIVAS), derived minimum field for conduction.
 FORD_KNEE = [(1200, 3.30), (1500, 2.64), (1800, 2.20), (2000, 1.98), (3000, 1.32), (4000, 0.99), (6000, 0.66)]
 # OCV tables (12 V values / cells).
@@ -53,7 +54,7 @@ def alternator(d, out):
     groups = defaultdict(list)
     for r in rows:
         groups[(r["preset"], float(r["temp_c"]))].append(r)
-    fig, axes = plt.subplots(1, 3, figsize=(15, 4.5))
+    fig, axes = plt.subplots(1, 4, figsize=(19, 4.5))
     for ax, preset, title in ((axes[0], "bosch-lix-180", "Bosch LiX 180 A (SARA)"),
                               (axes[1], "westerbeke-48", "Westerbeke 33A alternator (WB33)")):
         for (p, t), g in sorted(groups.items()):
@@ -70,6 +71,14 @@ def alternator(d, out):
     axes[1].plot(*zip(*WB33_HOT), "s", color="tab:red", label="published, hot")
     for ax in axes[:2]:
         ax.legend(fontsize=8)
+    merc = read(os.path.join(d, "mercury.csv"))
+    axes[3].plot([float(r["engine_rpm"]) for r in merc], col(merc, "amps"), label="model, 25 °C, belt 2.33")
+    axes[3].plot(*zip(*MERC), "o", label="published (MERC)")
+    axes[3].set_title("Mercury 150 EFI alternator (12.6 V)")
+    axes[3].set_xlabel("engine rpm")
+    axes[3].set_ylabel("output A")
+    axes[3].grid(alpha=0.3)
+    axes[3].legend(fontsize=8)
     knee = read(os.path.join(d, "knee.csv"))
     for preset, style in (("ford-130", "-"), ("bosch-lix-180", "--")):
         g = [r for r in knee if r["preset"] == preset]

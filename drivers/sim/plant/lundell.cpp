@@ -21,6 +21,8 @@ const char* toString(AlternatorPreset p) {
       return "westerbeke-48";
     case AlternatorPreset::ford_130:
       return "ford-130";
+    case AlternatorPreset::mercury_52:
+      return "mercury-52";
   }
   return "?";
 }
@@ -76,6 +78,22 @@ LundellParams presetParams(AlternatorPreset p) {
       m.field_r_ohm = 3.75;
       m.field_l_h = 0.39;
       m.diode_v = 0.9;
+      break;
+    case AlternatorPreset::mercury_52:
+      // Mercury 150 EFI alternator (plant-facts MERC): 21/37/44/48/50/51/52/
+      // 52 A at 600-5000 engine rpm into 12.6 V, temperature not stated (taken
+      // as 25 °C), belt ratio not given. Assumed 6 pole pairs and the XEN field
+      // circuit; fitted (tools/plots/fit_alternators.py) flux, L_s, the
+      // (copper) stator resistance and the belt ratio: 2.33, inside the
+      // "2-3 x crankshaft" of WIKI-ALT. Shaft rpm = engine rpm x 2.33.
+      m.pole_pairs = 6.0;
+      m.flux_k = 0.01669;
+      m.flux_sat_a = 1.18902;
+      m.stator_l_h = 356.28e-6;
+      m.stator_rx_ohm = 0.0;
+      m.copper_r_ohm = 0.297224;
+      m.field_r_ohm = 3.05;
+      m.field_l_h = 0.32;
       break;
   }
   return m;

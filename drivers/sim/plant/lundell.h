@@ -38,7 +38,7 @@ struct LundellParams {
 
 inline constexpr double kFanRefRpm = 3000.0;  // shaft rpm of the thermal calibration (ARCO's hot test)
 
-enum class AlternatorPreset { bosch_lix_180, westerbeke_48, ford_130 };
+enum class AlternatorPreset { bosch_lix_180, westerbeke_48, ford_130, mercury_52 };
 const char* toString(AlternatorPreset p);
 bool parseAlternatorPreset(const char* name, AlternatorPreset& out);
 LundellParams presetParams(AlternatorPreset p);

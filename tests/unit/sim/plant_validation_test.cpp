@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <utility>
 #include <vector>
 
 #include "drivers/sim/plant/plant.h"
@@ -61,6 +62,23 @@ TEST(PlantValidation, Westerbeke48ColdAndHotWithin10Pct) {
                      {2500, 41, kHotC, -1, 13.5},
                      {5000, 48, kHotC, -1, 13.5}},
                     "westerbeke-48");
+}
+
+// MERC: Mercury 150 EFI, eight engine speeds into 12.6 V (belt ratio fitted
+// as 2.33; temperature not published, taken as 25 °C).
+TEST(PlantValidation, Mercury52EightSpeedsWithin10Pct) {
+  const LundellParams m = presetParams(AlternatorPreset::mercury_52);
+  std::vector<CurvePoint> pts;
+  for (const auto& [rpm, a] : {std::pair{600.0, 21.0},
+                               {1000.0, 37.0},
+                               {1500.0, 44.0},
+                               {2000.0, 48.0},
+                               {2500.0, 50.0},
+                               {3000.0, 51.0},
+                               {4000.0, 52.0},
+                               {5000.0, 52.0}})
+    pts.push_back({rpm * 2.329, a, 25.0, 12.6 / (m.field_r_ohm * copperFactor(25.0)), 12.6});
+  expectWithin10Pct(m, pts, "mercury-52");
 }
 
 // Hot output is lower, by more at low speed (WB33: -33 % at 1300 rpm, -18 %
