@@ -68,9 +68,11 @@ int Daemon::run() {
       scenario = cli_.scenario ? sim::loadScenario(*cli_.scenario) : sim::defaultScenario();
       sim::applyOverrides(fileParams, scenario->config, scenario->source);
     } catch (const std::exception& e) {
+      // A bad scenario is bad input on the command line (issue 20: exit 64,
+      // EX_USAGE), not a bad configuration file (78).
       spdlog::critical("{}", e.what());
       std::fprintf(stderr, "xregulatord: %s\n", e.what());
-      return kExitConfig;
+      return kExitUsage;
     }
     spdlog::info("scenario '{}' ({} s, seed {})", scenario->name, scenario->duration_s,
                  cli_.seed ? *cli_.seed : scenario->seed);

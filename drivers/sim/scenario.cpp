@@ -1,9 +1,11 @@
 #include "drivers/sim/scenario.h"
 
+#include <toml++/toml.h>
+
 #include <cmath>
 #include <fstream>
 #include <sstream>
-#include <toml++/toml.h>
+#include <stdexcept>
 
 namespace xr::sim {
 namespace {
@@ -41,7 +43,8 @@ const toml::table& tableOf(const Ctx& c, const toml::key& k, const toml::node& v
 }
 
 [[noreturn]] void unknownKey(const Ctx& c, const toml::key& k, std::string_view where) {
-  c.fail(lineOf(k), "unknown key '" + std::string(k.str()) + "'" + (where.empty() ? "" : " in " + std::string(where)));
+  c.fail(lineOf(k),
+         "unknown key '" + std::string(k.str()) + "'" + (where.empty() ? "" : " in " + std::string(where)));
 }
 
 // Parameter overrides: [config] and set = { ... }.
@@ -61,7 +64,8 @@ ParamOverride paramOverride(const Ctx& c, const toml::key& k, const toml::node& 
       c.fail(lineOf(n), "parameter '" + o.name + "' needs a number");
     if (!valueFits(*spec, d)) {
       std::ostringstream m;
-      m << "parameter '" << o.name << "' = " << d << " is out of range [" << spec->min << ", " << spec->max << "]";
+      m << "parameter '" << o.name << "' = " << d << " is out of range [" << spec->min << ", " << spec->max
+        << "]";
       if (spec->kind == ParamKind::Int || spec->kind == ParamKind::Bool) m << " or not a whole number";
       c.fail(lineOf(n), m.str());
     }
@@ -70,7 +74,8 @@ ParamOverride paramOverride(const Ctx& c, const toml::key& k, const toml::node& 
   if (spec->kind == ParamKind::Table) {
     const toml::array* a = v.as_array();
     if (!a || a->size() != RPM_TABLE_SIZE)
-      c.fail(lineOf(v), "parameter '" + o.name + "' needs an array of " + std::to_string(RPM_TABLE_SIZE) + " numbers");
+      c.fail(lineOf(v),
+             "parameter '" + o.name + "' needs an array of " + std::to_string(RPM_TABLE_SIZE) + " numbers");
     for (const auto& n : *a) one(n);
   } else {
     one(v);
@@ -78,7 +83,17 @@ ParamOverride paramOverride(const Ctx& c, const toml::key& k, const toml::node& 
   return o;
 }
 
+std::vector<double> numbers(const Ctx& c, const toml::key& k, const toml::node& v, double lo, double hi) {
+  const toml::array* a = v.as_array();
+  if (!a) c.fail(lineOf(v), "'" + std::string(k.str()) + "' must be an array of numbers");
+  std::vector<double> out;
+  for (const auto& n : *a) out.push_back(number(c, k, n, lo, hi));
+  return out;
+}
+
 void parseBattery(const Ctx& c, const toml::table& t, BatteryConfig& b) {
+  std::vector<double> socs, volts;
+  int ocvLine = lineOf(t), socLine = lineOf(t), voltLine = lineOf(t);
   for (auto&& [k, v] : t) {
     const auto n = k.str();
     if (n == "chemistry") {
@@ -92,11 +107,31 @@ void parseBattery(const Ctx& c, const toml::table& t, BatteryConfig& b) {
       b.soc_pct = number(c, k, v, 0.0, 100.0);
     } else if (n == "nominal_v") {
       b.nominal_v = number(c, k, v, 6.0, 64.0);
+    } else if (n == "cells") {
+      b.cells = int(number(c, k, v, 1.0, 32.0));
+      if (double(b.cells) != *v.value<double>()) c.fail(lineOf(v), "'cells' must be a whole number");
     } else if (n == "r_ohm") {
       b.r_ohm = number(c, k, v, 0.0, 1.0);
+    } else if (n == "temp_c") {
+      b.temp_c = number(c, k, v, -40.0, 80.0);
+    } else if (n == "ocv_soc_pct") {
+      socs = numbers(c, k, v, 0.0, 100.0);
+      ocvLine = socLine = lineOf(v);
+    } else if (n == "ocv_cell_v") {
+      volts = numbers(c, k, v, 0.0, 10.0);
+      ocvLine = voltLine = lineOf(v);
     } else {
       unknownKey(c, k, "[battery]");
     }
+  }
+  if (socs.empty() != volts.empty()) c.fail(ocvLine, "[battery] ocv_soc_pct and ocv_cell_v go together");
+  if (!socs.empty()) {
+    if (socs.size() != volts.size()) c.fail(ocvLine, "[battery] ocv_soc_pct and ocv_cell_v differ in length");
+    b.ocv.clear();
+    for (std::size_t i = 0; i < socs.size(); ++i) b.ocv.push_back({socs[i] / 100.0, volts[i]});
+    const auto why = ocvTableProblem(b.ocv);
+    const bool aboutVolts = why.find("voltage") != std::string_view::npos;
+    if (!why.empty()) c.fail(aboutVolts ? voltLine : socLine, "[battery] OCV table: " + std::string(why));
   }
 }
 
@@ -106,20 +141,34 @@ void parseAlternator(const Ctx& c, const toml::table& t, AlternatorConfig& a) {
     double AlternatorConfig::*field;
     double lo, hi;
   };
+  // Ranges are what is physical at all (resistances and inductances above
+  // zero); whether the machine they make works is checked below.
   static const F fields[] = {
       {"rated_a", &AlternatorConfig::rated_a, 1.0, 1000.0},
+      {"cut_in_rpm", &AlternatorConfig::cut_in_rpm, 1.0, 20000.0},
       {"field_tau_s", &AlternatorConfig::field_tau_s, 0.001, 10.0},
+      {"pole_pairs", &AlternatorConfig::pole_pairs, 1.0, 24.0},
+      {"flux_k", &AlternatorConfig::flux_k, 1e-6, 1.0},
+      {"flux_sat_a", &AlternatorConfig::flux_sat_a, 0.01, 1e4},
+      {"stator_l_h", &AlternatorConfig::stator_l_h, 1e-7, 0.1},
+      {"stator_rx_ohm", &AlternatorConfig::stator_rx_ohm, 0.0, 10.0},
+      {"copper_r_ohm", &AlternatorConfig::copper_r_ohm, 1e-5, 10.0},
+      {"field_r_ohm", &AlternatorConfig::field_r_ohm, 0.1, 100.0},
+      {"field_l_h", &AlternatorConfig::field_l_h, 1e-4, 10.0},
+      {"diode_v", &AlternatorConfig::diode_v, 0.0, 3.0},
       {"temp_f", &AlternatorConfig::temp_f, -40.0, 400.0},
       {"ambient_f", &AlternatorConfig::ambient_f, -40.0, 200.0},
       {"pulley_ratio", &AlternatorConfig::pulley_ratio, 0.5, 10.0},
-      {"cut_in_rpm", &AlternatorConfig::cut_in_rpm, 0.0, 5000.0},
-      {"full_rpm", &AlternatorConfig::full_rpm, 100.0, 10000.0},
-      {"cruise_rpm", &AlternatorConfig::cruise_rpm, 100.0, 10000.0},
-      {"thermal_rise_f", &AlternatorConfig::thermal_rise_f, 1.0, 500.0},
-      {"thermal_tau_s", &AlternatorConfig::thermal_tau_s, 1.0, 100000.0},
       {"wiring_ohm", &AlternatorConfig::wiring_ohm, 0.0, 1.0},
   };
   for (auto&& [k, v] : t) {
+    if (k.str() == "preset") {
+      const auto s = text(c, k, v);
+      if (!parseAlternatorPreset(s.c_str(), a.preset))
+        c.fail(lineOf(v), "unknown alternator preset '" + s +
+                              "' (bosch-lix-180 | westerbeke-48 | ford-130 | mercury-52)");
+      continue;
+    }
     bool found = false;
     for (const auto& f : fields) {
       if (k.str() == f.name) {
@@ -129,7 +178,20 @@ void parseAlternator(const Ctx& c, const toml::table& t, AlternatorConfig& a) {
     }
     if (!found) unknownKey(c, k, "[alternator]");
   }
-  if (a.full_rpm <= a.cut_in_rpm) c.fail(lineOf(t), "[alternator] full_rpm must be above cut_in_rpm");
+  try {
+    (void)resolveMachine(a);
+  } catch (const std::invalid_argument& e) {
+    // The line of the first key the message names, else the table's.
+    int line = lineOf(t);
+    const std::string why = e.what();
+    for (auto&& [k, v] : t) {
+      if (why.find(std::string(k.str())) != std::string::npos) {
+        line = lineOf(v);
+        break;
+      }
+    }
+    c.fail(line, std::string("[alternator] ") + e.what());
+  }
 }
 
 void parseNoise(const Ctx& c, const toml::table& t, NoiseConfig& n) {
@@ -138,9 +200,10 @@ void parseNoise(const Ctx& c, const toml::table& t, NoiseConfig& n) {
     double NoiseConfig::*field;
     double hi;
   };
-  static const F fields[] = {{"ibv_v", &NoiseConfig::ibv_v, 5.0},         {"bcur_a", &NoiseConfig::bcur_a, 100.0},
-                             {"battery_v", &NoiseConfig::battery_v, 5.0}, {"alt_a", &NoiseConfig::alt_a, 100.0},
-                             {"rpm", &NoiseConfig::rpm, 1000.0},          {"temp_f", &NoiseConfig::temp_f, 50.0}};
+  static const F fields[] = {
+      {"ibv_v", &NoiseConfig::ibv_v, 5.0},         {"bcur_a", &NoiseConfig::bcur_a, 100.0},
+      {"battery_v", &NoiseConfig::battery_v, 5.0}, {"alt_a", &NoiseConfig::alt_a, 100.0},
+      {"rpm", &NoiseConfig::rpm, 1000.0},          {"temp_f", &NoiseConfig::temp_f, 50.0}};
   for (auto&& [k, v] : t) {
     bool found = false;
     for (const auto& f : fields) {
@@ -181,6 +244,8 @@ ScenarioEvent parseEvent(const Ctx& c, const toml::table& t, double duration) {
       e.house_a = number(c, k, v, 0.0, 2000.0);
     } else if (n == "ambient_f") {
       e.ambient_f = number(c, k, v, -40.0, 200.0);
+    } else if (n == "battery_temp_c") {
+      e.battery_temp_c = number(c, k, v, -40.0, 80.0);
     } else if (n == "ignition") {
       const auto s = text(c, k, v);
       if (s != "on" && s != "off") c.fail(lineOf(v), "ignition must be \"on\" or \"off\"");
@@ -226,7 +291,8 @@ ScenarioEvent parseEvent(const Ctx& c, const toml::table& t, double duration) {
     Command command;
     command.type = *cmd;
     if (!cmdArgName.empty()) {
-      if (!cmdArg) c.fail(cmdLine, "command '" + std::string(toString(*cmd)) + "' needs " + cmdArgName + " = ...");
+      if (!cmdArg)
+        c.fail(cmdLine, "command '" + std::string(toString(*cmd)) + "' needs " + cmdArgName + " = ...");
       if (cmdArgName == "active") {
         if (!cmdArg->is_boolean()) c.fail(lineOf(*cmdArg), "'active' must be true or false");
         command.flag = *cmdArg->value<bool>();
@@ -241,8 +307,8 @@ ScenarioEvent parseEvent(const Ctx& c, const toml::table& t, double duration) {
     }
     e.command = command;
   }
-  const bool any = e.rpm || e.house_a || e.ambient_f || e.ignition || e.bms_connected || e.bms_charge_enabled ||
-                   e.command || !e.set.empty() || e.fault || e.clear;
+  const bool any = e.rpm || e.house_a || e.ambient_f || e.battery_temp_c || e.ignition || e.bms_connected ||
+                   e.bms_charge_enabled || e.command || !e.set.empty() || e.fault || e.clear;
   if (!any) c.fail(e.line, "event does nothing");
   return e;
 }
@@ -261,7 +327,8 @@ Scenario parseTable(const Ctx& c, const toml::table& root) {
       s.name = text(c, k, v);
     } else if (n == "duration_s") {
     } else if (n == "seed") {
-      if (!v.is_integer() || *v.value<std::int64_t>() < 0) c.fail(lineOf(v), "'seed' must be a non-negative integer");
+      if (!v.is_integer() || *v.value<std::int64_t>() < 0)
+        c.fail(lineOf(v), "'seed' must be a non-negative integer");
       s.seed = std::uint64_t(*v.value<std::int64_t>());
     } else if (n == "config") {
       for (auto&& [pk, pv] : tableOf(c, k, v)) s.config.push_back(paramOverride(c, pk, pv));
@@ -352,10 +419,13 @@ Scenario defaultScenario() {
 void applyOverrides(Params& p, const std::vector<ParamOverride>& o, std::string_view source) {
   for (const auto& x : o) {
     const ParamSpec* spec = findParam(x.name);
-    if (!spec) throw ScenarioError(std::string(source) + ":" + std::to_string(x.line) + ": unknown parameter '" + x.name + "'");
+    if (!spec)
+      throw ScenarioError(std::string(source) + ":" + std::to_string(x.line) + ": unknown parameter '" +
+                          x.name + "'");
     for (std::size_t i = 0; i < x.values.size(); ++i) {
       if (!valueFits(*spec, x.values[i]))
-        throw ScenarioError(std::string(source) + ":" + std::to_string(x.line) + ": bad value for '" + x.name + "'");
+        throw ScenarioError(std::string(source) + ":" + std::to_string(x.line) + ": bad value for '" +
+                            x.name + "'");
       spec->set(p, i, x.values[i]);
     }
   }
@@ -365,6 +435,7 @@ void ScenarioPlayer::applyToWorld(const ScenarioEvent& e, SimWorld& w) {
   if (e.rpm) w.plant().setRpm(*e.rpm);
   if (e.house_a) w.plant().setHouseAmps(*e.house_a);
   if (e.ambient_f) w.plant().setAmbientF(*e.ambient_f);
+  if (e.battery_temp_c) w.plant().setBatteryTempC(*e.battery_temp_c);
   if (e.ignition) w.setIgnition(*e.ignition);
   if (e.bms_connected) w.plant().setBmsConnected(*e.bms_connected);
   if (e.bms_charge_enabled) w.setBmsChargeEnabled(*e.bms_charge_enabled);

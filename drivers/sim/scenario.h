@@ -34,7 +34,7 @@ struct ParamOverride {
 struct ScenarioEvent {
   double at_s = 0.0;
   int line = 0;
-  std::optional<double> rpm, house_a, ambient_f;
+  std::optional<double> rpm, house_a, ambient_f, battery_temp_c;
   std::optional<bool> ignition;            // ignition = "on" | "off"
   std::optional<bool> bms_connected;       // bms = "connect" | "disconnect"
   std::optional<bool> bms_charge_enabled;  // bms_input = "charge_enabled" | "charge_disabled"

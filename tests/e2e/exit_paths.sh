@@ -103,9 +103,24 @@ case "$case_name" in
     grep -q BulkVoltage "$tmp/log" || fail "bad config error does not name the key"
     "$bin" --config "$tmp/bad.toml" --sim --duration 1 --speed max >"$tmp/log" 2>&1
     [ $? = 78 ] || fail "daemon with a bad config: not 78"
+    # A bad scenario (and a bad plant parameter in one) is bad command-line
+    # input: exit 64 with a file:line: message, and the field never enabled.
     printf 'name = "x"\nduration_s = -5\n' >"$tmp/bad-scenario.toml"
     "$bin" --sim --scenario "$tmp/bad-scenario.toml" --speed max >"$tmp/log" 2>&1
-    [ $? = 78 ] || fail "bad scenario: not 78"
+    [ $? = 64 ] || fail "bad scenario: not 64"
+    grep -q "bad-scenario.toml:2:" "$tmp/log" || fail "bad scenario: no file:line:"
+    printf 'name = "x"\n[alternator]\nfield_r_ohm = -2.5\n' >"$tmp/neg-r.toml"
+    "$bin" --sim --scenario "$tmp/neg-r.toml" --speed max >"$tmp/log" 2>&1
+    [ $? = 64 ] || fail "negative field resistance: not 64"
+    grep -q "neg-r.toml:3:.*field_r_ohm" "$tmp/log" || fail "negative resistance: no file:line: naming the key"
+    printf 'name = "x"\n[alternator]\npulley_ratio = 3\ncut_in_rpm = 7000\n' >"$tmp/knee.toml"
+    "$bin" --sim --scenario "$tmp/knee.toml" --speed max >"$tmp/log" 2>&1
+    [ $? = 64 ] || fail "knee above the maximum speed: not 64"
+    grep -q "knee.toml:4:.*maximum speed" "$tmp/log" || fail "knee above the maximum speed: no file:line:"
+    printf 'name = "x"\n[battery]\nocv_soc_pct = [0, 50, 100]\nocv_cell_v = [3.0, 3.4, 3.3]\n' >"$tmp/ocv.toml"
+    "$bin" --sim --scenario "$tmp/ocv.toml" --speed max >"$tmp/log" 2>&1
+    [ $? = 64 ] || fail "OCV table not monotone: not 64"
+    grep -q "ocv.toml:4:.*monotone" "$tmp/log" || fail "OCV table not monotone: no file:line:"
     ;;
   *) fail "unknown case" ;;
 esac

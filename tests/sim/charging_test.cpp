@@ -86,7 +86,10 @@ absorptionCompleteTime = 3600000
 [battery]
 chemistry = "lifepo4"
 capacity_ah = 200
-soc_pct = 99.3
+# 99.9 %, not 99.3 %: the old plant's LFP knee (14.7 V at 100 %) reached 14.5 V
+# at 99.3 % with 12 A; a real bank (Libre Solar OCV, end-of-charge taper) needs
+# to be fuller before 0.06C lifts it to absorption.
+soc_pct = 99.9
 [alternator]
 rated_a = 120
 [engine]

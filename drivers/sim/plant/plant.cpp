@@ -14,6 +14,7 @@ Plant::Plant(const PlantConfig& c)
       tvs_(c.tvs_clamp_v > 0.0 ? c.tvs_clamp_v : 2.5 * c.battery.nominal_v) {
   setHouseAmps(c.house_a);
   busV_ = bat_.terminalVolts(0.0);
+  alt_.step(0.0, busV_, rpm_, ambientF_, 0.0);  // speed and temperature caches
   refreshTruth();
   truth_.peak_bus_v = busV_;
 }
@@ -31,7 +32,7 @@ void Plant::step(double fieldCmd, double dt) noexcept {
     subStep(fieldCmd, dt);
   } else {
     // Without the battery the bus is a capacitor: ~50 µs steps keep the
-    // rise (hundreds of V/s per amp) and the TVS clamp resolved.
+    // rise and the TVS clamp resolved.
     const int n = std::max(1, int(std::ceil(dt / 50e-6)));
     for (int i = 0; i < n; ++i) subStep(fieldCmd, dt / n);
   }
@@ -39,29 +40,41 @@ void Plant::step(double fieldCmd, double dt) noexcept {
 }
 
 void Plant::subStep(double fieldCmd, double dt) noexcept {
-  alt_.step(fieldCmd, rpm_, ambientF_, dt);
-  const double ia = alt_.amps();
+  // The field is fed from the bus (the regulator's supply): duty x bus volts.
+  alt_.step(fieldCmd, busV_, rpm_, ambientF_, dt);
+  // The alternator sees the bus plus its cable drop at the last current.
+  const double cable = alt_.amps() * cfg_.alternator.wiring_ohm;
   if (bmsConnected_) {
-    // Node: the battery takes what the alternator gives minus the house load.
-    // The house load is resistive, so solve V = E + R (Ia - V/Rh) for V.
-    const double e0 = bat_.terminalVolts(0.0);
-    const double r = bat_.seriesR();
-    double v = (e0 + r * ia) / (1.0 + r * houseG_);
-    // Refinement so the charge overpotential sees the real current (the
-    // linear solve above is already exact without one).
-    for (int k = 0; k < 2 && bat_.hasOverpotential(); ++k) {
-      const double ib = ia - v * houseG_;
-      v = bat_.terminalVolts(ib);
+    // Node: I_alt(V + cable) = V·G_house + (V − E)/R. The battery is linear
+    // within the step and stiff (R of milliohms), so Newton from the last
+    // voltage settles in two iterations.
+    const double e = bat_.emf();
+    const double gb = 1.0 / bat_.seriesR();
+    double v = busV_;
+    double ia = 0.0;
+    for (int k = 0; k < 2; ++k) {
+      double d = 0.0;
+      ia = alt_.outputAt(v + cable, &d);
+      const double r = ia - v * houseG_ - (v - e) * gb;
+      v -= r / (d - houseG_ - gb);
     }
-    batA_ = ia - v * houseG_;
+    ia = alt_.outputAt(v + cable);
+    alt_.setOutput(ia);
+    batA_ = (v - e) * gb;
     busV_ = v;
     bat_.step(batA_, dt);
   } else {
     batA_ = 0.0;
     bat_.step(0.0, dt);
-    const double ih = busV_ * houseG_;
-    busV_ += (ia - ih) * dt / std::max(1e-6, cfg_.bus_capacitance_f);
+    // C dV/dt = I_alt(V) − G·V, backward Euler linearised at V (stable for
+    // any C: the machine's output falls as the bus rises).
+    double d = 0.0;
+    const double ia = alt_.outputAt(busV_ + cable, &d);
+    const double f = ia - busV_ * houseG_;
+    const double k = dt / std::max(1e-6, cfg_.bus_capacitance_f);
+    busV_ += k * f / (1.0 - k * (d - houseG_));
     busV_ = std::clamp(busV_, 0.0, tvs_);  // the TVS absorbs the rest
+    alt_.setOutput(alt_.outputAt(busV_ + cable));
     truth_.peak_disconnected_v = std::max(truth_.peak_disconnected_v, busV_);
   }
   truth_.peak_bus_v = std::max(truth_.peak_bus_v, busV_);
@@ -73,9 +86,12 @@ void Plant::refreshTruth() noexcept {
   truth_.alt_a = alt_.amps();
   truth_.alt_terminal_v = busV_ + alt_.amps() * cfg_.alternator.wiring_ohm;
   truth_.alt_temp_f = alt_.tempF();
+  truth_.alt_stator_c = alt_.statorC();
   truth_.house_a = busV_ * houseG_;
   truth_.soc_pct = bat_.socPct();
   truth_.field = alt_.field();
+  truth_.field_a = alt_.fieldAmps();
+  truth_.battery_temp_c = bat_.tempC();
   truth_.bms_connected = bmsConnected_;
 }
 

@@ -1,9 +1,12 @@
 #pragma once
-// The physical system on the DC bus: alternator (current source through its
-// cable), battery (behind a BMS contactor), house loads (resistive at the
-// nominal voltage), bus capacitance and a TVS clamp. When the BMS opens, only
-// the bus capacitance and the house load remain, so the alternator current
-// drives a fast rise that the TVS clamps; the peak is recorded.
+// The physical system on the DC bus: alternator (a Lundell machine through
+// its cable), battery (behind a BMS contactor), house loads (resistive at the
+// nominal voltage), bus capacitance and a TVS clamp. The alternator's output
+// depends on the bus voltage, so each step solves the bus node. When the BMS
+// opens, only the bus capacitance, the house load and the TVS remain: the bus
+// rises until the machine's own output falls (its EMF behind the stator
+// impedance, its field decaying or fed by the risen bus) or the TVS clamps;
+// the peak is recorded.
 #include "drivers/sim/plant/alternator.h"
 #include "drivers/sim/plant/battery.h"
 
@@ -23,10 +26,13 @@ struct PlantTruth {
   double battery_a = 0.0;  // into the battery (+ = charging)
   double alt_a = 0.0;
   double alt_terminal_v = 0.0;
-  double alt_temp_f = 0.0;
+  double alt_temp_f = 0.0;  // housing (where the sensor sits)
+  double alt_stator_c = 0.0;
   double house_a = 0.0;
   double soc_pct = 0.0;
-  double field = 0.0;  // field current fraction 0..1
+  double field = 0.0;    // field current / full field at 13.5 V, 20 °C
+  double field_a = 0.0;  // field current
+  double battery_temp_c = 0.0;
   bool bms_connected = true;
   double peak_bus_v = 0.0;           // highest bus voltage so far
   double peak_disconnected_v = 0.0;  // highest bus voltage while the BMS was open
@@ -45,6 +51,7 @@ class Plant {
   void setHouseAmps(double a) noexcept;
   void setAmbientF(double f) noexcept { ambientF_ = f; }
   double ambientF() const noexcept { return ambientF_; }
+  void setBatteryTempC(double c) noexcept { bat_.setTempC(c); }
   void setBmsConnected(bool c) noexcept;
   void setFieldOpen(bool open) noexcept { alt_.setOpen(open); }
   void setSocPct(double p) noexcept { bat_.setSocPct(p); }
@@ -60,7 +67,7 @@ class Plant {
   AlternatorModel alt_;
   double rpm_;
   double ambientF_;
-  double houseG_;  // house load conductance, S (0 = no load); G, not R, so the node solve has no divisions
+  double houseG_;  // house load conductance, S (0 = no load)
   double tvs_;
   bool bmsConnected_ = true;
   double busV_;

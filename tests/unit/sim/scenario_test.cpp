@@ -1,9 +1,9 @@
 // Scenario files: DESIGN.md format, file:line errors.
+#include "drivers/sim/scenario.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
-
-#include "drivers/sim/scenario.h"
 
 namespace xr::sim {
 namespace {
@@ -101,7 +101,8 @@ TEST(Scenario, UnknownKeyHasLine) {
 }
 
 TEST(Scenario, UnknownFaultChemistryCommandParameter) {
-  EXPECT_NE(errorOf("[[events]]\nat_s = 1\nfault = \"gremlins\"\n").find("t.toml:3: unknown fault"), std::string::npos);
+  EXPECT_NE(errorOf("[[events]]\nat_s = 1\nfault = \"gremlins\"\n").find("t.toml:3: unknown fault"),
+            std::string::npos);
   EXPECT_NE(errorOf("[battery]\nchemistry = \"nicd\"\n").find("t.toml:2:"), std::string::npos);
   EXPECT_NE(errorOf("[[events]]\nat_s = 1\ncommand = \"fly\"\n").find("t.toml:3:"), std::string::npos);
   EXPECT_NE(errorOf("[config]\nBulkVoltag = 14.0\n").find("t.toml:2: unknown parameter"), std::string::npos);
@@ -110,8 +111,10 @@ TEST(Scenario, UnknownFaultChemistryCommandParameter) {
 TEST(Scenario, ValueOutOfRange) {
   EXPECT_NE(errorOf("[battery]\nsoc_pct = 140\n").find("t.toml:2:"), std::string::npos);
   EXPECT_NE(errorOf("[config]\nBulkVoltage = 99\n").find("t.toml:2:"), std::string::npos);
-  EXPECT_NE(errorOf("duration_s = 10\n[[events]]\nat_s = 20\nrpm = 1000\n").find("t.toml:3:"), std::string::npos);
-  EXPECT_NE(errorOf("[[events]]\nat_s = 1\nset = { TempSource = 0.5 }\n").find("t.toml:3:"), std::string::npos);
+  EXPECT_NE(errorOf("duration_s = 10\n[[events]]\nat_s = 20\nrpm = 1000\n").find("t.toml:3:"),
+            std::string::npos);
+  EXPECT_NE(errorOf("[[events]]\nat_s = 1\nset = { TempSource = 0.5 }\n").find("t.toml:3:"),
+            std::string::npos);
 }
 
 TEST(Scenario, EventsOutOfOrder) {
@@ -120,10 +123,66 @@ TEST(Scenario, EventsOutOfOrder) {
 }
 
 TEST(Scenario, FaultValueRules) {
-  EXPECT_NE(errorOf("[[events]]\nat_s = 1\nfault = \"battery_v_offset\"\n").find("needs value"), std::string::npos);
-  EXPECT_NE(errorOf("[[events]]\nat_s = 1\nfault = \"ina228_nack\"\nvalue = 3\n").find("value"), std::string::npos);
+  EXPECT_NE(errorOf("[[events]]\nat_s = 1\nfault = \"battery_v_offset\"\n").find("needs value"),
+            std::string::npos);
+  EXPECT_NE(errorOf("[[events]]\nat_s = 1\nfault = \"ina228_nack\"\nvalue = 3\n").find("value"),
+            std::string::npos);
   EXPECT_NE(errorOf("[[events]]\nat_s = 1\ncommand = \"manual\"\n").find("needs duty"), std::string::npos);
   EXPECT_EQ(errorOf("[[events]]\nat_s = 1\ncommand = \"manual\"\nduty = 20\n"), "");
+}
+
+TEST(Scenario, PlantKeysParse) {
+  const auto s = parseScenario(R"(
+[battery]
+chemistry = "lifepo4"
+nominal_v = 24
+temp_c = 5
+ocv_soc_pct = [0, 50, 100]
+ocv_cell_v = [2.9, 3.26, 3.40]
+[alternator]
+preset = "westerbeke-48"
+rated_a = 60
+field_tau_s = 0.12
+[[events]]
+at_s = 10
+battery_temp_c = -5
+)",
+                               "t.toml");
+  EXPECT_EQ(s.plant.battery.nominal_v, 24);
+  EXPECT_EQ(s.plant.battery.temp_c, 5);
+  ASSERT_EQ(s.plant.battery.ocv.size(), 3u);
+  EXPECT_EQ(s.plant.battery.ocv[1].soc, 0.5);
+  EXPECT_EQ(s.plant.alternator.preset, AlternatorPreset::westerbeke_48);
+  EXPECT_EQ(s.plant.alternator.rated_a, 60);
+  ASSERT_EQ(s.events.size(), 1u);
+  EXPECT_EQ(*s.events[0].battery_temp_c, -5);
+  const LundellParams m = resolveMachine(s.plant.alternator);
+  EXPECT_NEAR(m.field_l_h / m.field_r_ohm, 0.12, 1e-12);
+}
+
+// Bad plant parameters: a file:line: error naming the key (the daemon
+// exits 64 on it: tests/e2e/exit_paths.sh).
+TEST(Scenario, BadPlantParametersHaveFileAndLine) {
+  auto e = errorOf("name = \"x\"\n[alternator]\nfield_r_ohm = -2.5\n");
+  EXPECT_EQ(e.rfind("t.toml:3:", 0), 0u) << e;
+  EXPECT_NE(e.find("field_r_ohm"), std::string::npos) << e;
+  e = errorOf("[alternator]\npulley_ratio = 3\ncut_in_rpm = 7000\n");  // 21 000 shaft rpm
+  EXPECT_EQ(e.rfind("t.toml:3:", 0), 0u) << e;
+  EXPECT_NE(e.find("maximum speed"), std::string::npos) << e;
+  e = errorOf("[alternator]\nflux_k = 0.00001\n");  // a machine whose knee no speed reaches
+  EXPECT_EQ(e.rfind("t.toml:1:", 0), 0u) << e;
+  EXPECT_NE(e.find("knee"), std::string::npos) << e;
+  e = errorOf("[battery]\nocv_soc_pct = [0, 50, 100]\nocv_cell_v = [3.0, 3.4, 3.3]\n");
+  EXPECT_EQ(e.rfind("t.toml:3:", 0), 0u) << e;
+  EXPECT_NE(e.find("monotone"), std::string::npos) << e;
+  e = errorOf("[battery]\nocv_soc_pct = [0, 60, 50, 100]\nocv_cell_v = [3.0, 3.1, 3.2, 3.3]\n");
+  EXPECT_EQ(e.rfind("t.toml:2:", 0), 0u) << e;
+  e = errorOf("[battery]\nocv_soc_pct = [0, 100]\n");
+  EXPECT_NE(e.find("go together"), std::string::npos) << e;
+  e = errorOf("[alternator]\npreset = \"delco-10si\"\n");
+  EXPECT_EQ(e.rfind("t.toml:2:", 0), 0u) << e;
+  e = errorOf("[alternator]\nstator_rx_ohm = -0.1\n");
+  EXPECT_EQ(e.rfind("t.toml:2:", 0), 0u) << e;
 }
 
 TEST(Scenario, MissingFileIsAClearError) {
