@@ -33,7 +33,7 @@ std::string usageText() {
          "                   [--duration S] [--telemetry-csv FILE] [--telemetry-rate HZ]\n"
          "                   [--http ADDR:PORT] [--state-db FILE] [--check-config]\n"
          "                   [--print-default-config] [--probe] [--version] [--seed N]\n"
-         "                   [--log-level L] [--sim-outputs FILE]\n"
+         "                   [--log-level L] [--sim-outputs FILE] [--print-token]\n"
          "\n"
          "  --config FILE          configuration (default: built-in defaults; the service uses\n"
          "                         /etc/xregulator/xregulator.toml)\n"
@@ -45,7 +45,9 @@ std::string usageText() {
          "  --telemetry-rate HZ    CSV row rate (default 10, simulated time in --sim)\n"
          "  --http ADDR:PORT       dashboard and API address (default from [web])\n"
          "  --state-db FILE        SQLite state database (default from [store]; none in --sim)\n"
-         "  --check-config         validate --config and exit (0 or 78)\n"
+         "  --check-config         validate --config, with the overrides stored in the state\n"
+         "                         database, and exit (0 or 78)\n"
+         "  --print-token          print the API write token kept in the state database\n"
          "  --print-default-config print the documented default configuration\n"
          "  --probe                check the hardware and print what to fix\n"
          "  --version              print the version\n"
@@ -63,6 +65,7 @@ CliResult parseCommandLine(const std::vector<std::string>& args) {
   const std::map<std::string, std::function<void()>> flags = {
       {"--sim", [&] { o.sim = true; }},
       {"--check-config", [&] { o.checkConfig = true; }},
+      {"--print-token", [&] { o.printToken = true; }},
       {"--print-default-config", [&] { o.printDefaultConfig = true; }},
       {"--probe", [&] { o.probe = true; }},
       {"--version", [&] { o.version = true; }},
@@ -71,13 +74,41 @@ CliResult parseCommandLine(const std::vector<std::string>& args) {
   };
   // Options with a value: return an error text or "".
   const std::map<std::string, std::function<std::string(const std::string&)>> valued = {
-      {"--config", [&](const std::string& v) { o.config = v; return std::string(); }},
-      {"--scenario", [&](const std::string& v) { o.scenario = v; return std::string(); }},
-      {"--telemetry-csv", [&](const std::string& v) { o.telemetryCsv = v; return std::string(); }},
-      {"--http", [&](const std::string& v) { o.http = v; return std::string(); }},
-      {"--state-db", [&](const std::string& v) { o.stateDb = v; return std::string(); }},
-      {"--log-level", [&](const std::string& v) { o.logLevel = v; return std::string(); }},
-      {"--sim-outputs", [&](const std::string& v) { o.simOutputs = v; return std::string(); }},
+      {"--config",
+       [&](const std::string& v) {
+         o.config = v;
+         return std::string();
+       }},
+      {"--scenario",
+       [&](const std::string& v) {
+         o.scenario = v;
+         return std::string();
+       }},
+      {"--telemetry-csv",
+       [&](const std::string& v) {
+         o.telemetryCsv = v;
+         return std::string();
+       }},
+      {"--http",
+       [&](const std::string& v) {
+         o.http = v;
+         return std::string();
+       }},
+      {"--state-db",
+       [&](const std::string& v) {
+         o.stateDb = v;
+         return std::string();
+       }},
+      {"--log-level",
+       [&](const std::string& v) {
+         o.logLevel = v;
+         return std::string();
+       }},
+      {"--sim-outputs",
+       [&](const std::string& v) {
+         o.simOutputs = v;
+         return std::string();
+       }},
       {"--speed",
        [&](const std::string& v) {
          o.speedGiven = true;
@@ -115,10 +146,11 @@ CliResult parseCommandLine(const std::vector<std::string>& args) {
        }},
       {"--test-fault",
        [&](const std::string& v) {
-         static const std::map<std::string, TestFault> kinds = {
-             {"segv", TestFault::Segv},         {"abort", TestFault::Abort},
-             {"throw", TestFault::Throw},       {"terminate", TestFault::Terminate},
-             {"throw-control", TestFault::ThrowInControl}};
+         static const std::map<std::string, TestFault> kinds = {{"segv", TestFault::Segv},
+                                                                {"abort", TestFault::Abort},
+                                                                {"throw", TestFault::Throw},
+                                                                {"terminate", TestFault::Terminate},
+                                                                {"throw-control", TestFault::ThrowInControl}};
          auto it = kinds.find(v);
          if (it == kinds.end()) return "--test-fault: unknown kind '" + v + "'";
          o.testFault = it->second;
@@ -172,13 +204,22 @@ CliResult parseCommandLine(const std::vector<std::string>& args) {
     return r;
   }
 
-  if (o.scenario && !o.sim) r.error = "--scenario needs --sim";
-  else if (o.simOutputs && !o.sim) r.error = "--sim-outputs needs --sim";
-  else if (o.speedGiven && !o.sim) r.error = "--speed needs --sim";
-  else if (o.seed && !o.sim) r.error = "--seed needs --sim";
-  else if (o.testFault != TestFault::None && !o.sim) r.error = "--test-fault needs --sim";
-  else if (faultAtGiven && o.testFault == TestFault::None) r.error = "--test-fault-at needs --test-fault";
-  else if (o.checkConfig && !o.config) r.error = "--check-config needs --config FILE";
+  if (o.scenario && !o.sim)
+    r.error = "--scenario needs --sim";
+  else if (o.simOutputs && !o.sim)
+    r.error = "--sim-outputs needs --sim";
+  else if (o.speedGiven && !o.sim)
+    r.error = "--speed needs --sim";
+  else if (o.seed && !o.sim)
+    r.error = "--seed needs --sim";
+  else if (o.testFault != TestFault::None && !o.sim)
+    r.error = "--test-fault needs --sim";
+  else if (faultAtGiven && o.testFault == TestFault::None)
+    r.error = "--test-fault-at needs --test-fault";
+  else if (o.checkConfig && !o.config)
+    r.error = "--check-config needs --config FILE";
+  else if (o.printToken && !o.config && !o.stateDb)
+    r.error = "--print-token needs --state-db FILE or --config FILE";
   return r;
 }
 

@@ -1,9 +1,12 @@
 #include "app/store_service.h"
 
 #include <spdlog/spdlog.h>
+#include <sys/stat.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <map>
 
 #include "store/param_overrides.h"
@@ -11,13 +14,30 @@
 namespace xr::app {
 
 std::int64_t unixMsNow() {
-  return std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::system_clock::now().time_since_epoch())
+  return std::chrono::duration_cast<std::chrono::milliseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
       .count();
 }
 
 StoreService::StoreService(const std::string& path, int checkpointIntervalS)
     : policy_(checkpointIntervalS), series_(defaultHistorySeries()) {
+  // The database holds the web token: never readable by other users, with or
+  // without systemd's UMask (issue 26, item 9). umask is process-wide, but
+  // this runs before any other thread of the daemon exists; SQLite gives the
+  // -wal and -shm files the database file's mode.
+  const mode_t oldMask = ::umask(077);
   open_ = store_.open(path, unixMsNow());
+  ::umask(oldMask);
+  for (const char* suffix : {"", "-wal", "-shm"}) {
+    const std::string f = path + suffix;
+    struct stat st {};
+    if (store_.inMemory() || ::stat(f.c_str(), &st) != 0 || (st.st_mode & 0007) == 0) continue;
+    if (::chmod(f.c_str(), st.st_mode & 0770) == 0)
+      spdlog::warn("store: {} was readable by every user; access for others removed (it holds the web token)",
+                   f);
+    else
+      spdlog::error("store: {} is readable by every user and cannot be changed: {}", f, std::strerror(errno));
+  }
 }
 
 std::optional<SavedLedger> StoreService::loadLedger() {
@@ -25,9 +45,23 @@ std::optional<SavedLedger> StoreService::loadLedger() {
   return store_.loadLedger();
 }
 
-Params StoreService::applyOverrides(const Params& fileParams, std::vector<std::string>& errors) {
+OverrideResolution StoreService::applyOverrides(const Params& fileParams) {
   std::lock_guard lock(m_);
-  return applyStoredOverrides(fileParams, store_.overrides(), errors);
+  OverrideResolution r = resolveStoredOverrides(fileParams, store_.overrides());
+  const std::int64_t now = unixMsNow();
+  for (const auto& d : r.dropped) {
+    EventRecord e;
+    e.tMs = now;
+    e.level = "warning";
+    e.code = "OverrideDropped";
+    e.reason = "NONE";
+    e.message = d.text();
+    if (const StoreStatus st = store_.appendEvents(std::span<const EventRecord>(&e, 1)); !st)
+      spdlog::warn("store: event not saved: {}", st.error);
+    if (const StoreStatus st = store_.resetOverride(d.name); !st)
+      spdlog::error("store: cannot forget the dropped override {}: {}", d.name, st.error);
+  }
+  return r;
 }
 
 void StoreService::saveOverrides(const Params& fileParams, const Params& before, const Params& after) {
@@ -57,8 +91,10 @@ double columnValue(const rt::RuntimeSnapshot& s, const std::string& name) {
   double out = std::nan("");
   visitTelemetryColumns(s.telemetry, s.start, [&](std::string_view n, const ColumnValue& v) {
     if (n != name) return;
-    if (const double* d = std::get_if<double>(&v)) out = *d;
-    else if (const bool* b = std::get_if<bool>(&v)) out = *b ? 1.0 : 0.0;
+    if (const double* d = std::get_if<double>(&v))
+      out = *d;
+    else if (const bool* b = std::get_if<bool>(&v))
+      out = *b ? 1.0 : 0.0;
   });
   return out;
 }
@@ -75,7 +111,8 @@ void StoreService::housekeeping(const rt::RuntimeSnapshot& s, const BatteryLedge
     const StoreStatus st = store_.appendHistory(nowMs, values);
     if (!st) spdlog::warn("store: history not saved: {}", st.error);
   }
-  const CheckpointReason why = policy_.poll(s.telemetry.now, s.telemetry.field_enable, s.telemetry.stage, false);
+  const CheckpointReason why =
+      policy_.poll(s.telemetry.now, s.telemetry.field_enable, s.telemetry.stage, false);
   if (why != CheckpointReason::None && ledgerValid) {
     const StoreStatus st = store_.checkpoint(ledger, toString(why), nowMs);
     if (!st) spdlog::error("store: checkpoint ({}) failed: {}", toString(why), st.error);

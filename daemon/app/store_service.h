@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "app/stored_overrides.h"
 #include "battery/ledger.h"
 #include "params/params.h"
 #include "runtime/handoffs.h"
@@ -27,8 +28,10 @@ class StoreService {
   const OpenResult& openResult() const { return open_; }
 
   std::optional<SavedLedger> loadLedger();
-  // fileParams with the stored overrides applied; problems go to errors.
-  Params applyOverrides(const Params& fileParams, std::vector<std::string>& errors);
+  // fileParams with the stored overrides that fit applied, checked as one
+  // set (stored_overrides.h). Each dropped override is forgotten in the
+  // store and recorded there as an OverrideDropped warning event.
+  OverrideResolution applyOverrides(const Params& fileParams);
   // Persist the names whose values differ between before and after.
   void saveOverrides(const Params& fileParams, const Params& before, const Params& after);
 

@@ -1,19 +1,19 @@
 #include "config/config.h"
 
+#include <toml++/toml.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
-#include <fstream>
 #include <map>
 #include <ostream>
-#include <sstream>
 
-#include <toml++/toml.h>
-
+#include "config/bounded_read.h"
 #include "config/format.h"
 #include "config/param_values.h"
 #include "config/settings_schema.h"
 #include "config/toml_values.h"
+#include "config/web_checks.h"
 #include "params/derived.h"
 
 namespace xr {
@@ -83,7 +83,8 @@ class Loader {
       root = toml::parse(text, file_);
     } catch (const toml::parse_error& e) {
       const auto loc = where(e.source());
-      result_.errors.push_back({file_, loc.line, loc.column, "", "TOML syntax error: " + std::string(e.description())});
+      result_.errors.push_back(
+          {file_, loc.line, loc.column, "", "TOML syntax error: " + std::string(e.description())});
       return std::move(result_);
     }
     for (auto&& [k, node] : root) topLevel(k, node);
@@ -98,11 +99,12 @@ class Loader {
     }
     settingsConsistency();
 
-    std::stable_sort(result_.errors.begin(), result_.errors.end(), [](const ConfigError& a, const ConfigError& b) {
-      const int la = a.line == 0 ? INT32_MAX : a.line;
-      const int lb = b.line == 0 ? INT32_MAX : b.line;
-      return la != lb ? la < lb : a.column < b.column;
-    });
+    std::stable_sort(result_.errors.begin(), result_.errors.end(),
+                     [](const ConfigError& a, const ConfigError& b) {
+                       const int la = a.line == 0 ? INT32_MAX : a.line;
+                       const int lb = b.line == 0 ? INT32_MAX : b.line;
+                       return la != lb ? la < lb : a.column < b.column;
+                     });
     if (result_.errors.empty()) result_.config = config_;
     return std::move(result_);
   }
@@ -119,7 +121,8 @@ class Loader {
       if (const auto* t = node.as_table()) return paramTable(*g, name, *t);
       return error(k, name, "must be a table: write [" + name + "] and put its parameters below it");
     }
-    if (name == "hardware" || std::find(settingsTables().begin(), settingsTables().end(), name) != settingsTables().end()) {
+    if (name == "hardware" ||
+        std::find(settingsTables().begin(), settingsTables().end(), name) != settingsTables().end()) {
       if (const auto* t = node.as_table()) return settingsTable(name, *t);
       return error(k, name, "must be a table: write [" + name + "]");
     }
@@ -152,7 +155,8 @@ class Loader {
         continue;
       }
       if (spec->group != group) {
-        error(k, dotted, name + " belongs in [" + std::string(tomlTableName(spec->group)) + "], not [" + table + "]");
+        error(k, dotted,
+              name + " belongs in [" + std::string(tomlTableName(spec->group)) + "], not [" + table + "]");
         continue;
       }
       paramLoc_[dotted] = where(k.source());
@@ -183,9 +187,11 @@ class Loader {
         for (const auto& s : settingsSchema())
           if (s.table == table) keys.push_back(s.key);
         std::string msg = "unknown setting";
-        if (auto near = closest(name, keys); !near.empty()) msg += " (did you mean " + near + "?)";
+        if (auto near = closest(name, keys); !near.empty())
+          msg += " (did you mean " + near + "?)";
         else if (const auto* p = findParam(name))
-          msg += " (" + name + " is a parameter: put it under [" + std::string(tomlTableName(p->group)) + "])";
+          msg +=
+              " (" + name + " is a parameter: put it under [" + std::string(tomlTableName(p->group)) + "])";
         error(k, dotted, msg);
         continue;
       }
@@ -203,20 +209,39 @@ class Loader {
   // buzzer or an input would make "field LOW" impossible to guarantee.
   void settingsConsistency() {
     const auto& h = config_.settings.hardware;
-    const std::pair<const char*, int> others[] = {
-        {"buzzer_line", h.buzzer_line}, {"bms_line", h.bms_line}, {"ignition_line", h.ignition_line},
-        {"ads_alert_rdy_line", h.ads_alert_rdy_line}};
+    const std::pair<const char*, int> others[] = {{"buzzer_line", h.buzzer_line},
+                                                  {"bms_line", h.bms_line},
+                                                  {"ignition_line", h.ignition_line},
+                                                  {"ads_alert_rdy_line", h.ads_alert_rdy_line}};
     for (const auto& [name, line] : others) {
       if (line >= 0 && line == h.field_enable_line) {
-        ConfigError e{file_, 0, 0, "hardware." + std::string(name),
-                      "uses GPIO line " + std::to_string(line) + ", which is already the field_enable_line"};
-        if (auto it = settingLoc_.find(e.key); it != settingLoc_.end()) {
-          e.line = it->second.line;
-          e.column = it->second.column;
-        }
-        result_.errors.push_back(std::move(e));
+        settingError("hardware." + std::string(name),
+                     "uses GPIO line " + std::to_string(line) + ", which is already the field_enable_line");
       }
     }
+    webSettings();
+  }
+
+  void settingError(const std::string& key, std::string message) {
+    ConfigError e{file_, 0, 0, key, std::move(message)};
+    if (auto it = settingLoc_.find(key); it != settingLoc_.end()) {
+      e.line = it->second.line;
+      e.column = it->second.column;
+    }
+    result_.errors.push_back(std::move(e));
+  }
+
+  // [web] is checked here, not first discovered by the web server at run
+  // time: there a failure can only mean running without the dashboard
+  // (issue 26, items 3 and 9).
+  void webSettings() {
+    const auto& w = config_.settings.web;
+    if (!isNumericListenAddress(w.listen))
+      settingError("web.listen",
+                   "'" + w.listen +
+                       "' is not an IP address: write an IPv4 or IPv6 address such as "
+                       "\"127.0.0.1\" (this machine only), \"0.0.0.0\" (every interface) or \"::\"");
+    if (auto why = checkTokenText(w.token); !why.empty()) settingError("web.token", why);
   }
 
   std::string file_;
@@ -236,36 +261,37 @@ std::string dotted(const char* name) {
 LoadResult loadConfigString(std::string_view text, std::string_view name) { return Loader(name).run(text); }
 
 LoadResult loadConfigFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  std::string text;
+  if (std::string why = readConfigText(path, text); !why.empty()) {
     LoadResult r;
-    r.errors.push_back({path, 0, 0, "", std::string("cannot read the file: ") + std::strerror(errno)});
+    r.errors.push_back({path, 0, 0, "", why});
     return r;
   }
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return loadConfigString(ss.str(), path);
+  return loadConfigString(text, path);
 }
 
 std::vector<ConfigError> checkConsistency(const Params& p, std::string_view file) {
   std::vector<ConfigError> errs;
   const std::string f(file.empty() ? std::string_view("params") : file);
-  auto err = [&](const char* key, std::string msg) { errs.push_back({f, 0, 0, dotted(key), std::move(msg)}); };
+  auto err = [&](const char* key, std::string msg) {
+    errs.push_back({f, 0, 0, dotted(key), std::move(msg)});
+  };
   auto v = [](double x, const char* unit) { return formatNumber(x) + " " + unit; };
 
   if (p.AbsorptionVoltage > p.BulkVoltage)
     err("AbsorptionVoltage", v(p.AbsorptionVoltage, "V") + " is above BulkVoltage " + v(p.BulkVoltage, "V") +
                                  "; it must not exceed it");
   if (p.FloatVoltage > p.AbsorptionVoltage)
-    err("FloatVoltage", v(p.FloatVoltage, "V") + " is above AbsorptionVoltage " + v(p.AbsorptionVoltage, "V") +
-                            "; it must not exceed it");
+    err("FloatVoltage", v(p.FloatVoltage, "V") + " is above AbsorptionVoltage " +
+                            v(p.AbsorptionVoltage, "V") + "; it must not exceed it");
   if (p.RebulkVoltage >= p.FloatVoltage)
     err("RebulkVoltage", v(p.RebulkVoltage, "V") + " must be below FloatVoltage " + v(p.FloatVoltage, "V"));
   // A software trip at or below the charging target would trip in normal
   // bulk charging (safeties-and-protections.md "Alternator Hard Shutdown").
   if (p.AlternatorHardShutdownV != 0.0 && p.AlternatorHardShutdownV <= p.BulkVoltage)
     err("AlternatorHardShutdownV", v(p.AlternatorHardShutdownV, "V") + " must be above BulkVoltage " +
-                                       v(p.BulkVoltage, "V") + " (or 0 for the first-boot default BulkVoltage + 0.3 V)");
+                                       v(p.BulkVoltage, "V") +
+                                       " (or 0 for the first-boot default BulkVoltage + 0.3 V)");
   // The INA228 hardware limit is BulkVoltage + 0.3 V: a higher target would
   // trip the hardware ALERT in normal operation.
   if (p.TargetVoltageSetpoint > voltageHardwareLimit(p))
@@ -274,13 +300,15 @@ std::vector<ConfigError> checkConsistency(const Params& p, std::string_view file
   {
     const auto range = plausibleVoltageRange(p);
     if (p.FloatVoltage < range.min || p.RebulkVoltage < range.min)
-      err("FloatVoltage", "FloatVoltage/RebulkVoltage must lie in the plausible range of the system class set by "
-                          "BulkVoltage (" + v(range.min, "V") + " to " + v(range.max, "V") + ")");
+      err("FloatVoltage",
+          "FloatVoltage/RebulkVoltage must lie in the plausible range of the system class set by "
+          "BulkVoltage (" +
+              v(range.min, "V") + " to " + v(range.max, "V") + ")");
   }
-  if (p.MinDuty > p.MaxDuty)
-    err("MinDuty", v(p.MinDuty, "%") + " is above MaxDuty " + v(p.MaxDuty, "%"));
+  if (p.MinDuty > p.MaxDuty) err("MinDuty", v(p.MinDuty, "%") + " is above MaxDuty " + v(p.MaxDuty, "%"));
   if (p.VoltageAlarmLow >= p.VoltageAlarmHigh)
-    err("VoltageAlarmLow", v(p.VoltageAlarmLow, "V") + " must be below VoltageAlarmHigh " + v(p.VoltageAlarmHigh, "V"));
+    err("VoltageAlarmLow",
+        v(p.VoltageAlarmLow, "V") + " must be below VoltageAlarmHigh " + v(p.VoltageAlarmHigh, "V"));
   if (p.TempAlarmLow != 0.0 && p.TempAlarmLow >= p.TempAlarm)
     err("TempAlarmLow", v(p.TempAlarmLow, "degF") + " must be below TempAlarm " + v(p.TempAlarm, "degF"));
   if (p.TempWarnExcess >= p.TempCritExcess)
@@ -290,14 +318,16 @@ std::vector<ConfigError> checkConsistency(const Params& p, std::string_view file
     err("SOC_AllowRebulk_percent", v(p.SOC_AllowRebulk_percent, "%") + " is above SOC_BlockRebulk_percent " +
                                        v(p.SOC_BlockRebulk_percent, "%"));
   if (!(p.LoadDumpDtThresh1 >= p.LoadDumpDtThresh && p.LoadDumpDtThresh >= p.LoadDumpDtThresh3))
-    err("LoadDumpDtThresh", "load dump tiers must satisfy LoadDumpDtThresh1 >= LoadDumpDtThresh >= LoadDumpDtThresh3 (" +
-                                formatNumber(p.LoadDumpDtThresh1) + ", " + formatNumber(p.LoadDumpDtThresh) + ", " +
-                                formatNumber(p.LoadDumpDtThresh3) + " A/s)");
+    err("LoadDumpDtThresh",
+        "load dump tiers must satisfy LoadDumpDtThresh1 >= LoadDumpDtThresh >= LoadDumpDtThresh3 (" +
+            formatNumber(p.LoadDumpDtThresh1) + ", " + formatNumber(p.LoadDumpDtThresh) + ", " +
+            formatNumber(p.LoadDumpDtThresh3) + " A/s)");
   for (std::size_t i = 1; i < RPM_TABLE_SIZE; ++i) {
     if (p.rpmTableRPMPoints[i] <= p.rpmTableRPMPoints[i - 1]) {
-      err("rpmTableRPMPoints", "breakpoints must be strictly ascending (element " + std::to_string(i) + " = " +
-                                   formatNumber(p.rpmTableRPMPoints[i]) + " RPM is not above element " +
-                                   std::to_string(i - 1) + " = " + formatNumber(p.rpmTableRPMPoints[i - 1]) + " RPM)");
+      err("rpmTableRPMPoints", "breakpoints must be strictly ascending (element " + std::to_string(i) +
+                                   " = " + formatNumber(p.rpmTableRPMPoints[i]) +
+                                   " RPM is not above element " + std::to_string(i - 1) + " = " +
+                                   formatNumber(p.rpmTableRPMPoints[i - 1]) + " RPM)");
       break;
     }
   }
@@ -308,7 +338,8 @@ int checkConfigMain(const std::string& path, std::ostream& out, std::ostream& er
   const LoadResult r = loadConfigFile(path);
   if (r.ok()) {
     const auto changed = overridesFromDefaults(r.config->params).size();
-    out << path << ": OK (" << catalogue().size() << " parameters, " << changed << " differ from the defaults)\n";
+    out << path << ": OK (" << catalogue().size() << " parameters, " << changed
+        << " differ from the defaults)\n";
     return 0;
   }
   for (const auto& e : r.errors) err << e.toString() << "\n";

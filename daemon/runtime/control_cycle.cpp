@@ -4,6 +4,8 @@
 #include <cmath>
 #include <thread>
 
+#include "runtime/fatal_guard.h"
+
 namespace xr::rt {
 
 ControlCycle::ControlCycle(ControlCore& core, const CycleDevices& devices, Handoffs& handoffs,
@@ -120,8 +122,9 @@ inline void ControlCycle::readDiscreteInputs() noexcept {
 }
 
 inline bool ControlCycle::writeOutputs(const Outputs& out) noexcept {
-  const bool enable = out.fieldEnable;
-  double duty = out.dutyPct;
+  const bool dying = fatal::dying();
+  const bool enable = out.fieldEnable && !dying;
+  double duty = dying ? 0.0 : out.dutyPct;
   if (!std::isfinite(duty)) duty = 0.0;
   duty = std::clamp(duty, 0.0, 100.0);
   bool ok = true;

@@ -51,6 +51,44 @@ stop_signal() {
   grep -q "stopped cleanly" "$tmp/log" || fail "no clean-stop log line"
 }
 
+# Any other signal whose default action ends the process (issue 26, item 2):
+# the same controlled ramp, a journal line naming it, and exit 128 + signal
+# so that systemd restarts the regulator. A fault signal sent from outside:
+# the fatal handler drives the field LOW, names the signal, dies with it.
+# An ignored one (SIGHUP, SIGTSTP) leaves the regulator running.
+signal_path() {
+  local sig=$1 want=$2
+  local num
+  num=$(kill -l "$sig") || fail "no signal $sig"
+  "$bin" --sim --speed 50 --sim-outputs "$tmp/out" >"$tmp/log" 2>&1 &
+  local pid=$!
+  wait_field_on "$tmp/out" "$pid" || { kill -9 $pid 2>/dev/null; fail "field never came on"; }
+  kill -"$sig" "$pid"
+  if [ "$want" = ignored ]; then
+    sleep 1  # not an assertion on speed: the daemon must simply still be there
+    kill -0 "$pid" 2>/dev/null || fail "SIG$sig ended the daemon"
+    [ "$(field_of "$tmp/out")" = 1 ] || fail "SIG$sig turned the field off: $(cat "$tmp/out")"
+    kill -TERM "$pid"
+    wait "$pid"
+    local rc=$?
+    [ "$rc" = 0 ] || fail "exit code $rc after SIGTERM"
+    expect_field_off "$tmp/out" stop
+    grep -q "SIG$sig.*ignored" "$tmp/log" || fail "no log line for the ignored SIG$sig"
+    return
+  fi
+  wait "$pid"
+  local rc=$?
+  [ "$rc" = $((128 + num)) ] || fail "exit code $rc after SIG$sig, expected $((128 + num))"
+  if [ "$want" = stop ]; then
+    expect_field_off "$tmp/out" stop
+    grep -q "SIG$sig: not a signal xregulatord uses; stopping through the controlled ramp" "$tmp/log" ||
+      fail "no journal line naming SIG$sig"
+  else
+    expect_field_off "$tmp/out" fatal
+    grep -q "fatal signal SIG$sig: field enable LOW" "$tmp/log" || fail "no journal line naming SIG$sig"
+  fi
+}
+
 # A fault at simulated t = 60 s (or just after, for the main thread), when a reference run of the same seed has
 # the field on (the simulation is deterministic at --speed max).
 fault_path() {
@@ -76,6 +114,14 @@ case "$case_name" in
   terminate) fault_path terminate 134 ;;
   throw_main) fault_path throw 70 50 ;;  # the main thread polls in wall time: pace the run
   throw_control) fault_path throw-control 70 ;;
+  signal_*)
+    sig=${case_name#signal_}
+    case "$sig" in
+      SEGV | ABRT | BUS | FPE | ILL | TRAP | SYS) signal_path "$sig" fatal ;;
+      HUP | TSTP | TTIN | TTOU) signal_path "$sig" ignored ;;
+      *) signal_path "$sig" stop ;;
+    esac
+    ;;
   duration)
     "$bin" --sim --speed max --duration 10 --telemetry-csv "$tmp/t.csv" --telemetry-rate 10 \
       --sim-outputs "$tmp/out" >"$tmp/log" 2>&1 || fail "exit code $?"
