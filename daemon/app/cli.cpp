@@ -74,41 +74,13 @@ CliResult parseCommandLine(const std::vector<std::string>& args) {
   };
   // Options with a value: return an error text or "".
   const std::map<std::string, std::function<std::string(const std::string&)>> valued = {
-      {"--config",
-       [&](const std::string& v) {
-         o.config = v;
-         return std::string();
-       }},
-      {"--scenario",
-       [&](const std::string& v) {
-         o.scenario = v;
-         return std::string();
-       }},
-      {"--telemetry-csv",
-       [&](const std::string& v) {
-         o.telemetryCsv = v;
-         return std::string();
-       }},
-      {"--http",
-       [&](const std::string& v) {
-         o.http = v;
-         return std::string();
-       }},
-      {"--state-db",
-       [&](const std::string& v) {
-         o.stateDb = v;
-         return std::string();
-       }},
-      {"--log-level",
-       [&](const std::string& v) {
-         o.logLevel = v;
-         return std::string();
-       }},
-      {"--sim-outputs",
-       [&](const std::string& v) {
-         o.simOutputs = v;
-         return std::string();
-       }},
+      {"--config", [&](const std::string& v) { o.config = v; return std::string(); }},
+      {"--scenario", [&](const std::string& v) { o.scenario = v; return std::string(); }},
+      {"--telemetry-csv", [&](const std::string& v) { o.telemetryCsv = v; return std::string(); }},
+      {"--http", [&](const std::string& v) { o.http = v; return std::string(); }},
+      {"--state-db", [&](const std::string& v) { o.stateDb = v; return std::string(); }},
+      {"--log-level", [&](const std::string& v) { o.logLevel = v; return std::string(); }},
+      {"--sim-outputs", [&](const std::string& v) { o.simOutputs = v; return std::string(); }},
       {"--speed",
        [&](const std::string& v) {
          o.speedGiven = true;
@@ -146,11 +118,10 @@ CliResult parseCommandLine(const std::vector<std::string>& args) {
        }},
       {"--test-fault",
        [&](const std::string& v) {
-         static const std::map<std::string, TestFault> kinds = {{"segv", TestFault::Segv},
-                                                                {"abort", TestFault::Abort},
-                                                                {"throw", TestFault::Throw},
-                                                                {"terminate", TestFault::Terminate},
-                                                                {"throw-control", TestFault::ThrowInControl}};
+         static const std::map<std::string, TestFault> kinds = {
+             {"segv", TestFault::Segv},         {"abort", TestFault::Abort},
+             {"throw", TestFault::Throw},       {"terminate", TestFault::Terminate},
+             {"throw-control", TestFault::ThrowInControl}};
          auto it = kinds.find(v);
          if (it == kinds.end()) return "--test-fault: unknown kind '" + v + "'";
          o.testFault = it->second;
@@ -204,22 +175,14 @@ CliResult parseCommandLine(const std::vector<std::string>& args) {
     return r;
   }
 
-  if (o.scenario && !o.sim)
-    r.error = "--scenario needs --sim";
-  else if (o.simOutputs && !o.sim)
-    r.error = "--sim-outputs needs --sim";
-  else if (o.speedGiven && !o.sim)
-    r.error = "--speed needs --sim";
-  else if (o.seed && !o.sim)
-    r.error = "--seed needs --sim";
-  else if (o.testFault != TestFault::None && !o.sim)
-    r.error = "--test-fault needs --sim";
-  else if (faultAtGiven && o.testFault == TestFault::None)
-    r.error = "--test-fault-at needs --test-fault";
-  else if (o.checkConfig && !o.config)
-    r.error = "--check-config needs --config FILE";
-  else if (o.printToken && !o.config && !o.stateDb)
-    r.error = "--print-token needs --state-db FILE or --config FILE";
+  if (o.scenario && !o.sim) r.error = "--scenario needs --sim";
+  else if (o.simOutputs && !o.sim) r.error = "--sim-outputs needs --sim";
+  else if (o.speedGiven && !o.sim) r.error = "--speed needs --sim";
+  else if (o.seed && !o.sim) r.error = "--seed needs --sim";
+  else if (o.testFault != TestFault::None && !o.sim) r.error = "--test-fault needs --sim";
+  else if (faultAtGiven && o.testFault == TestFault::None) r.error = "--test-fault-at needs --test-fault";
+  else if (o.checkConfig && !o.config) r.error = "--check-config needs --config FILE";
+  else if (o.printToken && !o.config && !o.stateDb) r.error = "--print-token needs --state-db FILE or --config FILE";
   return r;
 }
 

@@ -13,8 +13,8 @@
 
 namespace xr::app {
 
-inline constexpr int kExitUsage = 64;        // EX_USAGE
-inline constexpr int kExitSoftware = 70;     // EX_SOFTWARE: internal error (exception)
+inline constexpr int kExitUsage = 64;     // EX_USAGE
+inline constexpr int kExitSoftware = 70;  // EX_SOFTWARE: internal error (exception)
 inline constexpr int kExitUnavailable = 69;  // EX_UNAVAILABLE: hardware missing
 
 // Test-only faults (hidden, accepted only with --sim): end the daemon by a

@@ -14,8 +14,7 @@
 namespace xr::app {
 
 std::int64_t unixMsNow() {
-  return std::chrono::duration_cast<std::chrono::milliseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
+  return std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::system_clock::now().time_since_epoch())
       .count();
 }
 
@@ -91,10 +90,8 @@ double columnValue(const rt::RuntimeSnapshot& s, const std::string& name) {
   double out = std::nan("");
   visitTelemetryColumns(s.telemetry, s.start, [&](std::string_view n, const ColumnValue& v) {
     if (n != name) return;
-    if (const double* d = std::get_if<double>(&v))
-      out = *d;
-    else if (const bool* b = std::get_if<bool>(&v))
-      out = *b ? 1.0 : 0.0;
+    if (const double* d = std::get_if<double>(&v)) out = *d;
+    else if (const bool* b = std::get_if<bool>(&v)) out = *b ? 1.0 : 0.0;
   });
   return out;
 }
@@ -111,8 +108,7 @@ void StoreService::housekeeping(const rt::RuntimeSnapshot& s, const BatteryLedge
     const StoreStatus st = store_.appendHistory(nowMs, values);
     if (!st) spdlog::warn("store: history not saved: {}", st.error);
   }
-  const CheckpointReason why =
-      policy_.poll(s.telemetry.now, s.telemetry.field_enable, s.telemetry.stage, false);
+  const CheckpointReason why = policy_.poll(s.telemetry.now, s.telemetry.field_enable, s.telemetry.stage, false);
   if (why != CheckpointReason::None && ledgerValid) {
     const StoreStatus st = store_.checkpoint(ledger, toString(why), nowMs);
     if (!st) spdlog::error("store: checkpoint ({}) failed: {}", toString(why), st.error);
