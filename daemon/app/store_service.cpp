@@ -63,16 +63,34 @@ OverrideResolution StoreService::applyOverrides(const Params& fileParams) {
   return r;
 }
 
-void StoreService::saveOverrides(const Params& fileParams, const Params& before, const Params& after) {
+std::string StoreService::saveOverrides(const Params& fileParams, const Params& before, const Params& after) {
   std::lock_guard lock(m_);
+  if (store_.inMemory() || !store_.isOpen())
+    return "the state database cannot be written (" + open_.message +
+           "): the change would be lost at the next start";
+  std::string failed;
   for (const ParamSpec& spec : catalogue()) {
     bool changed = false;
     const std::size_t n = spec.kind == ParamKind::Table ? RPM_TABLE_SIZE : 1;
     for (std::size_t i = 0; i < n; ++i) changed |= spec.get(before, i) != spec.get(after, i);
     if (!changed) continue;
     const StoreStatus st = saveParamOverride(store_, spec.name, fileParams, after, unixMsNow());
-    if (!st) spdlog::error("store: cannot save override {}: {}", spec.name, st.error);
+    if (!st) {
+      spdlog::error("store: cannot save override {}: {}", spec.name, st.error);
+      if (failed.empty()) failed = "cannot save " + std::string(spec.name) + ": " + st.error;
+    }
   }
+  return failed;
+}
+
+StoreService::Status StoreService::status() {
+  std::lock_guard lock(m_);
+  Status s;
+  s.path = store_.path();
+  s.persistent = store_.isOpen() && !store_.inMemory();
+  s.recovered = open_.recovered;
+  s.message = open_.message;
+  return s;
 }
 
 void StoreService::appendEvent(const Event& e) {
@@ -127,8 +145,7 @@ void StoreService::stop(const BatteryLedger& ledger, bool ledgerValid) {
 
 std::vector<EventRecord> StoreService::queryEvents(std::size_t limit, std::optional<std::int64_t> beforeId) {
   std::lock_guard lock(m_);
-  (void)beforeId;
-  return store_.queryEvents(limit);
+  return beforeId ? store_.queryEventsBeforeId(limit, *beforeId) : store_.queryEvents(limit);
 }
 
 std::vector<HistoryPoint> StoreService::queryHistory(const std::string& series, std::int64_t fromMs,

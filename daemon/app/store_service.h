@@ -32,8 +32,19 @@ class StoreService {
   // set (stored_overrides.h). Each dropped override is forgotten in the
   // store and recorded there as an OverrideDropped warning event.
   OverrideResolution applyOverrides(const Params& fileParams);
-  // Persist the names whose values differ between before and after.
-  void saveOverrides(const Params& fileParams, const Params& before, const Params& after);
+  // Persist the names whose values differ between before and after. Empty,
+  // or why the change could not be saved (read-only file, in-memory
+  // fallback, a full disk): the caller must not report success then.
+  std::string saveOverrides(const Params& fileParams, const Params& before, const Params& after);
+
+  // For /api/system and the journal.
+  struct Status {
+    std::string path;
+    bool persistent = false;  // false: running on the in-memory fallback
+    bool recovered = false;   // the old file was damaged and set aside at start
+    std::string message;
+  };
+  Status status();
 
   void appendEvent(const Event& e);
   // Once a second from the supervisor.

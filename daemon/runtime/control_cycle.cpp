@@ -53,10 +53,12 @@ void ControlCycle::applyPending() noexcept {
   }
   Command c;
   for (int i = 0; i < cfg_.maxCommandsPerTick && h_.commands.pop(c); ++i) {
-    if (core_.command(c))
+    const bool applied = core_.command(c);
+    if (applied)
       ++health_.commandsApplied;
     else
       ++health_.commandsRejected;
+    if (c.ackId != 0) h_.acks.post(c.ackId, applied);
   }
 }
 

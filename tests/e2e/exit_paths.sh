@@ -149,9 +149,59 @@ case "$case_name" in
     grep -q BulkVoltage "$tmp/log" || fail "bad config error does not name the key"
     "$bin" --config "$tmp/bad.toml" --sim --duration 1 --speed max >"$tmp/log" 2>&1
     [ $? = 78 ] || fail "daemon with a bad config: not 78"
+    # issue 26, item 8: only regular files, bounded.
+    mkdir "$tmp/confdir"
+    "$bin" --config "$tmp/confdir" --check-config >"$tmp/log" 2>&1; [ $? = 78 ] || fail "a directory as --config: not 78"
+    grep -q "is a directory, not a configuration file" "$tmp/log" || fail "directory not named as such"
+    "$bin" --config /dev/zero --check-config >"$tmp/log" 2>&1; [ $? = 78 ] || fail "/dev/zero as --config: not 78"
+    mkfifo "$tmp/fifo.toml"
+    "$bin" --config "$tmp/fifo.toml" --sim --duration 1 --speed max >"$tmp/log" 2>&1
+    [ $? = 78 ] || fail "a FIFO as --config: not 78"
+    # issue 26, item 3: a listen address the server could not bind is a config error.
+    printf '[web]\nlisten = "localhost"\n' >"$tmp/listen.toml"
+    "$bin" --config "$tmp/listen.toml" --check-config >"$tmp/log" 2>&1; [ $? = 78 ] || fail "listen = localhost: not 78"
+    grep -q "web.listen: 'localhost' is not an IP address" "$tmp/log" || fail "bad listen not named"
     printf 'name = "x"\nduration_s = -5\n' >"$tmp/bad-scenario.toml"
     "$bin" --sim --scenario "$tmp/bad-scenario.toml" --speed max >"$tmp/log" 2>&1
     [ $? = 78 ] || fail "bad scenario: not 78"
+    ;;
+  web_cannot_start)
+    # issue 26, item 3: 192.0.2.1 (TEST-NET-1) is a valid address no interface
+    # has: the server cannot bind it. The regulator runs on, loudly.
+    "$bin" --sim --speed max --duration 20 --http 192.0.2.1:8080 --sim-outputs "$tmp/out" >"$tmp/log" 2>&1
+    rc=$?
+    [ "$rc" = 0 ] || fail "exit code $rc: a web server that cannot start stopped the regulator"
+    grep -q "the regulator runs WITHOUT the dashboard and API" "$tmp/log" || fail "no loud log line"
+    grep -q "Field enabled" "$tmp/log" || fail "the regulator never enabled the field"
+    expect_field_off "$tmp/out" stop
+    ;;
+  command_refused)
+    # issue 26, items 9 and 11 through the real daemon and HTTP.
+    token=0123456789abcdef-e2e
+    printf '[web]\ntoken = "%s"\n' "$token" >"$tmp/web.toml"
+    chmod 644 "$tmp/web.toml"
+    "$bin" --config "$tmp/web.toml" --sim --speed 5 --http 127.0.0.1:0 --state-db "$tmp/s.db" >"$tmp/log" 2>&1 &
+    pid=$!
+    port=""
+    for _ in $(seq 1 300); do
+      port=$(sed -n 's|.*dashboard at http://127.0.0.1:\([0-9]*\)/.*|\1|p' "$tmp/log")
+      [ -n "$port" ] && break
+      sleep 0.1
+    done
+    [ -n "$port" ] || { kill $pid; fail "no dashboard port in the log"; }
+    post() { curl -s -o "$tmp/body" -w '%{http_code}' -H "Authorization: Bearer $token" \
+      -H 'Content-Type: application/json' -d "$1" "http://127.0.0.1:$port/api/commands"; }
+    code=$(post '{"command":"tuning_commit"}')
+    [ "$code" = 409 ] || { kill $pid; fail "refused command answered $code: $(cat "$tmp/body")"; }
+    grep -q "refused by the regulator: TuningMode is off" "$tmp/body" || { kill $pid; fail "no reason: $(cat "$tmp/body")"; }
+    code=$(post '{"command":"manual","duty":10}')
+    [ "$code" = 200 ] || { kill $pid; fail "applied command answered $code: $(cat "$tmp/body")"; }
+    grep -q '"applied: manual"' "$tmp/body" || { kill $pid; fail "applied command: $(cat "$tmp/body")"; }
+    kill -TERM $pid
+    wait $pid || fail "exit code $? after SIGTERM"
+    grep -q "$token" "$tmp/log" && fail "the token reached the log"
+    grep -q "token is set in a file every user of this machine can read" "$tmp/log" || fail "no world-readable warning"
+    [ "$(stat -c %a "$tmp/s.db")" = 600 ] || fail "state database mode $(stat -c %a "$tmp/s.db"), expected 600"
     ;;
   *) fail "unknown case" ;;
 esac
