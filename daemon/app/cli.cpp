@@ -33,7 +33,7 @@ std::string usageText() {
          "                   [--duration S] [--telemetry-csv FILE] [--telemetry-rate HZ]\n"
          "                   [--http ADDR:PORT] [--state-db FILE] [--check-config]\n"
          "                   [--print-default-config] [--probe] [--version] [--seed N]\n"
-         "                   [--log-level L] [--sim-outputs FILE]\n"
+         "                   [--log-level L] [--sim-outputs FILE] [--print-token]\n"
          "\n"
          "  --config FILE          configuration (default: built-in defaults; the service uses\n"
          "                         /etc/xregulator/xregulator.toml)\n"
@@ -45,7 +45,9 @@ std::string usageText() {
          "  --telemetry-rate HZ    CSV row rate (default 10, simulated time in --sim)\n"
          "  --http ADDR:PORT       dashboard and API address (default from [web])\n"
          "  --state-db FILE        SQLite state database (default from [store]; none in --sim)\n"
-         "  --check-config         validate --config and exit (0 or 78)\n"
+         "  --check-config         validate --config, with the overrides stored in the state\n"
+         "                         database, and exit (0 or 78)\n"
+         "  --print-token          print the API write token kept in the state database\n"
          "  --print-default-config print the documented default configuration\n"
          "  --probe                check the hardware and print what to fix\n"
          "  --version              print the version\n"
@@ -63,6 +65,7 @@ CliResult parseCommandLine(const std::vector<std::string>& args) {
   const std::map<std::string, std::function<void()>> flags = {
       {"--sim", [&] { o.sim = true; }},
       {"--check-config", [&] { o.checkConfig = true; }},
+      {"--print-token", [&] { o.printToken = true; }},
       {"--print-default-config", [&] { o.printDefaultConfig = true; }},
       {"--probe", [&] { o.probe = true; }},
       {"--version", [&] { o.version = true; }},
@@ -179,6 +182,7 @@ CliResult parseCommandLine(const std::vector<std::string>& args) {
   else if (o.testFault != TestFault::None && !o.sim) r.error = "--test-fault needs --sim";
   else if (faultAtGiven && o.testFault == TestFault::None) r.error = "--test-fault-at needs --test-fault";
   else if (o.checkConfig && !o.config) r.error = "--check-config needs --config FILE";
+  else if (o.printToken && !o.config && !o.stateDb) r.error = "--print-token needs --state-db FILE or --config FILE";
   return r;
 }
 

@@ -34,6 +34,7 @@ struct CliOptions {
   std::optional<std::string> http;
   std::optional<std::string> stateDb;
   bool checkConfig = false;
+  bool printToken = false;
   bool printDefaultConfig = false;
   bool probe = false;
   bool version = false;

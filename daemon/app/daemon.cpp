@@ -22,6 +22,7 @@
 #include "app/thread_names.h"
 #include "app/web_api.h"
 #include "config/config.h"
+#include "config/web_checks.h"
 #include "control/regulator.h"
 #include "drivers/sim/scenario.h"
 #include "logging/logging.h"
@@ -31,6 +32,7 @@
 #include "runtime/fatal_guard.h"
 #include "runtime/regulator_core.h"
 #include "runtime/rt_setup.h"
+#include "runtime/signals.h"
 #include "web/server/web_server.h"
 
 namespace xr::app {
@@ -50,6 +52,59 @@ void logLoopStats(const rt::LoopStatsSummary& s, const rt::RuntimeHealth& h) {
 }
 
 double wallSecondsNow() { return static_cast<double>(unixMsNow()) / 1000.0; }
+
+// The token itself never goes to the journal (any member of systemd-journal
+// could read it): a fingerprint to compare with a phone's, and where to read
+// the token (issue 26, item 9).
+void logTokenHint(bool generated, bool stored, const std::string& token, const std::string& dbPath) {
+  if (!generated) {
+    spdlog::info("API write token: from [web] token in the configuration (fingerprint {})",
+                 tokenFingerprint(token));
+    return;
+  }
+  if (stored)
+    spdlog::info(
+        "API write token: generated, kept in the state database (fingerprint {}); read it with "
+        "`xregulatord --print-token --state-db {}` as root or the xregulator user",
+        tokenFingerprint(token), dbPath);
+  else
+    spdlog::info("API write token: generated for this run only (fingerprint {})", tokenFingerprint(token));
+  // Started from a terminal (`make run`): the operator sees it there. Under
+  // systemd stderr is the journal, so nothing is printed.
+  if (!loggingToJournal()) std::fprintf(stderr, "xregulatord: API write token: %s\n", token.c_str());
+}
+
+// A signal taken by the supervisor (runtime/signals.h). Every signal that
+// would end the process stops it through the controlled ramp: the field is
+// LOW before the process ends, and the journal says why.
+void handleSignal(int sig, rt::ControlLoop& loop, bool& stopRequested, int& exitCode) {
+  using rt::signals::Handling;
+  const Handling h = rt::signals::handlingOf(sig);
+  const char* name = rt::signals::name(sig);
+  if (h == Handling::Ignore) {
+    if (sig == SIGHUP)
+      spdlog::info("SIGHUP ignored: parameters change through the API; restart to reload the file");
+    else
+      spdlog::warn("{} ignored: the regulator cannot be paused", name);
+    return;
+  }
+  if (stopRequested) {
+    spdlog::info("{}: already stopping", name);
+    return;
+  }
+  if (h == Handling::Stop) {
+    spdlog::info("{}: stopping through the controlled ramp", name);
+  } else {
+    exitCode = 128 + sig;
+    spdlog::warn(
+        "{}: not a signal xregulatord uses; stopping through the controlled ramp (field enable LOW), "
+        "exit {} so that systemd restarts the regulator",
+        name, exitCode);
+  }
+  sd_notify(0, "STOPPING=1\nSTATUS=stopping: ramping the field down");
+  loop.requestStop();
+  stopRequested = true;
+}
 
 }  // namespace
 
@@ -93,9 +148,9 @@ int Daemon::run() {
       restored = saved->ledger;
       spdlog::info("store: ledger restored (saved for '{}')", saved->reason);
     }
-    std::vector<std::string> errs;
-    params = store->applyOverrides(fileParams, errs);
-    for (auto& e : errs) spdlog::warn("store: stored override skipped: {}", e);
+    const OverrideResolution resolved = store->applyOverrides(fileParams);
+    params = resolved.params;
+    for (const auto& d : resolved.dropped) spdlog::error("{}", d.text());
   }
 
   // ---- the core and the hand-offs ----
@@ -180,6 +235,7 @@ int Daemon::run() {
   std::unique_ptr<WebApi> api;
   std::unique_ptr<web::WebServer> server;
   const bool wantWeb = cli_.http.has_value() || !cli_.sim;
+  bool webDown = false;
   if (wantWeb) {
     WebApiContext ctx;
     ctx.handoffs = handoffs.get();
@@ -191,9 +247,7 @@ int Daemon::run() {
     ctx.lastHeartbeatWallMs = &lastHeartbeatWallMs;
     ctx.fieldSafeFault = &outputsFault;
     api = std::make_unique<WebApi>(ctx);
-    std::string token = settings.web.token;
-    if (token.empty()) token = store ? store->token() : web::generateToken();
-    auto opts = web::WebServerOptions::fromSettings(settings.web, token);
+    auto opts = web::WebServerOptions::fromSettings(settings.web, settings.web.token);
     if (opts.www_root.empty()) {
       for (const char* p : {"web/www/dist", "web/www", XR_SOURCE_DIR "/web/www/dist",
                             XR_SOURCE_DIR "/web/www", "/usr/share/xregulator/www"}) {
@@ -209,19 +263,25 @@ int Daemon::run() {
       if (csv) csv->stop();
       return kExitUsage;
     }
-    server = std::make_unique<web::WebServer>(*api, opts);
     try {
+      if (opts.token.empty()) opts.token = store ? store->token() : web::generateToken();
+      server = std::make_unique<web::WebServer>(*api, opts);
       server->start();
+      spdlog::info("dashboard at http://{}:{}/ (www root '{}')", opts.listen, server->port(), opts.www_root);
+      logTokenHint(settings.web.token.empty(), store != nullptr, opts.token,
+                   cli_.stateDb.value_or(settings.store.path));
+      if (cli_.config)
+        if (auto w = tokenFileWarning(*cli_.config, settings.web.token); !w.empty()) spdlog::warn("{}", w);
     } catch (const std::exception& e) {
-      spdlog::critical("web server: {}", e.what());
-      std::fprintf(stderr, "xregulatord: web server: %s\n", e.what());
-      pump.stop();
-      if (csv) csv->stop();
-      return kExitUnavailable;
+      // The dashboard is a convenience; the regulator runs without it
+      // (issue 26, item 3). Loud in the journal, on stderr and in the status.
+      server.reset();
+      webDown = true;
+      spdlog::critical(
+          "web server cannot start on {}:{}: {}: the regulator runs WITHOUT the dashboard and API",
+          opts.listen, opts.port, e.what());
+      std::fprintf(stderr, "xregulatord: web server: %s: running without it\n", e.what());
     }
-    spdlog::info("dashboard at http://{}:{}/ (www root '{}')", opts.listen, server->port(), opts.www_root);
-    if (settings.web.token.empty())
-      spdlog::info("API write token ({}): {}", store ? "kept in the state database" : "this run only", token);
   }
 
   // ---- the control thread ----
@@ -265,11 +325,7 @@ int Daemon::run() {
   sd_notify(0, "READY=1\nSTATUS=control loop running, field enable LOW until the regulator enables it");
 
   // ---- supervisor (this thread): signals, sd_notify, stats, store ----
-  sigset_t stopSignals;
-  sigemptyset(&stopSignals);
-  sigaddset(&stopSignals, SIGTERM);
-  sigaddset(&stopSignals, SIGINT);
-  sigaddset(&stopSignals, SIGHUP);
+  const sigset_t waited = rt::signals::waitedSet();
   int exitCode = 0;
   std::uint64_t lastBeat = 0;
   auto lastStatsLog = std::chrono::steady_clock::now();
@@ -279,15 +335,8 @@ int Daemon::run() {
   try {
     while (!loop.finished() && !controlFailed) {
       timespec ts{0, 100'000'000};
-      const int sig = sigtimedwait(&stopSignals, nullptr, &ts);
-      if ((sig == SIGTERM || sig == SIGINT) && !stopRequested) {
-        spdlog::info("{}: stopping through the controlled ramp", sig == SIGTERM ? "SIGTERM" : "SIGINT");
-        sd_notify(0, "STOPPING=1\nSTATUS=stopping: ramping the field down");
-        loop.requestStop();
-        stopRequested = true;
-      } else if (sig == SIGHUP) {
-        spdlog::info("SIGHUP ignored: parameters change through the API; restart to reload the file");
-      }
+      const int sig = sigtimedwait(&waited, nullptr, &ts);
+      if (sig > 0) handleSignal(sig, loop, stopRequested, exitCode);
       const auto now = std::chrono::steady_clock::now();
       const std::uint64_t beat = loop.heartbeat();
       if (beat != lastBeat) {
@@ -304,9 +353,10 @@ int Daemon::run() {
         lastHousekeeping = now;
         const rt::RuntimeSnapshot s = handoffs->latest();
         outputsFault = s.health.outputWriteErrors > 0 && !s.telemetry.field_enable && s.health.stopping;
-        sd_notifyf(0, "STATUS=%s %s SoC %.0f%% duty %.1f%%", std::string(toString(s.telemetry.mode)).c_str(),
+        sd_notifyf(0, "STATUS=%s %s SoC %.0f%% duty %.1f%%%s",
+                   std::string(toString(s.telemetry.mode)).c_str(),
                    std::string(toString(s.telemetry.stage)).c_str(), s.telemetry.soc_pct,
-                   s.telemetry.duty_pct);
+                   s.telemetry.duty_pct, webDown ? " (web server DOWN, see the journal)" : "");
         if (store) store->housekeeping(s, handoffs->ledger.load(), s.tick > 100);
         if (s.health.adsEdgeFallback && !edgeFallbackLogged) {
           edgeFallbackLogged = true;

@@ -9,25 +9,24 @@
 #include <vector>
 
 #include "app/cli.h"
+#include "app/config_check.h"
 #include "app/daemon.h"
 #include "config/config.h"
 #include "drivers/probe/probe.h"
 #include "logging/logging.h"
 #include "runtime/fatal_guard.h"
+#include "runtime/signals.h"
 
 int main(int argc, char** argv) {
   using namespace xr;
   using namespace xr::app;
 
-  // Stop signals are taken synchronously by the supervisor (sigtimedwait):
-  // block them before any thread exists so every thread inherits the mask.
-  sigset_t stopSignals;
-  sigemptyset(&stopSignals);
-  sigaddset(&stopSignals, SIGTERM);
-  sigaddset(&stopSignals, SIGINT);
-  sigaddset(&stopSignals, SIGHUP);
-  pthread_sigmask(SIG_BLOCK, &stopSignals, nullptr);
-  signal(SIGPIPE, SIG_IGN);  // a vanished web client must not kill the regulator
+  // Every signal that would end the process is either blocked here, before
+  // any thread exists so every thread inherits the mask, and taken
+  // synchronously by the supervisor (sigtimedwait), or a fault handled by
+  // fatal_guard (runtime/signals.h). SIGPIPE is ignored: a vanished web
+  // client must not kill the regulator.
+  rt::signals::blockWaitedSignals();
 
   const CliResult cli = parseCommandLine(std::vector<std::string>(argv + 1, argv + argc));
   if (!cli.ok()) {
@@ -47,7 +46,8 @@ int main(int argc, char** argv) {
     std::cout << defaultConfigText();
     return 0;
   }
-  if (o.checkConfig) return checkConfigMain(*o.config, std::cout, std::cerr);
+  if (o.checkConfig) return checkConfigAndState(*o.config, o.stateDb, std::cout, std::cerr);
+  if (o.printToken) return printTokenMain(o.config, o.stateDb, std::cout, std::cerr);
 
   Config config;
   if (o.config) {

@@ -1,9 +1,12 @@
 #include "app/store_service.h"
 
 #include <spdlog/spdlog.h>
+#include <sys/stat.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <map>
 
 #include "store/param_overrides.h"
@@ -17,7 +20,23 @@ std::int64_t unixMsNow() {
 
 StoreService::StoreService(const std::string& path, int checkpointIntervalS)
     : policy_(checkpointIntervalS), series_(defaultHistorySeries()) {
+  // The database holds the web token: never readable by other users, with or
+  // without systemd's UMask (issue 26, item 9). umask is process-wide, but
+  // this runs before any other thread of the daemon exists; SQLite gives the
+  // -wal and -shm files the database file's mode.
+  const mode_t oldMask = ::umask(077);
   open_ = store_.open(path, unixMsNow());
+  ::umask(oldMask);
+  for (const char* suffix : {"", "-wal", "-shm"}) {
+    const std::string f = path + suffix;
+    struct stat st {};
+    if (store_.inMemory() || ::stat(f.c_str(), &st) != 0 || (st.st_mode & 0007) == 0) continue;
+    if (::chmod(f.c_str(), st.st_mode & 0770) == 0)
+      spdlog::warn("store: {} was readable by every user; access for others removed (it holds the web token)",
+                   f);
+    else
+      spdlog::error("store: {} is readable by every user and cannot be changed: {}", f, std::strerror(errno));
+  }
 }
 
 std::optional<SavedLedger> StoreService::loadLedger() {
@@ -25,21 +44,53 @@ std::optional<SavedLedger> StoreService::loadLedger() {
   return store_.loadLedger();
 }
 
-Params StoreService::applyOverrides(const Params& fileParams, std::vector<std::string>& errors) {
+OverrideResolution StoreService::applyOverrides(const Params& fileParams) {
   std::lock_guard lock(m_);
-  return applyStoredOverrides(fileParams, store_.overrides(), errors);
+  OverrideResolution r = resolveStoredOverrides(fileParams, store_.overrides());
+  const std::int64_t now = unixMsNow();
+  for (const auto& d : r.dropped) {
+    EventRecord e;
+    e.tMs = now;
+    e.level = "warning";
+    e.code = "OverrideDropped";
+    e.reason = "NONE";
+    e.message = d.text();
+    if (const StoreStatus st = store_.appendEvents(std::span<const EventRecord>(&e, 1)); !st)
+      spdlog::warn("store: event not saved: {}", st.error);
+    if (const StoreStatus st = store_.resetOverride(d.name); !st)
+      spdlog::error("store: cannot forget the dropped override {}: {}", d.name, st.error);
+  }
+  return r;
 }
 
-void StoreService::saveOverrides(const Params& fileParams, const Params& before, const Params& after) {
+std::string StoreService::saveOverrides(const Params& fileParams, const Params& before, const Params& after) {
   std::lock_guard lock(m_);
+  if (store_.inMemory() || !store_.isOpen())
+    return "the state database cannot be written (" + open_.message +
+           "): the change would be lost at the next start";
+  std::string failed;
   for (const ParamSpec& spec : catalogue()) {
     bool changed = false;
     const std::size_t n = spec.kind == ParamKind::Table ? RPM_TABLE_SIZE : 1;
     for (std::size_t i = 0; i < n; ++i) changed |= spec.get(before, i) != spec.get(after, i);
     if (!changed) continue;
     const StoreStatus st = saveParamOverride(store_, spec.name, fileParams, after, unixMsNow());
-    if (!st) spdlog::error("store: cannot save override {}: {}", spec.name, st.error);
+    if (!st) {
+      spdlog::error("store: cannot save override {}: {}", spec.name, st.error);
+      if (failed.empty()) failed = "cannot save " + std::string(spec.name) + ": " + st.error;
+    }
   }
+  return failed;
+}
+
+StoreService::Status StoreService::status() {
+  std::lock_guard lock(m_);
+  Status s;
+  s.path = store_.path();
+  s.persistent = store_.isOpen() && !store_.inMemory();
+  s.recovered = open_.recovered;
+  s.message = open_.message;
+  return s;
 }
 
 void StoreService::appendEvent(const Event& e) {
@@ -94,8 +145,7 @@ void StoreService::stop(const BatteryLedger& ledger, bool ledgerValid) {
 
 std::vector<EventRecord> StoreService::queryEvents(std::size_t limit, std::optional<std::int64_t> beforeId) {
   std::lock_guard lock(m_);
-  (void)beforeId;
-  return store_.queryEvents(limit);
+  return beforeId ? store_.queryEventsBeforeId(limit, *beforeId) : store_.queryEvents(limit);
 }
 
 std::vector<HistoryPoint> StoreService::queryHistory(const std::string& series, std::int64_t fromMs,

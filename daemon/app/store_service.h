@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "app/stored_overrides.h"
 #include "battery/ledger.h"
 #include "params/params.h"
 #include "runtime/handoffs.h"
@@ -27,10 +28,23 @@ class StoreService {
   const OpenResult& openResult() const { return open_; }
 
   std::optional<SavedLedger> loadLedger();
-  // fileParams with the stored overrides applied; problems go to errors.
-  Params applyOverrides(const Params& fileParams, std::vector<std::string>& errors);
-  // Persist the names whose values differ between before and after.
-  void saveOverrides(const Params& fileParams, const Params& before, const Params& after);
+  // fileParams with the stored overrides that fit applied, checked as one
+  // set (stored_overrides.h). Each dropped override is forgotten in the
+  // store and recorded there as an OverrideDropped warning event.
+  OverrideResolution applyOverrides(const Params& fileParams);
+  // Persist the names whose values differ between before and after. Empty,
+  // or why the change could not be saved (read-only file, in-memory
+  // fallback, a full disk): the caller must not report success then.
+  std::string saveOverrides(const Params& fileParams, const Params& before, const Params& after);
+
+  // For /api/system and the journal.
+  struct Status {
+    std::string path;
+    bool persistent = false;  // false: running on the in-memory fallback
+    bool recovered = false;   // the old file was damaged and set aside at start
+    std::string message;
+  };
+  Status status();
 
   void appendEvent(const Event& e);
   // Once a second from the supervisor.

@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <thread>
 
 #include "config/config.h"
+#include "core/modes.h"
 
 namespace xr::app {
 
@@ -93,24 +95,105 @@ web::PatchResult WebApi::patchParams(const std::vector<web::ParamChange>& change
     c.spec->set(p, idx, c.value);
   }
   if (r.errors.empty()) {
-    for (const auto& e : checkConsistency(p)) r.errors.push_back({e.key, e.message});
+    // Bare parameter names, like every other error of the API (issue 26,
+    // item 12): the loader's keys carry the file's table ("voltage.").
+    for (const auto& e : checkConsistency(p))
+      r.errors.push_back({e.key.substr(e.key.rfind('.') + 1), e.message});
   }
   if (!r.errors.empty()) return r;  // nothing applied
-  ctx_.handoffs->submitParams(p);   // whole swap, between ticks
-  if (ctx_.store) ctx_.store->saveOverrides(ctx_.fileParams, before, p);
-  spdlog::info("parameters changed through the API ({} values)", changes.size());
+  // Saved first, applied second: a change that cannot be saved is refused,
+  // not applied for this run only and silently lost at the next start
+  // (issue 26, item 7).
+  if (ctx_.store) {
+    if (std::string why = ctx_.store->saveOverrides(ctx_.fileParams, before, p); !why.empty()) {
+      r.errors.push_back({"store", why + "; nothing applied"});
+      return r;
+    }
+  }
+  ctx_.handoffs->submitParams(p);  // whole swap, between ticks
+  logPatch(changes.size());
   return r;
 }
 
 web::CommandResult WebApi::command(const Command& cmd) {
   web::CommandResult r;
-  r.accepted = ctx_.handoffs->submitCommand(cmd);
-  r.message = r.accepted ? "queued: " + std::string(toString(cmd.type)) : "command queue full, try again";
+  const std::string name(toString(cmd.type));
+  const std::uint32_t id = ctx_.handoffs->submitCommandForAck(cmd);
+  if (id == 0) {
+    r.message = "command queue full, try again";
+    return r;
+  }
+  // The control thread applies commands between ticks (every 2.5 ms at
+  // 400 Hz) and posts the regulator's answer without waiting for anyone;
+  // this HTTP thread polls for it (issue 26, item 11).
+  const auto deadline = std::chrono::steady_clock::now() + ctx_.commandAckTimeout;
+  int answer = -1;
+  while ((answer = ctx_.handoffs->acks.find(id)) < 0 && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  if (answer == 1) {
+    r.accepted = true;
+    r.message = "applied: " + name;
+  } else if (answer == 0) {
+    r.message = name + " refused by the regulator: " + std::string(refusalReason(cmd.type));
+  } else {
+    // The loop is not ticking (stopping, or a very slow simulation): the
+    // command stays queued and is applied or refused when it ticks again.
+    r.accepted = true;
+    r.message = "queued: " + name + " (the control loop has not answered yet)";
+  }
   return r;
+}
+
+namespace {
+
+template <class Enum, int N>
+Enum parseByName(std::string_view s, Enum fallback) {
+  for (int i = 0; i < N; ++i)
+    if (toString(static_cast<Enum>(i)) == s) return static_cast<Enum>(i);
+  return fallback;
+}
+
+// A stored event back in the API's shape. Codes the core does not know
+// (the daemon's own, e.g. OverrideDropped) become Message with their text.
+web::EventRecord fromStored(const EventRecord& s) {
+  web::EventRecord e;
+  e.id = s.id;
+  e.wall_time_s = static_cast<double>(s.tMs) / 1000.0;
+  e.event.level = parseByName<EventLevel, 5>(s.level, EventLevel::Info);
+  e.event.code =
+      parseByName<EventCode, static_cast<int>(EventCode::AlarmCondition) + 1>(s.code, EventCode::Message);
+  e.event.reason = parseReason(s.reason).value_or(Reason::NONE);
+  e.event.a = s.a;
+  e.event.b = s.b;
+  e.text = s.message;
+  return e;
+}
+
+}  // namespace
+
+void WebApi::logPatch(std::size_t values) {
+  // One line per PATCH flooded the journal (2,000 PATCHes, 2,000 lines):
+  // at most one line a minute, with the count since the last one.
+  std::lock_guard lock(logMutex_);
+  ++patchesSinceLog_;
+  valuesSinceLog_ += values;
+  const auto now = std::chrono::steady_clock::now();
+  if (lastPatchLog_.time_since_epoch().count() != 0 && now - lastPatchLog_ < std::chrono::minutes(1)) return;
+  spdlog::info("parameters changed through the API: {} change{} ({} values) since the last such line",
+               patchesSinceLog_, patchesSinceLog_ == 1 ? "" : "s", valuesSinceLog_);
+  lastPatchLog_ = now;
+  patchesSinceLog_ = 0;
+  valuesSinceLog_ = 0;
 }
 
 std::vector<web::EventRecord> WebApi::events(const web::EventQuery& q) {
   std::vector<web::EventRecord> out;
+  // The store holds every run's events (issue 26, item 10); the in-memory
+  // ring only this run's, and serves when there is no database.
+  if (ctx_.store && ctx_.store->status().persistent) {
+    for (const auto& s : ctx_.store->queryEvents(q.limit, q.before)) out.push_back(fromStored(s));
+    return out;
+  }
   if (!ctx_.events) return out;
   for (auto& it : ctx_.events->query(q.limit, q.before.value_or(0))) {
     web::EventRecord e;
@@ -136,9 +219,29 @@ web::HistoryResult WebApi::history(const web::HistoryQuery& q) {
       return r;
     }
   }
+  // Bounds before any float -> integer conversion (issue 26, item 6): a
+  // double outside int64's range makes that conversion undefined.
+  constexpr double kMaxEpochS = 1e10;     // year 2286
+  constexpr double kMaxPoints = 10000.0;  // as the web server allows
+  if (!std::isfinite(q.from_s) || !std::isfinite(q.to_s) || q.from_s < 0.0 || q.to_s > kMaxEpochS) {
+    r.error = "from and to must be Unix times between 0 and 1e10 s";
+    return r;
+  }
+  if (!(q.from_s <= q.to_s)) {
+    r.error = "from must be before to";
+    return r;
+  }
+  if (!std::isfinite(q.step_s) || q.step_s < 1.0 || q.step_s > kMaxEpochS) {
+    r.error = "step must be 1 s to 1e10 s";
+    return r;
+  }
+  if ((q.to_s - q.from_s) / q.step_s > kMaxPoints) {
+    r.error = "too many points: raise step or narrow from/to";
+    return r;
+  }
   const auto fromMs = static_cast<std::int64_t>(q.from_s * 1000.0);
   const auto toMs = static_cast<std::int64_t>(q.to_s * 1000.0);
-  const auto stepMs = static_cast<std::int64_t>(std::max(1.0, q.step_s) * 1000.0);
+  const auto stepMs = static_cast<std::int64_t>(q.step_s * 1000.0);
   for (std::int64_t t = fromMs; t <= toMs && r.t.size() < 100000; t += stepMs) r.t.push_back(t / 1000.0);
   for (const auto& s : q.series) {
     std::vector<double> col(r.t.size(), std::nan(""));
@@ -158,7 +261,17 @@ std::vector<web::ProbeResult> WebApi::probeResults() {
 }
 
 web::VersionMap WebApi::versions() {
-  return {{"xregulatord", XR_VERSION_STRING}, {"mode", ctx_.sim ? "sim" : "board"}};
+  web::VersionMap v{{"xregulatord", XR_VERSION_STRING}, {"mode", ctx_.sim ? "sim" : "board"}};
+  // The store's state on the System page (issue 26, item 7): whether changes
+  // survive a restart at all.
+  if (!ctx_.store) {
+    v["store"] = "none: no state database, changes last for this run only";
+  } else {
+    const StoreService::Status st = ctx_.store->status();
+    v["store"] = st.persistent ? (st.recovered ? "recovered at start: " : "ok: ") + st.path
+                               : "NOT SAVING: " + st.message + "; changes are refused";
+  }
+  return v;
 }
 
 web::Health WebApi::health() {

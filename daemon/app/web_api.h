@@ -5,6 +5,7 @@
 // triple buffer (then persisted as overrides), events from memory, history
 // from the store.
 #include <atomic>
+#include <chrono>
 #include <mutex>
 
 #include "app/status_source.h"
@@ -23,6 +24,8 @@ struct WebApiContext {
   double controlPeriodUs = 2500;
   std::atomic<std::int64_t>* lastHeartbeatWallMs = nullptr;  // set by the supervisor
   std::atomic<bool>* fieldSafeFault = nullptr;               // outputs could not be driven
+  // How long POST /api/commands waits for the regulator's answer.
+  std::chrono::milliseconds commandAckTimeout{1000};
 };
 
 class WebApi final : public web::DaemonApi {
@@ -42,8 +45,13 @@ class WebApi final : public web::DaemonApi {
   static web::StatusSnapshot toStatus(const rt::RuntimeSnapshot& s, bool sim, double periodUs);
 
  private:
+  void logPatch(std::size_t values);
+
   WebApiContext ctx_;
   std::mutex patchMutex_;  // read-modify-write of the whole Params
+  std::mutex logMutex_;
+  std::chrono::steady_clock::time_point lastPatchLog_{};
+  std::size_t patchesSinceLog_ = 0, valuesSinceLog_ = 0;
 };
 
 }  // namespace xr::app

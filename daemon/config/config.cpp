@@ -1,19 +1,19 @@
 #include "config/config.h"
 
+#include <toml++/toml.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
-#include <fstream>
 #include <map>
 #include <ostream>
-#include <sstream>
 
-#include <toml++/toml.h>
-
+#include "config/bounded_read.h"
 #include "config/format.h"
 #include "config/param_values.h"
 #include "config/settings_schema.h"
 #include "config/toml_values.h"
+#include "config/web_checks.h"
 #include "params/derived.h"
 
 namespace xr {
@@ -208,15 +208,33 @@ class Loader {
         {"ads_alert_rdy_line", h.ads_alert_rdy_line}};
     for (const auto& [name, line] : others) {
       if (line >= 0 && line == h.field_enable_line) {
-        ConfigError e{file_, 0, 0, "hardware." + std::string(name),
-                      "uses GPIO line " + std::to_string(line) + ", which is already the field_enable_line"};
-        if (auto it = settingLoc_.find(e.key); it != settingLoc_.end()) {
-          e.line = it->second.line;
-          e.column = it->second.column;
-        }
-        result_.errors.push_back(std::move(e));
+        settingError("hardware." + std::string(name),
+                     "uses GPIO line " + std::to_string(line) + ", which is already the field_enable_line");
       }
     }
+    webSettings();
+  }
+
+  void settingError(const std::string& key, std::string message) {
+    ConfigError e{file_, 0, 0, key, std::move(message)};
+    if (auto it = settingLoc_.find(key); it != settingLoc_.end()) {
+      e.line = it->second.line;
+      e.column = it->second.column;
+    }
+    result_.errors.push_back(std::move(e));
+  }
+
+  // [web] is checked here, not first discovered by the web server at run
+  // time: there a failure can only mean running without the dashboard
+  // (issue 26, items 3 and 9).
+  void webSettings() {
+    const auto& w = config_.settings.web;
+    if (!isNumericListenAddress(w.listen))
+      settingError("web.listen",
+                   "'" + w.listen +
+                       "' is not an IP address: write an IPv4 or IPv6 address such as "
+                       "\"127.0.0.1\" (this machine only), \"0.0.0.0\" (every interface) or \"::\"");
+    if (auto why = checkTokenText(w.token); !why.empty()) settingError("web.token", why);
   }
 
   std::string file_;
@@ -236,15 +254,13 @@ std::string dotted(const char* name) {
 LoadResult loadConfigString(std::string_view text, std::string_view name) { return Loader(name).run(text); }
 
 LoadResult loadConfigFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  std::string text;
+  if (std::string why = readConfigText(path, text); !why.empty()) {
     LoadResult r;
-    r.errors.push_back({path, 0, 0, "", std::string("cannot read the file: ") + std::strerror(errno)});
+    r.errors.push_back({path, 0, 0, "", why});
     return r;
   }
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return loadConfigString(ss.str(), path);
+  return loadConfigString(text, path);
 }
 
 std::vector<ConfigError> checkConsistency(const Params& p, std::string_view file) {

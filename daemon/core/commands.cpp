@@ -46,4 +46,22 @@ std::string_view commandArgument(CommandType t) {
   return "";
 }
 
+std::string_view refusalReason(CommandType t) {
+  // The conditions of Regulator::command(), in the operator's words.
+  switch (t) {
+    case CommandType::Manual:
+      return "the duty must be a number from 0 to 100 %";
+    case CommandType::SetSoc:
+      return "the state of charge must be a number from 0 to 100 %";
+    case CommandType::SystemIdStart:
+      return "system identification starts only in automatic mode with the field on (and not while it runs)";
+    case CommandType::TuningCommit:
+      return "TuningMode is off, or the tuning has no result to commit yet";
+    case CommandType::CvTuningCommit:
+      return "CVTuningMode is off, or the CV tuning has no result to commit yet";
+    default:
+      return "the regulator does not allow it now";
+  }
+}
+
 }  // namespace xr

@@ -1,6 +1,7 @@
 #pragma once
 // Operator commands: the same names in the HTTP API (POST /api/commands) and
 // in scenario files (command = "..."). Applied by the regulator between ticks.
+#include <cstdint>
 #include <optional>
 #include <string_view>
 
@@ -27,6 +28,9 @@ struct Command {
   CommandType type = CommandType::Auto;
   double value = 0.0;  // duty % for Manual, SoC % for SetSoc
   bool flag = false;   // active for WeatherMode
+  // Non-zero: the control thread posts whether the regulator applied or
+  // refused it (runtime/handoffs.h CommandAcks), so the HTTP answer can say.
+  std::uint32_t ackId = 0;
 };
 
 std::string_view toString(CommandType t);
@@ -34,5 +38,8 @@ std::optional<CommandType> parseCommandType(std::string_view name);
 // Name of the numeric or boolean argument the command needs ("duty",
 // "soc_pct", "active"), or empty when it takes none.
 std::string_view commandArgument(CommandType t);
+// Why the regulator refuses t when it does (Regulator::command returns false),
+// for the API's error answer.
+std::string_view refusalReason(CommandType t);
 
 }  // namespace xr

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <thread>
 
+#include "runtime/fatal_guard.h"
+
 namespace xr::rt {
 
 ControlCycle::ControlCycle(ControlCore& core, const CycleDevices& devices, Handoffs& handoffs,
@@ -51,10 +53,12 @@ void ControlCycle::applyPending() noexcept {
   }
   Command c;
   for (int i = 0; i < cfg_.maxCommandsPerTick && h_.commands.pop(c); ++i) {
-    if (core_.command(c))
+    const bool applied = core_.command(c);
+    if (applied)
       ++health_.commandsApplied;
     else
       ++health_.commandsRejected;
+    if (c.ackId != 0) h_.acks.post(c.ackId, applied);
   }
 }
 
@@ -120,8 +124,9 @@ void ControlCycle::readDiscreteInputs() noexcept {
 }
 
 bool ControlCycle::writeOutputs(const Outputs& out) noexcept {
-  const bool enable = out.fieldEnable;
-  double duty = out.dutyPct;
+  const bool dying = fatal::dying();
+  const bool enable = out.fieldEnable && !dying;
+  double duty = dying ? 0.0 : out.dutyPct;
   if (!std::isfinite(duty)) duty = 0.0;
   duty = std::clamp(duty, 0.0, 100.0);
   bool ok = true;

@@ -1,6 +1,7 @@
 #include "runtime/fatal_guard.h"
 
 #include <signal.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <array>
@@ -8,6 +9,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+
+#include "runtime/signals.h"
 
 namespace xr::rt::fatal {
 
@@ -28,11 +31,45 @@ std::array<Action, kMaxActions> gActions;
 std::atomic<std::size_t> gCount{0};
 std::atomic<int> gDriven{0};
 std::atomic<bool> gInstalled{false};
+std::atomic<bool> gDying{false};
 
-constexpr int kFatalSignals[] = {SIGSEGV, SIGABRT, SIGBUS, SIGFPE, SIGILL};
+// A fault signal may be sent from outside and run on any thread while the
+// control thread keeps ticking: after the flag is up it writes only the safe
+// state, and a write it had already begun is overwritten by the second
+// drive after this pause (several control periods; nanosleep is
+// async-signal-safe).
+void driveSafeAndSettle() noexcept {
+  gDying.store(true);
+  driveSafeNow();
+  timespec pause{0, 20'000'000};
+  nanosleep(&pause, nullptr);
+  driveSafeNow();
+}
+
+// signals.h: the faults. SIGTRAP and SIGSYS too: the kernel forces them on
+// the faulting thread, so blocking them (like the other signals) would not
+// keep them from killing the process.
+constexpr int kFatalSignals[] = {SIGSEGV, SIGABRT, SIGBUS, SIGFPE, SIGILL, SIGTRAP, SIGSYS};
+
+// Appends src to buf at *n (bounded); async-signal-safe.
+void append(char* buf, std::size_t cap, std::size_t* n, const char* src) {
+  while (*src && *n < cap) buf[(*n)++] = *src++;
+}
+
+// One line for the journal (stderr is the journal under systemd), written
+// with one write(2) after the field is LOW.
+void tellFatal(int sig) {
+  char line[128];
+  std::size_t n = 0;
+  append(line, sizeof line - 1, &n, "xregulatord: fatal signal ");
+  append(line, sizeof line - 1, &n, signals::name(sig));
+  append(line, sizeof line - 1, &n, ": field enable LOW, duty 0\n");
+  [[maybe_unused]] auto w = write(STDERR_FILENO, line, n);
+}
 
 void onFatalSignal(int sig) {
-  driveSafeNow();
+  driveSafeAndSettle();
+  tellFatal(sig);
   // Die with the original signal (core dump, correct exit status): the
   // handler was installed with SA_RESETHAND, so this re-raise is default.
   signal(sig, SIG_DFL);
@@ -40,7 +77,7 @@ void onFatalSignal(int sig) {
 }
 
 [[noreturn]] void onTerminate() {
-  driveSafeNow();
+  driveSafeAndSettle();
   static const char msg[] = "xregulatord: std::terminate: field enable LOW, duty 0\n";
   [[maybe_unused]] auto n = write(STDERR_FILENO, msg, sizeof(msg) - 1);
   std::abort();
@@ -109,5 +146,7 @@ void install() {
 }
 
 int timesDriven() noexcept { return gDriven.load(); }
+
+bool dying() noexcept { return gDying.load(std::memory_order_relaxed); }
 
 }  // namespace xr::rt::fatal

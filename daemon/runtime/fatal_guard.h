@@ -1,10 +1,12 @@
 #pragma once
 // Safe state on the fatal exit paths (issue 7 "Runtime"): std::terminate and
-// the fatal signals SIGSEGV, SIGABRT, SIGBUS, SIGFPE, SIGILL run a fixed list
+// the fatal signals SIGSEGV, SIGABRT, SIGBUS, SIGFPE, SIGILL, SIGTRAP, SIGSYS
+// (runtime/signals.h) run a fixed list
 // of async-signal-safe actions registered at start — pwrite() of prepared
 // bytes on descriptors opened at start (sysfs duty_cycle "0", the simulation
 // output mirror) and callbacks that only issue a syscall (a libgpiod line
-// set LOW) — then the process dies with the original signal.
+// set LOW) — then write one prepared line naming the signal to stderr (the
+// journal) and die with the original signal.
 #include <sys/types.h>
 
 #include <cstddef>
@@ -33,6 +35,11 @@ void install();
 // Give the calling thread an alternate signal stack (the control thread
 // calls this too; the main thread gets one from install()).
 void installAltStackForThisThread();
+
+// True once a fatal signal or std::terminate began: the control cycle then
+// writes only the safe state, so that a fault signal handled on another
+// thread is not undone by the next tick.
+bool dying() noexcept;
 
 // How many times driveSafeNow() ran (tests).
 int timesDriven() noexcept;

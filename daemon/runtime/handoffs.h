@@ -8,6 +8,8 @@
 // Multi-producer callers on the non-RT side (several HTTP sessions, the
 // scenario runner) go through submitCommand()/submitParams(), which take a
 // mutex the RT thread never touches.
+#include <array>
+#include <atomic>
 #include <cstdint>
 #include <mutex>
 
@@ -65,6 +67,29 @@ struct VictronHandoff {
   TimeNs stamp = 0;
 };
 
+// Whether the regulator applied or refused a command, per Command::ackId
+// (issue 26, item 11). The control thread posts with one release store into
+// a slot; any number of readers poll their own id. Never blocks the control
+// thread. A slot is reused after kSlots later acknowledged commands, so a
+// reader checks the id in it, and a late reader sees "unknown" not a wrong
+// answer.
+class CommandAcks {
+ public:
+  static constexpr std::size_t kSlots = 128;  // > the command queue (64): no slot is reused while queued
+  void post(std::uint32_t id, bool applied) noexcept {
+    slots_[id % kSlots].store((static_cast<std::uint64_t>(id) << 1) | (applied ? 1u : 0u),
+                              std::memory_order_release);
+  }
+  // 1 applied, 0 refused, -1 not (yet) known.
+  int find(std::uint32_t id) const noexcept {
+    const std::uint64_t v = slots_[id % kSlots].load(std::memory_order_acquire);
+    return (v >> 1) == id ? static_cast<int>(v & 1u) : -1;
+  }
+
+ private:
+  std::array<std::atomic<std::uint64_t>, kSlots> slots_{};
+};
+
 class Handoffs {
  public:
   explicit Handoffs(const Params& initial) : params(initial), acceptedParams_(initial) {}
@@ -74,6 +99,13 @@ class Handoffs {
   bool submitCommand(const Command& c) {
     std::lock_guard lock(producerMutex_);
     return commands.push(c);
+  }
+  // Queues c with a fresh ackId; returns it, or 0 when the queue is full.
+  std::uint32_t submitCommandForAck(Command c) {
+    std::lock_guard lock(producerMutex_);
+    if (++lastAckId_ == 0) ++lastAckId_;  // 0 means "no acknowledgement wanted"
+    c.ackId = lastAckId_;
+    return commands.push(c) ? c.ackId : 0;
   }
   // Publish a validated whole Params; the RT thread applies it between ticks.
   void submitParams(const Params& p) {
@@ -97,10 +129,12 @@ class Handoffs {
   SeqLock<TemperatureHandoff> temperature;
   SeqLock<VictronHandoff> victron;
   SeqLock<BatteryLedger> ledger;  // the core's ledger, copied out ~4 times a second
+  CommandAcks acks;
 
  private:
   mutable std::mutex producerMutex_;
   Params acceptedParams_;
+  std::uint32_t lastAckId_ = 0;
 };
 
 }  // namespace xr::rt

@@ -51,6 +51,44 @@ stop_signal() {
   grep -q "stopped cleanly" "$tmp/log" || fail "no clean-stop log line"
 }
 
+# Any other signal whose default action ends the process (issue 26, item 2):
+# the same controlled ramp, a journal line naming it, and exit 128 + signal
+# so that systemd restarts the regulator. A fault signal sent from outside:
+# the fatal handler drives the field LOW, names the signal, dies with it.
+# An ignored one (SIGHUP, SIGTSTP) leaves the regulator running.
+signal_path() {
+  local sig=$1 want=$2
+  local num
+  num=$(kill -l "$sig") || fail "no signal $sig"
+  "$bin" --sim --speed 50 --sim-outputs "$tmp/out" >"$tmp/log" 2>&1 &
+  local pid=$!
+  wait_field_on "$tmp/out" "$pid" || { kill -9 $pid 2>/dev/null; fail "field never came on"; }
+  kill -"$sig" "$pid"
+  if [ "$want" = ignored ]; then
+    sleep 1  # not an assertion on speed: the daemon must simply still be there
+    kill -0 "$pid" 2>/dev/null || fail "SIG$sig ended the daemon"
+    [ "$(field_of "$tmp/out")" = 1 ] || fail "SIG$sig turned the field off: $(cat "$tmp/out")"
+    kill -TERM "$pid"
+    wait "$pid"
+    local rc=$?
+    [ "$rc" = 0 ] || fail "exit code $rc after SIGTERM"
+    expect_field_off "$tmp/out" stop
+    grep -q "SIG$sig.*ignored" "$tmp/log" || fail "no log line for the ignored SIG$sig"
+    return
+  fi
+  wait "$pid"
+  local rc=$?
+  [ "$rc" = $((128 + num)) ] || fail "exit code $rc after SIG$sig, expected $((128 + num))"
+  if [ "$want" = stop ]; then
+    expect_field_off "$tmp/out" stop
+    grep -q "SIG$sig: not a signal xregulatord uses; stopping through the controlled ramp" "$tmp/log" ||
+      fail "no journal line naming SIG$sig"
+  else
+    expect_field_off "$tmp/out" fatal
+    grep -q "fatal signal SIG$sig: field enable LOW" "$tmp/log" || fail "no journal line naming SIG$sig"
+  fi
+}
+
 # A fault at simulated t = 60 s (or just after, for the main thread), when a reference run of the same seed has
 # the field on (the simulation is deterministic at --speed max).
 fault_path() {
@@ -76,6 +114,14 @@ case "$case_name" in
   terminate) fault_path terminate 134 ;;
   throw_main) fault_path throw 70 50 ;;  # the main thread polls in wall time: pace the run
   throw_control) fault_path throw-control 70 ;;
+  signal_*)
+    sig=${case_name#signal_}
+    case "$sig" in
+      SEGV | ABRT | BUS | FPE | ILL | TRAP | SYS) signal_path "$sig" fatal ;;
+      HUP | TSTP | TTIN | TTOU) signal_path "$sig" ignored ;;
+      *) signal_path "$sig" stop ;;
+    esac
+    ;;
   duration)
     "$bin" --sim --speed max --duration 10 --telemetry-csv "$tmp/t.csv" --telemetry-rate 10 \
       --sim-outputs "$tmp/out" >"$tmp/log" 2>&1 || fail "exit code $?"
@@ -103,6 +149,18 @@ case "$case_name" in
     grep -q BulkVoltage "$tmp/log" || fail "bad config error does not name the key"
     "$bin" --config "$tmp/bad.toml" --sim --duration 1 --speed max >"$tmp/log" 2>&1
     [ $? = 78 ] || fail "daemon with a bad config: not 78"
+    # issue 26, item 8: only regular files, bounded.
+    mkdir "$tmp/confdir"
+    "$bin" --config "$tmp/confdir" --check-config >"$tmp/log" 2>&1; [ $? = 78 ] || fail "a directory as --config: not 78"
+    grep -q "is a directory, not a configuration file" "$tmp/log" || fail "directory not named as such"
+    "$bin" --config /dev/zero --check-config >"$tmp/log" 2>&1; [ $? = 78 ] || fail "/dev/zero as --config: not 78"
+    mkfifo "$tmp/fifo.toml"
+    "$bin" --config "$tmp/fifo.toml" --sim --duration 1 --speed max >"$tmp/log" 2>&1
+    [ $? = 78 ] || fail "a FIFO as --config: not 78"
+    # issue 26, item 3: a listen address the server could not bind is a config error.
+    printf '[web]\nlisten = "localhost"\n' >"$tmp/listen.toml"
+    "$bin" --config "$tmp/listen.toml" --check-config >"$tmp/log" 2>&1; [ $? = 78 ] || fail "listen = localhost: not 78"
+    grep -q "web.listen: 'localhost' is not an IP address" "$tmp/log" || fail "bad listen not named"
     # A bad scenario (and a bad plant parameter in one) is bad command-line
     # input: exit 64 with a file:line: message, and the field never enabled.
     printf 'name = "x"\nduration_s = -5\n' >"$tmp/bad-scenario.toml"
@@ -121,6 +179,44 @@ case "$case_name" in
     "$bin" --sim --scenario "$tmp/ocv.toml" --speed max >"$tmp/log" 2>&1
     [ $? = 64 ] || fail "OCV table not monotone: not 64"
     grep -q "ocv.toml:4:.*monotone" "$tmp/log" || fail "OCV table not monotone: no file:line:"
+    ;;
+  web_cannot_start)
+    # issue 26, item 3: 192.0.2.1 (TEST-NET-1) is a valid address no interface
+    # has: the server cannot bind it. The regulator runs on, loudly.
+    "$bin" --sim --speed max --duration 20 --http 192.0.2.1:8080 --sim-outputs "$tmp/out" >"$tmp/log" 2>&1
+    rc=$?
+    [ "$rc" = 0 ] || fail "exit code $rc: a web server that cannot start stopped the regulator"
+    grep -q "the regulator runs WITHOUT the dashboard and API" "$tmp/log" || fail "no loud log line"
+    grep -q "Field enabled" "$tmp/log" || fail "the regulator never enabled the field"
+    expect_field_off "$tmp/out" stop
+    ;;
+  command_refused)
+    # issue 26, items 9 and 11 through the real daemon and HTTP.
+    token=0123456789abcdef-e2e
+    printf '[web]\ntoken = "%s"\n' "$token" >"$tmp/web.toml"
+    chmod 644 "$tmp/web.toml"
+    "$bin" --config "$tmp/web.toml" --sim --speed 5 --http 127.0.0.1:0 --state-db "$tmp/s.db" >"$tmp/log" 2>&1 &
+    pid=$!
+    port=""
+    for _ in $(seq 1 300); do
+      port=$(sed -n 's|.*dashboard at http://127.0.0.1:\([0-9]*\)/.*|\1|p' "$tmp/log")
+      [ -n "$port" ] && break
+      sleep 0.1
+    done
+    [ -n "$port" ] || { kill $pid; fail "no dashboard port in the log"; }
+    post() { curl -s -o "$tmp/body" -w '%{http_code}' -H "Authorization: Bearer $token" \
+      -H 'Content-Type: application/json' -d "$1" "http://127.0.0.1:$port/api/commands"; }
+    code=$(post '{"command":"tuning_commit"}')
+    [ "$code" = 409 ] || { kill $pid; fail "refused command answered $code: $(cat "$tmp/body")"; }
+    grep -q "refused by the regulator: TuningMode is off" "$tmp/body" || { kill $pid; fail "no reason: $(cat "$tmp/body")"; }
+    code=$(post '{"command":"manual","duty":10}')
+    [ "$code" = 200 ] || { kill $pid; fail "applied command answered $code: $(cat "$tmp/body")"; }
+    grep -q '"applied: manual"' "$tmp/body" || { kill $pid; fail "applied command: $(cat "$tmp/body")"; }
+    kill -TERM $pid
+    wait $pid || fail "exit code $? after SIGTERM"
+    grep -q "$token" "$tmp/log" && fail "the token reached the log"
+    grep -q "token is set in a file every user of this machine can read" "$tmp/log" || fail "no world-readable warning"
+    [ "$(stat -c %a "$tmp/s.db")" = 600 ] || fail "state database mode $(stat -c %a "$tmp/s.db"), expected 600"
     ;;
   *) fail "unknown case" ;;
 esac

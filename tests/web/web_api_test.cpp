@@ -450,6 +450,23 @@ TEST_F(WebApiTest, ReadsCanRequireTheToken) {
   EXPECT_NE(ws.read().find("\"battery_v\""), std::string::npos);
 }
 
+// Issue 26, item 12: HEAD on an API route sends headers only, so a
+// pipelined request behind it is read as a request, not as body bytes.
+TEST_F(WebApiTest, Head_OnApiRoutesSendsNoBodyAndPipeliningWorks) {
+  start();
+  const std::string out =
+      rawExchange(port_,
+                  "HEAD /api/params HTTP/1.1\r\nHost: x\r\n\r\n"
+                  "GET /api/nothing-here HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n");
+  const auto first = out.find("HTTP/1.1 200");
+  const auto second = out.find("HTTP/1.1 404");
+  ASSERT_NE(first, std::string::npos) << out;
+  ASSERT_NE(second, std::string::npos) << out;
+  const auto headersEnd = out.find("\r\n\r\n", first);
+  EXPECT_EQ(headersEnd + 4, second) << "bytes between the HEAD answer's headers and the next answer: " << out;
+  EXPECT_NE(out.substr(first, headersEnd - first).find("Content-Length: "), std::string::npos);
+}
+
 TEST_F(WebApiTest, Limits_OversizedBodyAndHeadersAndGarbage) {
   WebServerOptions o;
   o.body_limit = 1024;

@@ -2,6 +2,8 @@
 // listen-address parsing, token generation, static path resolution, query parsing.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <set>
 
 #include "web/server/api_handler.h"
@@ -87,6 +89,24 @@ TEST(WebStatic, RejectsTraversalWithoutTouchingDisk) {
   for (const char* bad : {"", "x", "/..", "/../etc/passwd", "/a/../b", "/%2e%2e/x", "/a\\b", "//x"})
     EXPECT_FALSE(resolveStaticPath("/usr/share", bad).has_value()) << bad;
   EXPECT_FALSE(resolveStaticPath("", "/index.html").has_value());
+}
+
+// Issue 26, item 12: dotfiles in www_root are never served; a file that only
+// contains a dot elsewhere is.
+TEST(WebStatic, DotfilesAreNotServed) {
+  char tmpl[] = "/tmp/xr-www-XXXXXX";
+  const std::string root = mkdtemp(tmpl);
+  std::filesystem::create_directory(root + "/.git");
+  for (const char* f : {"/.env", "/.git/config", "/app.min.js", "/index.html"}) std::ofstream(root + f) << "x";
+  for (const char* bad : {"/.env", "/.git/config", "/.git/", "/./index.html"})
+    EXPECT_FALSE(resolveStaticPath(root, bad).has_value()) << bad;
+  EXPECT_TRUE(resolveStaticPath(root, "/app.min.js").has_value());
+  EXPECT_TRUE(resolveStaticPath(root, "/").has_value());
+  std::filesystem::remove_all(root);
+}
+
+TEST(WebOptions, KeepAliveIdleTimeoutIsTheDocumentedTenSeconds) {
+  EXPECT_EQ(WebServerOptions{}.keepalive_timeout, std::chrono::seconds(10));
 }
 
 TEST(WebQuery, PercentDecodeAndParams) {

@@ -101,12 +101,21 @@ std::shared_ptr<const std::string> ApiHandler::statusText(std::uint64_t* seqOut)
 }
 
 Response ApiHandler::handle(const Request& req) {
+  Response res;
   try {
-    return route(req);
+    res = route(req);
   } catch (const std::exception& e) {
     // A bug must cost one request, never the daemon (and never the field).
-    return error(req, http::status::internal_server_error, std::string("internal error: ") + e.what());
+    res = error(req, http::status::internal_server_error, std::string("internal error: ") + e.what());
   }
+  // HEAD: the headers GET would send, never a body (issue 26, item 12: a
+  // body here desynchronises a pipelining client).
+  if (req.method() == http::verb::head && !res.body().empty()) {
+    const auto len = res.body().size();
+    res.body().clear();
+    res.content_length(len);
+  }
+  return res;
 }
 
 Response ApiHandler::route(const Request& req) {

@@ -30,13 +30,16 @@ std::optional<std::string> resolveStaticPath(const std::string& root, std::strin
   for (char c : urlPath)
     if (c == '\0' || c == '%' || c == '\\') return std::nullopt;
   std::string rel(urlPath.substr(1));
-  // Every segment must be a plain name: no "." or ".." or empty middle segment.
+  // Every segment must be a plain name: not starting with "." (so no "." or
+  // "..") and no empty middle segment.
   std::size_t start = 0;
   while (start <= rel.size()) {
     const auto end = rel.find('/', start);
     const std::string_view seg =
         std::string_view(rel).substr(start, end == std::string::npos ? std::string::npos : end - start);
-    if (seg == "." || seg == "..") return std::nullopt;
+    // No dotfiles either (issue 26, item 12): .git, .env, editor swap
+    // files left in www_root are not the dashboard's.
+    if (!seg.empty() && seg.front() == '.') return std::nullopt;
     if (seg.empty() && end != std::string::npos) return std::nullopt;  // "//"
     if (end == std::string::npos) break;
     start = end + 1;

@@ -36,7 +36,7 @@ struct WebServerOptions {
   std::size_t body_limit = 64 * 1024;
   std::size_t header_limit = 8 * 1024;
   std::chrono::milliseconds request_timeout{10000};  // whole request read / response write
-  std::chrono::milliseconds keepalive_timeout{30000};
+  std::chrono::milliseconds keepalive_timeout{10000};  // idle keep-alive (docs/dashboard.md)
   std::chrono::milliseconds ws_idle_timeout{30000};  // no pong within this: close
   // Kernel send buffer of each WebSocket: bounds what a slow client can hold
   // in the kernel, as the one-pending-frame rule bounds it in the server.

@@ -19,7 +19,7 @@ tmp=$(mktemp -d)
 port=$(python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1",0)); print(s.getsockname()[1])')
 cat >"$tmp/xregulator.toml" <<TOML
 [web]
-token = "bench-token"
+token = "bench-token-for-the-web-benchmark"
 max_connections = 256   # 50 WebSocket + 50 wrk connections fit under the cap
 www_root = "$build/web/www"
 TOML

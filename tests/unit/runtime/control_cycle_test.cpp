@@ -178,6 +178,35 @@ TEST(ControlCycle, RejectedCommandsAreCounted) {
   EXPECT_EQ(r.handoffs.latest().health.commandsRejected, 1u);
 }
 
+// Issue 26, item 11: the regulator's answer reaches the submitter.
+TEST(ControlCycle, PostsTheRegulatorsAnswerForAcknowledgedCommands) {
+  CycleRig r;
+  const std::uint32_t applied = r.handoffs.submitCommandForAck(Command{});
+  ASSERT_NE(applied, 0u);
+  EXPECT_EQ(r.handoffs.acks.find(applied), -1);  // not before the tick
+  r.tick();
+  EXPECT_EQ(r.handoffs.acks.find(applied), 1);
+  r.core.rejectCommands = true;
+  const std::uint32_t refused = r.handoffs.submitCommandForAck(Command{});
+  ASSERT_NE(refused, applied);
+  r.tick();
+  EXPECT_EQ(r.handoffs.acks.find(refused), 0);
+  EXPECT_EQ(r.handoffs.acks.find(applied), 1);  // earlier answers stay readable
+}
+
+TEST(ControlCycle, AnAcknowledgementSlotIsNeverReadAsAnotherCommandsAnswer) {
+  CycleRig r;
+  const std::uint32_t first = r.handoffs.submitCommandForAck(Command{});
+  r.tick();
+  ASSERT_EQ(r.handoffs.acks.find(first), 1);
+  r.core.rejectCommands = true;
+  for (std::size_t i = 0; i < CommandAcks::kSlots; ++i) {
+    ASSERT_NE(r.handoffs.submitCommandForAck(Command{}), 0u);
+    r.tick();
+  }
+  EXPECT_EQ(r.handoffs.acks.find(first), -1);  // its slot now holds a later command: unknown, not "refused"
+}
+
 TEST(ControlCycle, BoundsCommandsPerTick) {
   CycleRig r;
   for (int i = 0; i < 20; ++i) ASSERT_TRUE(r.handoffs.submitCommand(Command{}));

@@ -50,11 +50,15 @@ else
   fail=1
 fi
 
-# 3. The properties issue 10 asks for are really there.
+# 3. The properties issue 10 asks for are really there; issue 26: SIGKILL
+# cannot be caught, so ExecStopPost's xregulator-field-off must run after
+# every end of the main process (ExecStopPost runs after a kill -9 too), and
+# config/usage errors must not be restarted into a loop.
 for want in '^Type=notify$' '^WatchdogSec=' '^Restart=on-failure$' '^LimitRTPRIO=' '^LimitMEMLOCK=infinity$' \
   '^User=xregulator$' '^SupplementaryGroups=i2c gpio dialout$' '^DeviceAllow=' '^ReadWritePaths=.*/sys/class/pwm' \
   '^ProtectSystem=strict$' '^ProtectHome=yes$' '^NoNewPrivileges=yes$' '^StateDirectory=xregulator$' \
-  '^ConfigurationDirectory=xregulator$' '^ExecStopPost=.*xregulator-field-off'; do
+  '^ConfigurationDirectory=xregulator$' '^ExecStopPost=.*xregulator-field-off' \
+  '^RestartPreventExitStatus=64 78$' '^ExecStartPre=.*--state-db .*--check-config$'; do
   grep -q "$want" "$src/xregulatord.service" || { echo "FAIL: xregulatord.service lacks $want"; fail=1; }
 done
 

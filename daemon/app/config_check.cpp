@@ -1,0 +1,67 @@
+#include "app/config_check.h"
+
+#include <filesystem>
+#include <ostream>
+
+#include "app/stored_overrides.h"
+#include "config/config.h"
+#include "config/web_checks.h"
+
+namespace xr::app {
+
+int checkConfigAndState(const std::string& configPath, const std::optional<std::string>& stateDb,
+                        std::ostream& out, std::ostream& err) {
+  const int rc = checkConfigMain(configPath, out, err);
+  if (rc != 0) return rc;
+  const LoadResult r = loadConfigFile(configPath);
+  if (!r.ok()) return kExitConfig;  // changed between the two reads
+  if (auto w = tokenFileWarning(configPath, r.config->settings.web.token); !w.empty())
+    out << "warning: " << w << "\n";
+
+  const std::string db = stateDb.value_or(r.config->settings.store.path);
+  std::error_code ec;
+  if (db.empty() || !std::filesystem::exists(db, ec)) return 0;  // first start: nothing stored yet
+  std::string why;
+  const auto rows = readOverridesReadOnly(db, &why);
+  if (!why.empty()) {
+    out << "warning: " << why << " (the stored dashboard settings were not checked)\n";
+    return 0;
+  }
+  const OverrideResolution res = resolveStoredOverrides(r.config->params, rows);
+  for (const auto& d : res.dropped) out << "warning: " << db << ": " << d.text() << " (at the next start)\n";
+  out << db << ": " << rows.size() - res.dropped.size() << " stored dashboard setting"
+      << (rows.size() - res.dropped.size() == 1 ? "" : "s") << " fit the configuration";
+  if (!res.dropped.empty()) out << ", " << res.dropped.size() << " will be dropped";
+  out << "\n";
+  return 0;
+}
+
+int printTokenMain(const std::optional<std::string>& configPath, const std::optional<std::string>& stateDb,
+                   std::ostream& out, std::ostream& err) {
+  std::string db;
+  if (stateDb) {
+    db = *stateDb;
+  } else {
+    const LoadResult r = loadConfigFile(*configPath);
+    if (!r.ok()) {
+      for (const auto& e : r.errors) err << e.toString() << "\n";
+      return 1;
+    }
+    if (!r.config->settings.web.token.empty()) {
+      out << r.config->settings.web.token << "\n";
+      return 0;
+    }
+    db = r.config->settings.store.path;
+  }
+  std::string why;
+  const std::string token = readTokenReadOnly(db, &why);
+  if (token.empty()) {
+    err << "xregulatord: "
+        << (why.empty() ? db + ": no token stored yet (the daemon makes one at first start)" : why) << "\n";
+    return 1;
+  }
+  out << token << "\n";
+  return 0;
+}
+
+}  // namespace xr::app

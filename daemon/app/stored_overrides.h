@@ -1,0 +1,45 @@
+#pragma once
+// The values the daemon runs with, checked as ONE set (issue 26, item 1):
+// the file (with a scenario's [config]) plus the dashboard's stored
+// overrides go through the same cross-parameter checks as the file alone.
+//
+// An override that no longer fits — the file changed under it (Absorption
+// lowered below a stored Float), the catalogue narrowed its range, the name
+// is gone — is dropped: the daemon runs on the file's value, names the
+// dropped value in an event, and forgets the row. Never a silent unsafe set,
+// never a refusal to start.
+#include <string>
+#include <vector>
+
+#include "params/params.h"
+#include "store/store.h"
+
+namespace xr::app {
+
+struct DroppedOverride {
+  std::string name;          // the parameter ("FloatVoltage")
+  std::string value;         // the stored value that was dropped
+  std::string why;           // the check it failed
+  std::string text() const;  // "stored dashboard setting FloatVoltage = 14.3 dropped: ..."
+};
+
+struct OverrideResolution {
+  Params params;                         // file + every override that fits, consistent
+  std::vector<DroppedOverride> dropped;  // in the order they were dropped
+};
+
+// Deterministic: first every row that is malformed on its own (unknown name,
+// not a number, out of the catalogue range) is dropped; then, while the set
+// is inconsistent, the one override whose removal leaves the fewest
+// cross-parameter errors (ties: one the errors name, then the most recently
+// changed) is dropped. fileParams must be consistent (the loader checked it).
+OverrideResolution resolveStoredOverrides(const Params& fileParams, const std::vector<OverrideRow>& rows);
+
+// Read-only look at a state database for --check-config: the override rows,
+// or empty with *error set when the file cannot be opened or read. Never
+// creates, migrates or moves the file.
+std::vector<OverrideRow> readOverridesReadOnly(const std::string& dbPath, std::string* error);
+// The stored web token (empty when none), read-only, for --print-token.
+std::string readTokenReadOnly(const std::string& dbPath, std::string* error);
+
+}  // namespace xr::app

@@ -1,0 +1,124 @@
+// Issue 26 through the daemon's side of the web API (app/web_api.cpp):
+// items 6 (history bounds), 7 (a change that cannot be saved is refused;
+// the store's state is shown), 10 (events of earlier runs), 12 (bare error
+// keys).
+#include "app/web_api.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+
+#include "app/store_service.h"
+#include "store_test_util.h"
+
+namespace xr::app {
+namespace {
+
+using ::testing::HasSubstr;
+using xr::test::TempDir;
+
+struct Rig {
+  Params params;
+  rt::Handoffs handoffs{params};
+  std::unique_ptr<StoreService> store;
+  RecentEvents recent;
+  std::unique_ptr<WebApi> api;
+  explicit Rig(const std::string& db = {}) {
+    if (!db.empty()) store = std::make_unique<StoreService>(db, 300);
+    WebApiContext ctx;
+    ctx.handoffs = &handoffs;
+    ctx.store = store.get();
+    ctx.events = &recent;
+    api = std::make_unique<WebApi>(ctx);
+  }
+  ~Rig() {
+    if (store) store->stop(BatteryLedger{}, false);
+  }
+};
+
+web::ParamChange change(const char* name, double v) { return {findParam(name), -1, v}; }
+
+TEST(WebApiHistory, AbsurdStepFromAndToAreRejectedBeforeAnyConversion) {
+  TempDir d;
+  Rig r(d.file("x.db"));
+  const double now = 1.7e9;
+  auto ask = [&](double from, double to, double step) {
+    web::HistoryQuery q;
+    q.series = {"ibv_v"};
+    q.from_s = from;
+    q.to_s = to;
+    q.step_s = step;
+    return r.api->history(q);
+  };
+  // The issue's reproducers: before, 100,000 points per series (and UB).
+  for (auto res : {ask(now - 3600, now, 1e300), ask(-1e300, now, 1e300), ask(now, 1e300, 1e299),
+                   ask(now - 3600, now, std::nan("")), ask(now - 3600, now, 0.5)}) {
+    EXPECT_FALSE(res.error.empty());
+    EXPECT_TRUE(res.t.empty());
+  }
+  EXPECT_THAT(ask(now - 3600, now, 0.1).error, HasSubstr("step must be 1 s"));
+  // At the point limit: 10,000 steps are fine, one more is not.
+  EXPECT_EQ(ask(now - 10000, now, 1).error, "");
+  EXPECT_EQ(ask(now - 10000, now, 1).t.size(), 10001u);
+  EXPECT_THAT(ask(now - 10001, now, 1).error, HasSubstr("too many points"));
+}
+
+TEST(WebApiPatch, CrossParameterErrorsUseBareNames) {
+  Rig r;
+  const auto res = r.api->patchParams({change("FloatVoltage", 14.6)});  // above the default Absorption
+  ASSERT_FALSE(res.errors.empty());
+  EXPECT_EQ(res.errors[0].name, "FloatVoltage");  // before: "voltage.FloatVoltage"
+}
+
+TEST(WebApiPatch, AChangeThatCannotBeSavedIsRefusedAndNotApplied) {
+  TempDir d;
+  // Its "directory" is a regular file: the store falls back to memory, as
+  // with a read-only state directory (and independent of running as root).
+  { std::ofstream(d.file("afile")) << "x"; }
+  Rig r(d.file("afile/x.db"));
+  ASSERT_FALSE(r.store->status().persistent);
+  const double before = r.api->currentParams().MaxDuty;
+  const auto res = r.api->patchParams({change("MaxDuty", 80)});
+  ASSERT_EQ(res.errors.size(), 1u);  // before: no error, lost at the next start
+  EXPECT_EQ(res.errors[0].name, "store");
+  EXPECT_THAT(res.errors[0].message, HasSubstr("would be lost at the next start"));
+  EXPECT_DOUBLE_EQ(r.api->currentParams().MaxDuty, before);
+  EXPECT_THAT(r.api->versions()["store"], HasSubstr("NOT SAVING"));
+}
+
+TEST(WebApiPatch, AChangeThatIsSavedIsAppliedAndTheStoreShowsOk) {
+  TempDir d;
+  Rig r(d.file("x.db"));
+  EXPECT_TRUE(r.api->patchParams({change("MaxDuty", 80)}).errors.empty());
+  EXPECT_DOUBLE_EQ(r.api->currentParams().MaxDuty, 80.0);
+  EXPECT_THAT(r.api->versions()["store"], HasSubstr("ok: "));
+}
+
+TEST(WebApiEvents, EventsOfAnEarlierRunAreShownAndPaged) {
+  TempDir d;
+  const std::string db = d.file("x.db");
+  {
+    Rig first(db);
+    for (int i = 0; i < 3; ++i) {
+      Event e;
+      e.code = EventCode::FieldOn;
+      first.store->appendEvent(e);
+    }
+  }
+  Rig second(db);  // a restart: the in-memory ring is empty
+  web::EventQuery q;
+  q.limit = 2;
+  const auto page = second.api->events(q);
+  ASSERT_EQ(page.size(), 2u);  // before: 0
+  EXPECT_EQ(page[0].event.code, EventCode::FieldOn);
+  EXPECT_GT(page[0].id, page[1].id);
+  q.before = page[1].id;
+  const auto older = second.api->events(q);
+  ASSERT_EQ(older.size(), 1u);
+  EXPECT_LT(older[0].id, page[1].id);
+}
+
+}  // namespace
+}  // namespace xr::app
