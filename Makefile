@@ -58,14 +58,24 @@ bench: deps
 	tests/bench/run.sh $(BENCH_BUILD)
 
 # Debian package: dpkg-buildpackage writes beside the source tree; the results
-# are moved to $(BUILD)/deb. `make package-test` also lintians, installs,
-# checks and purges it (slow, so not part of `make test`).
+# are moved to $(BUILD)/deb. `make deb ARCH=arm64` (or armhf) cross-builds with
+# Debian's cross compilers and multiarch libraries (`make deps-cross`) and
+# checks the result: Architecture:, ELF class and machine of every binary, the
+# Depends: of that architecture, lintian (tests/package/check_cross.sh).
+# ccache is used when installed. `make package-test` also installs, checks and
+# purges the native package (slow, so not part of `make test`).
 DEB_VERSION = $(shell dpkg-parsechangelog -S Version 2>/dev/null)
-deb: deps
-	dpkg-buildpackage -us -uc -b
+HOST_ARCH := $(shell dpkg --print-architecture)
+ARCH ?= $(HOST_ARCH)
+DEB_DEPS := deps $(if $(filter-out $(HOST_ARCH),$(ARCH)),deps-cross)
+deb: $(DEB_DEPS)
+	PATH=/usr/lib/ccache:$$PATH DEB_BUILD_OPTIONS="parallel=$(JOBS) $$DEB_BUILD_OPTIONS" \
+	  dpkg-buildpackage -a$(ARCH) -us -uc -b
 	@mkdir -p $(BUILD)/deb
-	mv ../xregulator_$(DEB_VERSION)_* ../xregulator-dbgsym_$(DEB_VERSION)_* $(BUILD)/deb/ 2>/dev/null || true
+	mv ../xregulator_$(DEB_VERSION)_$(ARCH).* ../xregulator-dbgsym_$(DEB_VERSION)_$(ARCH).* $(BUILD)/deb/
 	@ls -l $(BUILD)/deb
+	tests/package/check_cross.sh $(ARCH) $(BUILD)/deb/xregulator_$(DEB_VERSION)_$(ARCH).deb \
+	  $(BUILD)/deb/xregulator_$(DEB_VERSION)_$(ARCH).changes
 
 .PHONY: package-test
 package-test: deps
@@ -75,6 +85,9 @@ package-test: deps
 # qemu-user and the arm64/armhf multiarch libraries. Idempotent like deps.
 CROSS_LIBS := libboost1.81-dev libboost-json1.81-dev libgpiod-dev libsqlite3-dev \
   libspdlog-dev libfmt-dev libtomlplusplus-dev libgtest-dev libgmock-dev libsystemd-dev
+# pkg-config:<arch> provides <triplet>-pkg-config, which debhelper's cross
+# cmake build asks for.
+CROSS_LIBS := $(CROSS_LIBS) pkg-config
 CROSS_PACKAGES := crossbuild-essential-arm64 crossbuild-essential-armhf qemu-user-static \
   $(addsuffix :arm64,$(CROSS_LIBS)) $(addsuffix :armhf,$(CROSS_LIBS))
 deps-cross: deps
