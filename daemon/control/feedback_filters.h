@@ -5,7 +5,6 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
-#include <limits>
 
 namespace xr {
 
@@ -19,17 +18,9 @@ class Ema {
       primed_ = true;
       return value_;
     }
-    // alpha = dt / (tc + dt) is recomputed only when dt or the time
-    // constant changed: the ADS cadence keeps dt constant for long runs and
-    // the division was a measurable part of every tick. Same formula, same
-    // bits.
-    if (dtSec != alphaDt_ || tcMs != alphaTcMs_) {
-      alphaDt_ = dtSec;
-      alphaTcMs_ = tcMs;
-      const double tc = tcMs * 1e-3;
-      alpha_ = dtSec > 0.0 ? dtSec / (tc + dtSec) : 0.0;
-    }
-    value_ += alpha_ * (x - value_);
+    const double tc = tcMs * 1e-3;
+    const double alpha = dtSec > 0.0 ? dtSec / (tc + dtSec) : 0.0;
+    value_ += alpha * (x - value_);
     return value_;
   }
   double value() const { return value_; }
@@ -42,10 +33,6 @@ class Ema {
  private:
   double value_ = 0.0;
   bool primed_ = false;
-  // Cached alpha for (alphaDt_, alphaTcMs_); NaN keys never match, so the
-  // first update computes it.
-  double alphaDt_ = kNeverMatches, alphaTcMs_ = kNeverMatches, alpha_ = 0.0;
-  static constexpr double kNeverMatches = std::numeric_limits<double>::quiet_NaN();
 };
 
 template <std::size_t Capacity>

@@ -188,15 +188,15 @@ TEST(RegulatorE2E, LimpHomeIgnoresT3ButNotTheInaLatch) {
   EXPECT_EQ(r.out->dutyPct, 0.0);
 }
 
-TEST(RegulatorE2E, ManualHardOvercurrentCutsButAltHardShutdownDoesNot) {
+TEST(RegulatorE2E, ManualHardOvercurrentCuts) {
   Params p;
   p.MaxTableValue = 40.0;  // hard OC at 50 A
   E2E r(p);
   r.warm();
   ASSERT_TRUE(r.reg.command(Command{CommandType::Manual, 90.0}));
-  r.ibv = r.batteryV = 14.9;  // above AlternatorHardShutdownV: AUTO only
   r.run(0.05);
   EXPECT_EQ(r.out->telemetry.mode, M::MODE_NORMAL_MANUAL);
+  // (The alternator hard shutdown now cuts MANUAL too: HardOverVoltage.*.)
   // The crude plant gives 0.6 A/% -> 54 A at 90 %: above the 50 A fuse.
   const double t =
       r.runUntil([&] { return r.out->telemetry.reason == Reason::REASON_HARD_OVERCURRENT; }, 10.0);
@@ -223,8 +223,8 @@ TEST(RegulatorE2E, OnOffZeroRampsDownWithoutAlarmOrLockout) {
 TEST(RegulatorE2E, LockoutReArmsWhileTheFaultPersists) {
   E2E r;
   r.warm();
-  r.ibv = r.batteryV = 14.9;  // alternator hard shutdown, held
-  r.run(40.0);
+  r.tempF = 152.5;  // T1 held: warning ramp, lockout, and again after it
+  r.run(45.0);
   EXPECT_EQ(r.count(EventCode::LockoutStarted), 2);
   EXPECT_FALSE(r.out->fieldEnable);
 }
