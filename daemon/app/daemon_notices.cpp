@@ -1,0 +1,45 @@
+#include "app/daemon_notices.h"
+
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+
+#include "config/web_checks.h"
+#include "logging/logging.h"
+
+namespace xr::app {
+
+void logLoopStats(const rt::LoopStatsSummary& s, const rt::RuntimeHealth& h) {
+  spdlog::info(
+      "control loop: {} ticks, {} overruns, period error p50/p99/max {:.0f}/{:.0f}/{:.0f} us, compute "
+      "p50/p99/max {:.0f}/{:.0f}/{:.0f} us, I/O p50/p99/max {:.0f}/{:.0f}/{:.0f} us, "
+      "CH1 {:.0f} Hz (CH0 {:.0f}, CH2 {:.0f}, CH3 {:.0f}), INA {:.0f} Hz, "
+      "sensor errors {}, output errors {}, events dropped {}",
+      s.ticks, s.overruns, s.periodErrP50Us, s.periodErrP99Us, s.periodErrMaxUs, s.computeP50Us,
+      s.computeP99Us, s.computeMaxUs, s.ioP50Us, s.ioP99Us, s.ioMaxUs, s.ch1SampleRateHz,
+      s.adsChannelRateHz[0], s.adsChannelRateHz[2], s.adsChannelRateHz[3], s.inaSampleRateHz,
+      h.sensorReadErrors, h.outputWriteErrors, h.eventsDropped);
+}
+
+// The token itself never goes to the journal (any member of systemd-journal
+// could read it): a fingerprint to compare with a phone's, and where to read
+// the token (issue 26, item 9).
+void logTokenHint(bool generated, bool stored, const std::string& token, const std::string& dbPath) {
+  if (!generated) {
+    spdlog::info("API write token: from [web] token in the configuration (fingerprint {})",
+                 tokenFingerprint(token));
+    return;
+  }
+  if (stored)
+    spdlog::info(
+        "API write token: generated, kept in the state database (fingerprint {}); read it with "
+        "`xregulatord --print-token --state-db {}` as root or the xregulator user",
+        tokenFingerprint(token), dbPath);
+  else
+    spdlog::info("API write token: generated for this run only (fingerprint {})", tokenFingerprint(token));
+  // Started from a terminal (`make run`): the operator sees it there. Under
+  // systemd stderr is the journal, so nothing is printed.
+  if (!loggingToJournal()) std::fprintf(stderr, "xregulatord: API write token: %s\n", token.c_str());
+}
+
+}  // namespace xr::app

@@ -1,0 +1,14 @@
+#pragma once
+// What the daemon tells the journal at start and stop, apart from its main
+// sequence in daemon.cpp: the control loop's figures and the API token hint.
+#include <string>
+
+#include "runtime/handoffs.h"
+#include "runtime/loop_stats.h"
+
+namespace xr::app {
+
+void logLoopStats(const rt::LoopStatsSummary& s, const rt::RuntimeHealth& h);
+void logTokenHint(bool generated, bool stored, const std::string& token, const std::string& dbPath);
+
+}  // namespace xr::app
