@@ -51,8 +51,11 @@ test: build
 # The cruising-day suite (issue 27): every scenarios/cruising/*.toml through
 # the daemon, one table of pass/fail and key figures, a PNG plot per scenario
 # in $(BUILD)/scenarios. Exits non-zero when a scenario fails.
+# Debian's interpreter, where python3-matplotlib is installed (a python3
+# earlier on PATH, e.g. a pyenv one, has no matplotlib).
+PLOT_PYTHON ?= /usr/bin/python3
 scenarios: build
-	python3 tests/sim/cruising/suite.py --daemon $(BUILD)/daemon/app/xregulatord --out $(BUILD)/scenarios
+	$(PLOT_PYTHON) tests/sim/cruising/suite.py --daemon $(BUILD)/daemon/app/xregulatord --out $(BUILD)/scenarios
 
 # make bench measures its own optimised tree (Release, LTO, profile-guided,
 # for this machine's CPU: tests/bench/build-pgo.sh) so the figures are what the
