@@ -303,10 +303,8 @@ const Outputs& Regulator::step(const Inputs& in) {
   // 9. Alarms (250 ms cadence inside).
   out.buzzer = s.prot.checkAlarms(false, ev);
 
-  // 10. Telemetry. This tick's inputs and local decisions are not kept as
-  // state, so they are written on every tick (plain stores); the rest is a
-  // pure function of the state after this step and is filled only when the
-  // caller will look at it (completeTelemetry() fills it later otherwise).
+  // 10. Telemetry: this tick's inputs and decisions, then the modules'
+  // state after the step.
   Telemetry& t = out.telemetry;
   t.now = in.now;
   t.mode = d.mode;
@@ -322,18 +320,11 @@ const Outputs& Regulator::step(const Inputs& in) {
   t.fast_ov_active = fastOvActive;
   t.alarm = out.buzzer;
   s.tickGovMode = govMode;
-  if (in.telemetryWanted) fillStateTelemetry();
+  fillStateTelemetry();
   return out;
 }
 
-const Outputs& Regulator::completeTelemetry() {
-  fillStateTelemetry();
-  return s_->out;
-}
-
-// Everything here reads only the state after the last step (and the govMode
-// that step kept), so filling it later gives the same values. The module
-// fills are idempotent: a second call before the next step changes nothing.
+// The telemetry that reads the modules' state after this step.
 void Regulator::fillStateTelemetry() {
   State& s = *s_;
   Telemetry& t = s.out.telemetry;

@@ -32,13 +32,8 @@ class Regulator {
   // CommandRejected event on the next step, when the command is not legal now.
   bool command(const Command& cmd);
 
-  // One control tick. With in.telemetryWanted false, the telemetry that is
-  // a pure function of the state (the module blocks, stage, targets, SoC and
-  // energies) is left as it was; completeTelemetry() fills it.
+  // One control tick.
   const Outputs& step(const Inputs& in);
-  // Fills the deferred telemetry of the last step: afterwards outputs() is
-  // exactly what that step would have returned with telemetryWanted true.
-  const Outputs& completeTelemetry();
   const Outputs& outputs() const;
 
   // Persistent battery state, for the store.

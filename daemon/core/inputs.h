@@ -49,11 +49,6 @@ struct Inputs {
   // Discrete inputs (already polarity-corrected).
   bool ignitionOn = true;
   bool bmsChargeEnabled = true;
-
-  // The caller will read this tick's telemetry (not only the duty, enables,
-  // buzzer, INA requests and events). False lets Regulator::step defer what
-  // Regulator::completeTelemetry() can fill later.
-  bool telemetryWanted = true;
 };
 
 }  // namespace xr

@@ -16,10 +16,6 @@ class ControlCore {
   virtual const Outputs& step(const Inputs& in) = 0;
   virtual void setParams(const Params& p) = 0;
   virtual bool command(const Command& c) = 0;
-  // After a step() whose Inputs::telemetryWanted was false: fill the
-  // telemetry that step deferred, so the outputs equal those of a step with
-  // telemetryWanted true. Returns the same Outputs step() returned.
-  virtual const Outputs& completeTelemetry() = 0;
   // The persistent battery state, for the store (copied out periodically).
   // False when the core has none.
   virtual bool ledger(BatteryLedger&) { return false; }

@@ -15,34 +15,10 @@ ControlCycle::ControlCycle(ControlCore& core, const CycleDevices& devices, Hando
       h_(handoffs),
       stats_(stats),
       timing_(timing),
-      cfg_(config),
-      bmsCell_(dev_.bms ? dev_.bms->levelCell() : nullptr),
-      ignitionCell_(dev_.ignition ? dev_.ignition->levelCell() : nullptr) {
-  planExtras();  // tick 0: every extra falls on it
-}
+      cfg_(config) {}
 
-void ControlCycle::planExtras() noexcept {
-  const auto period = [](int every) { return every > 1 ? static_cast<std::uint64_t>(every) : 1u; };
-  const std::uint64_t t = tick_;
-  // Each next* is the first multiple of its period >= t (every tick is
-  // planned here or passed as quiet): it is due now when equal to t.
-  const auto due = [t](std::uint64_t& next, std::uint64_t every) {
-    if (next != t) return false;
-    next += every;
-    return true;
-  };
-  extras_.timed = due(nextTimed_, period(cfg_.timeEveryTicks));
-  extras_.store = due(nextStore_, period(cfg_.publishEveryTicks));
-  extras_.ledger = due(nextLedger_, kLedgerEveryTicks);
-  extras_.summary = due(nextSummary_, kSummaryEveryTicks);
-  const std::uint64_t next = std::min(std::min(nextTimed_, nextStore_), std::min(nextLedger_, nextSummary_));
-  quietTicks_ = next - t - 1;
-}
-
-void ControlCycle::applyBetweenTicks() noexcept {
-  // Almost every tick has neither new Params nor a command: two loads, and
-  // the swap/drain out of line only when there is something to apply.
-  if (h_.params.pending() || !h_.commands.emptyForConsumer()) applyPending();
+bool ControlCycle::onEvery(int ticks) const noexcept {
+  return ticks <= 1 || tick_ % std::uint64_t(ticks) == 0;
 }
 
 void ControlCycle::applyPending() noexcept {
@@ -63,28 +39,13 @@ void ControlCycle::applyPending() noexcept {
 }
 
 void ControlCycle::mergeSlowInputs() noexcept {
-  // The slow sensors post about once a second: while a hand-off's version
-  // has not moved, its sample is the one already merged (only no longer
-  // fresh), so the copy out of the seqlock is skipped.
-  if (h_.temperature.version() == tempVersion_) {
-    in_.AlternatorTemperatureF.fresh = false;
-  } else {
-    mergeTemperature();
-  }
-  if (h_.victron.version() == victronVersion_) {
-    if (lastVictronStamp_ != 0) {
-      in_.VictronCurrent.fresh = false;
-      in_.VictronVoltage.fresh = false;
-      in_.solarPowerW.fresh = false;
-    }
-  } else {
-    mergeVictron();
-  }
+  mergeTemperature();
+  mergeVictron();
 }
 
 void ControlCycle::mergeTemperature() noexcept {
   TemperatureHandoff t;
-  tempVersion_ = h_.temperature.load(t);
+  h_.temperature.load(t);
   in_.AlternatorTemperatureF.fresh = t.stamp != 0 && t.stamp != lastTempStamp_;
   if (t.stamp != 0) {
     in_.AlternatorTemperatureF.value = t.tempF;
@@ -96,7 +57,7 @@ void ControlCycle::mergeTemperature() noexcept {
 
 void ControlCycle::mergeVictron() noexcept {
   VictronHandoff v;
-  victronVersion_ = h_.victron.load(v);
+  h_.victron.load(v);
   const bool fresh = v.stamp != 0 && v.stamp != lastVictronStamp_;
   if (v.stamp != 0) {
     in_.VictronCurrent = Reading{v.currentA, v.stamp, fresh};
@@ -108,19 +69,8 @@ void ControlCycle::mergeVictron() noexcept {
 
 void ControlCycle::readDiscreteInputs() noexcept {
   // A read error counts as the safe level: charging disabled / ignition off.
-  // A level in memory (simulation) is read in place: what get() returns.
-  if (bmsCell_)
-    in_.bmsChargeEnabled = !*bmsCell_;
-  else if (dev_.bms)
-    in_.bmsChargeEnabled = dev_.bms->get() == 0;
-  else
-    in_.bmsChargeEnabled = true;
-  if (ignitionCell_)
-    in_.ignitionOn = *ignitionCell_;
-  else if (dev_.ignition)
-    in_.ignitionOn = dev_.ignition->get() == 1;
-  else
-    in_.ignitionOn = true;
+  in_.bmsChargeEnabled = dev_.bms ? dev_.bms->get() == 0 : true;
+  in_.ignitionOn = dev_.ignition ? dev_.ignition->get() == 1 : true;
 }
 
 bool ControlCycle::writeOutputs(const Outputs& out) noexcept {
@@ -165,15 +115,13 @@ ControlCycle::PublishPlan ControlCycle::planPublish(TimeNs now) const noexcept {
   // The snapshot is stored on the tick's thinning grid (every tick while
   // stopping); a row is due on the row grid.
   PublishPlan p;
-  p.store = extras_.store || stopping_;
+  p.store = onEvery(cfg_.publishEveryTicks) || stopping_;
   p.row = cfg_.rowPeriod > 0 && (!rowsStarted_ || now - lastRow_ >= cfg_.rowPeriod);
-  p.summary = extras_.summary;
+  p.summary = onEvery(kSummaryEveryTicks);
   return p;
 }
 
-void ControlCycle::storeSnapshot(const Outputs& stepOut, TimeNs now) noexcept {
-  const Outputs& out = telemetryComplete_ ? stepOut : core_.completeTelemetry();
-  telemetryComplete_ = true;
+void ControlCycle::storeSnapshot(const Outputs& out, TimeNs now) noexcept {
   if (dev_.truth) dev_.truth->fill(truth_);
   health_.eventsDropped = h_.events.dropped();
   health_.stopping = stopping_;
@@ -221,7 +169,7 @@ void ControlCycle::publishRow(TimeNs now) noexcept {
 
 bool ControlCycle::tick(TimeNs now) {
   if (dev_.hook) dev_.hook->beforeTick(now);
-  applyBetweenTicks();
+  applyPending();
 
   const bool timed = timedTick();
   const TimeNs t0 = timed ? timing_.now() : 0;
@@ -231,8 +179,6 @@ bool ControlCycle::tick(TimeNs now) {
   mergeSlowInputs();
   readDiscreteInputs();
   const PublishPlan plan = planPublish(now);
-  in_.telemetryWanted = plan.store || plan.row;
-  telemetryComplete_ = in_.telemetryWanted;
   const TimeNs t1 = timed ? timing_.now() : 0;
 
   const Outputs& out = core_.step(in_);
@@ -262,8 +208,8 @@ bool ControlCycle::tick(TimeNs now) {
     if (dev_.watchdog->keepAlive()) ++health_.watchdogFeeds;
   }
   h_.events.pushBatch(out.events);
-  const bool ledgerDue = extras_.ledger;  // this tick's, before advanceTick() plans the next
-  advanceTick();
+  const bool ledgerDue = onEvery(kLedgerEveryTicks);
+  ++tick_;
   if (ledgerDue) {
     BatteryLedger l;
     if (core_.ledger(l)) h_.ledger.store(l);

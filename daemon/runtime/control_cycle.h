@@ -72,34 +72,16 @@ class ControlCycle {
 
  private:
   static constexpr int kMaxEdgesPerPeriod = 16;
-  static constexpr std::uint64_t kLedgerEveryTicks = 100;
-  static constexpr std::uint64_t kSummaryEveryTicks = 64;  // quantiles are not free: ~6 Hz at 400 Hz
-  // The periodic extras of the tick numbered tick_: each falls on the
-  // ticks that are multiples of its period (timing: timeEveryTicks, the
-  // thinned snapshot store: publishEveryTicks, the ledger: 100, the loop
-  // summary: 64; a period <= 1 means every tick).
-  struct Extras {
-    bool timed = false;    // compute/I-O timing (this tick and the edges before it)
-    bool store = false;    // snapshot store (stopping_ adds every tick)
-    bool ledger = false;   // battery ledger copy-out
-    bool summary = false;  // LoopStats::summary() refresh
-  };
-  bool timedTick() const noexcept { return extras_.timed; }
-  // Advances tick_ and decides its extras. Most ticks have none, known by
-  // a countdown to the next multiple of any period (no per-tick phase
-  // counters, no divisions); planExtras() runs only on ticks that have one.
-  void advanceTick() noexcept {
-    ++tick_;
-    if (quietTicks_ > 0) {
-      --quietTicks_;
-      extras_ = Extras{};
-    } else {
-      planExtras();
-    }
-  }
-  void planExtras() noexcept;
+  static constexpr int kLedgerEveryTicks = 100;
+  static constexpr int kSummaryEveryTicks = 64;  // quantiles are not free: ~6 Hz at 400 Hz
+  // The periodic extras fall on the ticks that are multiples of their
+  // period (timing: timeEveryTicks, the thinned snapshot store:
+  // publishEveryTicks, the ledger: 100, the loop summary: 64); a period <= 1
+  // means every tick.
+  bool onEvery(int ticks) const noexcept;
+  // Compute/I-O timing of this tick and of the edges serviced before it.
+  bool timedTick() const noexcept { return onEvery(cfg_.timeEveryTicks); }
   // The per-tick helpers below run once per tick from tick() only.
-  void applyBetweenTicks() noexcept;
   void applyPending() noexcept;
   void mergeSlowInputs() noexcept;
   void mergeTemperature() noexcept;
@@ -107,14 +89,11 @@ class ControlCycle {
   void readDiscreteInputs() noexcept;
   bool writeOutputs(const Outputs& out) noexcept;
   // What this tick publishes: the snapshot store and/or a telemetry row.
-  // Decided ONCE per tick, before the step (so the step knows whether its
-  // telemetry is observed), and used by publish() after it: nothing the two
-  // depend on (extras_ as the previous advanceTick() left it, stopping_,
-  // lastRow_, rowsStarted_) changes in between.
+  // Decided before the step, while tick_ is still this tick's number.
   struct PublishPlan {
     bool store = false;
     bool row = false;
-    bool summary = false;  // refresh summary_ first (the tick's Extras::summary)
+    bool summary = false;  // refresh summary_ first
   };
   PublishPlan planPublish(TimeNs now) const noexcept;
   void publish(const Outputs& out, TimeNs now, PublishPlan plan) noexcept;
@@ -137,25 +116,12 @@ class ControlCycle {
   TimeNs lastRow_ = 0;
   bool rowsStarted_ = false;
   std::uint64_t tick_ = 0;
-  // tick_'s extras; the ticks after it with none (planExtras() runs when
-  // this reaches 0); the next tick number each extra falls on.
-  Extras extras_{};
-  std::uint64_t quietTicks_ = 0;
-  std::uint64_t nextTimed_ = 0, nextStore_ = 0, nextLedger_ = 0, nextSummary_ = 0;
   const Outputs* lastOut_ = nullptr;
-  // False after a step that deferred its telemetry, until completed.
-  bool telemetryComplete_ = true;
   TimeNs lastNow_ = 0;
   TimeNs lastTempStamp_ = 0, lastVictronStamp_ = 0;
-  std::uint64_t tempVersion_ = ~0ULL, victronVersion_ = ~0ULL;  // odd: never a stored version
   TimeNs lastAdsStamp_[4] = {0, 0, 0, 0};
   TimeNs lastInaStamp_ = 0;
   std::array<std::uint32_t, 4> freshTotals_{};  // sensors that do not count: fresh flags summed
-
-  // The discrete inputs' levels in memory (DigitalInput::levelCell()), or
-  // nullptr: read with get() (or not wired).
-  const bool* bmsCell_;
-  const bool* ignitionCell_;
 
   // What the outputs are known to be (written successfully).
   bool outputsKnown_ = false;

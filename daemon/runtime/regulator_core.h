@@ -12,7 +12,6 @@ class RegulatorCore final : public ControlCore {
   const Outputs& step(const Inputs& in) override { return r_.step(in); }
   void setParams(const Params& p) override { r_.setParams(p); }
   bool command(const Command& c) override { return r_.command(c); }
-  const Outputs& completeTelemetry() override { return r_.completeTelemetry(); }
   bool ledger(BatteryLedger& out) override {
     out = r_.ledger();
     return true;

@@ -318,7 +318,7 @@ void Ads1115Driver::onReadyEdge(TimeNs edge) noexcept {
   std::uint8_t* const wr = edgeWrite_;
   wr[1] = static_cast<std::uint8_t>(cfg >> 8);
   wr[2] = static_cast<std::uint8_t>(cfg & 0xFF);
-  if (missed || late) [[unlikely]] {
+  if (missed || late) {
     skipResultAndWriteMux(edge, c, cfg);
     return;
   }

@@ -23,15 +23,6 @@ class DigitalInput {
   // Logical level after polarity correction; false on error is not allowed:
   // returns -1 on error, 0 or 1 otherwise.
   virtual int get() noexcept = 0;
-  // An input whose level is plain memory (the simulator's lines) points at
-  // it, so the control cycle reads it in place instead of a virtual call per
-  // tick. Only for implementations whose get() is exactly `*cell ? 1 : 0`
-  // (no I/O, no error, no side effect); nullptr (every board GPIO) means
-  // get() is called.
-  const bool* levelCell() const noexcept { return cell_; }
-
- protected:
-  const bool* cell_ = nullptr;
 };
 
 class Watchdog {

@@ -4,8 +4,6 @@
 #include <cerrno>
 #include <cmath>
 
-#include "drivers/sim/fast_math.h"
-
 namespace xr::sim {
 using namespace ads1115;
 
@@ -36,7 +34,7 @@ std::int16_t Ads1115Model::sample(std::uint16_t cfg) noexcept {
   double v = pin(kPos[mux]);
   if (kNeg[mux] >= 0) v -= pin(kNeg[mux]);
   const double fs = kFsrVolts[pgaOf(cfg)];
-  const double code = roundEven(v / fs * 32768.0);  // = std::nearbyint, without the libm call
+  const double code = std::nearbyint(v / fs * 32768.0);
   if (!(code == code)) return 0;
   return static_cast<std::int16_t>(std::clamp(code, -32768.0, 32767.0));  // clips at ±FS
 }
@@ -100,7 +98,7 @@ void Ads1115Model::convertTo(TimeNs t) noexcept {
   now_ = t;
 }
 
-inline int Ads1115Model::readMsg(std::uint8_t* buf, std::size_t len) noexcept {
+int Ads1115Model::read(std::uint8_t* buf, std::size_t len) noexcept {
   if (len == 0 || len > 2) {
     ++protocolErrors_;
     return EREMOTEIO;
@@ -125,7 +123,7 @@ inline int Ads1115Model::readMsg(std::uint8_t* buf, std::size_t len) noexcept {
   return 0;
 }
 
-inline int Ads1115Model::writeMsg(const std::uint8_t* buf, std::size_t len) noexcept {
+int Ads1115Model::write(const std::uint8_t* buf, std::size_t len) noexcept {
   if (len == 0 || (buf[0] & 0xFC) != 0) {  // pointer bits 7:2 must be 0
     ++protocolErrors_;
     return EREMOTEIO;
@@ -169,38 +167,6 @@ void Ads1115Model::writeConfig(std::uint16_t v) noexcept {
     startConversion(now_);  // single-shot start; ignored while busy
   }
   pulses_ = readyMode() && queOf(config_) != 3 && !(config_ & MODE_SINGLE);
-}
-
-int Ads1115Model::read(std::uint8_t* buf, std::size_t len) noexcept { return readMsg(buf, len); }
-int Ads1115Model::write(const std::uint8_t* buf, std::size_t len) noexcept { return writeMsg(buf, len); }
-
-int Ads1115Model::transact(TimeNs t, std::span<I2cMsg> msgs) noexcept {
-  update(t);
-  if (msgs.size() == 3) {
-    // The driver's ready-edge transaction, ~2 per control tick: pointer to
-    // Conversion, a 2-byte read, a Config write. Done as those messages
-    // would be one by one (pointer 0, the read and its side effect, pointer
-    // 1 and the Config write), without the per-message checks and dispatch;
-    // anything else after the read goes through the general loop.
-    I2cMsg* const m = msgs.data();
-    if (!m[0].read && m[0].len == 1 && m[0].buf != nullptr && m[0].buf[0] == 0 && m[1].read &&
-        m[1].len == 2 && m[1].buf != nullptr) {
-      ptr_ = 0;
-      const std::uint16_t v = readConversion();
-      m[1].buf[0] = std::uint8_t(v >> 8);
-      m[1].buf[1] = std::uint8_t(v);
-      const std::uint8_t* const w = m[2].buf;
-      if (!m[2].read && m[2].len == 3 && w != nullptr && w[0] == 1) {
-        ptr_ = 1;
-        writeConfig(static_cast<std::uint16_t>((w[1] << 8) | w[2]));
-        return 0;
-      }
-      msgs = msgs.subspan(2);
-    }
-  }
-  return runMessages(
-      msgs, [this](std::uint8_t* b, std::size_t n) { return readMsg(b, n); },
-      [this](const std::uint8_t* b, std::size_t n) { return writeMsg(b, n); });
 }
 
 }  // namespace xr::sim

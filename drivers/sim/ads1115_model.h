@@ -41,7 +41,6 @@ class Ads1115Model final : public SimI2cDevice {
     vmax_ = vmax;
   }
   void setInputSigma(int ain, double sigma) noexcept { sigma_[ain & 3] = sigma; }
-  // Inline early-out: most calls (several per control tick) end no conversion.
   void update(TimeNs t) noexcept override {
     if (t < now_) return;
     if (converting_ && convEnd_ <= t) {
@@ -50,7 +49,6 @@ class Ads1115Model final : public SimI2cDevice {
       now_ = t;
     }
   }
-  int transact(TimeNs t, std::span<I2cMsg> msgs) noexcept override;
   int write(const std::uint8_t* buf, std::size_t len) noexcept override;
   int read(std::uint8_t* buf, std::size_t len) noexcept override;
 
@@ -69,10 +67,6 @@ class Ads1115Model final : public SimI2cDevice {
   TimeNs period(int dr) const noexcept { return period_[dr & 7]; }
 
  private:
-  // One read / write message (read() and write() are these, non-inlined;
-  // transact() inlines them).
-  int readMsg(std::uint8_t* buf, std::size_t len) noexcept;
-  int writeMsg(const std::uint8_t* buf, std::size_t len) noexcept;
   void convertTo(TimeNs t) noexcept;  // update() with a conversion ending by t
   void startConversion(TimeNs at) noexcept;
   std::uint16_t readConversion() noexcept;     // a read of the Conversion register, with its side effect

@@ -7,8 +7,6 @@
 #include <climits>
 #include <cmath>
 
-#include "drivers/sim/fast_math.h"
-
 namespace xr::sim {
 
 using namespace ina228;
@@ -18,10 +16,9 @@ constexpr std::int32_t kMax20 = (1 << 19) - 1;
 constexpr std::int32_t kMin20 = -(1 << 19);
 constexpr double kVbusLsb = 195.3125e-6;  // V
 constexpr double kTempLsb = 7.8125e-3;    // °C
-constexpr double kInvAvg[8] = {1.0, 1.0 / 4, 1.0 / 16, 1.0 / 64, 1.0 / 128, 1.0 / 256, 1.0 / 512, 1.0 / 1024};
 
 std::int32_t quantise20(double v, double lsb) {
-  const double c = roundEven(v / lsb);
+  const double c = std::nearbyint(v / lsb);
   if (!(c == c)) return 0;  // NaN input: the ADC reads 0
   return static_cast<std::int32_t>(std::clamp(c, double(kMin20), double(kMax20)));
 }
@@ -47,7 +44,6 @@ void Ina228Model::restartConversions() noexcept {
   // Writing ADC_CONFIG restarts the conversion (E2E228); CONVDLY delays the
   // first one in 2 ms steps.
   const int m = mode();
-  oneSampleUntil_ = 0;
   samplesInWindow_ = 0;
   sumVsh_ = sumVbus_ = sumTemp_ = 0;
   if (m == 0 || m == 8) {
@@ -67,11 +63,8 @@ void Ina228Model::quantise() noexcept {
   codesValid_ = true;
   vshCode_ = quantise20(analog_.vshunt_v, (config_ & 0x10) ? 78.125e-9 : 312.5e-9);
   vbusCode_ = quantise20(analog_.vbus_v, kVbusLsb);
-  if (!(analog_.dietemp_c == tcodeC_)) {  // the die temperature rarely moves (NaN: always redone)
-    tcodeC_ = analog_.dietemp_c;
-    const double tc = roundEven(analog_.dietemp_c / kTempLsb);
-    tcode_ = static_cast<std::int32_t>(std::clamp(tc == tc ? tc : 0.0, -32768.0, 32767.0));
-  }
+  const double tc = std::nearbyint(analog_.dietemp_c / kTempLsb);
+  tcode_ = static_cast<std::int32_t>(std::clamp(tc == tc ? tc : 0.0, -32768.0, 32767.0));
   // The raw power only the SLOWALERT = 0 comparison uses (a DIAG_ALRT
   // write invalidates the codes, so it is computed when SLOWALERT clears).
   if (!(diag_ & SLOWALERT)) {
@@ -89,10 +82,7 @@ void Ina228Model::convertTo(TimeNs t) noexcept {
   while (running_ && nextSample_ <= t) {
     const TimeNs st = sampleTime_;
     const int avg = avg_;
-    // Samples due by t (the common case, a step shorter than one sample
-    // pass, without the 64-bit division).
-    const TimeNs late = t - nextSample_;
-    const std::int64_t due = late < st ? 1 : late / st + 1;
+    const std::int64_t due = (t - nextSample_) / st + 1;  // raw samples due by t
     const std::int64_t k = std::min<std::int64_t>(due, avg - samplesInWindow_);
     now_ = nextSample_ + (k - 1) * st;
     const std::int32_t vsh = vshCode_, vb = vbusCode_, tcode = tcode_;
@@ -111,28 +101,17 @@ void Ina228Model::convertTo(TimeNs t) noexcept {
     }
   }
   now_ = t;
-  // The next update() may take one raw sample inline if it is not the
-  // window's last (a result is due then) and SLOWALERT = 1 (no raw compare).
-  if (running_ && (diag_ & SLOWALERT) && codesValid_) {
-    windowLast_ = nextSample_ + TimeNs(avg_ - samplesInWindow_ - 1) * sampleTime_;
-    armOneSample();
-  } else {
-    oneSampleUntil_ = 0;
-  }
 }
 
 void Ina228Model::publish(double dt) noexcept {
-  // The window holds exactly AVG samples (update() never overfills it), and
-  // AVG is a power of two: multiplying by 1/n is exact, no division. The
-  // integer sums (< 2^30) convert to double exactly: the same mean as a
-  // double accumulation.
-  const int n = samplesInWindow_;
-  const double inv = n == avg_ ? kInvAvg[adcConfig_ & 7] : 1.0 / n;
+  // The mean of the window's raw codes (the integer sums, < 2^30, convert
+  // to double exactly).
+  const double n = samplesInWindow_;
   samplesInWindow_ = 0;
   diag_ &= ~MATHOF;
-  if (shuntActive()) vshunt_ = static_cast<std::int32_t>(roundEven(double(sumVsh_) * inv));
-  if (busActive()) vbus_ = static_cast<std::int32_t>(roundEven(double(sumVbus_) * inv));
-  if (tempActive()) dietemp_ = static_cast<std::int16_t>(roundEven(double(sumTemp_) * inv));
+  if (shuntActive()) vshunt_ = static_cast<std::int32_t>(std::nearbyint(double(sumVsh_) / n));
+  if (busActive()) vbus_ = static_cast<std::int32_t>(std::nearbyint(double(sumVbus_) / n));
+  if (tempActive()) dietemp_ = static_cast<std::int16_t>(std::nearbyint(double(sumTemp_) / n));
   sumVsh_ = sumVbus_ = sumTemp_ = 0;
   ++conversions_;
 
@@ -141,22 +120,14 @@ void Ina228Model::publish(double dt) noexcept {
   // in both ranges. SHUNT_CAL = 0 reads CURRENT/POWER/ENERGY/CHARGE as 0.
   double cur = 0.0;
   if (shuntCal_ != 0) {
-    // x (4096 / SHUNT_CAL), cached: the product is within a few ulps of the
-    // quotient, so it rounds to the same code unless the quotient is (next
-    // to) an exact half, where the division decides.
-    if (curScaleCal_ != shuntCal_) {
-      curScaleCal_ = shuntCal_;
-      curScale_ = 4096.0 / shuntCal_;
-    }
-    cur = double(vshunt_) * curScale_;
-    if (std::fabs(std::fabs(cur - roundEven(cur)) - 0.5) < 1e-6) cur = double(vshunt_) * 4096.0 / shuntCal_;
+    cur = double(vshunt_) * 4096.0 / shuntCal_;
     if (config_ & 0x20) {
       // TEMPCOMP: R_adj = R (1 + (DIETEMP - 25) x TEMPCO / 1e6).
       const double dieC = dietemp_ * kTempLsb;
       cur /= 1.0 + (dieC - 25.0) * double(tempco_) * 1e-6;
     }
   }
-  double curQ = roundEven(cur);
+  double curQ = std::nearbyint(cur);
   if (curQ > kMax20 || curQ < kMin20) {
     diag_ |= MATHOF;
     curQ = std::clamp(curQ, double(kMin20), double(kMax20));
@@ -168,7 +139,7 @@ void Ina228Model::publish(double dt) noexcept {
     diag_ |= MATHOF;
     pw = double(0xFFFFFF);
   }
-  power_ = shuntCal_ ? static_cast<std::uint32_t>(std::max(0.0, roundEven(pw))) : 0;
+  power_ = shuntCal_ ? static_cast<std::uint32_t>(std::max(0.0, std::nearbyint(pw))) : 0;
   // ENERGY LSB = 16 x power LSB; CHARGE LSB = CURRENT_LSB (per second).
   if (shuntCal_) {
     // Accumulated as doubles: up to the 40-bit register range they keep

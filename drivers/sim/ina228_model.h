@@ -73,29 +73,13 @@ class Ina228Model final : public SimI2cDevice {
     analog_ = a;
     quantise();
   }
-  // Inline early-out: the board calls update() several times per control
-  // tick, mostly with no raw sample due (or at an instant already reached).
-  // One raw sample that ends no window with SLOWALERT = 1 (no comparison) is
-  // summed right here: what convertTo() does for it, without the call.
   void update(TimeNs t) noexcept override {
     if (t <= now_) return;
-    if (running_ && nextSample_ <= t) {
-      if (t < oneSampleUntil_) {
-        sumVsh_ += vshCode_;
-        sumVbus_ += vbusCode_;
-        sumTemp_ += tcode_;
-        ++samplesInWindow_;
-        nextSample_ += sampleTime_;
-        now_ = t;
-        armOneSample();
-        return;
-      }
+    if (running_ && nextSample_ <= t)
       convertTo(t);
-    } else {
+    else
       now_ = t;
-    }
   }
-  int transact(TimeNs t, std::span<I2cMsg> msgs) noexcept override;
   int write(const std::uint8_t* buf, std::size_t len) noexcept override;
   int read(std::uint8_t* buf, std::size_t len) noexcept override;
 
@@ -115,10 +99,6 @@ class Ina228Model final : public SimI2cDevice {
   std::uint64_t conversions() const noexcept { return conversions_; }
 
  private:
-  // One read / write message (read() and write() are these, non-inlined;
-  // transact() inlines them).
-  int readMsg(std::uint8_t* buf, std::size_t len) noexcept;
-  int writeMsg(const std::uint8_t* buf, std::size_t len) noexcept;
   void convertTo(TimeNs t) noexcept;  // update() with at least one raw sample due by t
   void quantise() noexcept;           // the raw codes of analog_ (codesValid_)
   void reset() noexcept;
@@ -126,16 +106,6 @@ class Ina228Model final : public SimI2cDevice {
   void onSample() noexcept;                 // one raw sample of every active channel
   void publish(double dtSeconds) noexcept;  // the averaged result is ready
   void refreshLimits() noexcept;            // after any register write or reset
-  // The next raw sample may be summed inline by update() until then: it is
-  // not the window's last (windowLast_).
-  void armOneSample() noexcept { oneSampleUntil_ = std::min(nextSample_ + sampleTime_, windowLast_); }
-  // A 2-byte read of DIAG_ALRT: its bytes MSB first, then the read's side
-  // effect (every control tick, from readMsg() and the poll in transact()).
-  void readDiag(std::uint8_t* b) noexcept {
-    b[0] = std::uint8_t(diag_ >> 8);
-    b[1] = std::uint8_t(diag_);
-    clearOnDiagRead();
-  }
   // A 20-bit result (VSHUNT, VBUS, CURRENT) as its 24-bit register: the code
   // in bits 23..4.
   static std::uint32_t reg20(std::int32_t code) noexcept { return (std::uint32_t(code) & 0xFFFFF) << 4; }
@@ -180,17 +150,8 @@ class Ina228Model final : public SimI2cDevice {
   // ADCRANGE change): quantised once, not per raw sample batch.
   bool codesValid_ = false;
   std::int32_t vshCode_ = 0, vbusCode_ = 0, tcode_ = 0;
-  // The die temperature tcode_ was quantised from (NaN: none yet). A
-  // difference in the sign of zero alone gives the same code.
-  double tcodeC_ = std::numeric_limits<double>::quiet_NaN();
   std::uint32_t rawPower_ = 0;
-  std::uint16_t curScaleCal_ = 0;  // SHUNT_CAL that curScale_ = 4096 / SHUNT_CAL was computed for
-  double curScale_ = 0.0;          // POWER code of one raw sample (SLOWALERT = 0 limit)
   int samplesInWindow_ = 0;
-  // update() before oneSampleUntil_ has exactly one raw sample due and it is
-  // not the window's last (at windowLast_); 0 = take the full path (set by
-  // convertTo(), cleared by register writes and restarts).
-  TimeNs oneSampleUntil_ = 0, windowLast_ = 0;
   std::int64_t sumVsh_ = 0, sumVbus_ = 0, sumTemp_ = 0;  // raw codes of the window
   std::uint64_t conversions_ = 0;
 };

@@ -106,27 +106,15 @@ std::uint64_t Ina228Model::peek(std::uint8_t reg) const noexcept {
   }
 }
 
-inline int Ina228Model::readMsg(std::uint8_t* buf, std::size_t len) noexcept {
-  if (ptr_ == DIAG_ALRT && len == 2) [[likely]] {
-    // The read of every control tick, straight from diag_ (the general path
-    // below gives the same bytes and side effects).
-    readDiag(buf);
-    return 0;
-  }
+int Ina228Model::read(std::uint8_t* buf, std::size_t len) noexcept {
   const int size = regSize(ptr_);
   if (len == 0 || size == 0 || len > std::size_t(size)) {
     ++protocolErrors_;
     return EREMOTEIO;
   }
   const std::uint64_t v = peek(ptr_);
-  // MSB first, the first `len` bytes. Register MSB moved to bit 63 (size is
-  // 2, 3 or 5), then fixed shifts: no per-byte variable shift loop.
-  const std::uint64_t a = v << (64 - 8 * size);
-  buf[0] = std::uint8_t(a >> 56);
-  if (len > 1) buf[1] = std::uint8_t(a >> 48);
-  if (len > 2) buf[2] = std::uint8_t(a >> 40);
-  if (len > 3) buf[3] = std::uint8_t(a >> 32);
-  if (len > 4) buf[4] = std::uint8_t(a >> 24);
+  // MSB first; a read shorter than the register gets its first bytes.
+  for (std::size_t i = 0; i < len; ++i) buf[i] = std::uint8_t(v >> (8 * (size - 1 - int(i))));
   // Read side effects.
   if (ptr_ == DIAG_ALRT) {
     clearOnDiagRead();
@@ -138,7 +126,7 @@ inline int Ina228Model::readMsg(std::uint8_t* buf, std::size_t len) noexcept {
   return 0;
 }
 
-inline int Ina228Model::writeMsg(const std::uint8_t* buf, std::size_t len) noexcept {
+int Ina228Model::write(const std::uint8_t* buf, std::size_t len) noexcept {
   if (len == 0) {
     ++protocolErrors_;
     return EREMOTEIO;
@@ -210,45 +198,8 @@ inline int Ina228Model::writeMsg(const std::uint8_t* buf, std::size_t len) noexc
     default:
       break;
   }
-  refreshLimits();      // any register write may move a limit or the active channels
-  oneSampleUntil_ = 0;  // and the window, the codes or SLOWALERT: the next sample goes the full way
+  refreshLimits();  // any register write may move a limit or the active channels
   return 0;
-}
-
-int Ina228Model::read(std::uint8_t* buf, std::size_t len) noexcept { return readMsg(buf, len); }
-int Ina228Model::write(const std::uint8_t* buf, std::size_t len) noexcept { return writeMsg(buf, len); }
-
-int Ina228Model::transact(TimeNs t, std::span<I2cMsg> msgs) noexcept {
-  update(t);
-  // The driver's poll, every control tick: pointer + read pairs for
-  // DIAG_ALRT (2 bytes) and, when a result is due, VBUS and CURRENT (3
-  // bytes each). Each such pair is done as its two messages would be
-  // (pointer set, the register's bytes MSB first, DIAG_ALRT's read side
-  // effect; VBUS and CURRENT have none), without the per-message checks and
-  // dispatch; the first message that is not part of such a pair goes through
-  // the general loop.
-  I2cMsg* m = msgs.data();
-  std::size_t n = msgs.size();
-  while (n >= 2 && !m[0].read && m[0].len == 1 && m[0].buf != nullptr && m[1].read && m[1].buf != nullptr) {
-    const std::uint8_t reg = m[0].buf[0];
-    std::uint8_t* const b = m[1].buf;
-    if (reg == DIAG_ALRT && m[1].len == 2) {
-      readDiag(b);
-    } else if ((reg == VBUS || reg == CURRENT) && m[1].len == 3) {
-      const std::uint32_t v = reg20(reg == VBUS ? vbus_ : current_);
-      b[0] = std::uint8_t(v >> 16);
-      b[1] = std::uint8_t(v >> 8);
-      b[2] = std::uint8_t(v);
-    } else {
-      break;
-    }
-    ptr_ = reg;
-    m += 2;
-    n -= 2;
-  }
-  return runMessages(
-      std::span<I2cMsg>(m, n), [this](std::uint8_t* b, std::size_t len) { return readMsg(b, len); },
-      [this](const std::uint8_t* b, std::size_t len) { return writeMsg(b, len); });
 }
 
 }  // namespace xr::sim

@@ -5,53 +5,22 @@
 namespace xr::sim {
 
 void SimI2cBus::attach(std::uint16_t addr, SimI2cDevice* dev) noexcept {
-  if (addr < devs_.size()) {
-    devs_[addr] = dev;
-    acking_[addr] = nack_[addr] ? nullptr : dev;
-  }
+  if (addr < devs_.size()) devs_[addr] = dev;
 }
 void SimI2cBus::detach(std::uint16_t addr) noexcept {
-  if (addr < devs_.size()) {
-    devs_[addr] = nullptr;
-    acking_[addr] = nullptr;
-  }
+  if (addr < devs_.size()) devs_[addr] = nullptr;
 }
 void SimI2cBus::setNack(std::uint16_t addr, bool n) noexcept {
-  if (addr < nack_.size()) {
-    nack_[addr] = n;
-    acking_[addr] = n ? nullptr : devs_[addr];
-  }
+  if (addr < nack_.size()) nack_[addr] = n;
 }
 bool SimI2cBus::nack(std::uint16_t addr) const noexcept { return addr < nack_.size() && nack_[addr]; }
 
 int SimI2cBus::transfer(std::span<I2cMsg> msgs) noexcept {
   ++transfers_;
-  I2cMsg* const m = msgs.data();
-  const std::size_t n = msgs.size();
-  if (n == 0) [[unlikely]] {
+  if (msgs.empty()) {
     ++failed_;
     return EINVAL;
   }
-  // Every transaction our drivers send goes to one address: then the whole
-  // span is the chip's one run (the general loop below would find the same
-  // single run). Checked here without the loop's bookkeeping, ~3 times a tick.
-  const std::uint16_t addr = m->addr;
-  std::size_t i = 1;
-  while (i != n && m[i].addr == addr) ++i;
-  if (i != n) [[unlikely]]
-    return transferRuns(msgs);
-  SimI2cDevice* const d = addr < acking_.size() ? acking_[addr] : nullptr;
-  if (d == nullptr) [[unlikely]] {
-    ++failed_;
-    return EREMOTEIO;
-  }
-  const int rc = d->transact(*now_, msgs);
-  if (rc != 0) [[unlikely]]
-    ++failed_;
-  return rc;
-}
-
-int SimI2cBus::transferRuns(std::span<I2cMsg> msgs) noexcept {
   I2cMsg* m = msgs.data();
   I2cMsg* const end = m + msgs.size();
   const TimeNs t = *now_;
@@ -62,15 +31,15 @@ int SimI2cBus::transferRuns(std::span<I2cMsg> msgs) noexcept {
     // singly. An absent or NACKing address fails with EREMOTEIO (i2c-dev
     // rejects 10-bit addresses unless I2C_TEN is set; we have none).
     const std::uint16_t addr = m->addr;
-    SimI2cDevice* const d = addr < acking_.size() ? acking_[addr] : nullptr;
-    if (d == nullptr) [[unlikely]] {
+    SimI2cDevice* const d = addr < devs_.size() && !nack_[addr] ? devs_[addr] : nullptr;
+    if (d == nullptr) {
       ++failed_;
       return EREMOTEIO;
     }
     I2cMsg* run = m + 1;
     while (run != end && run->addr == addr) ++run;
     const int rc = d->transact(t, std::span<I2cMsg>(m, std::size_t(run - m)));
-    if (rc != 0) [[unlikely]] {
+    if (rc != 0) {
       ++failed_;
       return rc;
     }
@@ -78,5 +47,4 @@ int SimI2cBus::transferRuns(std::span<I2cMsg> msgs) noexcept {
   } while (m != end);
   return 0;
 }
-
 }  // namespace xr::sim

@@ -32,15 +32,10 @@ class SimI2cBus final : public I2cBus {
 
  private:
   static constexpr TimeNs kTimeZero = 0;
-  // A transaction addressed to more than one chip: one transact() per run.
-  int transferRuns(std::span<I2cMsg> msgs) noexcept;
 
   const TimeNs* now_;
   std::array<SimI2cDevice*, 128> devs_{};
   std::array<bool, 128> nack_{};
-  // devs_ with the NACKing addresses cleared: what transfer() looks up (one
-  // load per address run instead of three checks).
-  std::array<SimI2cDevice*, 128> acking_{};
   std::uint64_t transfers_ = 0;
   std::uint64_t failed_ = 0;
 };

@@ -25,14 +25,15 @@ class SimI2cDevice {
   // the messages): the chip is brought up to t, then the messages run in
   // order. A message with len > 0 and no buffer stops the transaction with
   // EFAULT before it reaches the chip, a refused one with its errno; the
-  // messages before it took effect, as on the wire. One virtual call per
-  // transaction: the models override this with their own (inlined)
-  // write()/read(); this default dispatches each message.
-  virtual int transact(TimeNs t, std::span<I2cMsg> msgs) noexcept {
+  // messages before it took effect, as on the wire.
+  int transact(TimeNs t, std::span<I2cMsg> msgs) noexcept {
     update(t);
-    return runMessages(
-        msgs, [this](std::uint8_t* b, std::size_t n) { return read(b, n); },
-        [this](const std::uint8_t* b, std::size_t n) { return write(b, n); });
+    for (I2cMsg& m : msgs) {
+      if (m.buf == nullptr && m.len > 0) return EFAULT;
+      const int rc = m.read ? read(m.buf, m.len) : write(m.buf, m.len);
+      if (rc != 0) return rc;
+    }
+    return 0;
   }
   // One write message (pointer byte, then data bytes MSB first).
   virtual int write(const std::uint8_t* buf, std::size_t len) noexcept = 0;
@@ -42,21 +43,6 @@ class SimI2cDevice {
   std::uint64_t protocolErrors() const noexcept { return protocolErrors_; }
 
  protected:
-  // The message loop of every transact(): the default above and the models'
-  // overrides, which pass their own non-virtual handlers so they inline.
-  template <class Read, class Write>
-  static int runMessages(std::span<I2cMsg> msgs, Read&& readMsg, Write&& writeMsg) noexcept {
-    for (I2cMsg& m : msgs) {
-      std::uint8_t* const b = m.buf;
-      const std::size_t len = m.len;
-      if (b == nullptr && len > 0) [[unlikely]]
-        return EFAULT;
-      const int rc = m.read ? readMsg(b, len) : writeMsg(b, len);
-      if (rc != 0) return rc;
-    }
-    return 0;
-  }
-
   std::uint64_t protocolErrors_ = 0;
 };
 

@@ -26,7 +26,7 @@ class ChangeLog {
   explicit ChangeLog(std::size_t capacity = 1u << 16) : cap_(capacity) {}
   void record(TimeNs t, double v) {
     ++count_;
-    if (!ring_) [[unlikely]] {
+    if (!ring_) {
       if (cap_ == 0) return;
       ring_ = std::make_unique<Change[]>(cap_);
     }
@@ -88,10 +88,7 @@ class SimDigitalOutput final : public DigitalOutput {
 // A discrete input the world drives (ignition, BMS charge-enable line).
 class SimDigitalInput final : public DigitalInput {
  public:
-  explicit SimDigitalInput(bool level = true) : level_(level) { cell_ = &level_; }
-  // Not copyable: levelCell() points into the object.
-  SimDigitalInput(const SimDigitalInput&) = delete;
-  SimDigitalInput& operator=(const SimDigitalInput&) = delete;
+  explicit SimDigitalInput(bool level = true) : level_(level) {}
   int get() noexcept override { return level_ ? 1 : 0; }
   void setLevel(bool l) noexcept { level_ = l; }
 

@@ -55,11 +55,6 @@ class ScriptedCore final : public ControlCore {
     params = p;
     ++paramSets;
   }
-  // The scripted outputs are always complete.
-  const Outputs& completeTelemetry() override {
-    ++completions;
-    return out;
-  }
   bool command(const Command& c) override {
     commands.push_back(c);
     if (c.type == CommandType::Off) off = true;
@@ -79,7 +74,6 @@ class ScriptedCore final : public ControlCore {
   int eventsPerTick = 0;
   int steps = 0;
   int paramSets = 0;
-  int completions = 0;
   std::function<void(const Inputs&)> onStep;
 };
 
