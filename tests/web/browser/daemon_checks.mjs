@@ -64,6 +64,7 @@ export async function daemonChecks(t) {
   await page.fill("#su-belt", "40");
   await page.fill("#su-minrpm", "600");
   await page.fill("#su-templimit", "85");
+  await page.evaluate(() => { document.activeElement.blur(); window.scrollTo(0, 0); });
   await docsShot("dashboard-phone-setup");
   await page.click("#setup-save");
   await page.waitForSelector("#token-dialog[open]");

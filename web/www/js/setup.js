@@ -8,6 +8,8 @@ import { choicesOf, loadSettings } from "./settings.js";
 import { exportToml, parseParamsToml } from "./toml.js";
 
 const $ = (id) => document.getElementById(id);
+const SETUP_PARAMS = ["BatteryProfile", "BatteryCapacity_Ah", "BulkVoltage", "MaxTableValue", "rpmCapCurrentTable",
+  "MinRPMForField", "TemperatureLimitF"];
 let params = [];
 const find = (n) => params.find((p) => p.name === n);
 
@@ -159,6 +161,8 @@ export function initSetup(runCommand) {
     const f = e.target.files[0];
     if (f) importConfig(f).catch((err) => toast(err.message, true)).finally(() => { e.target.value = ""; });
   });
-  // A fresh install (nothing changed from the defaults) offers the set-up.
-  getJson("/api/params").then((b) => { $("first-run").hidden = b.params.some((p) => p.changed); }).catch(() => {});
+  // A fresh install (none of the set-up's values changed from the defaults) offers the set-up.
+  getJson("/api/params").then((b) => {
+    $("first-run").hidden = b.params.some((p) => SETUP_PARAMS.includes(p.name) && p.changed);
+  }).catch(() => {});
 }
