@@ -135,6 +135,7 @@ await test("TOML import refuses the whole file on any bad line and names it", ()
 await test("choices come from the help text; sources from the API", () => {
   assert.deepEqual(S.choicesOf(params[2]), [[0, "DS18B20 (1-Wire)"], [1, "thermistor (ADS1115 CH3)"]]);
   assert.equal(S.choicesOf(params[0]), null);
+  assert.deepEqual(S.choicesOf({ kind: "int", choices: ["lifepo4", "agm"], help: "" }), [[0, "lifepo4"], [1, "agm"]]);
   assert.equal(S.choicesOf(params[1]), null);  // a bool is a switch, not a choice
   assert.equal(S.sourceOf({ overridden: true, changed: true }), "dashboard");
   assert.equal(S.sourceOf({ overridden: false, changed: true }), "file");

@@ -112,6 +112,20 @@ export const REASONS = {
     action: "Check the BMS (full, cold or protecting its cells), and the BMS input polarity setting.",
     detail: "The BMS input asks to stop charging; check bms_active_low.",
   },
+  // Battery temperature limits (issue 21, the profiles branch): listed here so
+  // the banner and docs/operations.md have them once that branch is merged.
+  REASON_BATTERY_COLD: {
+    title: "Battery too cold to charge", kind: "warn",
+    meaning: "The battery is below its lowest charging temperature (0 °C for LiFePO4), so charging waits.",
+    action: "Nothing; it resumes when the bank warms, with a gentle current at first. Heat the space if it stays cold.",
+    detail: "Battery below ChargeMinTempC: no charging; resumes 0.5 °C above it, ramping the current up to ChargeFullCurrentTempC (docs/batteries.md).",
+  },
+  REASON_BATTERY_HOT: {
+    title: "Battery too hot to charge", kind: "warn",
+    meaning: "The battery is above its highest charging temperature, so charging waits until it is 3 °C cooler.",
+    action: "Ventilate the battery space; check where the battery temperature sensor sits.",
+    detail: "Battery above ChargeMaxTempC: no charging until 3 °C below it.",
+  },
   REASON_WEATHER_MODE: {
     title: "Weather mode: solar first", kind: "state",
     meaning: "Weather mode leaves charging to the solar panels today.",

@@ -21,6 +21,7 @@ const kindOf = (p) => String(p.kind).toLowerCase();  // the API says "bool"/"tab
 
 // "0 = DS18B20 (1-Wire), 1 = thermistor (ADS1115 CH3)." -> [[0, "DS18B20 (1-Wire)"], [1, ...]]
 export function choicesOf(p) {
+  if (Array.isArray(p.choices) && p.choices.length) return p.choices.map((name, i) => [i, String(name)]);  // named choices
   if (kindOf(p) !== "int" || !p.help) return null;
   const out = [];
   for (const m of String(p.help).matchAll(/(\d+)\s*=\s*([^,;:]+?)(?=,\s*\d+\s*=|[.;]|$)/g)) out.push([Number(m[1]), m[2].trim()]);
