@@ -21,6 +21,7 @@ const N = await mod("web/www/js/names.js");
 const T = await mod("web/www/js/toml.js");
 const S = await mod("web/www/js/settings.js");
 const D = await mod("web/tools/reasons-doc.mjs");
+const P = await mod("web/www/js/pages.js");
 let n = 0;
 const test = async (name, fn) => { await fn(); n++; console.log("ok - " + name); };
 
@@ -148,6 +149,18 @@ await test("help texts lose the specification's jargon", () => {
     "Nameplate capacity. 200 Ah is a common house bank.");
   assert.equal(S.plainHelp("Ours: a resting field wakes."), "a resting field wakes.");
   assert.equal(S.plainHelp("Cap (seed section 4.2) in amps."), "Cap in amps.");
+});
+
+await test("event texts in plain words: no GPIO4, no reason codes, no nan", () => {
+  assert.equal(P.eventText({ text: "Field enabled (GPIO4 HIGH)", code: "FieldOn", reason: "NONE" }), "Field enabled");
+  assert.equal(P.eventText({ text: "GPIO4 immediate cut: REASON_TEMP_CRITICAL", code: "ImmediateCut", reason: "REASON_TEMP_CRITICAL" }),
+    "Field immediate cut: alternator far too hot");
+  assert.equal(P.eventText({ text: "Exiting normal mode: RPM_LOW", code: "ModeChanged", reason: "REASON_RPM_LOW" }),
+    "Exiting normal mode: engine stopped or idling");
+  assert.equal(P.eventText({ text: "RPM below minimum: nan < 200 RPM. Field off", code: "ProtectionTrip", reason: "NONE" }),
+    "RPM below minimum: — < 200 RPM. Field off");
+  assert.equal(P.eventText({ text: "Command manual (duty 25.5 %) applied", code: "CommandApplied", reason: "NONE" }),
+    "Command manual (duty 25.5 %) applied");
 });
 
 console.log(`${n} dashboard unit tests passed`);

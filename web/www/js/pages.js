@@ -2,7 +2,7 @@
 // the event list and the System page. Plain names, rounded numbers, clock times.
 import { getJson } from "./api.js";
 import { clock, hmin, hminFromSeconds, plain } from "./format.js";
-import { plainMode, reasonInfo } from "./names.js";
+import { REASONS, plainMode, reasonInfo } from "./names.js";
 
 const $ = (id) => document.getElementById(id);
 
@@ -79,18 +79,18 @@ export function renderTuning(s) {
 }
 
 // ---------------------------------------------------------------- events
-// An event's words: the stored text without "nan", plus what a parameter
-// change or a command carried.
+// An event's words: the stored text (a command's event carries its argument)
+// without "nan", GPIO numbers or reason codes.
 export function eventText(e) {
-  let text = String(e.text || e.code).replace(/\bnan\b/gi, "—");
-  const args = [];
-  if (e.code === "CommandApplied" || e.code === "ParamChanged" || e.code === "ParamsChanged") {
-    if (e.detail && typeof e.detail === "string") args.push(e.detail);
-    if (typeof e.a === "number" && e.a !== 0) args.push(`value ${plain(e.a)}`);
-    if (typeof e.b === "number" && e.b !== 0) args.push(`was ${plain(e.b)}`);
-  }
-  if (e.reason && e.reason !== "NONE" && !text.includes(reasonInfo(e.reason).title)) text += ` (${reasonInfo(e.reason).title})`;
-  return args.length ? `${text} — ${args.join(", ")}` : text;
+  // The journal keeps the firmware's console words; the list says them plainly:
+  // "GPIO4" is the field enable, reason codes get their titles.
+  let text = String(e.text || e.code).replace(/\bnan\b/gi, "—")
+    .replace(/\s*\(GPIO4 (HIGH|LOW)\)/g, "").replace(/\bGPIO4\b/g, "Field")
+    .replace(/\b(?:REASON_)?([A-Z]{2,}(?:_[A-Z0-9]+)+)\b/g, (m, code) =>
+      (REASONS["REASON_" + code] ? REASONS["REASON_" + code].title.toLowerCase() : m));
+  if (e.reason && e.reason !== "NONE" && !text.toLowerCase().includes(reasonInfo(e.reason).title.toLowerCase()))
+    text += ` (${reasonInfo(e.reason).title})`;
+  return text;
 }
 
 let oldestEvent = null, newestEvent = null;
