@@ -18,7 +18,7 @@ DEB_PACKAGES := build-essential cmake pkg-config ninja-build \
   chromium wrk curl python3 python3-matplotlib clang libclang-rt-14-dev valgrind clang-format graphviz \
   debhelper devscripts lintian fakeroot dpkg-dev
 
-.PHONY: all deps build run test bench deb clean format deps-cross test-arm64 scenarios
+.PHONY: all deps build run test bench deb clean format deps-cross test-arm64 scenarios dashboard-screenshots
 
 all: build
 
@@ -56,6 +56,12 @@ test: build
 PLOT_PYTHON ?= /usr/bin/python3
 scenarios: build
 	$(PLOT_PYTHON) tests/sim/cruising/suite.py --daemon $(BUILD)/daemon/app/xregulatord --out $(BUILD)/scenarios
+
+# The phone screenshots of docs/dashboard.md (Live while charging, during a
+# fault, the set-up flow), taken by the browser test against the simulator.
+dashboard-screenshots: build
+	node tests/web/browser/dashboard.mjs --mode daemon --web-dir web --server $(BUILD)/daemon/app/xregulatord \
+	  --www $(BUILD)/web/www --artifacts $(BUILD)/test-artifacts/web --docs-dir docs/img
 
 # make bench measures its own optimised tree (Release, LTO, profile-guided,
 # for this machine's CPU: tests/bench/build-pgo.sh) so the figures are what the

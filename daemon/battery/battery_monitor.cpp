@@ -135,13 +135,16 @@ void BatteryMonitor::updateTelemetry(BatteryTelemetry& t) {
     telemetryStale_ = false;
     return;
   }
-  // The two fields UpdateBatterySOC() rewrites on every tick.
+  // The fields UpdateBatterySOC() rewrites on every tick (socKnown turns
+  // true at a detected full charge, which happens inside it).
   t.batteryCurrentForSoC = batteryCurrentForSoC_;
   t.usingVictronCurrent = usingVictron_;
+  t.socKnown = socKnown_;
 }
 
 void BatteryMonitor::fillTelemetry(BatteryTelemetry& t) const {
   t.SOC_percent = socPercent();
+  t.socKnown = socKnown_;
   t.CoulombCount_Ah = ledger_.CoulombCount_Ah;
   t.batteryCurrentForSoC = batteryCurrentForSoC_;
   t.FullChargeDetected = FullChargeDetected_;

@@ -4,6 +4,7 @@ namespace xr {
 
 struct BatteryTelemetry {
   double SOC_percent = 0.0;
+  bool socKnown = false;  // false while SOC_percent is only the start-up guess (dashboard shows "estimate")
   double CoulombCount_Ah = 0.0;
   double batteryCurrentForSoC = 0.0;
   bool FullChargeDetected = false;
@@ -31,6 +32,7 @@ struct BatteryTelemetry {
 template <typename T, typename F>
 void visitBatteryTelemetry(T& t, F&& f) {
   f("SOC_percent", t.SOC_percent);
+  f("socKnown", t.socKnown);
   f("CoulombCount_Ah", t.CoulombCount_Ah);
   f("batteryCurrentForSoC", t.batteryCurrentForSoC);
   f("FullChargeDetected", t.FullChargeDetected);

@@ -161,9 +161,17 @@ std::string describe(const Event& e) {
     case EventCode::CommandApplied:
     case EventCode::CommandRejected:
     case EventCode::TuningCommitted:
-      std::snprintf(buf, sizeof buf, "Command %s %s", std::string(toString(static_cast<CommandType>(e.detail))).c_str(),
+    {
+      // The argument travels in a (duty or SoC %); the event list shows it (issue 25 item 11).
+      const auto type = static_cast<CommandType>(e.detail);
+      const std::string_view arg = commandArgument(type);
+      char args[48] = "";
+      if (arg == "duty" || arg == "soc_pct")
+        std::snprintf(args, sizeof args, " (%s %.1f %%)", arg == "duty" ? "duty" : "SoC", e.a);
+      std::snprintf(buf, sizeof buf, "Command %s%s %s", std::string(toString(type)).c_str(), args,
                     e.code == EventCode::CommandRejected ? "rejected (not allowed now)" : "applied");
       return buf;
+    }
     case EventCode::FullChargeDetected:
       std::snprintf(buf, sizeof buf, "Full charge detected: SoC set to 100 %% (%.1f Ah)", e.b);
       return buf;

@@ -110,7 +110,8 @@ class FakeDaemonApi : public DaemonApi {
   HistoryResult history(const HistoryQuery& q) override {
     HistoryResult r;
     for (const auto& s : q.series)
-      if (s != "battery_v" && s != "ibv_v" && s != "alt_a" && s != "bcur_a" && s != "temp_f") {
+      if (s != "battery_v" && s != "ibv_v" && s != "alt_a" && s != "bcur_a" && s != "temp_f" &&
+          s != "soc_pct" && s != "rpm" && s != "duty_pct") {
         r.error = "unknown series '" + s + "'";
         return r;
       }

@@ -12,6 +12,7 @@
 #include "params/params.h"
 #include "tests/web/fake_daemon_api.h"
 #include "tests/web/http_client.h"
+#include "web/server/json_status.h"
 #include "web/server/web_server.h"
 
 namespace xr::web::test {
@@ -111,33 +112,34 @@ TEST_F(WebApiTest, Status_HasEveryDesignCsvColumnWithFakeValues) {
     EXPECT_TRUE(o.contains(col)) << col;
   StatusSnapshot s;
   ASSERT_TRUE(api_.latestStatus(s));
-  EXPECT_DOUBLE_EQ(o.at("battery_v").to_number<double>(), s.telemetry.battery_v);
+  EXPECT_NEAR(o.at("battery_v").to_number<double>(), s.telemetry.battery_v, 0.0005);  // rounded to 1 mV
+  EXPECT_EQ(o.at("schema").as_int64(), kStatusSchema);
   EXPECT_EQ(o.at("mode").as_string(), "MODE_NORMAL_AUTO_PID");
   EXPECT_EQ(o.at("stage").as_string(), "BULK");
   EXPECT_EQ(o.at("reason").as_string(), "NONE");
-  EXPECT_EQ(o.at("field_enable").to_number<int>(), 1);
+  EXPECT_TRUE(o.at("field_enable").as_bool());  // a flag is a boolean for programs
   EXPECT_DOUBLE_EQ(o.at("t_s").to_number<double>(), 0.1);
-  EXPECT_EQ(o.at("protection").at("lastTripReason").as_string(), "REASON_TEMP_WARNING");
-  EXPECT_DOUBLE_EQ(o.at("battery").at("ChargeCycles").to_number<double>(), 12.3);
+  EXPECT_EQ(o.at("protection").at("last_trip_reason").as_string(), "REASON_TEMP_WARNING");
+  EXPECT_DOUBLE_EQ(o.at("battery").at("charge_cycles").to_number<double>(), 12.3);
   EXPECT_EQ(o.at("loop").at("ticks").to_number<int>(), 40);
   EXPECT_DOUBLE_EQ(o.at("tuning").at("score").to_number<double>(), 0.8);
-  EXPECT_EQ(o.at("control").at("sysMode").as_string(), "SYS_MODE_AUTO");
+  EXPECT_EQ(o.at("control").at("sys_mode").as_string(), "SYS_MODE_AUTO");
   // Every field of the per-module structs is exported (the lists beside the
   // structs drive the JSON), including the detector states the Protections
   // page shows.
   std::size_t n = 0;
   visitProtectionTelemetry(s.telemetry.protection, [&](const char* name, const auto&) {
-    EXPECT_TRUE(o.at("protection").as_object().contains(name)) << name;
+    EXPECT_TRUE(o.at("protection").as_object().contains(snakeName(name))) << name;
     ++n;
   });
   EXPECT_GE(n, 30u);
   visitControlTelemetry(s.telemetry.control, [&](const char* name, const auto&) {
-    EXPECT_TRUE(o.at("control").as_object().contains(name)) << name;
+    EXPECT_TRUE(o.at("control").as_object().contains(snakeName(name))) << name;
   });
   visitBatteryTelemetry(s.telemetry.battery, [&](const char* name, const auto&) {
-    EXPECT_TRUE(o.at("battery").as_object().contains(name)) << name;
+    EXPECT_TRUE(o.at("battery").as_object().contains(snakeName(name))) << name;
   });
-  EXPECT_EQ(o.at("protection").at("hardOvercurrent").as_bool(), s.telemetry.protection.hardOvercurrent);
+  EXPECT_EQ(o.at("protection").at("hard_overcurrent").as_bool(), s.telemetry.protection.hardOvercurrent);
 }
 
 TEST_F(WebApiTest, Status_FollowsNewTicks) {
@@ -242,6 +244,23 @@ TEST_F(WebApiTest, Patch_DaemonCrossFieldRejectionIsAllOrNone) {
   ASSERT_EQ(r.status, 400) << r.body;
   EXPECT_TRUE(obj(r).at("errors").as_object().contains("FloatVoltage"));
   EXPECT_DOUBLE_EQ(api_.currentParams().BulkVoltage, Params{}.BulkVoltage);
+}
+
+// Issue 25 item 6: a set-point for another bank size is refused, at the
+// class boundary too; the fake battery measures 12.8..13.6 V (a 12 V bank).
+TEST_F(WebApiTest, Patch_VoltageForAnotherBankSizeIsRefused) {
+  api_.publish();
+  start();
+  const auto r = patch(R"({"BulkVoltage": 28.8})");
+  ASSERT_EQ(r.status, 400) << r.body;
+  const std::string msg(obj(r).at("errors").at("BulkVoltage").as_string());
+  EXPECT_NE(msg.find("24 V battery"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("12 V bank"), std::string::npos) << msg;
+  EXPECT_EQ(patch(R"({"VoltageAlarmHigh": 18.0})").status, 400);  // 18 V is the first 24 V value
+  EXPECT_EQ(api_.patchCalls(), 0);
+  EXPECT_EQ(patch(R"({"VoltageAlarmHigh": 17.9})").status, 200);  // just below: still a 12 V value
+  EXPECT_EQ(patch(R"({"VoltageDisagreeThreshold": 2.0})").status,
+            200);  // a difference, not a battery voltage
 }
 
 TEST_F(WebApiTest, Patch_MalformedBodiesGet400WithMessage) {

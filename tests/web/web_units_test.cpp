@@ -2,12 +2,14 @@
 // listen-address parsing, token generation, static path resolution, query parsing.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <set>
 
 #include "web/server/api_handler.h"
 #include "web/server/auth.h"
+#include "web/server/json_status.h"
 #include "web/server/static_files.h"
 #include "web/server/web_server.h"
 
@@ -97,7 +99,8 @@ TEST(WebStatic, DotfilesAreNotServed) {
   char tmpl[] = "/tmp/xr-www-XXXXXX";
   const std::string root = mkdtemp(tmpl);
   std::filesystem::create_directory(root + "/.git");
-  for (const char* f : {"/.env", "/.git/config", "/app.min.js", "/index.html"}) std::ofstream(root + f) << "x";
+  for (const char* f : {"/.env", "/.git/config", "/app.min.js", "/index.html"})
+    std::ofstream(root + f) << "x";
   for (const char* bad : {"/.env", "/.git/config", "/.git/", "/./index.html"})
     EXPECT_FALSE(resolveStaticPath(root, bad).has_value()) << bad;
   EXPECT_TRUE(resolveStaticPath(root, "/app.min.js").has_value());
@@ -120,6 +123,41 @@ TEST(WebQuery, PercentDecodeAndParams) {
   EXPECT_EQ(queryParam("a=1&series=battery_v%2Calt_a&b", "series").value(), "battery_v,alt_a");
   EXPECT_EQ(queryParam("a=1&b", "b").value(), "");
   EXPECT_FALSE(queryParam("a=1", "b").has_value());
+}
+
+// Issue 25 item 16: one naming style, rounded numbers, integers, null sentinels.
+TEST(WebStatusShape, SnakeCaseNames) {
+  EXPECT_EQ(snakeName("lockoutRemainingS"), "lockout_remaining_s");
+  EXPECT_EQ(snakeName("SOC_percent"), "soc_percent");
+  EXPECT_EQ(snakeName("g_awState"), "aw_state");
+  EXPECT_EQ(snakeName("cvDSlope"), "cv_d_slope");
+  EXPECT_EQ(snakeName("ChargedEnergy_AllTime_Wh"), "charged_energy_all_time_wh");
+  EXPECT_EQ(snakeName("IBV_filtered"), "ibv_filtered");
+  EXPECT_EQ(snakeName("I_cap"), "i_cap");
+  EXPECT_EQ(snakeName("batteryCurrentForSoC"), "battery_current_for_soc");
+  EXPECT_EQ(snakeName("sysIDRunning"), "sys_id_running");
+  EXPECT_EQ(snakeName("battery_v"), "battery_v");  // CSV names are unchanged
+}
+
+TEST(WebStatusShape, RoundedToSensorResolution) {
+  EXPECT_DOUBLE_EQ(statusNumber("battery_v", 12.580859375000001).as_double(), 12.581);
+  EXPECT_DOUBLE_EQ(statusNumber("alt_a", 16.88125).as_double(), 16.88);
+  EXPECT_DOUBLE_EQ(statusNumber("temp_f", 80.2366).as_double(), 80.2);
+  EXPECT_EQ(statusNumber("temp_f", 80.0366).as_int64(), 80);  // whole after rounding: an integer
+  EXPECT_EQ(statusNumber("rpm", 1800.5625).as_int64(), 1801);
+  EXPECT_EQ(statusNumber("soc_pct", 99.995).as_int64(), 100);
+  EXPECT_DOUBLE_EQ(statusNumber("soc_pct", 99.94).as_double(), 99.9);
+  EXPECT_DOUBLE_EQ(statusNumber("wall_time_s", 1796306371.8951).as_double(), 1796306371.895);
+}
+
+TEST(WebStatusShape, CountersAreIntegersAndSentinelsNull) {
+  EXPECT_TRUE(statusNumber("watchdog_feeds", 2327.0).is_int64());
+  EXPECT_EQ(statusNumber("watchdog_feeds", 2327.0).as_int64(), 2327);
+  EXPECT_TRUE(statusNumber("time_to_full_discharge_min", -999.0).is_null());
+  EXPECT_TRUE(statusNumber("battery_v", std::nan("")).is_null());
+  EXPECT_FALSE(statusNumber("dvdt", -998.5).is_null());    // just above the sentinel is a value
+  EXPECT_TRUE(statusNumber("dvdt", -0.00001).is_int64());  // rounds to 0, never "-0"
+  EXPECT_EQ(statusNumber("dvdt", -0.00001).as_int64(), 0);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <type_traits>
 
 #include "core/modes.h"
+#include "web/server/json_status.h"
 
 namespace xr::web {
 namespace json = boost::json;
@@ -17,18 +18,19 @@ json::value number(double v) {
 
 namespace {
 
-// One field of a telemetry struct: numbers (NaN -> null), flags, and the
-// seeds' enums by name.
+// One field of a telemetry struct for /api/status: snake_case name, flags as
+// booleans, the seeds' enums by name, numbers rounded (json_status.h).
 struct FieldToJson {
   json::object& o;
   template <typename V>
   void operator()(const char* name, const V& v) const {
+    const std::string key = snakeName(name);
     if constexpr (std::is_same_v<V, bool>) {
-      o[name] = v;
+      o[key] = v;
     } else if constexpr (std::is_enum_v<V>) {
-      o[name] = toString(v);
+      o[key] = toString(v);
     } else {
-      o[name] = number(static_cast<double>(v));
+      o[key] = statusNumber(key, static_cast<double>(v));
     }
   }
 };
@@ -46,21 +48,20 @@ json::object loopToJson(const LoopStats& l) {
   json::object o;
   o["ticks"] = l.ticks;
   o["overruns"] = l.overruns;
-  o["target_period_us"] = number(l.target_period_us);
-  o["period_mean_us"] = number(l.period_mean_us);
-  o["period_p99_us"] = number(l.period_p99_us);
-  o["period_max_us"] = number(l.period_max_us);
-  o["exec_mean_us"] = number(l.exec_mean_us);
-  o["exec_p99_us"] = number(l.exec_p99_us);
-  o["exec_max_us"] = number(l.exec_max_us);
+  for (auto [name, v] :
+       {std::pair{"target_period_us", l.target_period_us}, std::pair{"period_mean_us", l.period_mean_us},
+        std::pair{"period_p99_us", l.period_p99_us}, std::pair{"period_max_us", l.period_max_us},
+        std::pair{"exec_mean_us", l.exec_mean_us}, std::pair{"exec_p99_us", l.exec_p99_us},
+        std::pair{"exec_max_us", l.exec_max_us}})
+    o[name] = statusNumber(name, v);
   o["sensor_errors"] = l.sensor_errors;
   return o;
 }
 
-// Flags are 0/1 as in the CSV (DESIGN.md: "Flags are 0/1").
-json::value columnToJson(const ColumnValue& v) {
-  if (const auto* d = std::get_if<double>(&v)) return number(*d);
-  if (const auto* b = std::get_if<bool>(&v)) return *b ? 1 : 0;
+// The CSV's flags are 0/1 (DESIGN.md); a program reading JSON gets booleans.
+json::value columnToJson(std::string_view name, const ColumnValue& v) {
+  if (const auto* d = std::get_if<double>(&v)) return statusNumber(name, *d);
+  if (const auto* b = std::get_if<bool>(&v)) return *b;
   return json::string(std::get<std::string_view>(v));
 }
 
@@ -127,18 +128,20 @@ void promLine(std::string& out, std::string_view name, std::string_view type, st
 
 json::object statusToJson(const StatusSnapshot& s) {
   json::object o;
-  visitTelemetryColumns(s.telemetry, s.start,
-                        [&](std::string_view name, const ColumnValue& v) { o[name] = columnToJson(v); });
+  o["schema"] = kStatusSchema;
+  visitTelemetryColumns(s.telemetry, s.start, [&](std::string_view name, const ColumnValue& v) {
+    o[name] = columnToJson(name, v);
+  });
   if (s.sim) {
-    o["sim_battery_v"] = number(s.sim->battery_v);
-    o["sim_alt_a"] = number(s.sim->alt_a);
-    o["sim_alt_temp_f"] = number(s.sim->alt_temp_f);
-    o["sim_soc_pct"] = number(s.sim->soc_pct);
-    o["sim_bms_connected"] = s.sim->bms_connected ? 1 : 0;
-    o["sim_field_on"] = s.sim->field_on ? 1 : 0;
+    o["sim_battery_v"] = statusNumber("sim_battery_v", s.sim->battery_v);
+    o["sim_alt_a"] = statusNumber("sim_alt_a", s.sim->alt_a);
+    o["sim_alt_temp_f"] = statusNumber("sim_alt_temp_f", s.sim->alt_temp_f);
+    o["sim_soc_pct"] = statusNumber("sim_soc_pct", s.sim->soc_pct);
+    o["sim_bms_connected"] = s.sim->bms_connected;
+    o["sim_field_on"] = s.sim->field_on;
   }
   o["seq"] = s.seq;
-  o["wall_time_s"] = number(s.wall_time_s);
+  o["wall_time_s"] = statusNumber("wall_time_s", s.wall_time_s);
   o["simulated"] = s.sim.has_value();
   o["control"] =
       telemetryToJson(s.telemetry.control, [](const auto& t, auto f) { visitControlTelemetry(t, f); });
@@ -152,7 +155,8 @@ json::object statusToJson(const StatusSnapshot& s) {
     if (o.contains(e.section) && !o.at(e.section).is_object()) continue;
     auto& sec = o[e.section];
     if (!sec.is_object()) sec = json::object();
-    sec.as_object()[e.name] = number(e.value);
+    const std::string key = snakeName(e.name);
+    sec.as_object()[key] = statusNumber(key, e.value);
   }
   return o;
 }

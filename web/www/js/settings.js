@@ -1,11 +1,46 @@
-// Settings page: every catalogue parameter by group, with unit, range, help,
-// changed-from-default marker, reset, and the server's validation messages.
+// Settings page: basic settings first, the rest behind "advanced"; switches
+// for booleans, a row of boxes for the RPM tables, choices as choices, where
+// each value comes from, and the server's messages next to each field.
 import { getJson, write } from "./api.js";
+import { parseDecimal } from "./format.js";
 
 let params = [];
-const pending = new Map();  // name -> raw value(s) typed by the user
+let groups = [];
+const pending = new Map();  // name -> value to send
+const invalid = new Map();  // name -> why the typed text cannot be sent
 
 const $ = (id) => document.getElementById(id);
+
+// What a boat owner sets; everything else is advanced (loop gains, filters).
+export const BASIC = ["BatteryProfile", "BatteryCells", "BatteryCapacity_Ah", "BulkVoltage", "AbsorptionVoltage",
+  "FloatVoltage", "UseFloat", "RebulkVoltage", "TailCurrent_A", "MaxTableValue", "MaximumAllowedBatteryAmps",
+  "MinRPMForField", "TemperatureLimitF", "TempSource", "BatteryCurrentSource", "VoltageAlarmHigh", "VoltageAlarmLow",
+  "OnOff", "weatherModeEnabled", "rpmCapCurrentTable", "rpmTableRPMPoints"];
+
+const kindOf = (p) => String(p.kind).toLowerCase();  // the API says "bool"/"table"/"int"/"float"
+
+// "0 = DS18B20 (1-Wire), 1 = thermistor (ADS1115 CH3)." -> [[0, "DS18B20 (1-Wire)"], [1, ...]]
+export function choicesOf(p) {
+  if (Array.isArray(p.choices) && p.choices.length) return p.choices.map((name, i) => [i, String(name)]);  // named choices
+  if (kindOf(p) !== "int" || !p.help) return null;
+  const out = [];
+  for (const m of String(p.help).matchAll(/(\d+)\s*=\s*([^,;:]+?)(?=,\s*\d+\s*=|[.;]|$)/g)) out.push([Number(m[1]), m[2].trim()]);
+  return out.length >= 2 ? out : null;
+}
+
+// Where the value comes from: the API's `source` when it sends one
+// (profiles), else from the flags: a dashboard change, the file, the default.
+export function sourceOf(p) {
+  if (p.source) return String(p.source);
+  if (p.overridden) return "dashboard";
+  if (p.changed) return "file";
+  return "default";
+}
+
+// Help texts cite the firmware's specification ("No seed default: ...",
+// "Ours: ..."); the owner needs only the sentence itself.
+export const plainHelp = (h) => String(h || "").replace(/No seed default[:.]?\s*/gi, "").replace(/\bOurs:\s*/g, "")
+  .replace(/\s*\([^)]*\bseeds?\b[^)]*\)/gi, "").trim();
 
 function fmt(v) {
   if (Array.isArray(v)) return "[" + v.join(", ") + "]";
@@ -13,72 +48,86 @@ function fmt(v) {
   return String(v);
 }
 
-// What the user typed, as JSON: a number when it parses, else the raw text so
-// the server (the one authority on validity) can say what is wrong.
-function parseTyped(text) {
-  const t = String(text).trim();
-  if (t !== "" && !isNaN(Number(t))) return Number(t);
-  return t;
-}
-
+// The value to send, or an error text: never an empty box as 0, commas as
+// decimal points.
 function valueOf(p, row) {
-  if (p.kind === "Bool") return row.querySelector("input").checked;
-  if (p.kind === "Table") return [...row.querySelectorAll("input")].map((i) => parseTyped(i.value));
-  return parseTyped(row.querySelector("input").value);
+  const kind = kindOf(p);
+  if (kind === "bool") return { value: row.querySelector("input").checked };
+  if (choicesOf(p)) return { value: Number(row.querySelector("select").value) };
+  const boxes = [...row.querySelectorAll("input")];
+  const nums = boxes.map((i) => parseDecimal(i.value));
+  const bad = nums.findIndex((n) => n === null);
+  if (bad >= 0) return { error: boxes[bad].value.trim() === "" ? "enter a value" : `"${boxes[bad].value}" is not a number` };
+  return { value: kind === "table" ? nums : nums[0] };
 }
 
-function same(a, b) { return JSON.stringify(a) === JSON.stringify(b); }
+const same = (a, b) => JSON.stringify(a) === JSON.stringify(b);
 
 function renderRow(p) {
+  const kind = kindOf(p);
   const row = document.createElement("div");
   row.className = "param";
   row.dataset.name = p.name;
-  const name = document.createElement("div");
+  row.dataset.kind = kind;
+  const name = document.createElement("label");
   name.className = "name";
   name.textContent = p.name;
-  if (p.changed) {
-    const m = document.createElement("span");
-    m.className = "mark";
-    m.title = "changed from default (" + fmt(p.default) + ")";
-    m.textContent = "●";
-    name.appendChild(m);
-  }
   const edit = document.createElement("div");
-  if (p.kind === "Bool") {
+  edit.className = "edit";
+  const choices = choicesOf(p);
+  if (kind === "bool") {
+    const sw = document.createElement("label");
+    sw.className = "switch";
     const cb = document.createElement("input");
     cb.type = "checkbox";
     cb.checked = !!p.value;
-    edit.appendChild(cb);
-  } else if (p.kind === "Table") {
-    edit.className = "table";
-    p.value.forEach((v) => {
-      const i = document.createElement("input");
-      i.inputMode = "decimal";
-      i.value = v;
-      edit.appendChild(i);
+    cb.setAttribute("aria-label", p.name);
+    const txt = document.createElement("span");
+    txt.textContent = cb.checked ? "on" : "off";
+    cb.addEventListener("change", () => { txt.textContent = cb.checked ? "on" : "off"; });
+    sw.append(cb, txt);
+    edit.appendChild(sw);
+  } else if (choices) {
+    const sel = document.createElement("select");
+    sel.setAttribute("aria-label", p.name);
+    const list = choices.some(([v]) => v === p.value) ? choices : [...choices, [p.value, `value ${p.value}`]];
+    for (const [v, label] of list) sel.add(new Option(`${label}`, String(v), false, v === p.value));
+    edit.appendChild(sel);
+  } else if (kind === "table") {
+    edit.classList.add("table");
+    p.value.forEach((v, i) => {
+      const inp = document.createElement("input");
+      inp.inputMode = "decimal";
+      inp.value = v;
+      inp.setAttribute("aria-label", `${p.name} ${i + 1}`);
+      edit.appendChild(inp);
     });
   } else {
-    const i = document.createElement("input");
-    i.className = "scalar";
-    i.inputMode = "decimal";
-    i.value = p.value;
-    i.setAttribute("aria-label", p.name);
-    edit.appendChild(i);
+    const inp = document.createElement("input");
+    inp.className = "scalar";
+    inp.inputMode = "decimal";
+    inp.value = p.value;
+    inp.setAttribute("aria-label", p.name);
+    edit.appendChild(inp);
+    if (p.unit) { const u = document.createElement("span"); u.className = "unit"; u.textContent = p.unit.replace("degF", "°F"); edit.appendChild(u); }
   }
   const reset = document.createElement("button");
-  reset.textContent = "Reset";
-  reset.title = "back to default " + fmt(p.default);
-  reset.disabled = !p.changed;
-  reset.addEventListener("click", () => {
-    applyChanges({ [p.name]: p.default });
-  });
+  reset.textContent = "Default";
+  reset.title = "back to the default " + fmt(p.default);
+  reset.disabled = same(p.value, p.default);
+  reset.addEventListener("click", () => applyChanges({ [p.name]: p.default }));
   const meta = document.createElement("div");
   meta.className = "meta";
-  const range = p.kind === "Bool" ? "" : `${p.min} … ${p.max} ${p.unit}`.trim();
-  meta.textContent = [p.unit && p.kind !== "Bool" ? "unit " + p.unit : "", range ? "range " + range : "",
-    "default " + fmt(p.default), p.overridden ? "file " + fmt(p.file) : "", p.help].filter(Boolean).join(" · ");
+  const range = kind === "bool" || choices ? "" : `${p.min} … ${p.max} ${p.unit}`.trim();
+  const src = sourceOf(p);
+  const from = document.createElement("span");
+  from.className = "source source-" + src;
+  from.textContent = `from ${src}`;
+  meta.append(from, " · " + [range ? "range " + range : "", "default " + fmt(p.default),
+    src === "dashboard" ? "file has " + fmt(p.file) : "", plainHelp(p.help)].filter(Boolean).join(" · "));
   const err = document.createElement("div");
   err.className = "err";
+  err.setAttribute("role", "alert");
   row.append(name, edit, reset, meta, err);
   edit.addEventListener("input", () => onEdit(p, row));
   edit.addEventListener("change", () => onEdit(p, row));
@@ -86,49 +135,68 @@ function renderRow(p) {
 }
 
 function onEdit(p, row) {
-  const v = valueOf(p, row);
-  if (same(v, p.value)) pending.delete(p.name); else pending.set(p.name, v);
-  row.classList.toggle("dirty", pending.has(p.name));
+  const r = valueOf(p, row);
+  invalid.delete(p.name);
+  pending.delete(p.name);
+  if (r.error) invalid.set(p.name, r.error);
+  else if (!same(r.value, p.value)) pending.set(p.name, r.value);
+  row.classList.toggle("dirty", pending.has(p.name) || invalid.has(p.name));
+  row.classList.toggle("bad", invalid.has(p.name));
+  row.querySelector(".err").textContent = invalid.get(p.name) || "";
   updateButtons();
 }
 
 function updateButtons() {
-  $("param-apply").disabled = pending.size === 0;
-  $("param-discard").disabled = pending.size === 0;
-  $("param-apply").textContent = pending.size ? `Apply ${pending.size} change${pending.size > 1 ? "s" : ""}` : "Apply changes";
+  const n = pending.size + invalid.size;
+  $("param-apply").disabled = n === 0;
+  $("param-discard").disabled = n === 0;
+  $("param-apply").textContent = n ? `Apply ${n} change${n > 1 ? "s" : ""}` : "Apply changes";
 }
 
-function render(groups) {
+function render() {
   const root = $("param-groups");
   root.textContent = "";
   const filter = $("param-filter").value.trim().toLowerCase();
-  for (const g of groups) {
-    const list = params.filter((p) => p.group === g &&
-      (!filter || p.name.toLowerCase().includes(filter) || p.help.toLowerCase().includes(filter)));
+  const advanced = $("param-advanced").checked;
+  const match = (p) => !filter || p.name.toLowerCase().includes(filter) || String(p.help).toLowerCase().includes(filter);
+  const basic = params.filter((p) => BASIC.includes(p.name) && match(p));
+  const sections = [["Basic settings", basic, true]];
+  if (advanced || filter)
+    for (const g of groups) sections.push([g, params.filter((p) => p.group === g && !BASIC.includes(p.name) && match(p)), !!filter]);
+  for (const [title, list, open] of sections) {
     if (!list.length) continue;
     const d = document.createElement("details");
     d.className = "group";
-    d.open = !!filter || groups.indexOf(g) === 0;
+    d.open = open;
     const s = document.createElement("summary");
     const changed = list.filter((p) => p.changed).length;
-    s.textContent = `${g} (${list.length}${changed ? `, ${changed} changed` : ""})`;
+    s.textContent = `${title} (${list.length}${changed ? `, ${changed} changed` : ""})`;
     d.appendChild(s);
     list.forEach((p) => d.appendChild(renderRow(p)));
     root.appendChild(d);
   }
 }
 
-let groups = [];
 export async function loadSettings() {
   const body = await getJson("/api/params");
   params = body.params;
   groups = body.groups;
   pending.clear();
-  render(groups);
+  invalid.clear();
+  render();
   updateButtons();
 }
+export const currentParams = () => params;
 
+// The server keys cross-field errors by bare parameter name; an error for a
+// parameter that is not on screen (advanced, filtered) still shows in the
+// message line, and its row is shown.
 function showErrors(errors) {
+  const missing = Object.keys(errors).filter((n) => !document.querySelector(`.param[data-name="${n}"]`));
+  if (missing.length && !$("param-advanced").checked && missing.some((n) => params.find((p) => p.name === n))) {
+    $("param-advanced").checked = true;
+    render();
+  }
   document.querySelectorAll(".param").forEach((row) => {
     const e = errors[row.dataset.name];
     row.classList.toggle("bad", !!e);
@@ -139,26 +207,34 @@ function showErrors(errors) {
 
 async function applyChanges(only) {
   const msg = $("param-msg");
-  const payload = only && !(only instanceof Event) ? only : Object.fromEntries(pending);
+  if (!only && invalid.size) {
+    showErrors(Object.fromEntries(invalid));
+    msg.textContent = "Fix the marked fields first; nothing was sent.";
+    msg.className = "msg bad";
+    return;
+  }
+  const payload = only || Object.fromEntries(pending);
   try {
     await write("PATCH", "/api/params", payload);
     msg.textContent = `Applied: ${Object.keys(payload).join(", ")}`;
     msg.className = "msg ok";
     await loadSettings();
   } catch (e) {
-    msg.textContent = e.message;
+    const errors = (e.body && e.body.errors) || {};
+    msg.textContent = e.message + (Object.keys(errors).length ? ": " + Object.entries(errors).map(([k, v]) => `${k} ${v}`).join("; ") : "");
     msg.className = "msg bad";
-    showErrors((e.body && e.body.errors) || {});
+    showErrors(errors);
   }
 }
 
 export function initSettings() {
   $("param-apply").addEventListener("click", () => applyChanges());
   $("param-discard").addEventListener("click", () => { $("param-msg").textContent = ""; loadSettings(); });
-  $("param-filter").addEventListener("input", () => render(groups));
+  $("param-filter").addEventListener("input", render);
+  $("param-advanced").addEventListener("change", render);
 }
 
-// Sets one parameter (Tuning page toggles).
+// Sets one parameter (Tuning page toggles, set-up steps).
 export async function setParam(name, value) {
   await write("PATCH", "/api/params", { [name]: value });
 }

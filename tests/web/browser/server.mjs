@@ -1,0 +1,56 @@
+// Starts the server under test: xr_web_testserver (fake DaemonApi) or the real
+// daemon in --sim at speed 1, optionally with a scenario; resolves once it answers.
+import { spawn } from "node:child_process";
+import fs from "node:fs";
+import net from "node:net";
+import path from "node:path";
+
+const freePort = () => new Promise((resolve, reject) => {
+  const s = net.createServer();
+  s.listen(0, "127.0.0.1", () => { const p = s.address().port; s.close(() => resolve(p)); });
+  s.on("error", reject);
+});
+
+// stateDir keeps the daemon's state database between runs, so a second
+// daemon sees the first one's events, history and saved parameters.
+export async function startServer({ mode, args, token, stateDir, scenario }) {
+  let port;
+  let argv;
+  if (mode === "fake") {
+    argv = [args.server, "--www", args.www, "--token", token, "--port", "0", "--rate", "10"];
+  } else {
+    port = await freePort();
+    const cfg = path.join(stateDir, "xregulator.toml");
+    // CurrentStaleMs 3 s: at speed 1 on a machine loaded by a parallel build a
+    // starved simulator thread can miss 500 ms of samples and trip the real
+    // protection, which is not what these tests are about (the injected
+    // sensor fault below still trips it, 3 s later).
+    fs.writeFileSync(cfg, `[web]\ntoken = "${token}"\nwww_root = "${args.www}"\n[sensor_health]\nCurrentStaleMs = 3000\n`);
+    argv = [args.server, "--sim", "--speed", "1", "--config", cfg, "--state-db", path.join(stateDir, "state.db"),
+            "--http", `127.0.0.1:${port}`];
+    if (scenario) {
+      const file = path.join(stateDir, "scenario.toml");
+      fs.writeFileSync(file, scenario);
+      argv.push("--scenario", file);
+    }
+  }
+  const proc = spawn(argv[0], argv.slice(1), { stdio: ["ignore", "pipe", "pipe"] });
+  let out = "";
+  proc.stdout.on("data", (d) => { out += d; });
+  proc.stderr.on("data", (d) => { out += d; });
+  const deadline = Date.now() + 30000;
+  let up = false;
+  while (Date.now() < deadline) {
+    if (proc.exitCode !== null) throw new Error(`server exited (${proc.exitCode}):\n${out}`);
+    if (mode === "fake") {
+      const m = out.match(/LISTENING (\d+)/);
+      if (m) { port = Number(m[1]); up = true; break; }
+    } else {
+      try { const r = await fetch(`http://127.0.0.1:${port}/api/status`); if (r.ok) { up = true; break; } } catch {}
+    }
+    await new Promise((r) => setTimeout(r, 100));
+  }
+  if (!up) throw new Error("server did not start:\n" + out);
+  const stopped = new Promise((resolve) => proc.on("exit", resolve));
+  return { proc, base: `http://127.0.0.1:${port}`, log: () => out, stop: () => { proc.kill("SIGTERM"); return stopped; } };
+}

@@ -1,0 +1,166 @@
+// Unit tests of the dashboard's pure modules under node (no browser):
+// formatting and parsing (issue 25 items 6, 13), plain names and the one
+// reasons table shared with docs/operations.md (items 2, 7), the TOML
+// export/import (item 8), the settings' choices and sources (items 5, 8).
+//   node units.mjs --root <repository root>
+import assert from "node:assert/strict";
+import fs from "node:fs";
+import path from "node:path";
+import { pathToFileURL } from "node:url";
+
+const args = Object.fromEntries(
+  process.argv.slice(2).reduce((acc, a, i, all) => (a.startsWith("--") ? [...acc, [a.slice(2), all[i + 1]]] : acc), []));
+const root = args.root;
+const mod = (p) => import(pathToFileURL(path.join(root, p)).href);
+// settings.js imports api.js, which touches the DOM only when called.
+globalThis.localStorage = { getItem: () => null, setItem() {}, removeItem() {} };
+globalThis.navigator = globalThis.navigator || { language: "en-GB" };
+
+const F = await mod("web/www/js/format.js");
+const N = await mod("web/www/js/names.js");
+const T = await mod("web/www/js/toml.js");
+const S = await mod("web/www/js/settings.js");
+const D = await mod("web/tools/reasons-doc.mjs");
+const P = await mod("web/www/js/pages.js");
+let n = 0;
+const test = async (name, fn) => { await fn(); n++; console.log("ok - " + name); };
+
+await test("comma and point decimals parse; empty and junk give null, never 0", () => {
+  assert.equal(F.parseDecimal("13,4"), 13.4);
+  assert.equal(F.parseDecimal(" 13.4 "), 13.4);
+  assert.equal(F.parseDecimal("-2,5"), -2.5);
+  assert.equal(F.parseDecimal("30"), 30);
+  assert.equal(F.parseDecimal(""), null);
+  assert.equal(F.parseDecimal("   "), null);
+  assert.equal(F.parseDecimal("1,2,3"), null);
+  assert.equal(F.parseDecimal("abc"), null);
+  assert.equal(F.parseDecimal("13.4.1"), null);
+});
+
+await test("numbers are rounded; sentinels and NaN read as no value", () => {
+  assert.equal(F.num(99.998, 0), "100");
+  assert.equal(F.num(12.580859375000001, 2), "12.58");
+  assert.equal(F.num(-0.04, 1), "0.0");
+  assert.equal(F.num(-999, 1), "—");
+  assert.equal(F.num(NaN), "—");
+  assert.equal(F.num(null), "—");
+  assert.equal(F.plain(0.30000000000000004), "0.3");
+  assert.equal(F.plain(2327), "2327");
+  assert.equal(F.plain(true), "yes");
+});
+
+await test("times read as h:min and ages in words", () => {
+  assert.equal(F.hmin(125), "2 h 05 min");
+  assert.equal(F.hmin(45), "45 min");
+  assert.equal(F.hmin(-999), "—");
+  assert.equal(F.hminFromSeconds(3600), "1 h 00 min");
+  assert.equal(F.ago(4.4), "4 s ago");
+  assert.equal(F.ago(600), "10 min ago");
+  assert.match(F.clock(1796306371, 1796306371), /^\d\d:\d\d$/);
+  assert.equal(F.clock(0), "—");
+});
+
+await test("temperatures in the chosen unit", () => {
+  assert.equal(F.temp(170, "F"), "170 °F");
+  assert.equal(F.temp(170, "C"), "77 °C");
+  assert.equal(F.temp(-999, "C"), "—");
+});
+
+await test("every Reason of daemon/core/modes.h has plain words; normal states are not alarms", () => {
+  const header = fs.readFileSync(path.join(root, "daemon/core/modes.h"), "utf8");
+  const body = header.slice(header.indexOf("enum class Reason"));
+  const codes = body.slice(body.indexOf("{") + 1, body.indexOf("}")).split(",").map((s) => s.trim()).filter(Boolean);
+  assert.ok(codes.length >= 20, `found ${codes.length} reasons`);
+  for (const c of codes) {
+    const r = N.REASONS[c];
+    assert.ok(r, `no entry for ${c}`);
+    assert.doesNotMatch(r.title, /REASON_|_/, c);
+    if (c !== "NONE") assert.ok(r.meaning && r.action, `${c} needs a meaning and an action`);
+  }
+  for (const c of ["REASON_SYS_OFF", "REASON_RPM_LOW", "REASON_IGNITION_OFF", "REASON_IDLE_STAGE"])
+    assert.equal(N.REASONS[c].kind, "state", c);
+  const modes = header.slice(header.indexOf("enum class FieldControlMode"));
+  for (const m of modes.slice(modes.indexOf("{") + 1, modes.indexOf("}")).split(",").map((s) => s.trim()).filter(Boolean))
+    assert.notEqual(N.plainMode(m), m, `no plain name for ${m}`);
+  for (const st of ["BULK", "ABSORPTION", "FLOAT", "IDLE"]) assert.notEqual(N.plainStage(st), st);
+});
+
+await test("each active protection is one problem; a stopped engine or Off is none", () => {
+  const p = { current_stale: true, temp_stale: true, lockout_active: true };
+  assert.deepEqual(N.activeProblems({ reason: "REASON_LOCKOUT", protection: p }),
+    ["REASON_TEMP_STALE", "REASON_CURRENT_STALE", "REASON_LOCKOUT"]);
+  assert.deepEqual(N.activeProblems({ reason: "REASON_RPM_LOW", protection: {} }), []);
+  assert.deepEqual(N.activeProblems({ reason: "REASON_SYS_OFF", protection: {} }), []);
+  assert.deepEqual(N.activeProblems({ reason: "NONE", protection: { hard_overcurrent: true } }), ["REASON_HARD_OVERCURRENT"]);
+  assert.equal(N.ownerMode({ mode: "MODE_DISABLED_RAMP", control: { sys_mode: "SYS_MODE_OFF" } }), "Off");
+});
+
+await test("docs/operations.md's reasons table is the one generated from names.js", async () => {
+  const doc = fs.readFileSync(path.join(root, "docs/operations.md"), "utf8");
+  assert.equal(D.replaceSection(doc, await D.reasonsTable()), doc,
+    "docs/operations.md differs from names.js: run node web/tools/reasons-doc.mjs");
+  assert.match(doc, /Current sensor not answering/);
+});
+
+const params = [
+  { name: "BulkVoltage", group: "Voltage", kind: "float", value: 14.5, help: "Bulk." },
+  { name: "UseFloat", group: "Charging", kind: "bool", value: true, help: "After absorption: 1 = float, 0 = idle." },
+  { name: "TempSource", group: "Temperature", kind: "int", value: 0, help: "Temperature used: 0 = DS18B20 (1-Wire), 1 = thermistor (ADS1115 CH3)." },
+  { name: "rpmCapCurrentTable", group: "RpmTables", kind: "table", value: [0, 50, 50, 50, 50, 50, 50, 50, 50, 50], help: "" },
+  { name: "VoltageDisagreeThreshold", group: "SensorHealth", kind: "float", value: 0.15, help: "x" },
+];
+const groups = ["Voltage", "SensorHealth", "Charging", "Temperature", "RpmTables"];
+
+await test("TOML export re-imports to the same values; sections are the file's", () => {
+  const text = T.exportToml(params, groups);
+  assert.match(text, /\[sensor_health\]\nVoltageDisagreeThreshold = 0\.15|\[sensor_health\]\n# x\nVoltageDisagreeThreshold = 0\.15/);
+  assert.match(text, /\[rpm_tables\][^[]*rpmCapCurrentTable = \[0, 50,/);
+  const back = T.parseParamsToml(text, params);
+  assert.deepEqual(back.errors, []);
+  for (const p of params) assert.deepEqual(back.values[p.name], p.value, p.name);
+});
+
+await test("TOML import refuses the whole file on any bad line and names it", () => {
+  const r = T.parseParamsToml("[voltage]\nBulkVoltage = 14.2\nNoSuch = 1\n[charging]\nUseFloat = maybe\n[rpm_tables]\nrpmCapCurrentTable = [1, 2]\n[web]\nport = 80\n", params);
+  assert.equal(r.errors.length, 3);
+  assert.match(r.errors[0], /line 3: unknown parameter NoSuch/);
+  assert.match(r.errors[1], /line 5: UseFloat/);
+  assert.match(r.errors[2], /line 7: rpmCapCurrentTable: expected 10 numbers/);
+  assert.deepEqual(r.skipped, ["web"]);
+  const wrongSection = T.parseParamsToml("[charging]\nBulkVoltage = 14.2\n", params);
+  assert.match(wrongSection.errors[0], /belongs in \[voltage\]/);
+  const bool01 = T.parseParamsToml("[charging]\nUseFloat = 0  # off\n", params);
+  assert.deepEqual(bool01, { values: { UseFloat: false }, errors: [], skipped: [] });
+});
+
+await test("choices come from the help text; sources from the API", () => {
+  assert.deepEqual(S.choicesOf(params[2]), [[0, "DS18B20 (1-Wire)"], [1, "thermistor (ADS1115 CH3)"]]);
+  assert.equal(S.choicesOf(params[0]), null);
+  assert.deepEqual(S.choicesOf({ kind: "int", choices: ["lifepo4", "agm"], help: "" }), [[0, "lifepo4"], [1, "agm"]]);
+  assert.equal(S.choicesOf(params[1]), null);  // a bool is a switch, not a choice
+  assert.equal(S.sourceOf({ overridden: true, changed: true }), "dashboard");
+  assert.equal(S.sourceOf({ overridden: false, changed: true }), "file");
+  assert.equal(S.sourceOf({ overridden: false, changed: false }), "default");
+  assert.equal(S.sourceOf({ source: "profile", overridden: false }), "profile");
+});
+
+await test("help texts lose the specification's jargon", () => {
+  assert.equal(S.plainHelp("Nameplate capacity. No seed default: 200 Ah is a common house bank."),
+    "Nameplate capacity. 200 Ah is a common house bank.");
+  assert.equal(S.plainHelp("Ours: a resting field wakes."), "a resting field wakes.");
+  assert.equal(S.plainHelp("Cap (seed section 4.2) in amps."), "Cap in amps.");
+});
+
+await test("event texts in plain words: no GPIO4, no reason codes, no nan", () => {
+  assert.equal(P.eventText({ text: "Field enabled (GPIO4 HIGH)", code: "FieldOn", reason: "NONE" }), "Field enabled");
+  assert.equal(P.eventText({ text: "GPIO4 immediate cut: REASON_TEMP_CRITICAL", code: "ImmediateCut", reason: "REASON_TEMP_CRITICAL" }),
+    "Field immediate cut: alternator far too hot");
+  assert.equal(P.eventText({ text: "Exiting normal mode: RPM_LOW", code: "ModeChanged", reason: "REASON_RPM_LOW" }),
+    "Exiting normal mode: engine stopped or idling");
+  assert.equal(P.eventText({ text: "RPM below minimum: nan < 200 RPM. Field off", code: "ProtectionTrip", reason: "NONE" }),
+    "RPM below minimum: — < 200 RPM. Field off");
+  assert.equal(P.eventText({ text: "Command manual (duty 25.5 %) applied", code: "CommandApplied", reason: "NONE" }),
+    "Command manual (duty 25.5 %) applied");
+});
+
+console.log(`${n} dashboard unit tests passed`);

@@ -1,0 +1,143 @@
+// The Live page and the header: a headline in words, cards, one banner per
+// active protection (texts from names.js), the mode on every page, and an
+// offline state nobody can take for live.
+import { ago, hmin, isNum, num, temp } from "./format.js";
+import { activeProblems, ownerMode, plainMode, plainStage, reasonInfo } from "./names.js";
+
+const $ = (id) => document.getElementById(id);
+const STALE_AFTER_S = 3;  // no frame for this long = not live (frames come at 2..20 Hz)
+
+let lastFrameAt = 0;      // Date.now() of the last frame
+let lastStatus = null;
+
+export const tempUnit = () => localStorage.getItem("xregulator.tempUnit") ||
+  (/^en-US$/i.test(navigator.language || "") ? "F" : "C");
+
+function setValue(id, text, unit, note) {
+  const el = $(id);
+  if (!el) return;
+  el.textContent = text;
+  if (unit) { const u = document.createElement("span"); u.className = "unit"; u.textContent = unit; el.appendChild(u); }
+  if (note) { const a = document.createElement("span"); a.className = "note"; a.textContent = note; el.appendChild(a); }
+}
+const on = (v) => v === true || v === 1;
+
+// "Charging · Absorption · 42 A into the battery · 580 W" or
+// "Not charging · Engine stopped or idling".
+export function headline(s) {
+  const regulating = ["MODE_NORMAL_AUTO_PID", "MODE_NORMAL_MANUAL", "MODE_LIMP_HOME"].includes(s.mode);
+  const charging = on(s.field_enable) && isNum(s.alt_a) && s.alt_a > 0.5;
+  const parts = [];
+  const why = () => (s.reason && s.reason !== "NONE" ? reasonInfo(s.reason).title
+    : s.control && s.control.sys_mode === "SYS_MODE_OFF" ? "Switched off" : "");
+  if (charging && !regulating) {
+    // A shutdown ramp: the field still carries current but is on its way down.
+    parts.push("Stopping", why() || plainMode(s.mode));
+  } else if (charging) {
+    parts.push("Charging", plainStage(s.stage));
+    if (isNum(s.bcur_a)) parts.push(s.bcur_a >= 0 ? `${num(s.bcur_a, 0)} A into the battery`
+                                                   : `${num(-s.bcur_a, 0)} A from the battery`);
+    if (isNum(s.battery_v)) parts.push(`${num(s.alt_a * s.battery_v, 0)} W`);
+  } else {
+    parts.push("Not charging");
+    if (why()) parts.push(why());
+  }
+  return parts.join(" · ");
+}
+
+function renderBanners(s) {
+  const root = $("banners");
+  const codes = activeProblems(s);
+  const key = codes.join(",");
+  const p = s.protection || {};
+  const countdown = on(p.lockout_active) && isNum(p.lockout_remaining_s)
+    ? `Retrying in ${Math.ceil(p.lockout_remaining_s)} s.` : "";
+  if (root.dataset.key !== key) {
+    root.dataset.key = key;
+    root.textContent = "";
+    for (const code of codes) {
+      const r = reasonInfo(code);
+      const b = document.createElement("div");
+      b.className = "banner " + (r.kind === "fault" ? "fault" : "warn");
+      b.dataset.reason = code;
+      b.setAttribute("role", "alert");
+      const h = document.createElement("strong"); h.textContent = r.title;
+      const m = document.createElement("p"); m.textContent = r.meaning;
+      const a = document.createElement("p"); a.className = "action"; a.textContent = r.action ? "What to do: " + r.action : "";
+      const c = document.createElement("p"); c.className = "countdown";
+      b.append(h, m, a, c);
+      root.appendChild(b);
+    }
+  }
+  root.querySelectorAll(".countdown").forEach((c) => { c.textContent = countdown; });
+}
+
+export function renderLive(s) {
+  lastStatus = s;
+  lastFrameAt = Date.now();
+  const p = s.protection || {};
+  const b = s.battery || {};
+  const currentStale = on(p.current_stale);
+  const tempStale = on(p.temp_stale);
+  setValue("v-battery_v", num(s.battery_v, 2), "V");
+  setValue("v-bcur_a", isNum(s.bcur_a) ? num(Math.abs(s.bcur_a), 1) : "—", "A",
+    currentStale ? "not live" : !isNum(s.bcur_a) ? "" : s.bcur_a >= 0 ? "into the battery" : "out of the battery");
+  setValue("v-alt_a", num(s.alt_a, 1), "A", currentStale ? "not live" : "");
+  setValue("v-power", isNum(s.alt_a) && isNum(s.battery_v) ? num(Math.max(0, s.alt_a * s.battery_v), 0) : "—", "W");
+  $("v-bcur_a").classList.toggle("stale", currentStale);
+  $("v-alt_a").classList.toggle("stale", currentStale);
+  $("v-power").classList.toggle("stale", currentStale);
+  const unit = tempUnit();
+  setValue("v-temp", temp(s.temp_f, unit), "", tempStale ? "not live" : "");
+  $("v-temp").classList.toggle("stale", tempStale);
+  const hot = isNum(s.temp_f) && (on(p.temp_warning) || on(p.temp_critical) || on(p.temp_sustained));
+  $("v-temp").classList.toggle("hot", hot);
+  setValue("v-rpm", isNum(s.rpm) && s.rpm > 0 ? num(s.rpm, 0) : "stopped", isNum(s.rpm) && s.rpm > 0 ? "rpm" : "");
+  // The SoC is a guess until it was set, restored or a full charge was seen.
+  const known = b.soc_known !== false;
+  setValue("v-soc_pct", (known ? "" : "≈ ") + num(s.soc_pct, 0), "%",
+    known ? (isNum(b.time_to_full_charge_min) && b.time_to_full_charge_min > 0 ? `full in ${hmin(b.time_to_full_charge_min)}` : "")
+          : "estimate — set it on the Battery page");
+  $("v-soc_pct").classList.toggle("guess", !known);
+  setValue("v-field", on(s.field_enable) ? "On" : "Off", "", on(s.field_enable) ? `${num(s.duty_pct, 0)} %` : "");
+  // The target only means something while Auto regulates with the field on.
+  const regulating = s.mode === "MODE_NORMAL_AUTO_PID" && on(s.field_enable);
+  setValue("v-target", regulating ? `${plainStage(s.stage)}: up to ${num(s.target_a, 0)} A, ${num(s.target_v, 2)} V`
+                                  : `nothing (${ownerMode(s).toLowerCase()}${on(s.field_enable) ? "" : ", field off"})`);
+  const alarms = activeProblems(s).map((c) => reasonInfo(c).title);
+  if (on(s.alarm)) alarms.unshift("buzzer on");
+  if (on(s.fast_ov_active)) alarms.push("fast over-voltage clamp");
+  if (on(p.temp_task_alarm)) alarms.push("temperature reading stuck");
+  setValue("v-alarms", alarms.length ? alarms.join(", ") : "none");
+  $("v-alarms").classList.toggle("bad", alarms.length > 0);
+  $("headline").textContent = headline(s);
+  renderBanners(s);
+  renderHeader(s, alarms.length > 0);
+  tick();
+}
+
+function renderHeader(s, alarm) {
+  const mode = ownerMode(s);
+  $("hdr-mode").textContent = mode;
+  $("hdr-mode").dataset.mode = mode;
+  const ctl = $("ctl-mode");
+  if (ctl) ctl.textContent = mode;
+  document.querySelectorAll("[data-mode-button]").forEach((el) => el.classList.toggle("current", el.dataset.modeButton === mode));
+  $("hdr-alarm").hidden = !alarm && !on(s.alarm);
+}
+
+// Once a second: the age of the values, and the offline state when frames
+// stop (socket closed, or open but silent because the daemon hangs).
+export function tick() {
+  const age = lastFrameAt ? (Date.now() - lastFrameAt) / 1000 : NaN;
+  const offline = !lastFrameAt || age > STALE_AFTER_S || document.body.dataset.ws !== "open";
+  document.body.classList.toggle("offline", offline);
+  $("offline-banner").hidden = !offline;
+  $("offline-age").textContent = lastFrameAt ? ago(age) : "never (no data yet)";
+  $("updated").textContent = lastFrameAt ? `last update ${ago(age)}` : "waiting for the regulator…";
+  const conn = $("conn");
+  conn.textContent = offline ? "OFFLINE" : "live";
+  conn.className = offline ? "conn off" : "conn on";
+}
+
+export const latestStatus = () => lastStatus;

@@ -1,0 +1,132 @@
+// The detail pages fed by the status frames (Protections, Battery, Tuning),
+// the event list and the System page. Plain names, rounded numbers, clock times.
+import { getJson } from "./api.js";
+import { clock, hmin, hminFromSeconds, plain } from "./format.js";
+import { REASONS, plainMode, reasonInfo } from "./names.js";
+
+const $ = (id) => document.getElementById(id);
+
+function kvTable(id, rows) {
+  const t = $(id);
+  t.textContent = "";
+  for (const [k, v, cls] of rows) {
+    const tr = t.insertRow();
+    tr.insertCell().textContent = k;
+    const td = tr.insertCell();
+    td.textContent = plain(v);
+    if (cls) td.className = cls;
+  }
+}
+const yes = (v) => v === true || v === 1;
+const flag = (v, bad = "bad") => [yes(v), yes(v) ? bad : "good"];
+
+export function renderProtections(s) {
+  const p = s.protection || {};
+  const now = s.wall_time_s, tNow = s.t_s;
+  // The last trip's clock time from its daemon-time stamp.
+  const tripAt = typeof p.last_trip_time_s === "number" && typeof now === "number" && p.last_trip_reason !== "NONE"
+    ? clock(now - (tNow - p.last_trip_time_s)) : "—";
+  const row = (label, v, bad) => { const [val, cls] = flag(v, bad); return [label, val, cls]; };
+  kvTable("prot-table", [
+    ["acting now", reasonInfo(s.reason).title, s.reason === "NONE" ? "good" : reasonInfo(s.reason).kind === "state" ? "" : "warn"],
+    ["field", yes(s.field_enable) ? "on" : "off"],
+    ["shutdown step", p.shutdown_phase === "PHASE_NONE" ? "none" : String(p.shutdown_phase || "—").replace("PHASE_", "").replace("DONE", "finished")],
+    row("over-voltage latch", p.ina_overvoltage_latched),
+    row("cooldown running", p.lockout_active, "warn"),
+    ["cooldown left", p.lockout_active ? `${Math.ceil(p.lockout_remaining_s || 0)} s` : "—"],
+    row("fast over-voltage clamp", p.fast_ov_clamp_active, "warn"),
+    ["clamp current (A)", p.fast_ov_current_cap],
+    row("temperature reading stuck", p.temp_task_alarm),
+    ["heat derate (A)", s.thermal_penalty_a],
+    row("buzzer", p.buzzer),
+    ["last trip", p.last_trip_reason && p.last_trip_reason !== "NONE" ? reasonInfo(p.last_trip_reason).title : "none"],
+    ["last trip at", tripAt],
+  ]);
+}
+
+export function renderBattery(s) {
+  const b = s.battery || {};
+  kvTable("batt-table", [
+    ["state of charge (%)", b.soc_known === false ? `≈ ${plain(s.soc_pct, 0)} (estimate)` : plain(s.soc_pct, 1)],
+    ["charge counted (Ah)", plain(b.coulomb_count_ah, 1)], ["battery current (A)", plain(s.bcur_a, 1)],
+    ["full charge seen", yes(b.full_charge_detected)],
+    ["time to full", b.soc_known === false ? "unknown until the SoC is known" : hmin(b.time_to_full_charge_min)],
+    ["time to empty", b.soc_known === false ? "unknown until the SoC is known" : hmin(b.time_to_full_discharge_min)],
+    ["charged this run (Wh)", plain(b.charged_energy_wh, 0)], ["discharged this run (Wh)", plain(b.discharged_energy_wh, 0)],
+    ["from the alternator (Wh)", plain(b.alternator_charged_energy_wh, 0)], ["from solar (Wh)", plain(b.solar_charged_energy_wh, 0)],
+    ["charged, lifetime (Wh)", plain(s.charged_wh_lifetime, 0)], ["alternator, lifetime (Wh)", plain(s.alt_charged_wh_lifetime, 0)],
+    ["charge cycles", plain(b.charge_cycles, 2)], ["charge cycles, lifetime", plain(b.charge_cycles_all_time, 1)],
+    ["average SoC (%)", plain(b.avg_soc, 0)], ["average SoC, lifetime (%)", plain(b.avg_soc_all_time, 0)],
+    ["average voltage, lifetime (V)", plain(b.avg_voltage_all_time, 2)],
+    ["alternator running (h:min)", hminFromSeconds(b.alternator_on_time_s)], ["fuel used (L)", plain(b.alternator_fuel_used_l, 1)],
+    ["shunt gain correction", plain(b.dynamic_shunt_gain_factor, 3)], ["alternator current zero (A)", plain(b.dynamic_alt_current_zero, 2)],
+    ["re-zeroing now", yes(b.auto_zero_active)],
+  ]);
+}
+
+export function renderTuning(s) {
+  const c = s.control || {};
+  const rows = [["mode", plainMode(s.mode)], ["current target (A)", plain(c.u_target_amps, 1)],
+    ["set-point after slew (A)", plain(c.setpoint_limited, 1)], ["measured, filtered (A)", plain(c.pid_input, 1)],
+    ["field duty asked (%)", plain(c.pid_output, 1)],
+    ["current loop P / I / D", [c.inner_term_p, c.inner_term_i, c.inner_term_d].map((x) => plain(x, 2)).join(" / ")],
+    ["voltage loop active", yes(c.voltage_control_active)], ["voltage target (V)", plain(c.charging_voltage_target, 2)],
+    ["voltage loop integral", plain(c.cv_i, 2)], ["voltage loop current limit (A)", plain(c.icv, 1)],
+    ["duty applied (%)", plain(c.last_applied_duty, 1)]];
+  for (const sec of ["tuning", "system_id", "cv_tuning"])
+    if (s[sec] && typeof s[sec] === "object") for (const [k, v] of Object.entries(s[sec])) rows.push([`${sec.replace("_", " ")}: ${k.replace(/_/g, " ")}`, v]);
+  kvTable("tuning-table", rows);
+}
+
+// ---------------------------------------------------------------- events
+// An event's words: the stored text (a command's event carries its argument)
+// without "nan", GPIO numbers or reason codes.
+export function eventText(e) {
+  // The journal keeps the firmware's console words; the list says them plainly:
+  // "GPIO4" is the field enable, reason codes get their titles.
+  let text = String(e.text || e.code).replace(/\bnan\b/gi, "—")
+    .replace(/\s*\(GPIO4 (HIGH|LOW)\)/g, "").replace(/\bGPIO4\b/g, "Field")
+    .replace(/\b(?:REASON_)?([A-Z]{2,}(?:_[A-Z0-9]+)+)\b/g, (m, code) =>
+      (REASONS["REASON_" + code] ? REASONS["REASON_" + code].title.toLowerCase() : m));
+  if (e.reason && e.reason !== "NONE" && !text.toLowerCase().includes(reasonInfo(e.reason).title.toLowerCase()))
+    text += ` (${reasonInfo(e.reason).title})`;
+  return text;
+}
+
+let oldestEvent = null, newestEvent = null;
+function eventRow(e) {
+  const tr = document.createElement("tr");
+  tr.className = "level-" + String(e.level).toLowerCase();
+  tr.dataset.id = e.id;
+  tr.insertCell().textContent = e.wall_time_s ? clock(e.wall_time_s) : `${plain(e.t_s, 0)} s after start`;
+  tr.insertCell().textContent = String(e.level).toLowerCase();
+  tr.insertCell().textContent = eventText(e);
+  return tr;
+}
+// Stored events newest first (earlier runs too), paged with "Older";
+// `refresh` adds only the events newer than the top row.
+export async function loadEvents(mode = "first") {
+  const tb = $("events-body");
+  if (mode === "refresh") {
+    if (newestEvent === null) return loadEvents("first");
+    const body = await getJson("/api/events?limit=100");
+    const fresh = body.events.filter((e) => e.id > newestEvent);
+    fresh.reverse().forEach((e) => tb.insertBefore(eventRow(e), tb.firstChild));
+    if (fresh.length) newestEvent = fresh[fresh.length - 1].id;
+    return;
+  }
+  const q = mode === "more" && oldestEvent !== null ? `&before=${oldestEvent}` : "";
+  const body = await getJson(`/api/events?limit=50${q}`);
+  if (mode === "first") { tb.textContent = ""; newestEvent = body.events.length ? body.events[0].id : null; }
+  for (const e of body.events) { tb.appendChild(eventRow(e)); oldestEvent = e.id; }
+  $("events-more").disabled = body.events.length < 50;
+}
+
+export async function loadSystem() {
+  const s = await getJson("/api/system");
+  const obj = (o) => Object.entries(o || {}).filter(([, v]) => typeof v !== "object" || v === null);
+  kvTable("sys-versions", obj(s.versions));
+  kvTable("sys-loop", obj(s.loop).map(([k, v]) => [k.replace(/_/g, " "), v, k === "overruns" ? (v ? "bad" : "good") : ""]));
+  kvTable("sys-probes", (s.probes || []).map((p) => [p.device, `${p.ok ? "OK" : "FAIL"} ${p.detail || ""}`, p.ok ? "good" : "bad"]));
+  kvTable("sys-web", obj(s.web).concat([["telemetry rate (Hz)", s.telemetry_rate_hz]]));
+}
