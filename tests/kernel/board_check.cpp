@@ -95,8 +95,10 @@ int hold(const std::string& config, const std::string& mode) {
   }
   std::cout << "hold: field on, buzzer on, bms " << bms << ", ignition " << ign << std::endl;
   if (mode == "segv") {
-    volatile int* nowhere = nullptr;
-    *nowhere = 1;  // a real fault: the fatal guard must drive the field LOW
+    // A real fault: the fatal guard must drive the field LOW. The pointer is
+    // volatile so the compiler cannot see the null and emit a trap instead.
+    int* volatile nowhere = nullptr;
+    *nowhere = 1;
   } else if (mode == "term") {
     int sig = 0;
     sigwait(&term, &sig);

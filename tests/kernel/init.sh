@@ -12,6 +12,7 @@ mount -t devtmpfs dev /dev
 mount -t debugfs debugfs /sys/kernel/debug
 mount -t tmpfs tmp /tmp
 mkdir -p /run && mount -t tmpfs run /run
+ip link set lo up
 echo "RIG BOOT kernel $(uname -r)"
 depmod
 
