@@ -96,8 +96,9 @@ int hold(const std::string& config, const std::string& mode) {
   std::cout << "hold: field on, buzzer on, bms " << bms << ", ignition " << ign << std::endl;
   if (mode == "segv") {
     // A real fault: the fatal guard must drive the field LOW. The pointer is
-    // volatile so the compiler cannot see the null and emit a trap instead.
-    int* volatile nowhere = nullptr;
+    // volatile so the compiler cannot see the null (and emit a trap), and so
+    // is the store (GCC 12 drops a plain one before the endless pause loop).
+    volatile int* volatile nowhere = nullptr;
     *nowhere = 1;
   } else if (mode == "term") {
     int sig = 0;

@@ -73,6 +73,10 @@ kill_holding() {
 kill_holding
 check sigkill_leaves_high "after SIGKILL the field enable stays at $(level) (the premise of the next checks)" \
   [ "$(level)" = 1 ]
+# An exported channel on tmpfs, so that the daemon gets past PWM to I2C.
+mkdir -p /run/pwm/pwmchip0/pwm0
+for a in period duty_cycle enable; do echo 0 >/run/pwm/pwmchip0/pwm0/$a; done
+echo normal >/run/pwm/pwmchip0/pwm0/polarity
 xregulatord --config $CFG --state-db /tmp/state.db >/tmp/daemon.out 2>&1
 rc=$?
 tail -3 /tmp/daemon.out
@@ -94,9 +98,9 @@ check ready_line_request "AdsReadyLine requests edge events on $CHIP line 6" xr_
 gap alert_rdy_edges "Debian's arm64 kernels (6.1 bookworm, 6.12 bookworm-backports and trixie) have no gpio-sim or gpio-mockup: no edge can be injected, so edge-paced loops are not run on a kernel"
 
 # --- sysfs PWM: no software PWM chip in this kernel; a tmpfs tree ----------
-mkdir -p /run/pwm
+mkdir -p /run/pwmcheck
 check pwm_sysfs_tmpfs "PwmSysfs on a tmpfs /sys/class/pwm tree (export, period, duty, enable, safe state)" \
-  xr_board_check pwm /run/pwm
+  xr_board_check pwm /run/pwmcheck
 
 # --- i2c-dev -----------------------------------------------------------------
 modprobe i2c-dev

@@ -65,7 +65,7 @@ echo "initramfs: $(du -h initrd.gz | cut -f1) ($(find root -type f | wc -l) file
 
 # --- boot -----------------------------------------------------------------------
 start=$(date +%s)
-timeout 900 qemu-system-aarch64 -M virt -cpu cortex-a57 -smp 2 -m 512 -nographic -no-reboot \
+timeout 900 qemu-system-aarch64 -M virt -cpu cortex-a57 -smp 2 -m 512 -nographic -nic none -no-reboot \
   -kernel "kernel/boot/vmlinuz-$kver" -initrd initrd.gz \
   -append "console=ttyAMA0 rdinit=/init panic=-1 loglevel=3" </dev/null >console.log 2>&1
 qrc=$?
