@@ -184,7 +184,8 @@ test-kernel: deps-cross
 	  -DCMAKE_TOOLCHAIN_FILE=cmake/toolchain-aarch64.cmake -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -DNDEBUG" -DXR_LTO=OFF -DXR_BUILD_TESTS=ON -DXR_BUILD_BENCH=OFF \
 	  $(if $(shell command -v ccache),-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-	cmake --build $(ARM64_BUILD) -j $(JOBS) --target xregulatord xregulator-field-off xr_board_check
+	cmake --build $(ARM64_BUILD) -j $(JOBS) --target xregulatord xregulator-field-off xr_board_check \
+	  $(if $(wildcard tests/kernel/vcan_check.cpp),vcan_check)
 	tests/kernel/run.sh $(ARM64_BUILD) $(KERNEL_WORK)
 
 format:

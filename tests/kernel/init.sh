@@ -111,10 +111,10 @@ gap i2c_rdwr "the virt board has no I2C adapter and CONFIG_I2C_STUB is unset: I2
 modprobe vcan && modprobe can-raw
 ip link add dev vcan0 type vcan && ip link set vcan0 up
 check vcan_frame "a frame across two raw CAN sockets on vcan0" xr_board_check can vcan0
-if [ -x /usr/bin/xr_can_selftest ]; then
-  check can_backend "the SocketCAN backend's self-test on vcan0" xr_can_selftest vcan0
+if [ -x /usr/bin/vcan_check ]; then
+  check can_backend "the SocketCAN backend's self-test (vcan_check) on vcan0" vcan_check vcan0
 else
-  gap can_backend "the SocketCAN backend (branch can) has no vcan self-test yet"
+  gap can_backend "no vcan_check in this tree: the SocketCAN backend is not run on the kernel"
 fi
 
 # --- softdog -------------------------------------------------------------------

@@ -43,8 +43,9 @@ cp bb/bin/busybox root/bin/busybox
 cp "$here/init.sh" root/init && chmod 755 root/init
 cp "$here/vm.toml" root/etc/xr/vm.toml
 cp "${bins[@]}" root/usr/bin/
-# The CAN backend's self-test, once the can branch provides it.
-[ -x "$arm/tests/can/xr_can_selftest" ] && cp "$arm/tests/can/xr_can_selftest" root/usr/bin/
+# The SocketCAN backend's self-test (tests/kernel/vcan_check.cpp, from the
+# CAN work), when the tree has it.
+[ -x "$arm/tests/kernel/vcan_check" ] && cp "$arm/tests/kernel/vcan_check" root/usr/bin/
 # Libraries: what the arm64 loader resolves for each binary, from the
 # multiarch directories of this machine.
 for b in root/usr/bin/*; do
