@@ -50,6 +50,10 @@ class Harness:
         conf = os.path.join(self.dir, "mosquitto.conf")
         lines = [f"listener {self.broker_port} 127.0.0.1", "persistence false", "log_dest stderr",
                  "log_type error", "log_type warning"]
+        if os.geteuid() == 0:
+            # As root mosquitto would drop to its own user, which cannot read
+            # this private temporary directory.
+            lines.append("user root")
         if users:
             pw = os.path.join(self.dir, "passwd")
             open(pw, "w").close()

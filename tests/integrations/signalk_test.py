@@ -40,15 +40,22 @@ class SignalK:
         with open(os.path.join(self.dir, "settings.json"), "w") as f:
             json.dump(settings, f)
         if secured:
-            # Guests may read (the default), but only a token may write.
+            # Guests may read (the default), only a token may write. A fixed
+            # secret key: tokens stay valid when the server is restarted.
+            modules = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(server_bin))))
+            bcrypt = os.path.join(modules, "bcryptjs")
+            hashed = subprocess.run([node, "-e", f"console.log(require({json.dumps(bcrypt)}).hashSync("
+                                     f"{json.dumps(ADMIN[1])}, 8))"], capture_output=True, text=True,
+                                    check=True).stdout.strip()
             with open(os.path.join(self.dir, "security.json"), "w") as f:
-                json.dump({"allow_readonly": True, "expiration": "1d", "allowDeviceAccessRequests": True}, f)
+                json.dump({"allow_readonly": True, "expiration": "1d", "secretKey": "ab" * 64,
+                           "users": [{"username": ADMIN[0], "type": "admin", "password": hashed}],
+                           "devices": [], "acls": [], "immutableConfig": False,
+                           "allowDeviceAccessRequests": True, "allowNewUserRegistration": False}, f)
         self.proc = None
 
     def start(self):
         env = dict(os.environ, PORT=str(self.port), SIGNALK_NODE_CONFIG_DIR=self.dir)
-        if self.secured:
-            env["ADMINUSER"] = f"{ADMIN[0]}:{ADMIN[1]}"
         log = open(os.path.join(self.h.dir, "signalk.log"), "a")
         self.proc = subprocess.Popen([self.node, self.bin], env=env, stdout=log, stderr=log)
         self.h.procs.append(self.proc)
@@ -66,9 +73,13 @@ class SignalK:
             req.add_header("Authorization", "Bearer " + token)
         try:
             with urllib.request.urlopen(req, timeout=5) as r:
-                return json.loads(r.read().decode() or "null")
+                text = r.read().decode()
         except Exception:
             return None
+        try:
+            return json.loads(text)
+        except ValueError:
+            return text  # e.g. "Request updated"
 
     def alternator(self):
         return self.http("GET", "/signalk/v1/api/vessels/self/electrical/alternators/main")

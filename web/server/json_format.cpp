@@ -296,20 +296,20 @@ std::string integrationMetrics(const std::vector<IntegrationState>& list) {
     const char* name;
     const char* type;
     const char* help;
-    double (*value)(const IntegrationState&);
+    std::uint64_t (*value)(const IntegrationState&);
   };
   static const Metric kMetrics[] = {
       {"xregulator_integration_connected", "gauge", "1 when the integration is connected",
-       [](const IntegrationState& i) { return i.connected ? 1.0 : 0.0; }},
+       [](const IntegrationState& i) -> std::uint64_t { return i.connected ? 1 : 0; }},
       {"xregulator_integration_messages_sent_total", "counter", "Messages sent by the integration",
-       [](const IntegrationState& i) { return static_cast<double>(i.messages_sent); }},
+       [](const IntegrationState& i) { return i.messages_sent; }},
       {"xregulator_integration_messages_dropped_total", "counter",
        "Messages replaced by a newer one while the link was busy or down",
-       [](const IntegrationState& i) { return static_cast<double>(i.messages_dropped); }},
+       [](const IntegrationState& i) { return i.messages_dropped; }},
       {"xregulator_integration_values_refused_total", "counter", "Bad values from the server, refused",
-       [](const IntegrationState& i) { return static_cast<double>(i.values_refused); }},
+       [](const IntegrationState& i) { return i.values_refused; }},
       {"xregulator_integration_outages_total", "counter", "Connections lost or never made",
-       [](const IntegrationState& i) { return static_cast<double>(i.outages); }},
+       [](const IntegrationState& i) { return i.outages; }},
   };
   for (const auto& m : kMetrics) {
     bool header = false;
