@@ -15,6 +15,7 @@ DEB_PACKAGES := build-essential cmake pkg-config ninja-build \
   libspdlog-dev libfmt-dev libtomlplusplus-dev \
   libgtest-dev libgmock-dev googletest libbenchmark-dev \
   libsystemd-dev systemd \
+  mosquitto mosquitto-clients libmosquitto-dev \
   chromium wrk curl python3 python3-matplotlib clang libclang-rt-14-dev valgrind clang-format graphviz \
   debhelper devscripts lintian fakeroot dpkg-dev
 
@@ -34,6 +35,7 @@ deps:
 	  $$SUDO apt-get update && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y --no-install-recommends $$missing; \
 	else echo "deps: all present"; fi
 	@if [ -f web/package.json ]; then $(MAKE) --no-print-directory -C web deps; fi
+	@$(MAKE) --no-print-directory -C tests/integrations/signalk deps
 
 $(BUILD)/CMakeCache.txt:
 	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo
@@ -99,7 +101,8 @@ package-test: deps
 # Cross-building for the Pi (docs/install.md): Debian 12's cross compilers,
 # qemu-user and the arm64/armhf multiarch libraries. Idempotent like deps.
 CROSS_LIBS := libboost1.81-dev libboost-json1.81-dev libgpiod-dev libsqlite3-dev \
-  libspdlog-dev libfmt-dev libtomlplusplus-dev libgtest-dev libgmock-dev libsystemd-dev
+  libspdlog-dev libfmt-dev libtomlplusplus-dev libgtest-dev libgmock-dev libsystemd-dev \
+  libmosquitto-dev
 # pkg-config:<arch> provides <triplet>-pkg-config, which debhelper's cross
 # cmake build asks for.
 CROSS_LIBS := $(CROSS_LIBS) pkg-config

@@ -17,6 +17,7 @@
 #include "app/board_rig.h"
 #include "app/csv_writer.h"
 #include "app/daemon_notices.h"
+#include "app/integrations_wiring.h"
 #include "app/sim_wiring.h"
 #include "app/status_source.h"
 #include "app/store_service.h"
@@ -198,6 +199,9 @@ int Daemon::run() {
     csv->start();
   }
 
+  // The boat's network (issue 23): its own thread, reading the snapshot only.
+  const auto integrations = startIntegrations(settings, *handoffs, store.get());
+
   std::atomic<std::int64_t> lastHeartbeatWallMs{0};
   std::atomic<bool> outputsFault{false};
   std::unique_ptr<WebApi> api;
@@ -214,6 +218,7 @@ int Daemon::run() {
     ctx.controlPeriodUs = settings.runtime.control_period_us;
     ctx.lastHeartbeatWallMs = &lastHeartbeatWallMs;
     ctx.fieldSafeFault = &outputsFault;
+    ctx.integrations = integrationsView(integrations.get());
     api = std::make_unique<WebApi>(ctx);
     auto opts = web::WebServerOptions::fromSettings(settings.web, settings.web.token);
     if (opts.www_root.empty()) {

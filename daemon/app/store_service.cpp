@@ -159,4 +159,14 @@ std::string StoreService::token() {
   return store_.getOrCreateToken();
 }
 
+std::optional<std::string> StoreService::loadValue(const std::string& key) {
+  std::lock_guard lock(m_);
+  return store_.getBlob(key);
+}
+
+void StoreService::saveValue(const std::string& key, const std::string& value) {
+  std::lock_guard lock(m_);
+  store_.putBlob(key, value);
+}
+
 }  // namespace xr::app

@@ -56,6 +56,9 @@ class StoreService {
                                          std::int64_t stepMs);
   std::vector<std::string> series() const { return series_; }
   std::string token();
+  // Small named strings kept with the state (the Signal K token, issue 23).
+  std::optional<std::string> loadValue(const std::string& key);
+  void saveValue(const std::string& key, const std::string& value);
 
  private:
   std::mutex m_;

@@ -6,7 +6,9 @@
 // from the store.
 #include <atomic>
 #include <chrono>
+#include <functional>
 #include <mutex>
+#include <vector>
 
 #include "app/status_source.h"
 #include "app/store_service.h"
@@ -26,6 +28,8 @@ struct WebApiContext {
   std::atomic<bool>* fieldSafeFault = nullptr;               // outputs could not be driven
   // How long POST /api/commands waits for the regulator's answer.
   std::chrono::milliseconds commandAckTimeout{1000};
+  // The integrations' state (issue 23); empty when none runs.
+  std::function<std::vector<web::IntegrationState>()> integrations;
 };
 
 class WebApi final : public web::DaemonApi {
@@ -41,6 +45,9 @@ class WebApi final : public web::DaemonApi {
   std::vector<web::ProbeResult> probeResults() override;
   web::VersionMap versions() override;
   web::Health health() override;
+  std::vector<web::IntegrationState> integrations() override {
+    return ctx_.integrations ? ctx_.integrations() : std::vector<web::IntegrationState>{};
+  }
 
   static web::StatusSnapshot toStatus(const rt::RuntimeSnapshot& s, bool sim, double periodUs);
 

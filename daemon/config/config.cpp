@@ -10,6 +10,7 @@
 
 #include "config/bounded_read.h"
 #include "config/format.h"
+#include "config/integration_checks.h"
 #include "config/param_values.h"
 #include "config/settings_schema.h"
 #include "config/toml_values.h"
@@ -66,6 +67,13 @@ std::optional<ParamGroup> groupForTable(std::string_view table) {
   return std::nullopt;
 }
 
+// A settings table, or the parent of dotted ones ("integrations").
+bool isSettingsTableOrParent(std::string_view name) {
+  for (auto t : settingsTables())
+    if (t == name || (t.size() > name.size() && t.starts_with(name) && t[name.size()] == '.')) return true;
+  return false;
+}
+
 std::vector<std::string> allTableNames() {
   std::vector<std::string> t;
   for (auto g : kGroups) t.emplace_back(tomlTableName(g));
@@ -119,7 +127,7 @@ class Loader {
       if (const auto* t = node.as_table()) return paramTable(*g, name, *t);
       return error(k, name, "must be a table: write [" + name + "] and put its parameters below it");
     }
-    if (name == "hardware" || std::find(settingsTables().begin(), settingsTables().end(), name) != settingsTables().end()) {
+    if (isSettingsTableOrParent(name)) {
       if (const auto* t = node.as_table()) return settingsTable(name, *t);
       return error(k, name, "must be a table: write [" + name + "]");
     }
@@ -169,11 +177,11 @@ class Loader {
     for (auto&& [k, node] : t) {
       const std::string name(k.str());
       const std::string dotted = table + "." + name;
-      if (table == "hardware" && name == "frontend") {
+      if (isSettingsTableOrParent(dotted)) {  // [hardware.frontend], [integrations.mqtt], ...
         if (const auto* sub = node.as_table()) {
-          settingsTable("hardware.frontend", *sub);
+          settingsTable(dotted, *sub);
         } else {
-          error(k, dotted, "must be a table: write [hardware.frontend]");
+          error(k, dotted, "must be a table: write [" + dotted + "]");
         }
         continue;
       }
@@ -213,6 +221,7 @@ class Loader {
       }
     }
     webSettings();
+    for (auto& [key, message] : checkIntegrations(config_.settings.integrations)) settingError(key, message);
   }
 
   void settingError(const std::string& key, std::string message) {

@@ -1,6 +1,6 @@
 #pragma once
 // Non-parameter settings of xregulator.toml: [hardware], [runtime], [web],
-// [store], [log]. Parameters (the catalogue) live in params/params.h.
+// [store], [log], [integrations.*]. Parameters (the catalogue) live in params/params.h.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -81,12 +81,52 @@ struct LogSettings {
   std::string level = "info";  // trace, debug, info, warn, error, critical
 };
 
+// [integrations.*] (issue 23): the boat's network. Each is off by default
+// and runs on the integrations thread, never the control thread.
+struct SignalKSettings {
+  bool enabled = false;
+  std::string url = "ws://localhost:3000/signalk/v1/stream?subscribe=none";
+  double rate_hz = 1.0;                // deltas per second (state changes go at once)
+  std::string alternator_id = "main";  // electrical.alternators.<id>
+  std::string battery_id = "house";    // electrical.batteries.<id>
+};
+
+struct MqttSettings {
+  bool enabled = false;
+  std::string host = "localhost";
+  int port = 1883;
+  std::string username;
+  std::string password;
+  std::string discovery_prefix = "homeassistant";
+  std::string node_id = "main";  // xregulator_<node_id> in the topics
+  double state_rate_hz = 1.0;
+  bool commands_enabled = false;  // needs username and password too
+  bool tls = false;
+  std::string ca_file;  // TLS trust anchor; empty = the system store
+};
+
+struct VictronSettings {
+  bool enabled = false;
+  std::string host = "venus.local";
+  int port = 1883;
+  std::string portal_id;
+  int battery_instance = 512;
+  double stale_s = 10.0;  // no limits for this long: REASON_BMS_STALE
+};
+
+struct IntegrationsSettings {
+  SignalKSettings signalk;
+  MqttSettings mqtt;
+  VictronSettings victron;
+};
+
 struct Settings {
   HardwareSettings hardware;
   RuntimeSettings runtime;
   WebSettings web;
   StoreSettings store;
   LogSettings log;
+  IntegrationsSettings integrations;
 };
 
 // The whole configuration: settings plus the parameter set.

@@ -148,6 +148,48 @@ const SettingSpec kSchema[] = {
     // [log]
     XR_S_STR("log", log.level, "level", "trace,debug,info,warn,error,critical,off",
              "Log level (overridden by --log-level)."),
+    // [integrations.signalk] (docs/integrations.md)
+    XR_S_BOOL("integrations.signalk", integrations.signalk.enabled, "enabled",
+              "Send deltas to a Signal K server."),
+    XR_S_STR("integrations.signalk", integrations.signalk.url, "url", "",
+             "Signal K WebSocket stream (ws://host:3000/signalk/v1/stream?subscribe=none)."),
+    XR_S_FLT("integrations.signalk", integrations.signalk.rate_hz, "rate_hz", "Hz", 0.1, 10.0,
+             "Deltas per second; a change of mode or stage goes at once."),
+    XR_S_STR("integrations.signalk", integrations.signalk.alternator_id, "alternator_id", "",
+             "<id> in electrical.alternators.<id> (letters and digits)."),
+    XR_S_STR("integrations.signalk", integrations.signalk.battery_id, "battery_id", "",
+             "<id> in electrical.batteries.<id> (letters and digits)."),
+    // [integrations.mqtt]
+    XR_S_BOOL("integrations.mqtt", integrations.mqtt.enabled, "enabled",
+              "Publish to Home Assistant through MQTT discovery."),
+    XR_S_STR("integrations.mqtt", integrations.mqtt.host, "host", "", "MQTT broker host."),
+    XR_S_INT("integrations.mqtt", integrations.mqtt.port, "port", "", 1, 65535, false,
+             "MQTT broker port (1883; 8883 with TLS)."),
+    XR_S_STR("integrations.mqtt", integrations.mqtt.username, "username", "",
+             "MQTT user name (empty = none)."),
+    XR_S_STR("integrations.mqtt", integrations.mqtt.password, "password", "", "MQTT password."),
+    XR_S_STR("integrations.mqtt", integrations.mqtt.discovery_prefix, "discovery_prefix", "",
+             "Home Assistant discovery prefix."),
+    XR_S_STR("integrations.mqtt", integrations.mqtt.node_id, "node_id", "",
+             "<id> in xregulator_<id> and xregulator/<id>/state (letters, digits, _ and -)."),
+    XR_S_FLT("integrations.mqtt", integrations.mqtt.state_rate_hz, "state_rate_hz", "Hz", 0.1, 10.0,
+             "State documents per second."),
+    XR_S_BOOL("integrations.mqtt", integrations.mqtt.commands_enabled, "commands_enabled",
+              "Offer off/auto and limp home to Home Assistant (needs username and password)."),
+    XR_S_BOOL("integrations.mqtt", integrations.mqtt.tls, "tls", "Connect with TLS."),
+    XR_S_STR("integrations.mqtt", integrations.mqtt.ca_file, "ca_file", "",
+             "CA certificate file for TLS; empty = the system trust store."),
+    // [integrations.victron]
+    XR_S_BOOL("integrations.victron", integrations.victron.enabled, "enabled",
+              "Read the battery's charge limits from a Victron GX (Venus OS MQTT)."),
+    XR_S_STR("integrations.victron", integrations.victron.host, "host", "", "GX device host."),
+    XR_S_INT("integrations.victron", integrations.victron.port, "port", "", 1, 65535, false, "GX MQTT port."),
+    XR_S_STR("integrations.victron", integrations.victron.portal_id, "portal_id", "",
+             "VRM portal id of the GX (Settings > VRM online portal)."),
+    XR_S_INT("integrations.victron", integrations.victron.battery_instance, "battery_instance", "", 0, 65535,
+             false, "Device instance of the battery service (512 for most BMS on CAN)."),
+    XR_S_FLT("integrations.victron", integrations.victron.stale_s, "stale_s", "s", 1.0, 600.0,
+             "Limits older than this are stale (REASON_BMS_STALE)."),
 };
 
 #undef XR_S_STR
@@ -155,8 +197,9 @@ const SettingSpec kSchema[] = {
 #undef XR_S_FLT
 #undef XR_S_BOOL
 
-constexpr std::array<std::string_view, 6> kTables{"hardware", "hardware.frontend", "runtime", "web", "store",
-                                                  "log"};
+constexpr std::array<std::string_view, 9> kTables{
+    "hardware",          "hardware.frontend",   "runtime", "web", "store", "log", "integrations.signalk",
+    "integrations.mqtt", "integrations.victron"};
 
 std::string rangeText(const SettingSpec& spec) {
   std::string r = "allowed " + formatNumber(spec.min) + " to " + formatNumber(spec.max);

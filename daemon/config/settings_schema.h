@@ -1,6 +1,7 @@
 #pragma once
 // The ONE place the non-parameter settings keys of xregulator.toml are named
-// ([hardware], [hardware.frontend], [runtime], [web], [store], [log]). The
+// ([hardware], [hardware.frontend], [runtime], [web], [store], [log],
+// [integrations.signalk|mqtt|victron]). The
 // loader, the generated default file and docs/configuration.md all read this
 // table, as the parameter catalogue does for parameters.
 #include <cstdint>

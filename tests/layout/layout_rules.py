@@ -62,9 +62,11 @@ LAYERS = [
              "drivers/ads1115", "drivers/sim"]),
     ("daemon/store", "SQLite persistence", CORE + ["daemon/battery"]),
     ("web/server", "HTTP / WebSocket API and dashboard server", CORE + ["daemon/config", "daemon/control"]),
+    ("daemon/integrations", "Signal K, Home Assistant (MQTT), Victron GX: their own thread, off the RT loop",
+     CORE + ["daemon/config", "daemon/battery", "daemon/protection", "daemon/control", "daemon/runtime"]),
     ("daemon/app", "xregulatord: command line and wiring",
      CORE + ["daemon/config", "daemon/logging", "daemon/protection", "daemon/battery", "daemon/control",
-             "daemon/runtime", "daemon/sim_rig", "daemon/store", "web/server"] + DRIVERS),
+             "daemon/runtime", "daemon/sim_rig", "daemon/store", "web/server", "daemon/integrations"] + DRIVERS),
     ("tools", "xr_gendocs, xregulator-field-off, xr_plant_curves (plots)", CORE + ["daemon/config", "drivers/sim"]),
 ]
 

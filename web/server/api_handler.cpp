@@ -212,6 +212,9 @@ Response ApiHandler::getSystem(const Request& req) {
     w["connections_refused"] = s.connections_refused;
     o["web"] = std::move(w);
   }
+  json::array integrations;
+  for (const auto& i : api_.integrations()) integrations.push_back(integrationToJson(i));
+  o["integrations"] = std::move(integrations);
   o["telemetry_rate_hz"] = opts_.telemetry_rate_hz;
   o["reads_require_token"] = opts_.reads_require_token;
   return jsonReply(req, http::status::ok, o);
@@ -221,7 +224,8 @@ Response ApiHandler::getMetrics(const Request& req) {
   StatusSnapshot snap;
   const bool have = api_.latestStatus(snap) && snap.seq != 0;
   const WebServerStats s = stats_ ? stats_() : WebServerStats{};
-  return reply(req, http::status::ok, metricsText(have ? &snap : nullptr, s),
+  return reply(req, http::status::ok,
+               metricsText(have ? &snap : nullptr, s) + integrationMetrics(api_.integrations()),
                "text/plain; version=0.0.4; charset=utf-8");
 }
 

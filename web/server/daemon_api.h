@@ -136,6 +136,18 @@ struct HistoryResult {
   std::vector<std::pair<std::string, std::vector<double>>> series;  // same length as t; NaN = no data
 };
 
+// One integration with the boat's network (issue 23: signalk, mqtt,
+// victron) for /api/system and /metrics.
+struct IntegrationState {
+  std::string name;
+  bool enabled = false;
+  bool connected = false;
+  std::string last_error;
+  std::uint64_t messages_sent = 0, messages_received = 0, messages_dropped = 0, values_refused = 0,
+                outages = 0;
+  std::map<std::string, double> values;  // what it reads (the Victron limits); NaN = none
+};
+
 // Health for /healthz: ok = the control loop ticks and the outputs are driven.
 struct Health {
   bool ok = false;
@@ -171,6 +183,8 @@ class DaemonApi {
   virtual std::vector<ProbeResult> probeResults() = 0;
   virtual VersionMap versions() = 0;
   virtual Health health() = 0;
+  // The integrations' state; none when the daemon runs without them.
+  virtual std::vector<IntegrationState> integrations() { return {}; }
 };
 
 }  // namespace xr::web

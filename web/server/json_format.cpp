@@ -275,4 +275,58 @@ std::string metricsText(const StatusSnapshot* s, const WebServerStats& st) {
   return out;
 }
 
+json::object integrationToJson(const IntegrationState& i) {
+  json::object o;
+  o["name"] = i.name;
+  o["enabled"] = i.enabled;
+  o["connected"] = i.connected;
+  o["last_error"] = i.last_error;
+  o["messages_sent"] = i.messages_sent;
+  o["messages_received"] = i.messages_received;
+  o["messages_dropped"] = i.messages_dropped;
+  o["values_refused"] = i.values_refused;
+  o["outages"] = i.outages;
+  if (!i.values.empty()) {
+    json::object v;
+    for (const auto& [k, x] : i.values) v[k] = number(x);
+    o["values"] = std::move(v);
+  }
+  return o;
+}
+
+std::string integrationMetrics(const std::vector<IntegrationState>& list) {
+  std::string out;
+  struct Metric {
+    const char* name;
+    const char* type;
+    const char* help;
+    std::uint64_t (*value)(const IntegrationState&);
+  };
+  static const Metric kMetrics[] = {
+      {"xregulator_integration_connected", "gauge", "1 when the integration is connected",
+       [](const IntegrationState& i) -> std::uint64_t { return i.connected ? 1 : 0; }},
+      {"xregulator_integration_messages_sent_total", "counter", "Messages sent by the integration",
+       [](const IntegrationState& i) { return i.messages_sent; }},
+      {"xregulator_integration_messages_dropped_total", "counter",
+       "Messages replaced by a newer one while the link was busy or down",
+       [](const IntegrationState& i) { return i.messages_dropped; }},
+      {"xregulator_integration_values_refused_total", "counter", "Bad values from the server, refused",
+       [](const IntegrationState& i) { return i.values_refused; }},
+      {"xregulator_integration_outages_total", "counter", "Connections lost or never made",
+       [](const IntegrationState& i) { return i.outages; }},
+  };
+  for (const auto& m : kMetrics) {
+    bool header = false;
+    for (const auto& i : list) {
+      if (!i.enabled) continue;
+      if (!header) {
+        out += std::string("# HELP ") + m.name + " " + m.help + "\n# TYPE " + m.name + " " + m.type + "\n";
+        header = true;
+      }
+      out += std::string(m.name) + "{integration=\"" + i.name + "\"} " + std::to_string(m.value(i)) + "\n";
+    }
+  }
+  return out;
+}
+
 }  // namespace xr::web

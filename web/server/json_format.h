@@ -27,6 +27,10 @@ boost::json::object historyToJson(const HistoryResult& h);
 // Prometheus text exposition format 0.0.4.
 std::string metricsText(const StatusSnapshot* s, const WebServerStats& stats);
 
+// /api/system "integrations" entries and their /metrics lines (issue 23).
+boost::json::object integrationToJson(const IntegrationState& i);
+std::string integrationMetrics(const std::vector<IntegrationState>& list);
+
 // A finite number, or null (JSON has no NaN/Inf).
 boost::json::value number(double v);
 

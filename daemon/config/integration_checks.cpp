@@ -1,0 +1,69 @@
+#include "config/integration_checks.h"
+
+#include <cctype>
+
+namespace xr {
+
+namespace {
+
+bool isTopicId(const std::string& text) {
+  if (text.empty() || text.size() > 64) return false;
+  for (unsigned char c : text)
+    if (!std::isalnum(c) && c != '_' && c != '-') return false;
+  return true;
+}
+
+// MQTT topic levels must not hold wildcards or separators.
+bool isTopicLevels(const std::string& text) {
+  if (text.empty()) return false;
+  for (char c : text)
+    if (c == '+' || c == '#' || c == ' ' || c == '\0') return false;
+  return text.front() != '/' && text.back() != '/';
+}
+
+}  // namespace
+
+bool isAlphanumericId(const std::string& text) {
+  if (text.empty() || text.size() > 64) return false;
+  for (unsigned char c : text)
+    if (!std::isalnum(c)) return false;
+  return true;
+}
+
+std::vector<std::pair<std::string, std::string>> checkIntegrations(const IntegrationsSettings& s) {
+  std::vector<std::pair<std::string, std::string>> out;
+  auto bad = [&](std::string key, std::string msg) { out.emplace_back(std::move(key), std::move(msg)); };
+
+  const auto& k = s.signalk;
+  // wss:// is not supported yet (docs/integrations.md): on a boat the server
+  // is normally on the local network.
+  if (!k.url.starts_with("ws://") || k.url.size() <= 5 || k.url[5] == '/' || k.url[5] == ':')
+    bad("integrations.signalk.url",
+        "'" + k.url + "' must be ws://host[:port]/path (wss:// is not supported yet)");
+  if (!isAlphanumericId(k.alternator_id))
+    bad("integrations.signalk.alternator_id", "'" + k.alternator_id + "' must be letters and digits only");
+  if (!isAlphanumericId(k.battery_id))
+    bad("integrations.signalk.battery_id", "'" + k.battery_id + "' must be letters and digits only");
+
+  const auto& m = s.mqtt;
+  if (m.enabled && m.host.empty()) bad("integrations.mqtt.host", "must name the broker when enabled");
+  if (!isTopicId(m.node_id))
+    bad("integrations.mqtt.node_id", "'" + m.node_id + "' must be letters, digits, _ or - (at most 64)");
+  if (!isTopicLevels(m.discovery_prefix))
+    bad("integrations.mqtt.discovery_prefix", "'" + m.discovery_prefix + "' is not a usable topic prefix");
+  // Commands change what the regulator does: never from an anonymous broker.
+  if (m.commands_enabled && (m.username.empty() || m.password.empty()))
+    bad("integrations.mqtt.commands_enabled",
+        "needs username and password: commands are never taken anonymously");
+  if (!m.password.empty() && m.username.empty())
+    bad("integrations.mqtt.password", "a password needs a username");
+
+  const auto& v = s.victron;
+  if (v.enabled && v.host.empty()) bad("integrations.victron.host", "must name the GX when enabled");
+  if (v.enabled && !isTopicId(v.portal_id))
+    bad("integrations.victron.portal_id",
+        "'" + v.portal_id + "' is not a VRM portal id (letters and digits)");
+  return out;
+}
+
+}  // namespace xr

@@ -1,0 +1,19 @@
+#pragma once
+// Checks of [integrations.*] that the loader makes (issue 23): a value an
+// integration could not use is a configuration error with its key, not a
+// surprise on the boat's network later.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "config/settings.h"
+
+namespace xr {
+
+// True when text is a non-empty run of letters and digits (Signal K <id>).
+bool isAlphanumericId(const std::string& text);
+
+// (dotted key, message) for every problem; empty when all are usable.
+std::vector<std::pair<std::string, std::string>> checkIntegrations(const IntegrationsSettings& s);
+
+}  // namespace xr

@@ -1,0 +1,136 @@
+#include "integrations/ha_discovery.h"
+
+#include <boost/json.hpp>
+#include <cmath>
+
+namespace xr::integrations {
+
+namespace json = boost::json;
+
+namespace {
+
+struct SensorDef {
+  const char* object;       // object id and state key
+  const char* name;         // shown in Home Assistant (prefixed by the device name)
+  const char* unit;         // "" = none
+  const char* deviceClass;  // "" = none
+  const char* stateClass;   // "" = none
+  const char* icon;         // "" = the device class's
+};
+
+// The list: battery V, battery A, alternator A, alternator degC, SoC,
+// field %, power W, stage, mode, charged kWh.
+constexpr SensorDef kSensors[] = {
+    {"battery_voltage", "Battery voltage", "V", "voltage", "measurement", ""},
+    {"battery_current", "Battery current", "A", "current", "measurement", ""},
+    {"alternator_current", "Alternator current", "A", "current", "measurement", ""},
+    {"alternator_temperature", "Alternator temperature", "°C", "temperature", "measurement", ""},
+    {"soc", "State of charge", "%", "battery", "measurement", ""},
+    {"field_duty", "Field duty", "%", "", "measurement", "mdi:sine-wave"},
+    {"power", "Alternator power", "W", "power", "measurement", ""},
+    {"stage", "Charging stage", "", "", "", "mdi:battery-charging"},
+    {"mode", "Regulator mode", "", "", "", "mdi:state-machine"},
+    {"charged_energy", "Charged energy", "kWh", "energy", "total_increasing", ""},
+};
+
+struct BinaryDef {
+  const char* object;
+  const char* name;
+  const char* deviceClass;
+};
+constexpr BinaryDef kBinary[] = {
+    {"field", "Field enabled", "power"},
+    {"alarm", "Alarm", "problem"},
+};
+
+json::object deviceBlock(const HaTopics& t, const std::string& version) {
+  json::object d;
+  d["identifiers"] = json::array{"xregulator_" + t.id};
+  d["name"] = "xregulator " + t.id;
+  d["manufacturer"] = "xregulator";
+  d["model"] = "alternator field regulator";
+  d["sw_version"] = version;
+  return d;
+}
+
+json::object common(const HaTopics& t, const std::string& object, const char* name,
+                    const std::string& version) {
+  json::object o;
+  o["name"] = name;
+  o["unique_id"] = "xregulator_" + t.id + "_" + object;
+  o["object_id"] = "xregulator_" + t.id + "_" + object;
+  o["availability_topic"] = t.availability();
+  o["payload_available"] = "online";
+  o["payload_not_available"] = "offline";
+  o["device"] = deviceBlock(t, version);
+  return o;
+}
+
+json::value number(double v, int decimals) {
+  if (!std::isfinite(v)) return nullptr;
+  const double scale = std::pow(10.0, decimals);
+  return std::round(v * scale) / scale;
+}
+
+}  // namespace
+
+std::vector<MqttMessage> discoveryConfigs(const HaTopics& t, bool withCommands, const std::string& version) {
+  std::vector<MqttMessage> out;
+  for (const auto& s : kSensors) {
+    json::object o = common(t, s.object, s.name, version);
+    o["state_topic"] = t.state();
+    o["value_template"] = std::string("{{ value_json.") + s.object + " }}";
+    if (*s.unit) o["unit_of_measurement"] = s.unit;
+    if (*s.deviceClass) o["device_class"] = s.deviceClass;
+    if (*s.stateClass) o["state_class"] = s.stateClass;
+    if (*s.icon) o["icon"] = s.icon;
+    out.push_back({t.config("sensor", s.object), json::serialize(o)});
+  }
+  for (const auto& b : kBinary) {
+    json::object o = common(t, b.object, b.name, version);
+    o["state_topic"] = t.state();
+    o["value_template"] = std::string("{{ value_json.") + b.object + " }}";
+    o["payload_on"] = "ON";
+    o["payload_off"] = "OFF";
+    o["device_class"] = b.deviceClass;
+    out.push_back({t.config("binary_sensor", b.object), json::serialize(o)});
+  }
+  if (withCommands) {
+    json::object sel = common(t, "regulator_mode", "Regulator on/off", version);
+    sel["command_topic"] = t.modeCommand();
+    sel["state_topic"] = t.state();
+    sel["value_template"] = "{{ value_json.regulator_mode }}";
+    sel["options"] = json::array{"off", "auto"};
+    sel["icon"] = "mdi:power";
+    out.push_back({t.config("select", "regulator_mode"), json::serialize(sel)});
+    json::object btn = common(t, "limp_home", "Limp home", version);
+    btn["command_topic"] = t.limpHomeCommand();
+    btn["payload_press"] = "PRESS";
+    btn["icon"] = "mdi:car-emergency";
+    out.push_back({t.config("button", "limp_home"), json::serialize(btn)});
+  }
+  return out;
+}
+
+std::string regulatorModeOption(const IntegrationSample& s) { return s.operatorOff ? "off" : "auto"; }
+
+std::string stateJson(const IntegrationSample& s) {
+  json::object o;
+  o["battery_voltage"] = number(s.battery_v, 3);
+  o["battery_current"] = number(s.battery_a, 2);
+  o["alternator_current"] = number(s.alt_a, 2);
+  o["alternator_temperature"] = number(s.alt_temp_c, 1);
+  o["soc"] = number(s.soc_pct, 1);
+  o["field_duty"] = number(s.field_pct, 1);
+  o["power"] = number(s.power_w, 0);
+  o["stage"] = s.stage;
+  o["mode"] = s.mode;
+  o["reason"] = s.reason;
+  o["charged_energy"] = number(s.charged_kwh, 3);
+  o["field"] = s.field_on ? "ON" : "OFF";
+  o["alarm"] = s.alarm ? "ON" : "OFF";
+  o["regulator_mode"] = regulatorModeOption(s);
+  return json::serialize(o);
+}
+
+}  // namespace xr::integrations

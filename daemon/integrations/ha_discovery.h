@@ -1,0 +1,46 @@
+#pragma once
+// Home Assistant MQTT discovery documents and the state document (issue 23).
+// Pure: topics and JSON text from the settings and one sample, so the tests
+// can check every field Home Assistant requires without a broker.
+//
+// Topics (prefix = discovery_prefix, id = node_id):
+//   <prefix>/<component>/xregulator_<id>/<object>/config   retained configs
+//   xregulator/<id>/state                                  one JSON document
+//   xregulator/<id>/availability                           online / offline (LWT)
+//   xregulator/<id>/set/mode, xregulator/<id>/set/limp_home  commands (opt-in)
+#include <string>
+#include <vector>
+
+#include "integrations/integration_sample.h"
+
+namespace xr::integrations {
+
+struct MqttMessage {
+  std::string topic;
+  std::string payload;
+};
+
+struct HaTopics {
+  std::string prefix, id;
+  std::string state() const { return "xregulator/" + id + "/state"; }
+  std::string availability() const { return "xregulator/" + id + "/availability"; }
+  std::string modeCommand() const { return "xregulator/" + id + "/set/mode"; }
+  std::string limpHomeCommand() const { return "xregulator/" + id + "/set/limp_home"; }
+  std::string birth() const { return prefix + "/status"; }  // Home Assistant's own online/offline
+  std::string config(const std::string& component, const std::string& object) const {
+    return prefix + "/" + component + "/xregulator_" + id + "/" + object + "/config";
+  }
+};
+
+// Every retained discovery config: the sensors and binary sensors always,
+// the select (off/auto) and the button (limp home) only when withCommands.
+std::vector<MqttMessage> discoveryConfigs(const HaTopics& t, bool withCommands, const std::string& version);
+
+// The state document for one sample.
+std::string stateJson(const IntegrationSample& s);
+
+// "off" when the regulator is switched off by the operator, else "auto"
+// (the select's current option).
+std::string regulatorModeOption(const IntegrationSample& s);
+
+}  // namespace xr::integrations

@@ -1,0 +1,54 @@
+#pragma once
+// Home Assistant through MQTT discovery (issue 23): announces the device
+// (retained configs), publishes the state document at state_rate_hz, keeps
+// availability through the broker's last will, re-announces when Home
+// Assistant says "online" on <prefix>/status, and takes off/auto and limp
+// home only when commands are enabled and the broker needs credentials.
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/steady_timer.hpp>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "config/settings.h"
+#include "core/commands.h"
+#include "integrations/ha_discovery.h"
+#include "integrations/integration_health.h"
+#include "integrations/mqtt_link.h"
+#include "runtime/handoffs.h"
+
+namespace xr::integrations {
+
+// Hands an operator command to the regulator and logs it like an HTTP one;
+// `source` says where it came from ("Home Assistant (MQTT)").
+using CommandSink = std::function<void(const Command& c, const std::string& source)>;
+
+class HomeAssistantBridge {
+ public:
+  HomeAssistantBridge(boost::asio::io_context& io, const MqttSettings& s, const rt::Handoffs& handoffs,
+                      CommandSink commands, std::string version);
+  void start();
+  void stop();
+  IntegrationStatus status() const { return health_.status(); }
+  std::uint64_t announcements() const { return announcements_; }
+
+ private:
+  void announce();
+  void publishState();
+  void onMessage(const std::string& topic, std::string_view payload);
+  void tick();
+
+  boost::asio::io_context& io_;
+  MqttSettings settings_;
+  const rt::Handoffs& handoffs_;
+  CommandSink commands_;
+  std::string version_;
+  HaTopics topics_;
+  bool withCommands_;
+  IntegrationHealth health_;
+  std::unique_ptr<MqttLink> link_;
+  boost::asio::steady_timer timer_;
+  std::uint64_t announcements_ = 0;
+};
+
+}  // namespace xr::integrations

@@ -1,0 +1,41 @@
+#pragma once
+// What the integrations publish, taken from one telemetry snapshot (the
+// seqlock the web server reads too; never a queue from the control thread).
+// Each integration converts to its own units from here: Signal K wants SI
+// (K, Hz, ratio 0-1, s), Home Assistant wants what a boat owner reads
+// (degC, %, kWh).
+#include <string>
+#include <string_view>
+
+#include "core/inputs.h"
+#include "core/modes.h"
+#include "runtime/handoffs.h"
+
+namespace xr::integrations {
+
+struct IntegrationSample {
+  bool valid = false;  // false before the first tick
+  double battery_v = 0, battery_a = 0, alt_a = 0;
+  double alt_temp_c = 0;
+  double battery_temp_c = kNoValue;  // not measured yet (the battery sensor comes with issue 22)
+  double rpm = 0;
+  double field_pct = 0;  // duty
+  bool field_on = false;
+  bool alarm = false;
+  double setpoint_v = 0, setpoint_a = 0;
+  double soc_pct = 0;
+  double time_to_empty_s = -1;  // < 0: unknown
+  double power_w = 0;           // alternator output: battery voltage x alternator current
+  double charged_kwh = 0;       // lifetime energy into the battery
+  std::string mode, stage, reason;
+  ChargeStage stageValue = ChargeStage::BULK;
+  bool operatorOff = false;  // sysMode SYS_MODE_OFF: switched off by a command
+};
+
+IntegrationSample sampleOf(const rt::RuntimeSnapshot& s);
+
+// Signal K's chargingMode words for a stage (bulk / acceptance / float /
+// other): absorption is "acceptance", idle or a field that is off is "other".
+std::string_view signalKChargingMode(ChargeStage stage, bool fieldOn);
+
+}  // namespace xr::integrations

@@ -1,0 +1,134 @@
+#include "integrations/victron_gx.h"
+
+#include <spdlog/spdlog.h>
+
+namespace xr::integrations {
+
+namespace {
+using namespace std::chrono_literals;
+// Venus drops a subscriber's topics 60 s after its last keepalive.
+constexpr auto kKeepalivePeriod = 30s;
+// After the first keepalive (which makes Venus publish every value once),
+// ask it not to republish everything each time.
+constexpr const char* kKeepaliveQuiet = R"({"keepalive-options": ["suppress-republish"]})";
+constexpr VictronField kFields[] = {VictronField::MaxChargeVoltage, VictronField::MaxChargeCurrent,
+                                    VictronField::Soc, VictronField::TemperatureC,
+                                    VictronField::AllowToCharge};
+}  // namespace
+
+VictronGxBridge::VictronGxBridge(boost::asio::io_context& io, const VictronSettings& s,
+                                 VictronLimitsSink sink)
+    : settings_(s),
+      topics_{s.portal_id, s.battery_instance},
+      sink_(std::move(sink)),
+      health_("victron"),
+      timer_(io) {
+  MqttOptions o;
+  o.host = s.host;
+  o.port = s.port;
+  o.clientId = "xregulator_victron_" + s.portal_id;
+  link_ = std::make_unique<MqttLink>(io, o, health_);
+}
+
+void VictronGxBridge::start() {
+  link_->start([this] { onConnected(); },
+               [this](const std::string& t, std::string_view p) { onMessage(t, p); });
+  tick();
+}
+
+void VictronGxBridge::stop() {
+  timer_.cancel();
+  link_->stop();
+}
+
+void VictronGxBridge::onConnected() {
+  for (auto f : kFields) link_->subscribe(topics_.topic(f));
+  link_->publish(topics_.keepalive(), "", false);  // every value once, now
+  lastKeepalive_ = std::chrono::steady_clock::now();
+}
+
+void VictronGxBridge::onMessage(const std::string& topic, std::string_view payload) {
+  const auto r = decodeVictron(topics_, topic, payload);
+  if (!r) return;
+  if (!r->refused.empty()) {
+    health_.refused(r->refused);  // never reaches the limits
+    return;
+  }
+  {
+    std::lock_guard lock(m_);
+    const double v = r->known ? r->value : kNoValue;
+    switch (r->field) {
+      case VictronField::MaxChargeVoltage:
+        limits_.cvl_v = v;
+        break;
+      case VictronField::MaxChargeCurrent:
+        limits_.ccl_a = v;
+        break;
+      case VictronField::Soc:
+        limits_.soc_pct = v;
+        break;
+      case VictronField::TemperatureC:
+        limits_.temp_c = v;
+        break;
+      case VictronField::AllowToCharge:
+        limits_.allowToCharge = r->known ? static_cast<int>(v) : -1;
+        break;
+    }
+    lastAccepted_ = std::chrono::steady_clock::now();
+    limits_.stale = false;
+    limits_.ageS = 0;
+  }
+  if (staleLogged_) {
+    staleLogged_ = false;
+    spdlog::info("victron: battery limits fresh again");
+  }
+  publishToSink();
+}
+
+void VictronGxBridge::tick() {
+  const auto now = std::chrono::steady_clock::now();
+  if (link_->connected() && now - lastKeepalive_ >= kKeepalivePeriod) {
+    link_->publish(topics_.keepalive(), kKeepaliveQuiet, false);
+    lastKeepalive_ = now;
+  }
+  {
+    std::lock_guard lock(m_);
+    if (lastAccepted_ != std::chrono::steady_clock::time_point{}) {
+      limits_.ageS = std::chrono::duration<double>(now - lastAccepted_).count();
+      limits_.stale = limits_.ageS > settings_.stale_s;
+    }
+  }
+  if (limits().stale && lastAccepted_ != std::chrono::steady_clock::time_point{} && !staleLogged_) {
+    staleLogged_ = true;
+    spdlog::warn("victron: no battery limits for {} s: stale (REASON_BMS_STALE)", settings_.stale_s);
+  }
+  publishToSink();
+  timer_.expires_after(1s);
+  timer_.async_wait([this](const boost::system::error_code& ec) {
+    if (!ec) tick();
+  });
+}
+
+void VictronGxBridge::publishToSink() {
+  if (sink_) sink_(limits());
+}
+
+VictronLimits VictronGxBridge::limits() const {
+  std::lock_guard lock(m_);
+  return limits_;
+}
+
+IntegrationStatus VictronGxBridge::status() const {
+  IntegrationStatus s = health_.status();
+  const VictronLimits l = limits();
+  s.values = {{"bms_cvl_v", l.cvl_v},
+              {"bms_ccl_a", l.ccl_a},
+              {"bms_soc_pct", l.soc_pct},
+              {"battery_temp_c", l.temp_c},
+              {"allow_to_charge", static_cast<double>(l.allowToCharge)},
+              {"age_s", l.ageS},
+              {"stale", l.stale ? 1.0 : 0.0}};
+  return s;
+}
+
+}  // namespace xr::integrations

@@ -1,0 +1,115 @@
+// Home Assistant discovery documents and the state document (issue 23),
+// without a broker: topics, the fields Home Assistant requires, units.
+#include "integrations/ha_discovery.h"
+
+#include <gtest/gtest.h>
+
+#include <boost/json.hpp>
+#include <set>
+
+namespace xr::integrations {
+namespace {
+
+namespace json = boost::json;
+
+HaTopics topics() { return HaTopics{"homeassistant", "boat1"}; }
+
+json::object find(const std::vector<MqttMessage>& all, const std::string& topic) {
+  for (const auto& m : all)
+    if (m.topic == topic) return json::parse(m.payload).as_object();
+  ADD_FAILURE() << "no config on " << topic;
+  return {};
+}
+
+TEST(HaDiscovery, SensorsAndBinarySensorsWithoutCommands) {
+  const auto all = discoveryConfigs(topics(), false, "1.2.3");
+  std::set<std::string> names;
+  for (const auto& m : all) names.insert(m.topic);
+  EXPECT_EQ(all.size(), 12u);
+  EXPECT_EQ(names.size(), 12u);
+  EXPECT_TRUE(names.count("homeassistant/sensor/xregulator_boat1/battery_voltage/config"));
+  EXPECT_TRUE(names.count("homeassistant/binary_sensor/xregulator_boat1/alarm/config"));
+  EXPECT_FALSE(names.count("homeassistant/select/xregulator_boat1/regulator_mode/config"));
+  EXPECT_FALSE(names.count("homeassistant/button/xregulator_boat1/limp_home/config"));
+}
+
+TEST(HaDiscovery, CommandsAddSelectAndButton) {
+  const auto all = discoveryConfigs(topics(), true, "1.2.3");
+  EXPECT_EQ(all.size(), 14u);
+  auto sel = find(all, "homeassistant/select/xregulator_boat1/regulator_mode/config");
+  EXPECT_EQ(sel.at("command_topic").as_string(), "xregulator/boat1/set/mode");
+  EXPECT_EQ(json::serialize(sel.at("options")), R"(["off","auto"])");
+  auto btn = find(all, "homeassistant/button/xregulator_boat1/limp_home/config");
+  EXPECT_EQ(btn.at("command_topic").as_string(), "xregulator/boat1/set/limp_home");
+  EXPECT_EQ(btn.at("payload_press").as_string(), "PRESS");
+}
+
+TEST(HaDiscovery, EveryConfigHasTheRequiredFieldsAndOneDevice) {
+  for (const auto& m : discoveryConfigs(topics(), true, "1.2.3")) {
+    SCOPED_TRACE(m.topic);
+    auto o = json::parse(m.payload).as_object();
+    EXPECT_TRUE(o.contains("name"));
+    EXPECT_TRUE(o.at("unique_id").as_string().starts_with("xregulator_boat1_"));
+    EXPECT_EQ(o.at("availability_topic").as_string(), "xregulator/boat1/availability");
+    const auto& dev = o.at("device").as_object();
+    EXPECT_EQ(json::serialize(dev.at("identifiers")), R"(["xregulator_boat1"])");
+    EXPECT_EQ(dev.at("sw_version").as_string(), "1.2.3");
+  }
+}
+
+TEST(HaDiscovery, UnitsAndDeviceClasses) {
+  const auto all = discoveryConfigs(topics(), false, "x");
+  auto temp = find(all, "homeassistant/sensor/xregulator_boat1/alternator_temperature/config");
+  EXPECT_EQ(temp.at("unit_of_measurement").as_string(), "°C");
+  EXPECT_EQ(temp.at("device_class").as_string(), "temperature");
+  auto energy = find(all, "homeassistant/sensor/xregulator_boat1/charged_energy/config");
+  EXPECT_EQ(energy.at("unit_of_measurement").as_string(), "kWh");
+  EXPECT_EQ(energy.at("state_class").as_string(), "total_increasing");
+  auto stage = find(all, "homeassistant/sensor/xregulator_boat1/stage/config");
+  EXPECT_FALSE(stage.contains("unit_of_measurement"));
+  auto field = find(all, "homeassistant/binary_sensor/xregulator_boat1/field/config");
+  EXPECT_EQ(field.at("payload_on").as_string(), "ON");
+}
+
+TEST(HaDiscovery, StateDocumentCarriesEveryEntityInItsUnit) {
+  IntegrationSample s;
+  s.valid = true;
+  s.battery_v = 13.8123;
+  s.alt_a = 55.5;
+  s.alt_temp_c = 71.26;
+  s.field_pct = 42.0;
+  s.field_on = true;
+  s.power_w = 13.8123 * 55.5;
+  s.charged_kwh = 1.2345;
+  s.stage = "ABSORPTION";
+  s.mode = "MODE_NORMAL_AUTO_PID";
+  auto o = json::parse(stateJson(s)).as_object();
+  EXPECT_DOUBLE_EQ(o.at("battery_voltage").as_double(), 13.812);
+  EXPECT_DOUBLE_EQ(o.at("alternator_temperature").as_double(), 71.3);
+  EXPECT_DOUBLE_EQ(o.at("power").as_double(), 767.0);
+  EXPECT_DOUBLE_EQ(o.at("charged_energy").as_double(), 1.235);
+  EXPECT_EQ(o.at("field").as_string(), "ON");
+  EXPECT_EQ(o.at("alarm").as_string(), "OFF");
+  EXPECT_EQ(o.at("stage").as_string(), "ABSORPTION");
+  EXPECT_EQ(o.at("regulator_mode").as_string(), "auto");
+  s.operatorOff = true;
+  EXPECT_EQ(json::parse(stateJson(s)).as_object().at("regulator_mode").as_string(), "off");
+}
+
+TEST(HaDiscovery, NonFiniteValuesBecomeNull) {
+  IntegrationSample s;
+  s.battery_v = std::numeric_limits<double>::quiet_NaN();
+  auto o = json::parse(stateJson(s)).as_object();
+  EXPECT_TRUE(o.at("battery_voltage").is_null());
+}
+
+TEST(SignalKWords, ChargingModeFollowsTheStage) {
+  EXPECT_EQ(signalKChargingMode(ChargeStage::BULK, true), "bulk");
+  EXPECT_EQ(signalKChargingMode(ChargeStage::ABSORPTION, true), "acceptance");
+  EXPECT_EQ(signalKChargingMode(ChargeStage::FLOAT, true), "float");
+  EXPECT_EQ(signalKChargingMode(ChargeStage::IDLE, true), "other");
+  EXPECT_EQ(signalKChargingMode(ChargeStage::BULK, false), "other");
+}
+
+}  // namespace
+}  // namespace xr::integrations
