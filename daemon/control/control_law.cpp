@@ -44,6 +44,7 @@ void ControlLaw::updateFilters(const ControlSensors& s, const Params& p) {
   } else {
     controlDt_ = 0.0;
   }
+  if (finite(s.Bcur)) emaBcur_.update(s.Bcur, tickDt_, kBcurSlowTcMs);
   if (s.ibvFresh && finite(s.IBV)) {
     const double dt = lastFilterIbvNs_ < 0 ? 0.0 : toSec(s.now - lastFilterIbvNs_);
     emaIBV_.update(s.IBV, dt, p.VoltageFilterTC);
@@ -106,6 +107,22 @@ void ControlLaw::updateGovMode(const ControlSensors& s, const Params& p, const F
   govMode_ = bypass ? GovMode::GOV_BYPASS_SLEW : GovMode::GOV_NORMAL_SLEW;
 }
 
+void ControlLaw::reseedAfterLoadDump(const ControlSensors& s) {
+  // The bank at its target accepted dumpAcceptA_ before the load went; what
+  // is still drawn beside it is the alternator current less the battery's,
+  // now. Their sum holds the target. The inner loop's filtered current
+  // still carries the dumped load (~1 s behind): seeding from it drove the
+  // bank back over the target and kept the field off while an AGM's charge
+  // overpotential relaxed (cruising 11, 12). Without a battery current the
+  // seed's bumpless reseed stands.
+  if (finite(dumpAcceptA_) && finite(s.Bcur) && finite(MeasuredAmps_)) {
+    cv_.requestReseedAt(std::max(0.0, dumpAcceptA_ + (MeasuredAmps_ - s.Bcur)));
+  } else {
+    cv_.requestReseed();
+  }
+  dumpAcceptA_ = kNoValue;
+}
+
 double ControlLaw::governorStep(const Params& p, double request, GovMode mode, double dt) {
   GovernorLimits lim{p.MinDuty, p.MaxDuty, p.DutyRampRate};
   return governor_apply(lastAppliedDuty_, request, mode, rpmMinDuty_, dt, lim);
@@ -114,14 +131,16 @@ double ControlLaw::governorStep(const Params& p, double request, GovMode mode, d
 double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const FastOvApply& fa,
                               EventBatch& ev) {
   fastOvClampActive_ = fa.fastOvClampActive;
+  if (fa.zeroSetpointLimited && !loadDumpInEpisode_)
+    dumpAcceptA_ = emaBcur_.primed() ? emaBcur_.value() : kNoValue;
   if (fa.zeroSetpointLimited) loadDumpInEpisode_ = true;
   if (fastOvWasActive_ && !fastOvClampActive_) {
     onProtectionCleared(s.now);
     // Ours, after the original firmware: a load dump snapped cv_I to 0 and
-    // bled its AW cap; reseed (bumpless, cap cleared) so the recovery starts
-    // from the current flowing now. Group 1/2/3 clamps keep the seed's slow
+    // bled its AW cap; reseed (cap cleared) so the recovery starts from the
+    // current the bank needs now. Group 1/2/3 clamps keep the seed's slow
     // AW recovery: their current was too high, a reseed would restore it.
-    if (loadDumpInEpisode_) cv_.requestReseed();
+    if (loadDumpInEpisode_) reseedAfterLoadDump(s);
     loadDumpInEpisode_ = false;
   }
   fastOvWasActive_ = fastOvClampActive_;
@@ -129,6 +148,10 @@ double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const Fa
   if (fa.setCvI) cv_.setCvI(fa.cv_I);
   if (fa.zeroSetpointLimited) setpointLimited_ = 0.0;
   updateGovMode(s, p, fa);
+  if (fieldResting_ && s.ch1Fresh && restOver(s, p)) {
+    fieldResting_ = false;  // the field-on edge restarts the startup ramp
+    cv_.requestReseed();
+  }
 
   if (sysId_.sysIDRunning()) {
     // Plant-delay step test: setpoint machinery skipped, inner PID pinned.
@@ -161,11 +184,7 @@ double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const Fa
   // PID and the duty hold until the next sample (<= one ADS cycle).
   if (!s.ch1Fresh) return lastAppliedDuty_;
   const double dt = controlDt_;
-  if (fieldResting_) {
-    if (!restOver(s, p)) return holdAtRest();
-    fieldResting_ = false;  // the field-on edge restarts the startup ramp
-    cv_.requestReseed();
-  }
+  if (fieldResting_) return holdAtRest();
 
   CvLoopInputs ci;
   ci.now = s.now;
@@ -224,6 +243,11 @@ double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const Fa
   if (p.MaintainMode) c = 0.0;
   c = std::min(c, fa.fastOvCurrentCap);
   if (voltageControlActive_) c = std::min(c, Icv);
+  // Ours: an alternator at full field makes all it can; a penalty that
+  // leaves it more than that has no effect yet. Counting it as implied
+  // parks the integrator at the edge of effect (a 160 A cap on a machine
+  // making 140 A hot gave the loop 20 A of dead travel, and the overshoot).
+  if (duty >= p.MaxDuty - kFullFieldDutyBand && emaInput_.primed()) c = std::min(c, emaInput_.value());
   nonThermalCeiling_ = c;
   if (restDue(s, p)) {
     fieldResting_ = true;

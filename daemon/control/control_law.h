@@ -137,6 +137,10 @@ class ControlLaw {
   static constexpr double kNoCeiling = 1e300;
   // The CV loop is "at its ceiling" when its command is within this of it.
   static constexpr double kTailHeadroomA = 1.0;
+  // The voltage loop "asks for no current" at or under this command.
+  static constexpr double kRestNoCurrentA = 0.05;
+  // The field is "full" within this of MaxDuty (duty %).
+  static constexpr double kFullFieldDutyBand = 1.0;
 
   void configurePid(const Params& p);
   double governorStep(const Params& p, double request, GovMode mode, double dt);
@@ -147,9 +151,12 @@ class ControlLaw {
   // Field rest (field_rest.cpp): when to start and end one, and the loops'
   // state while it lasts.
   bool restDue(const ControlSensors& s, const Params& p);
+  // TuningMode, CVTuningMode or a SystemID run: no rest starts or lasts.
+  bool tuningActive(const Params& p) const;
   bool restOver(const ControlSensors& s, const Params& p) const;
   double holdAtRest();
   void updateGovMode(const ControlSensors& s, const Params& p, const FastOvApply& fa);
+  void reseedAfterLoadDump(const ControlSensors& s);
 
   // Loops.
   Pid currentPID_;
@@ -163,6 +170,9 @@ class ControlLaw {
 
   // Filters (CH1 record path).
   Ema emaInput_, emaPid_, emaIBV_;
+  // Battery current over seconds: what the bank accepted before a load dump.
+  Ema emaBcur_;
+  static constexpr double kBcurSlowTcMs = 2000.0;
   MovingAverage<64> maPid_;
   double MeasuredAmps_ = 0.0;
   double pidSig_ = 0.0;
@@ -189,6 +199,7 @@ class ControlLaw {
   bool haveProtectionCleared_ = false;
   bool fastOvClampActive_ = false, fastOvWasActive_ = false;
   bool loadDumpInEpisode_ = false;  // a load dump acted since the fast-OV clamp engaged
+  double dumpAcceptA_ = kNoValue;   // emaBcur_ when this episode's load dump first acted
   bool cvOvershootBypass_ = false;
   bool fastRiseActive_ = false;
   bool warmupActive_ = false;

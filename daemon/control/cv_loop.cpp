@@ -31,7 +31,9 @@ void VoltageCvLoop::seedOnEntry(const CvLoopInputs& in, const Params& p) {
   // from wherever the current was.
   voltageTargetSlewed_ = slewedTarget(in, p);
   const double e = voltageTargetSlewed_ - in.IBV;
-  const double seed = clampd(in.g_pidI_filtered - p.VoltageKp * e, 0.0, std::max(0.0, in.uTargetAmps));
+  const double base = reseedAmps_ >= 0.0 ? reseedAmps_ : in.g_pidI_filtered;
+  reseedAmps_ = -1.0;
+  const double seed = clampd(base - p.VoltageKp * e, 0.0, std::max(0.0, in.uTargetAmps));
   cv_I_ = seed;
   cv_I_track_ = seed;
   cv_I_aw_cap_ = p.MaxTableValue;  // clear any stale post-event cap
@@ -85,6 +87,7 @@ double VoltageCvLoop::update(const CvLoopInputs& in, const Params& p) {
   const bool entering = in.voltageControlActive && (!wasActive_ || reseedPending_);
   wasActive_ = in.voltageControlActive;
   if (!in.voltageControlActive || entering) reseedPending_ = false;
+  if (!in.voltageControlActive) reseedAmps_ = -1.0;
   if (entering) seedOnEntry(in, p);
   const bool seedProtect =
       awSeedProtectStartNs_ >= 0 && (in.now - awSeedProtectStartNs_) < fromMs(p.AwSeedProtectMs);

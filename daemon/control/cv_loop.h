@@ -34,6 +34,13 @@ class VoltageCvLoop {
   // active update seeds cv_I as on CV entry (bumpless, AW cap cleared)
   // instead of crawling back from the event's state.
   void requestReseed() { reseedPending_ = true; }
+  // The same, with the current the alternator should make now (instead of
+  // the inner loop's filtered feedback, which still holds the pre-event
+  // current for a while): Icv starts at `amps`.
+  void requestReseedAt(double amps) {
+    reseedPending_ = true;
+    reseedAmps_ = amps;
+  }
   void reset();
 
   double Icv() const { return Icv_; }
@@ -59,6 +66,7 @@ class VoltageCvLoop {
   int g_awState_ = 4;
   double cvDSlope_ = 0.0;
   bool reseedPending_ = false;
+  double reseedAmps_ = -1.0;  // < 0: seed from g_pidI_filtered
   double g_voltLoopActualIntervalMs_ = 0.0;
 };
 

@@ -2,8 +2,9 @@
 // duty floor (rpmMinDutyTable, for the tach signal) can push more current
 // than a full bank at light load takes: the voltage then climbs past the
 // target into the over-voltage protections. When the voltage loop asks for
-// less than the floor and the bank still sits above its target, the field
-// rests (enable LOW, duty 0) until the voltage falls back under the target.
+// less than the floor, or for no current at all, and the bank still sits
+// above its target, the field rests (enable LOW, duty 0) until the voltage
+// falls back under the target.
 #include <algorithm>
 
 #include "control/control_law.h"
@@ -11,9 +12,19 @@
 
 namespace xr {
 
+bool ControlLaw::tuningActive(const Params& p) const {
+  // A tuning run owns the field: it must neither start nor keep a rest.
+  return p.TuningMode || p.CVTuningMode || sysId_.sysIDRunning();
+}
+
 bool ControlLaw::restDue(const ControlSensors& s, const Params& p) {
-  const bool tuning = p.TuningMode || p.CVTuningMode || sysId_.sysIDRunning();
-  const bool cond = !tuning && voltageControlActive_ && rpmMinDuty_ > 0.0 && dutyRequest_ <= rpmMinDuty_ &&
+  // Nothing for the field to do: the duty is down at the RPM floor, or the
+  // voltage loop asks for no current at all (a bank relaxing from absorption
+  // sits above the float target by itself; the PID then parks the duty at the
+  // alternator's knee, where it makes no current but keeps the field on).
+  const bool atFloor = rpmMinDuty_ > 0.0 && dutyRequest_ <= rpmMinDuty_;
+  const bool noCurrentAsked = setpointCommand_ <= kRestNoCurrentA;
+  const bool cond = !tuningActive(p) && voltageControlActive_ && (atFloor || noCurrentAsked) &&
                     finite(s.IBV) && s.IBV > ChargingVoltageTarget_ + p.FieldRestMarginV;
   if (!cond) {
     restArmedAt_ = -1;
@@ -28,7 +39,7 @@ bool ControlLaw::restDue(const ControlSensors& s, const Params& p) {
 bool ControlLaw::restOver(const ControlSensors& s, const Params& p) const {
   // The stage or an override changed what the loop holds, the voltage is
   // unknown, or the bank has come down under its target: the field works again.
-  return !voltageControlActive_ || p.TuningMode || p.CVTuningMode || !finite(s.IBV) ||
+  return !voltageControlActive_ || tuningActive(p) || !finite(s.IBV) ||
          s.IBV < ChargingVoltageTarget_ - p.FieldRestWakeV;
 }
 

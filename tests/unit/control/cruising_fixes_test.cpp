@@ -94,6 +94,50 @@ TEST(FieldRest, RpmGateCutsAtOnceWhenNotResting) {
   EXPECT_EQ(r.out->telemetry.reason, Reason::REASON_RPM_LOW);
 }
 
+// One tuningActive() for both ends of a rest: a run that owns the field
+// neither starts a rest nor leaves one in place.
+struct RestingLaw : test::LawRig {
+  RestingLaw() : test::LawRig(fullBankParams()) {
+    plant.house = 1.0;
+    plant.Vocv = 13.45;
+    plant.VocvMax = 13.62;
+    plant.voltsPerAmpSec = 0.005;
+    start();
+  }
+};
+
+TEST(FieldRest, LawRestsWithoutTuning) {
+  RestingLaw r;
+  r.run(120.0);
+  EXPECT_TRUE(r.law.fieldResting());
+  EXPECT_EQ(r.duty, 0.0);
+}
+
+TEST(FieldRest, SystemIdEndsARestLikeTheOtherTuningModes) {
+  RestingLaw r;
+  r.run(120.0);
+  ASSERT_TRUE(r.law.fieldResting());
+  ASSERT_TRUE(r.law.startSystemId(r.now, true));
+  r.tick();
+  EXPECT_FALSE(r.law.fieldResting());
+  EXPECT_GT(r.duty, 0.0);  // the step test drives the field
+  for (int i = 0; i < 10 * 400 && r.law.sysIDRunning(); ++i) {
+    r.tick();
+    EXPECT_FALSE(r.law.fieldResting());
+  }
+}
+
+TEST(FieldRest, TuningModeEndsARest) {
+  RestingLaw r;
+  r.run(120.0);
+  ASSERT_TRUE(r.law.fieldResting());
+  r.p.TuningMode = 1;
+  r.tick();
+  EXPECT_FALSE(r.law.fieldResting());
+  r.run(60.0);
+  EXPECT_FALSE(r.law.fieldResting());  // and none starts while it lasts
+}
+
 // Tail current: a bank discharging into a load bigger than the cap is not full.
 TEST(ChargingStage, TailNeedsTheVoltageHeld) {
   test::LawRig rig;

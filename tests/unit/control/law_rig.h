@@ -19,6 +19,7 @@ struct LawRig {
   bool manual = false;
   FastOvApply fa;
   double duty = 0.0;
+  bool bcurKnown = true;  // false: no battery current sensor
 
   explicit LawRig(const Params& params = Params{}) : p(params), law(params) {}
 
@@ -29,7 +30,7 @@ struct LawRig {
     s.MeasuredAmps = plant.Ialt;
     s.IBV = plant.V();
     s.ibvFresh = true;
-    s.Bcur = plant.Ibat();
+    s.Bcur = bcurKnown ? plant.Ibat() : kNoValue;
     s.rpm = rpm;
     s.TempToUse = tempF;
     s.tempStamp = tempStamp;

@@ -18,6 +18,7 @@ struct Plant {
   double R = 0.01;                 // ohm
   double voltsPerAmpSec = 0.0005;  // dVocv/dt per net amp (a small bank so CV tests run in seconds)
   double VocvMax = 14.8;           // the bank saturates here
+  double kneePct = 0.0;            // duty under which no current flows (a Lundell machine's knee)
   // Delay line for deadTime (fixed size, no allocation).
   double delayed[4096] = {};
   int head = 0, len = 0;
@@ -34,7 +35,7 @@ struct Plant {
       len = std::min(len + 1, 4096);
       u = len > n ? delayed[(head - 1 - n + 4096) % 4096] : 0.0;
     }
-    const double target = u * ampsPerPct;
+    const double target = std::max(0.0, u - kneePct) * ampsPerPct;
     Ialt += (target - Ialt) * std::min(1.0, dt / tau);
     Vocv = std::min(VocvMax, Vocv + Ibat() * voltsPerAmpSec * dt);
   }

@@ -61,7 +61,7 @@ constexpr SeedDefault kScalarDefaults[] = {
     {"TempSustainedTimeout", 120, "S&P quick ref: 120 s; legacy 120000 ms"},
     {"TempAlarm", 190, "S&P quick ref"},
     {"TempAlarmLow", 32, "S&P quick ref"},
-    {"ThermalLookaheadSec", 90, "S&P quick ref; field-control.md quick ref"},
+    {"ThermalLookaheadSec", 450, "ours; seed S&P quick ref and field-control.md quick ref 90"},
     // Ours (docs/deviations.md "Thermal loop"): the seed's 3 and 0.025
     // (S&P quick ref) overshot the limit on an idle-to-cruise step.
     {"TempPIDKp", 5.0, "ours; seed S&P quick ref 3"},
