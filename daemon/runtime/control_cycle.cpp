@@ -80,6 +80,8 @@ void ControlCycle::mergeSlowInputs() noexcept {
   } else {
     mergeVictron();
   }
+  // A BMS's limits: copied whole when posted; their stamp carries staleness.
+  if (h_.bms.version() != bmsVersion_) bmsVersion_ = h_.bms.load(in_.bms);
 }
 
 void ControlCycle::mergeTemperature() noexcept {

@@ -148,6 +148,7 @@ class ControlCycle {
   TimeNs lastNow_ = 0;
   TimeNs lastTempStamp_ = 0, lastVictronStamp_ = 0;
   std::uint64_t tempVersion_ = ~0ULL, victronVersion_ = ~0ULL;  // odd: never a stored version
+  std::uint64_t bmsVersion_ = ~0ULL;
   TimeNs lastAdsStamp_[4] = {0, 0, 0, 0};
   TimeNs lastInaStamp_ = 0;
   std::array<std::uint32_t, 4> freshTotals_{};  // sensors that do not count: fresh flags summed
