@@ -23,7 +23,8 @@ using namespace xr;
 constexpr ParamGroup kGroups[] = {ParamGroup::Voltage,  ParamGroup::Overvoltage, ParamGroup::SensorHealth,
                                   ParamGroup::Shutdown, ParamGroup::Current,     ParamGroup::Tuning,
                                   ParamGroup::Charging, ParamGroup::Battery,     ParamGroup::Temperature,
-                                  ParamGroup::Alarms,   ParamGroup::Modes,       ParamGroup::RpmTables};
+                                  ParamGroup::Alarms,   ParamGroup::Modes,       ParamGroup::Can,
+                              ParamGroup::RpmTables};
 
 // Word-wrapped "# " comment lines.
 void comment(std::ostream& o, std::string_view text, std::size_t width = 88) {
@@ -148,6 +149,14 @@ std::string tomlText() {
       comment(o, meta + ". Default " + paramDefault(s, false) + ".");
       o << s.name << " = " << paramDefault(s, true) << "\n";
     }
+    // A table that holds settings beside its parameters ([can]).
+    for (const auto& s : settingsSchema()) {
+      if (s.table != tomlTableName(g)) continue;
+      o << "\n";
+      comment(o, s.help);
+      comment(o, settingRange(s) + ".");
+      o << s.key << " = " << settingDefault(s) << "\n";
+    }
   }
   o << "\n# ============================================================ settings\n";
   for (auto table : settingsTables()) {
@@ -203,6 +212,16 @@ std::string markdownText() {
       if (s.group != g) continue;
       o << "| `" << s.name << "` | " << paramDefault(s, false) << " | " << mdCell(s.unit) << " | "
         << paramRange(s) << " | " << mdCell(s.help) << " |\n";
+    }
+    bool header = false;  // settings that share the table ([can])
+    for (const auto& s : settingsSchema()) {
+      if (s.table != tomlTableName(g)) continue;
+      if (!header)
+        o << "\nSettings in the same table (read at start only):\n\n"
+             "| Key | Default | Allowed | Description |\n|---|---|---|---|\n";
+      header = true;
+      o << "| `" << s.key << "` | `" << mdCell(settingDefault(s)) << "` | " << mdCell(settingRange(s)) << " | "
+        << mdCell(s.help) << " |\n";
     }
   }
   o << "\n<a id=\"settings\"></a>\n## Settings\n\n"

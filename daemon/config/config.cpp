@@ -59,7 +59,8 @@ std::string closest(std::string_view word, const Range& candidates) {
 const ParamGroup kGroups[] = {ParamGroup::Voltage,  ParamGroup::Overvoltage, ParamGroup::SensorHealth,
                               ParamGroup::Shutdown, ParamGroup::Current,     ParamGroup::Tuning,
                               ParamGroup::Charging, ParamGroup::Battery,     ParamGroup::Temperature,
-                              ParamGroup::Alarms,   ParamGroup::Modes,       ParamGroup::RpmTables};
+                              ParamGroup::Alarms,   ParamGroup::Modes,       ParamGroup::Can,
+                              ParamGroup::RpmTables};
 
 std::optional<ParamGroup> groupForTable(std::string_view table) {
   for (auto g : kGroups)
@@ -148,6 +149,11 @@ class Loader {
       const std::string name(k.str());
       const std::string dotted = table + "." + name;
       const ParamSpec* spec = findParam(name);
+      // [can] holds both parameters and settings (the interfaces, the protocol).
+      if (!spec && findSetting(table, name)) {
+        settingKey(table, k, node);
+        continue;
+      }
       if (!spec) {
         std::string msg = "unknown parameter";
         if (auto near = closestParamName(name); !near.empty()) {
@@ -186,7 +192,11 @@ class Loader {
         continue;
       }
       const SettingSpec* spec = findSetting(table, name);
-      if (!spec) {
+      if (spec) {
+        settingKey(table, k, node);
+        continue;
+      }
+      {
         std::vector<std::string_view> keys;
         for (const auto& s : settingsSchema())
           if (s.table == table) keys.push_back(s.key);
@@ -195,16 +205,18 @@ class Loader {
         else if (const auto* p = findParam(name))
           msg += " (" + name + " is a parameter: put it under [" + std::string(tomlTableName(p->group)) + "])";
         error(k, dotted, msg);
-        continue;
       }
-      settingLoc_[dotted] = where(k.source());
-      auto v = detail::settingValueFromNode(*spec, node);
-      if (auto* why = std::get_if<std::string>(&v)) {
-        error(k, dotted, *why);
-        continue;
-      }
-      spec->set(config_.settings, std::get<SettingValue>(v));
     }
+  }
+
+  // One known setting: its value checked and stored.
+  void settingKey(const std::string& table, const toml::key& k, const toml::node& node) {
+    const std::string dotted = table + "." + std::string(k.str());
+    const SettingSpec* spec = findSetting(table, k.str());
+    settingLoc_[dotted] = where(k.source());
+    auto v = detail::settingValueFromNode(*spec, node);
+    if (auto* why = std::get_if<std::string>(&v)) return error(k, dotted, *why);
+    spec->set(config_.settings, std::get<SettingValue>(v));
   }
 
   // The field enable must be a real line of its own: sharing it with the

@@ -120,8 +120,19 @@ struct IntegrationsSettings {
   VictronSettings victron;
 };
 
+// [can] (docs/integrations.md "CAN"): the two buses and what is spoken on
+// them. The BMS-following parameters (BmsStaleS, ...) sit in the same table.
+struct CanSettings {
+  std::string bms_interface;             // SocketCAN interface of the BMS bus (500 kbit/s), empty = none
+  std::string bms_protocol = "victron";  // victron | pylontech
+  std::string n2k_interface;             // NMEA 2000 bus (250 kbit/s), empty = none
+  int n2k_preferred_address = 35;        // first address claimed (60928); moves on a conflict
+  std::string RpmSource = "tach";        // tach (ADS1115 CH2) | n2k (PGN 127488 engine speed)
+};
+
 struct Settings {
   HardwareSettings hardware;
+  CanSettings can;
   RuntimeSettings runtime;
   WebSettings web;
   StoreSettings store;

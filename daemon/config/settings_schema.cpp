@@ -145,6 +145,24 @@ const SettingSpec kSchema[] = {
     XR_S_STR("store", store.path, "path", "", "SQLite state database (overridden by --state-db)."),
     XR_S_INT("store", store.checkpoint_interval_s, "checkpoint_interval_s", "s", 1, 86400, false,
              "How often state (SoC, energy, learned values) is checkpointed."),
+    // [can] (beside the Bms* parameters of the same table)
+    XR_S_STR(
+        "can", can.bms_interface, "bms_interface", "",
+        "SocketCAN interface of the BMS bus (500 kbit/s, 11-bit frames), e.g. can0; empty = no BMS on CAN. "
+        "Also set BmsLimitsEnabled to follow its limits."),
+    XR_S_STR(
+        "can", can.bms_protocol, "bms_protocol", "victron,pylontech",
+        "What the BMS speaks: victron (the 0x351/0x355/0x356/0x35A/0x35E set most LFP BMSs and Victron GX "
+        "devices send), pylontech (the same set with Pylontech's 0x359 protection and warning flags)."),
+    XR_S_STR("can", can.n2k_interface, "n2k_interface", "",
+             "SocketCAN interface of the NMEA 2000 bus (250 kbit/s, 29-bit); empty = no NMEA 2000."),
+    XR_S_INT("can", can.n2k_preferred_address, "n2k_preferred_address", "", 0, 251, false,
+             "NMEA 2000 source address claimed first (ISO 11783-5 address claim, PGN 60928); moved on a "
+             "conflict."),
+    XR_S_STR(
+        "can", can.RpmSource, "RpmSource", "tach,n2k",
+        "Where RPM comes from: tach (ADS1115 CH2, the W terminal or the stator) or n2k (engine speed from "
+        "PGN 127488 on the NMEA 2000 bus, for engines without a W terminal)."),
     // [log]
     XR_S_STR("log", log.level, "level", "trace,debug,info,warn,error,critical,off",
              "Log level (overridden by --log-level)."),

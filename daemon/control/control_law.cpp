@@ -81,6 +81,16 @@ double ControlLaw::computeUTarget(const ControlSensors& s, const Params& p) {
   warmupActive_ =
       p.WarmupCeilingAmps > 0.0 && fieldOnAt_ >= 0 && s.now - fieldOnAt_ < fromSec(p.WarmupCeilingSec);
   if (warmupActive_) I_cmd = std::min(I_cmd, p.WarmupCeilingAmps);
+  // The BMS's CCL caps BATTERY current, so house loads are still served: the
+  // alternator may give the load it carries now (alternator less battery
+  // current) plus the CCL. Without a battery current the cap is the CCL alone.
+  bmsAltCap_ = kNoCeiling;
+  if (const double bcap = bms_.batteryCapA(); std::isfinite(bcap)) {
+    const double load = finite(s.Bcur) ? std::max(0.0, pidSig_ - s.Bcur) : 0.0;
+    bmsAltCap_ = std::max(0.0, load + bcap);
+  }
+  bmsCapActive_ = bmsAltCap_ < I_cmd;
+  I_cmd = std::min(I_cmd, bmsAltCap_);
   I_cmd_ = I_cmd;
 
   double u = I_cmd;
@@ -211,7 +221,9 @@ double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const Fa
     rise = p.StartupRiseRate;
   else if (fastRiseActive_)
     rise = p.SetpointRiseRate * p.FastSetpointRiseRate;
-  const double fall = fastOvClampActive_ ? 1e9 : p.SetpointFallRate;
+  // The BMS's cap is a limit, not a request: the setpoint meets it at once
+  // (its own warning ramp is already smooth).
+  const double fall = fastOvClampActive_ || bmsCapActive_ ? 1e9 : p.SetpointFallRate;
   setpointLimited_ = slew_limit_f(setpointLimited_, setpointCommand_, rise, fall, dt);
   if (inStartupRamp_ && setpointLimited_ >= setpointCommand_ - 1e-9) inStartupRamp_ = false;
 
@@ -228,6 +240,21 @@ double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const Fa
     const double pdt = lastPidCompute_ < 0 ? dt : toSec(s.now - lastPidCompute_);
     if (currentPID_.Compute(std::min(pdt, kMaxControlDtSec))) lastPidCompute_ = s.now;
   }
+  // A BMS cap that steps down (a lower CCL, or the house load switched off
+  // under a binding cap): the duty drops in proportion at once (alternator
+  // current is about proportional to duty at one speed) and the governor's
+  // slew is bypassed, so the battery current meets the new limit within the
+  // field's time constant, not the integrator's. The PID trims from there.
+  // Falling duty is the safe direction; a slow cap ramp (warnings) never snaps.
+  if (bmsCapActive_ && bmsAltCap_ < bmsAltCapPrev_ - kBmsSnapStepA && pidSig_ > bmsAltCap_ &&
+      pidSig_ > kBmsSnapStepA) {
+    const double scaled = lastAppliedDuty_ * bmsAltCap_ / pidSig_;
+    if (scaled < currentPID_.output) {
+      currentPID_.ResetIntegratorTo(scaled);
+      govMode_ = GovMode::GOV_BYPASS_SLEW;
+    }
+  }
+  bmsAltCapPrev_ = bmsAltCap_;
   dutyRequest_ = currentPID_.output;
 
   const double duty = governorStep(p, dutyRequest_, govMode_, dt);
@@ -240,6 +267,7 @@ double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const Fa
   // Non-thermal ceiling for T0's implied-penalty anti-windup (next tick).
   double c = std::min(p.MaxTableValue, p.MaximumAllowedBatteryAmps);
   if (warmupActive_) c = std::min(c, p.WarmupCeilingAmps);
+  c = std::min(c, bmsAltCap_);
   if (p.MaintainMode) c = 0.0;
   c = std::min(c, fa.fastOvCurrentCap);
   if (voltageControlActive_) c = std::min(c, Icv);

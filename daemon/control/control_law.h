@@ -12,6 +12,7 @@
 //   finishAuto()      : fastOvCurrentCap clamp => uTargetAmps -> CV (Icv) or
 //                       direct => setpointCommand -> slew => setpointLimited ->
 //                       currentPID -> governor_apply -> TrackAppliedOutput.
+#include "control/bms_limiter.h"
 #include "control/charging_stage.h"
 #include "control/control_telemetry.h"
 #include "control/cv_loop.h"
@@ -62,6 +63,10 @@ class ControlLaw {
 
   // Every tick, first: filters on fresh CH1 / IBV, control dt bookkeeping.
   void updateFilters(const ControlSensors& s, const Params& p);
+  // Before the charging stage: the BMS's limits of this tick (bms_limiter.h).
+  void updateBms(const BmsLimits& b, TimeNs now, double Bcur, const Params& p, EventBatch& ev) {
+    bms_.update(b, now, Bcur, p, ev);
+  }
   // Step 3 (before mode selection): stage machine and override targets.
   // Returns true when the stage changed (event pushed).
   void updateChargingStage(const ControlSensors& s, const Params& p, bool manualMode, EventBatch& ev);
@@ -116,6 +121,8 @@ class ControlLaw {
   bool fastOvClampActive() const { return fastOvClampActive_; }
   bool sysIDRunning() const { return sysId_.sysIDRunning(); }
   const ChargingStageMachine& stages() const { return stages_; }
+  const BmsLimiter& bms() const { return bms_; }
+  bool bmsCapActive() const { return bmsCapActive_; }
   const Pid& currentPID() const { return currentPID_; }
   const VoltageCvLoop& cvLoop() const { return cv_; }
   const ThermalDerate& thermal() const { return thermal_; }
@@ -141,6 +148,9 @@ class ControlLaw {
   static constexpr double kRestNoCurrentA = 0.05;
   // The field is "full" within this of MaxDuty (duty %).
   static constexpr double kFullFieldDutyBand = 1.0;
+  // A BMS alternator cap falling more than this between control ticks is a
+  // step (snap the duty); slower falls are followed by the PID.
+  static constexpr double kBmsSnapStepA = 3.0;
 
   void configurePid(const Params& p);
   double governorStep(const Params& p, double request, GovMode mode, double dt);
@@ -167,6 +177,7 @@ class ControlLaw {
   CvTuningModeRunner cvTuning_;
   SystemId sysId_;
   LimpHome limp_;
+  BmsLimiter bms_;
 
   // Filters (CH1 record path).
   Ema emaInput_, emaPid_, emaIBV_;
@@ -208,8 +219,11 @@ class ControlLaw {
   TimeNs overrideSince_ = -1;
   TimeNs leftAutoAt_ = -1;  // when sysMode_ last left AUTO (-1: never was in AUTO)
   bool fieldResting_ = false;
-  TimeNs restArmedAt_ = -1;  // the rest condition holds since (-1: not holding)
-  double ibvSlope_ = 0.0;    // cvDSlope: dV/dt of IBV_filtered between fresh IBV samples
+  bool bmsCapActive_ = false;  // the BMS's battery-current cap binds the command this tick
+  double bmsAltCap_ = kNoCeiling;
+  double bmsAltCapPrev_ = kNoCeiling;  // at the last fresh CH1 (the snap compares)
+  TimeNs restArmedAt_ = -1;            // the rest condition holds since (-1: not holding)
+  double ibvSlope_ = 0.0;              // cvDSlope: dV/dt of IBV_filtered between fresh IBV samples
   double lastFiltV_ = 0.0;
   double sysIdDutyOut_ = 0.0;
 };

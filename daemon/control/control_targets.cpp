@@ -1,6 +1,7 @@
 // ControlLaw::updateChargingStage(): the stage machine's step and the
 // voltage target / voltageControlActive of this tick, override modes
 // included (field-control.md "Charging-Stage State Machine", "Override Modes").
+#include <algorithm>
 #include <cmath>
 
 #include "control/control_law.h"
@@ -75,6 +76,15 @@ void ControlLaw::updateChargingStage(const ControlSensors& s, const Params& p, b
   if (p.MaintainMode) {
     // CV runs at the bulk target so Groups 1/2 stay armed; the ceiling is 0.
     ChargingVoltageTarget_ = p.BulkVoltage;
+    voltageControlActive_ = true;
+  }
+  // The BMS's CVL is a ceiling on every target, overrides included, and the
+  // voltage loop runs under it from the start (it sits at its current ceiling
+  // while below): engaging it only once IBV reached CVL overshoots by the
+  // loop's reaction time.
+  if (std::isfinite(bms_.cvlCeilingV()) &&
+      bms_.cvlCeilingV() < ChargingVoltageTarget_ + k::BULK_V_BAND_EXIT) {
+    ChargingVoltageTarget_ = std::min(ChargingVoltageTarget_, bms_.cvlCeilingV());
     voltageControlActive_ = true;
   }
   if (p.TuningMode) voltageControlActive_ = false;  // characterise the inner loop alone

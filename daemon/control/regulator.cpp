@@ -179,7 +179,8 @@ const Outputs& Regulator::step(const Inputs& in) {
   s.prot.setFieldResting(s.law.fieldResting());
   s.prot.updateDetectors(in, MeasuredAmps, ev);
 
-  // 4. Charging stage (suppressed in override modes and manual).
+  // 4. The BMS's limits, then the charging stage (suppressed in override modes and manual).
+  s.law.updateBms(in.bms, in.now, Bcur, p, ev);
   const bool manualMode = p.ManualMode || s.opManual;
   s.law.updateChargingStage(cs, p, manualMode, ev);
 
@@ -192,7 +193,7 @@ const Outputs& Regulator::step(const Inputs& in) {
   snap.sysOff = s.opOff;
   snap.ignitionOn = in.ignitionOn;
   snap.OnOff = p.OnOff;
-  snap.bmsChargeEnabled = in.bmsChargeEnabled;
+  snap.bmsChargeEnabled = in.bmsChargeEnabled && s.law.bms().chargeAllowed();
   snap.weatherModeActive = p.weatherModeEnabled && s.currentWeatherMode;
   snap.idleStage = s.law.stages().inIdleStage();
   snap.autoZeroActive = autoZeroActive;
@@ -301,6 +302,7 @@ const Outputs& Regulator::step(const Inputs& in) {
   s.bat.UpdateBatterySOC(in, MeasuredAmps, ev);
 
   // 9. Alarms (250 ms cadence inside).
+  s.prot.setBmsStale(s.law.bms().stale());
   out.buzzer = s.prot.checkAlarms(false, ev);
 
   // 10. Telemetry: this tick's inputs and decisions, then the modules'
@@ -308,7 +310,8 @@ const Outputs& Regulator::step(const Inputs& in) {
   Telemetry& t = out.telemetry;
   t.now = in.now;
   t.mode = d.mode;
-  t.reason = d.reason;
+  // A stale BMS only caps the charge (no mode change): the reason still says so.
+  t.reason = d.reason == Reason::NONE && s.law.bms().stale() ? Reason::REASON_BMS_STALE : d.reason;
   t.ibv_v = in.IBV.value;
   t.battery_v = in.BatteryV.value;
   t.bcur_a = Bcur;
@@ -342,6 +345,11 @@ void Regulator::fillStateTelemetry() {
   // chargedEnergyLifetimeWh() and alternatorChargedEnergyLifetimeWh(), as filled just above.
   t.charged_wh_lifetime = t.battery.ChargedEnergy_AllTime_Wh;
   t.alt_charged_wh_lifetime = t.battery.AlternatorChargedEnergy_AllTime_Wh;
+  const BmsLimiter& bms = s.law.bms();
+  t.bms_cvl_v = bms.shownCvlV();
+  t.bms_ccl_a = bms.shownCclA();
+  t.bms_soc_pct = bms.shownSocPct();
+  t.bms_state = bms.state();
 }
 
 }  // namespace xr

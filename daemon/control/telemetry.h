@@ -7,6 +7,7 @@
 #include <variant>
 
 #include "battery/battery_telemetry.h"
+#include "control/bms_limiter.h"
 #include "control/control_telemetry.h"
 #include "core/modes.h"
 #include "core/time.h"
@@ -36,6 +37,12 @@ struct Telemetry {
   bool alarm = false;  // buzzer
   double charged_wh_lifetime = 0.0;
   double alt_charged_wh_lifetime = 0.0;
+  // A BMS's limits as last received (NaN when none or stale) and what the
+  // regulator makes of them (bms_limiter.h).
+  double bms_cvl_v = kBmsNoValue;
+  double bms_ccl_a = kBmsNoValue;
+  double bms_soc_pct = kBmsNoValue;
+  BmsState bms_state = BmsState::OFF;
 
   ControlTelemetry control;
   ProtectionTelemetry protection;
@@ -71,6 +78,10 @@ void visitTelemetryColumns(const Telemetry& t, TimeNs start, F&& f) {
   f("alarm", ColumnValue{t.alarm});
   f("charged_wh_lifetime", ColumnValue{t.charged_wh_lifetime});
   f("alt_charged_wh_lifetime", ColumnValue{t.alt_charged_wh_lifetime});
+  f("bms_cvl_v", ColumnValue{t.bms_cvl_v});
+  f("bms_ccl_a", ColumnValue{t.bms_ccl_a});
+  f("bms_soc_pct", ColumnValue{t.bms_soc_pct});
+  f("bms_state", ColumnValue{toString(t.bms_state)});
 }
 
 }  // namespace xr

@@ -99,7 +99,8 @@ const char* alarmRowText(int row) {
       "High alternator temperature", "Low alternator temperature", "High battery voltage",
       "Low battery voltage",         "High alternator current",    "High battery current",
       "INA228 hardware overvoltage", "Temp sensor not responding", "Efficiency anomaly",
-      "Field protection active",     "TempTask hung"};
+      "Field protection active",     "TempTask hung",
+      "BMS limits stale"};
   if (row < 0 || row >= static_cast<int>(sizeof kRows / sizeof kRows[0])) return "Alarm";
   return kRows[row];
 }

@@ -4,6 +4,7 @@
 // and in simulation); the core never touches a device.
 #include <limits>
 
+#include "core/bms_limits.h"
 #include "core/time.h"
 
 namespace xr {
@@ -49,6 +50,9 @@ struct Inputs {
   // Discrete inputs (already polarity-corrected).
   bool ignitionOn = true;
   bool bmsChargeEnabled = true;
+
+  // A BMS's charge limits (CAN or another source, slow thread); see bms_limits.h.
+  BmsLimits bms;
 };
 
 }  // namespace xr

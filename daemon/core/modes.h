@@ -54,6 +54,7 @@ enum class Reason {
   REASON_SYS_OFF,
   REASON_LIMP_HOME,
   REASON_SYSTEM_ID,
+  REASON_BMS_STALE,  // ours: the BMS went silent; charge held under BmsFallbackCapA
 };
 
 std::string_view toString(FieldControlMode m);

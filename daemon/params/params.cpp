@@ -61,6 +61,7 @@ std::string_view toString(ParamGroup g) {
     case ParamGroup::Temperature: return "Temperature";
     case ParamGroup::Alarms: return "Alarms";
     case ParamGroup::Modes: return "Modes";
+    case ParamGroup::Can: return "Can";
     case ParamGroup::RpmTables: return "RpmTables";
   }
   return "?";
@@ -79,6 +80,7 @@ std::string_view tomlTableName(ParamGroup g) {
     case ParamGroup::Temperature: return "temperature";
     case ParamGroup::Alarms: return "alarms";
     case ParamGroup::Modes: return "modes";
+    case ParamGroup::Can: return "can";
     case ParamGroup::RpmTables: return "rpm_tables";
   }
   return "?";

@@ -27,6 +27,7 @@ enum class ParamGroup {
   Temperature,
   Alarms,
   Modes,
+  Can,  // [can]: following a BMS (the interface settings sit beside these)
   RpmTables,
 };
 
@@ -64,7 +65,7 @@ struct ParamSpec {
 
 std::span<const ParamSpec> catalogue();
 const ParamSpec* findParam(std::string_view name);
-std::string_view toString(ParamGroup g);      // "Voltage"
+std::string_view toString(ParamGroup g);       // "Voltage"
 std::string_view tomlTableName(ParamGroup g);  // "voltage"
 std::string_view toString(ParamKind k);
 

@@ -18,7 +18,8 @@ enum class AlarmRow {
   EfficiencyAnomaly,   // effAnomalyAlarmActive
   FaultMode,           // critical / warning / lockout mode (architecture-legacy.md GPIO21)
   TempTaskHung,        // NOT gated by AlarmActivate
+  BmsStale,            // ours: BMS limits silent for BmsStaleS
 };
-inline constexpr std::size_t kAlarmRowCount = 11;
+inline constexpr std::size_t kAlarmRowCount = 12;
 
 }  // namespace xr

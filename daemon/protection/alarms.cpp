@@ -38,6 +38,7 @@ bool ProtectionSupervisor::checkAlarms(bool effAnomalyAlarmActive, EventBatch& e
   set(AlarmRow::EfficiencyAnomaly, effAnomalyAlarmActive, 0.0, 0.0);
   set(AlarmRow::FaultMode, faultAlarm_, 0.0, 0.0);
   set(AlarmRow::TempTaskHung, flags_.tempTaskAlarm, 0.0, k::TEMP_TASK_TIMEOUT / 1000.0);
+  set(AlarmRow::BmsStale, bmsStale_, 0.0, p_.BmsStaleS);
 
   bool gated = false;
   for (std::size_t i = 0; i < kAlarmRowCount; ++i) {

@@ -61,6 +61,7 @@
 #include "core/inputs.h"
 #include "core/modes.h"
 #include "params/params.h"
+#include "protection/alarm_rows.h"
 #include "protection/mode_selection.h"
 #include "protection/protection_telemetry.h"
 #include "protection/tick_snapshot.h"
@@ -119,6 +120,8 @@ class ProtectionSupervisor {
   // Control's field rest (AUTO, full bank) of the last tick: while it lasts,
   // and RPM_REST_GRACE_MS after, the RPM gate trusts the RPM seen before it.
   void setFieldResting(bool resting) { fieldResting_ = resting; }
+  // The BMS limits went stale (BmsLimiter): an alarm row of its own.
+  void setBmsStale(bool stale) { bmsStale_ = stale; }
   const ProtectionFlags& flags() const { return flags_; }
 
   // Step 7: the shutdown sequencer (three paths + lockout + disabled ramp).
@@ -182,6 +185,7 @@ class ProtectionSupervisor {
   double TempToUse_ = kNoValue;
   double rpm_ = kNoValue;
   bool fieldResting_ = false;
+  bool bmsStale_ = false;
   bool rpmOkAtRestStart_ = false;
   TimeNs restEndedAt_ = -1;
   bool wasResting_ = false;
@@ -239,8 +243,8 @@ class ProtectionSupervisor {
   bool buzzer_ = false;
   bool alarmLatched_ = false;
   bool faultAlarm_ = false;
-  std::array<TimeNs, 11> alarmMsgAt_{};  // kAlarmRowCount
-  std::array<bool, 11> alarmRowOn_{};
+  std::array<TimeNs, kAlarmRowCount> alarmMsgAt_{};
+  std::array<bool, kAlarmRowCount> alarmRowOn_{};
   bool lastBuzzerEvent_ = false;
   TimeNs buzzerOffSince_ = -1;  // buzzer off since (AlarmOff logging hold)
 

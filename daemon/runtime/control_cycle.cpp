@@ -41,6 +41,8 @@ void ControlCycle::applyPending() noexcept {
 void ControlCycle::mergeSlowInputs() noexcept {
   mergeTemperature();
   mergeVictron();
+  // A BMS's limits: copied whole when posted; their stamp carries staleness.
+  h_.bms.load(in_.bms);
 }
 
 void ControlCycle::mergeTemperature() noexcept {

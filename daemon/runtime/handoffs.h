@@ -128,6 +128,7 @@ class Handoffs {
   SpscQueue<RuntimeSnapshot, 512> rows;  // telemetry rows at --telemetry-rate
   SeqLock<TemperatureHandoff> temperature;
   SeqLock<VictronHandoff> victron;
+  SeqLock<BmsLimits> bms;  // a BMS's limits (CAN link or another source), posted on each change
   SeqLock<BatteryLedger> ledger;  // the core's ledger, copied out ~4 times a second
   CommandAcks acks;
 

@@ -26,7 +26,7 @@ CORE = ["daemon/params", "daemon/core"]
 DRIVERS = [
     "drivers/hal", "drivers/i2c", "drivers/ina228", "drivers/ads1115", "drivers/frontend",
     "drivers/pwm", "drivers/gpio", "drivers/watchdog", "drivers/onewire", "drivers/vedirect",
-    "drivers/probe", "drivers/sim",
+    "drivers/can", "drivers/probe", "drivers/sim",
 ]
 LAYERS = [
     ("daemon/params", "parameter catalogue, seed constants, derived values", []),
@@ -48,12 +48,14 @@ LAYERS = [
     ("drivers/gpio", "libgpiod lines and edges", CORE + ["daemon/config", "drivers/hal"]),
     ("drivers/watchdog", "/dev/watchdog", ["drivers/hal"]),
     ("drivers/onewire", "DS18B20 reader (w1 sysfs)", CORE),
+    ("drivers/can", "CAN buses: SocketCAN, simulated segment, candump logs", ["drivers/hal"]),
+    ("daemon/can", "CAN protocol codecs: BMS set, NMEA 2000 (pure)", CORE + ["drivers/hal"]),
     ("drivers/vedirect", "VE.Direct serial reader", CORE + ["drivers/onewire"]),
     ("drivers/probe", "--probe: which devices answer",
      CORE + ["daemon/config", "drivers/i2c", "drivers/ina228", "drivers/ads1115", "drivers/onewire",
              "drivers/vedirect"]),
-    ("drivers/sim", "chip models, plant, simulated world and clock, scenarios",
-     CORE + ["daemon/config", "drivers/hal", "drivers/frontend"]),
+    ("drivers/sim", "chip models, plant, simulated world and clock, scenarios, simulated BMS",
+     CORE + ["daemon/config", "drivers/hal", "drivers/frontend", "daemon/can"]),
     ("daemon/runtime", "RT loop and cycle, hand-offs, thread setup; adapts drivers to the hand-offs",
      CORE + ["daemon/config", "daemon/battery", "daemon/control", "drivers/hal", "drivers/i2c",
              "drivers/ina228", "drivers/ads1115", "drivers/onewire", "drivers/vedirect"]),
@@ -66,7 +68,7 @@ LAYERS = [
      CORE + ["daemon/config", "daemon/battery", "daemon/protection", "daemon/control", "daemon/runtime"]),
     ("daemon/app", "xregulatord: command line and wiring",
      CORE + ["daemon/config", "daemon/logging", "daemon/protection", "daemon/battery", "daemon/control",
-             "daemon/runtime", "daemon/sim_rig", "daemon/store", "web/server", "daemon/integrations"] + DRIVERS),
+             "daemon/runtime", "daemon/sim_rig", "daemon/store", "web/server", "daemon/integrations", "daemon/can"] + DRIVERS),
     ("tools", "xr_gendocs, xregulator-field-off, xr_plant_curves (plots)", CORE + ["daemon/config", "drivers/sim"]),
 ]
 

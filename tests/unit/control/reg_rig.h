@@ -15,6 +15,7 @@ struct RegRig {
   double tempF = 100.0;
   TimeNs tempStamp = 0;
   bool ch1Fresh = true;
+  BmsLimits bms;  // a BMS's limits as posted (stamp 0 = none)
   const Outputs* out = nullptr;
 
   explicit RegRig(const Params& params = Params{}) : p(params), reg(params) {}
@@ -35,6 +36,7 @@ struct RegRig {
     in.tempTaskHeartbeat = now;
     in.ignitionOn = true;
     in.bmsChargeEnabled = true;
+    in.bms = bms;
     return in;
   }
 

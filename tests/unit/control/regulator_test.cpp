@@ -219,7 +219,11 @@ TEST(Regulator, TelemetryHasEveryDesignColumn) {
                         "soc_pct",
                         "alarm",
                         "charged_wh_lifetime",
-                        "alt_charged_wh_lifetime"})
+                        "alt_charged_wh_lifetime",
+                        "bms_cvl_v",
+                        "bms_ccl_a",
+                        "bms_soc_pct",
+                        "bms_state"})
     EXPECT_TRUE(names.count(c)) << c;
   EXPECT_NEAR(r.out->telemetry.ibv_v, r.plant.V(), 0.05);
   EXPECT_DOUBLE_EQ(r.out->telemetry.rpm, 2000.0);

@@ -1,0 +1,31 @@
+#pragma once
+// Little-endian field access in a CAN payload (every protocol here is
+// little-endian: the SMA/Victron BMS set, Pylontech, NMEA 2000).
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+namespace xr::can {
+
+inline std::uint16_t getU16(std::span<const std::uint8_t> d, std::size_t at) {
+  return static_cast<std::uint16_t>(d[at] | (d[at + 1] << 8));
+}
+inline std::int16_t getS16(std::span<const std::uint8_t> d, std::size_t at) {
+  return static_cast<std::int16_t>(getU16(d, at));
+}
+inline void putU16(std::span<std::uint8_t> d, std::size_t at, std::uint16_t v) {
+  d[at] = static_cast<std::uint8_t>(v & 0xFF);
+  d[at + 1] = static_cast<std::uint8_t>(v >> 8);
+}
+inline void putS16(std::span<std::uint8_t> d, std::size_t at, std::int16_t v) {
+  putU16(d, at, static_cast<std::uint16_t>(v));
+}
+inline std::uint32_t getU32(std::span<const std::uint8_t> d, std::size_t at) {
+  return static_cast<std::uint32_t>(getU16(d, at)) | (static_cast<std::uint32_t>(getU16(d, at + 2)) << 16);
+}
+inline void putU32(std::span<std::uint8_t> d, std::size_t at, std::uint32_t v) {
+  putU16(d, at, static_cast<std::uint16_t>(v & 0xFFFF));
+  putU16(d, at + 2, static_cast<std::uint16_t>(v >> 16));
+}
+
+}  // namespace xr::can

@@ -1,0 +1,58 @@
+#pragma once
+// SimBms: a simulated LFP BMS on the CAN bus (the Victron/SMA frame set),
+// driven by the plant's truth. What it sends:
+//   CVL: cvlV (cells x 3.55 V for 12 V: 14.2 V), or a scenario's bms_cvl_v
+//   CCL: cclMaxA, tapered as the bank nears full and when cold, or a
+//        scenario's bms_ccl_a. Taper by SoC after the dbus-serialbattery
+//        table (85 %: 100 %, 90 %: 50 %, 95 %: 20 %, 98 %: 10 %), by
+//        temperature 0 A at <= 0 degC rising to full at 10 degC (CCL 0 at
+//        0 degC in the same driver); plant-facts 3.10.3
+//   warnings: high voltage above CVL + 0.1 V, or forced (bms_warn)
+// If its limits are ignored (charge current above CCL + 5 A, or any charge
+// above 2 A while it warns) for openAfterS, it opens its contactor: the
+// caller disconnects the plant's battery (the plant's BMS disconnect).
+// `talking = false` (bms_can = "silent") stops its frames.
+#include <cstdint>
+#include <vector>
+
+#include "core/time.h"
+#include "drivers/hal/can_bus.h"
+
+namespace xr::sim {
+
+struct SimBmsTruth {
+  double batteryV = 0.0;
+  double batteryA = 0.0;  // + = charging
+  double socPct = 50.0;
+  double tempC = 25.0;
+};
+
+class SimBms {
+ public:
+  double cvlV = 14.2;
+  double cclMaxA = 100.0;
+  double openAfterS = 3.0;
+  bool talking = true;
+  double forcedCclA = -1.0;  // < 0: not forced
+  double forcedCvlV = -1.0;
+  bool forcedWarning = false;
+
+  // One step of `dt` seconds; returns the frames to send now (every
+  // kPeriodS of simulated time while talking).
+  std::vector<CanFrame> step(TimeNs now, const SimBmsTruth& t);
+
+  double ccl(const SimBmsTruth& t) const;
+  double cvl() const { return forcedCvlV > 0.0 ? forcedCvlV : cvlV; }
+  bool warning(const SimBmsTruth& t) const;
+  bool contactorOpen() const { return open_; }
+  void closeContactor() { open_ = false, ignoredSince_ = -1; }
+
+  static constexpr double kPeriodS = 0.5;
+
+ private:
+  bool open_ = false;
+  TimeNs ignoredSince_ = -1;
+  TimeNs nextSend_ = 0;
+};
+
+}  // namespace xr::sim

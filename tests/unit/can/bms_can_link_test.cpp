@@ -1,0 +1,77 @@
+// BmsCanLink: frames from a (simulated) BMS become posted limits; bad frames
+// are counted and reported at most once per 30 s; the candump log holds
+// every frame.
+#include "app/bms_can_link.h"
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "drivers/can/candump_log.h"
+#include "drivers/can/sim_can_bus.h"
+
+namespace xr::app {
+namespace {
+
+struct LinkRig {
+  can::SimCanSegment seg;
+  can::SimCanNode& bms = seg.attach();
+  can::SimCanNode& us = seg.attach();
+  std::vector<BmsLimits> posted;
+  std::vector<std::string> reports;
+  BmsCanLink link{us, can::BmsProtocol::Victron, "can0", [this](const BmsLimits& l) { posted.push_back(l); },
+                  [this](const std::string& r) { reports.push_back(r); }};
+};
+
+TEST(BmsCanLink, PostsLimitsWhenTheyArrive) {
+  LinkRig r;
+  r.link.poll(fromSec(1));
+  EXPECT_TRUE(r.posted.empty());  // nothing heard: nothing posted (the limiter times out)
+  r.bms.send(can::encode351(14.2, 60, 100, 12));
+  r.bms.send(can::encode355(70, 100));
+  r.link.poll(fromSec(2));
+  ASSERT_EQ(r.posted.size(), 1u);  // one post per poll with news
+  EXPECT_DOUBLE_EQ(r.posted[0].cclA, 60.0);
+  EXPECT_DOUBLE_EQ(r.posted[0].socPct, 70.0);
+  EXPECT_EQ(r.posted[0].stamp, fromSec(2));
+}
+
+TEST(BmsCanLink, BadFramesAreCountedIgnoredAndReportedRateLimited) {
+  LinkRig r;
+  r.bms.send(can::encode351(14.2, 60, 100, 12));
+  r.link.poll(fromSec(1));
+  CanFrame bad = can::encode351(14.2, 0, 100, 12);
+  bad.data[2] = 0x60;  // CCL 6 000 A
+  bad.data[3] = 0xEA;
+  for (int i = 0; i < 5; ++i) {
+    r.bms.send(bad);
+    r.link.poll(fromSec(2 + i));
+  }
+  EXPECT_EQ(r.link.decoder().rejected(), 5u);
+  ASSERT_EQ(r.reports.size(), 1u);  // one report within 30 s
+  EXPECT_NE(r.reports[0].find("0x351"), std::string::npos);
+  EXPECT_EQ(r.posted.size(), 1u);  // the bad frames never posted
+  EXPECT_DOUBLE_EQ(r.posted.back().cclA, 60.0);
+  r.bms.send(bad);
+  r.link.poll(fromSec(40));  // 30 s on: the next report counts what came since
+  ASSERT_EQ(r.reports.size(), 2u);
+  EXPECT_NE(r.reports[1].find("5 bad frame"), std::string::npos);
+}
+
+TEST(BmsCanLink, LogsEveryFrameInCandumpFormat) {
+  LinkRig r;
+  std::ostringstream log;
+  r.link.setLog(&log);
+  r.bms.send(can::encode351(14.0, 50, 50, 0));
+  r.link.poll(fromSec(3));
+  const auto line = can::parseCandump(log.str());
+  ASSERT_TRUE(line);
+  EXPECT_EQ(line->interface, "can0");
+  EXPECT_EQ(line->frame, can::encode351(14.0, 50, 50, 0));
+  EXPECT_EQ(log.str(), "(3.000000) can0 351#8C00F401F4010000\n");
+}
+
+}  // namespace
+}  // namespace xr::app
