@@ -56,6 +56,10 @@ class StoreService {
                                          std::int64_t stepMs);
   std::vector<std::string> series() const { return series_; }
   std::string token();
+  // Small named documents (store_auth.h keeps the paired devices here).
+  std::vector<std::pair<std::string, std::string>> documents(std::string_view prefix);
+  bool putDocument(std::string_view key, std::string_view value);  // false: not saved
+  bool eraseDocument(std::string_view key);
 
  private:
   std::mutex m_;

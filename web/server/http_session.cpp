@@ -1,39 +1,17 @@
 // HTTP sessions: read one request at a time under a deadline, answer it
 // through ApiHandler, or hand the connection to a WebSocket session on an
 // allowed upgrade to /ws.
-#include <algorithm>
 #include <boost/beast/http.hpp>
-#include <cctype>
 #include <optional>
 #include <string_view>
 
+#include "web/server/request_checks.h"
 #include "web/server/server_impl.h"
 #include "web/server/ws_session.h"
 
 namespace xr::web {
 
 namespace {
-
-bool iequals(std::string_view a, std::string_view b) {
-  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
-           return std::tolower(static_cast<unsigned char>(x)) == std::tolower(static_cast<unsigned char>(y));
-         });
-}
-
-// WebSocket upgrades from a browser carry Origin; it must name this host (or
-// a configured origin), so a web page elsewhere cannot read the boat's data
-// through the owner's browser. Non-browser clients send no Origin.
-bool originAllowed(const Request& req, const WebServerOptions& opts) {
-  const std::string_view origin = req[http::field::origin];
-  if (origin.empty()) return true;
-  for (const auto& o : opts.allowed_origins)
-    if (iequals(origin, o)) return true;
-  const auto scheme = origin.find("://");
-  if (scheme == std::string_view::npos) return false;
-  const std::string_view host = origin.substr(scheme + 3);
-  const std::string_view reqHost = req[http::field::host];
-  return !reqHost.empty() && iequals(host, reqHost);
-}
 
 class HttpSession : public std::enable_shared_from_this<HttpSession> {
  public:
@@ -71,10 +49,14 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     Request req = parser_->release();
     const std::string_view target = req.target();
     const std::string_view path = target.substr(0, target.find('?'));
+    if (!hostAllowed(req[http::field::host], impl_.opts.allowed_hosts, machineHostname()))
+      return sendResponse(makeError(req, http::status::misdirected_request, "Host not served here"));
+    const bool read = req.method() == http::verb::get || req.method() == http::verb::head;
+    const bool sameOrigin =
+        originAllowed(req[http::field::origin], req[http::field::host], impl_.opts.allowed_origins);
     if (websocket::is_upgrade(req)) {
       if (path != "/ws") return sendResponse(makeError(req, http::status::not_found, "no WebSocket here"));
-      if (!originAllowed(req, impl_.opts))
-        return sendResponse(makeError(req, http::status::forbidden, "Origin not allowed"));
+      if (!sameOrigin) return sendResponse(makeError(req, http::status::forbidden, "Origin not allowed"));
       const auto q = target.find('?');
       const auto token =
           q == std::string_view::npos ? std::nullopt : queryParam(target.substr(q + 1), "token");
@@ -87,6 +69,9 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
       ws->start(req);
       return;
     }
+    // A page elsewhere may not write through the owner's browser either.
+    if (!read && !sameOrigin)
+      return sendResponse(makeError(req, http::status::forbidden, "Origin not allowed"));
     sendResponse(impl_.handler.handle(req));
   }
 

@@ -142,4 +142,6 @@ std::uint16_t WebServer::port() const { return impl_->boundPort; }
 
 WebServerStats WebServer::stats() const { return impl_->snapshotStats(); }
 
+Pairing::Code WebServer::newPairingCode() { return impl_->handler.pairing().newCode(); }
+
 }  // namespace xr::web
