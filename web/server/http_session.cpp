@@ -15,8 +15,8 @@ namespace {
 
 class HttpSession : public std::enable_shared_from_this<HttpSession> {
  public:
-  HttpSession(tcp::socket&& socket, WebServer::Impl& impl)
-      : stream_(std::move(socket)), impl_(impl), guard_(impl.connections) {}
+  HttpSession(tcp::socket&& socket, WebServer::Impl& impl, const asio::ip::address& peer)
+      : stream_(std::move(socket)), impl_(impl), peer_(peer), guard_(impl, peer) {}
 
   void run() {
     asio::dispatch(stream_.get_executor(),
@@ -64,8 +64,13 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
         return sendResponse(makeError(req, code == 401 ? http::status::unauthorized : http::status::forbidden,
                                       code == 401 ? "missing token" : "invalid token"));
       }
+      // One address may not hold every slot with WebSockets, and all of
+      // them together leave room for /healthz (issue 26, item 5).
+      if (!impl_.reserveWs(peer_))
+        return sendResponse(makeError(req, http::status::service_unavailable, "too many WebSocket clients"));
       impl_.httpRequests.fetch_add(1);
-      auto ws = std::make_shared<WsSession>(stream_.release_socket(), impl_, std::move(guard_));
+      auto ws = std::make_shared<WsSession>(stream_.release_socket(), impl_, std::move(guard_),
+                                            ConnGuard(impl_, peer_, true));
       ws->start(req);
       return;
     }
@@ -113,6 +118,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   beast::tcp_stream stream_;
   beast::flat_buffer buffer_;
   WebServer::Impl& impl_;
+  asio::ip::address peer_;
   ConnGuard guard_;
   std::optional<http::request_parser<http::string_body>> parser_;
   bool first_ = true;
@@ -120,8 +126,8 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
 
 }  // namespace
 
-void startHttpSession(tcp::socket&& socket, WebServer::Impl& impl) {
-  std::make_shared<HttpSession>(std::move(socket), impl)->run();
+void startHttpSession(tcp::socket&& socket, WebServer::Impl& impl, const asio::ip::address& peer) {
+  std::make_shared<HttpSession>(std::move(socket), impl, peer)->run();
 }
 
 }  // namespace xr::web
