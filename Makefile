@@ -11,7 +11,7 @@ HTTP    ?= 127.0.0.1:8080
 
 DEB_PACKAGES := build-essential cmake pkg-config ninja-build \
   libboost1.81-dev libboost-json1.81-dev \
-  libgpiod-dev gpiod libsqlite3-dev sqlite3 \
+  libgpiod-dev gpiod libsqlite3-dev sqlite3 libssl-dev \
   libspdlog-dev libfmt-dev libtomlplusplus-dev \
   libgtest-dev libgmock-dev googletest libbenchmark-dev \
   libsystemd-dev systemd \

@@ -33,7 +33,7 @@ std::string usageText() {
          "                   [--duration S] [--telemetry-csv FILE] [--telemetry-rate HZ]\n"
          "                   [--http ADDR:PORT] [--state-db FILE] [--check-config]\n"
          "                   [--print-default-config] [--probe] [--version] [--seed N]\n"
-         "                   [--log-level L] [--sim-outputs FILE] [--print-token]\n"
+         "                   [--log-level L] [--sim-outputs FILE] [--print-token] [--pair]\n"
          "\n"
          "  --config FILE          configuration (default: built-in defaults; the service uses\n"
          "                         /etc/xregulator/xregulator.toml)\n"
@@ -48,6 +48,8 @@ std::string usageText() {
          "  --check-config         validate --config, with the overrides stored in the state\n"
          "                         database, and exit (0 or 78)\n"
          "  --print-token          print the API write token kept in the state database\n"
+         "  --pair                 ask the running daemon for a new phone pairing code\n"
+         "                         (needs --config FILE, or --http ADDR:PORT and --state-db FILE)\n"
          "  --print-default-config print the documented default configuration\n"
          "  --probe                check the hardware and print what to fix\n"
          "  --version              print the version\n"
@@ -66,6 +68,7 @@ CliResult parseCommandLine(const std::vector<std::string>& args) {
       {"--sim", [&] { o.sim = true; }},
       {"--check-config", [&] { o.checkConfig = true; }},
       {"--print-token", [&] { o.printToken = true; }},
+      {"--pair", [&] { o.pair = true; }},
       {"--print-default-config", [&] { o.printDefaultConfig = true; }},
       {"--probe", [&] { o.probe = true; }},
       {"--version", [&] { o.version = true; }},
@@ -74,13 +77,41 @@ CliResult parseCommandLine(const std::vector<std::string>& args) {
   };
   // Options with a value: return an error text or "".
   const std::map<std::string, std::function<std::string(const std::string&)>> valued = {
-      {"--config", [&](const std::string& v) { o.config = v; return std::string(); }},
-      {"--scenario", [&](const std::string& v) { o.scenario = v; return std::string(); }},
-      {"--telemetry-csv", [&](const std::string& v) { o.telemetryCsv = v; return std::string(); }},
-      {"--http", [&](const std::string& v) { o.http = v; return std::string(); }},
-      {"--state-db", [&](const std::string& v) { o.stateDb = v; return std::string(); }},
-      {"--log-level", [&](const std::string& v) { o.logLevel = v; return std::string(); }},
-      {"--sim-outputs", [&](const std::string& v) { o.simOutputs = v; return std::string(); }},
+      {"--config",
+       [&](const std::string& v) {
+         o.config = v;
+         return std::string();
+       }},
+      {"--scenario",
+       [&](const std::string& v) {
+         o.scenario = v;
+         return std::string();
+       }},
+      {"--telemetry-csv",
+       [&](const std::string& v) {
+         o.telemetryCsv = v;
+         return std::string();
+       }},
+      {"--http",
+       [&](const std::string& v) {
+         o.http = v;
+         return std::string();
+       }},
+      {"--state-db",
+       [&](const std::string& v) {
+         o.stateDb = v;
+         return std::string();
+       }},
+      {"--log-level",
+       [&](const std::string& v) {
+         o.logLevel = v;
+         return std::string();
+       }},
+      {"--sim-outputs",
+       [&](const std::string& v) {
+         o.simOutputs = v;
+         return std::string();
+       }},
       {"--speed",
        [&](const std::string& v) {
          o.speedGiven = true;
@@ -118,10 +149,11 @@ CliResult parseCommandLine(const std::vector<std::string>& args) {
        }},
       {"--test-fault",
        [&](const std::string& v) {
-         static const std::map<std::string, TestFault> kinds = {
-             {"segv", TestFault::Segv},         {"abort", TestFault::Abort},
-             {"throw", TestFault::Throw},       {"terminate", TestFault::Terminate},
-             {"throw-control", TestFault::ThrowInControl}};
+         static const std::map<std::string, TestFault> kinds = {{"segv", TestFault::Segv},
+                                                                {"abort", TestFault::Abort},
+                                                                {"throw", TestFault::Throw},
+                                                                {"terminate", TestFault::Terminate},
+                                                                {"throw-control", TestFault::ThrowInControl}};
          auto it = kinds.find(v);
          if (it == kinds.end()) return "--test-fault: unknown kind '" + v + "'";
          o.testFault = it->second;
@@ -175,14 +207,24 @@ CliResult parseCommandLine(const std::vector<std::string>& args) {
     return r;
   }
 
-  if (o.scenario && !o.sim) r.error = "--scenario needs --sim";
-  else if (o.simOutputs && !o.sim) r.error = "--sim-outputs needs --sim";
-  else if (o.speedGiven && !o.sim) r.error = "--speed needs --sim";
-  else if (o.seed && !o.sim) r.error = "--seed needs --sim";
-  else if (o.testFault != TestFault::None && !o.sim) r.error = "--test-fault needs --sim";
-  else if (faultAtGiven && o.testFault == TestFault::None) r.error = "--test-fault-at needs --test-fault";
-  else if (o.checkConfig && !o.config) r.error = "--check-config needs --config FILE";
-  else if (o.printToken && !o.config && !o.stateDb) r.error = "--print-token needs --state-db FILE or --config FILE";
+  if (o.scenario && !o.sim)
+    r.error = "--scenario needs --sim";
+  else if (o.simOutputs && !o.sim)
+    r.error = "--sim-outputs needs --sim";
+  else if (o.speedGiven && !o.sim)
+    r.error = "--speed needs --sim";
+  else if (o.seed && !o.sim)
+    r.error = "--seed needs --sim";
+  else if (o.testFault != TestFault::None && !o.sim)
+    r.error = "--test-fault needs --sim";
+  else if (faultAtGiven && o.testFault == TestFault::None)
+    r.error = "--test-fault-at needs --test-fault";
+  else if (o.checkConfig && !o.config)
+    r.error = "--check-config needs --config FILE";
+  else if (o.printToken && !o.config && !o.stateDb)
+    r.error = "--print-token needs --state-db FILE or --config FILE";
+  else if (o.pair && !o.config && !(o.http && o.stateDb))
+    r.error = "--pair needs --config FILE (or --http ADDR:PORT and --state-db FILE)";
   return r;
 }
 

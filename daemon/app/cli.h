@@ -13,8 +13,8 @@
 
 namespace xr::app {
 
-inline constexpr int kExitUsage = 64;     // EX_USAGE
-inline constexpr int kExitSoftware = 70;  // EX_SOFTWARE: internal error (exception)
+inline constexpr int kExitUsage = 64;        // EX_USAGE
+inline constexpr int kExitSoftware = 70;     // EX_SOFTWARE: internal error (exception)
 inline constexpr int kExitUnavailable = 69;  // EX_UNAVAILABLE: hardware missing
 
 // Test-only faults (hidden, accepted only with --sim): end the daemon by a
@@ -35,6 +35,7 @@ struct CliOptions {
   std::optional<std::string> stateDb;
   bool checkConfig = false;
   bool printToken = false;
+  bool pair = false;  // --pair: a new pairing code from the running daemon
   bool printDefaultConfig = false;
   bool probe = false;
   bool version = false;

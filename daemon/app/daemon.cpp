@@ -20,6 +20,7 @@
 #include "app/integrations_wiring.h"
 #include "app/sim_wiring.h"
 #include "app/status_source.h"
+#include "app/store_auth.h"
 #include "app/store_service.h"
 #include "app/thread_names.h"
 #include "app/web_api.h"
@@ -238,8 +239,10 @@ int Daemon::run() {
     }
     try {
       if (opts.token.empty()) opts.token = store ? store->token() : web::generateToken();
+      if (store) opts.auth_store = std::make_shared<StoreAuthStore>(*store);
       server = std::make_unique<web::WebServer>(*api, opts);
       server->start();
+      logPairingCode(server->newPairingCode());
       spdlog::info("dashboard at http://{}:{}/ (www root '{}')", opts.listen, server->port(), opts.www_root);
       logTokenHint(settings.web.token.empty(), store != nullptr, opts.token,
                    cli_.stateDb.value_or(settings.store.path));

@@ -21,6 +21,14 @@ void logLoopStats(const rt::LoopStatsSummary& s, const rt::RuntimeHealth& h) {
       h.sensorReadErrors, h.outputWriteErrors, h.eventsDropped);
 }
 
+void logPairingCode(const web::Pairing::Code& code) {
+  spdlog::info(
+      "pairing code {} (single use, valid {} min): enter it on the dashboard to let a phone change "
+      "settings; a new one: `xregulatord --pair`",
+      code.code, web::kCodeLifetimeMs / 60000);
+  if (!loggingToJournal()) std::fprintf(stderr, "xregulatord: pairing code: %s\n", code.code.c_str());
+}
+
 // The token itself never goes to the journal (any member of systemd-journal
 // could read it): a fingerprint to compare with a phone's, and where to read
 // the token (issue 26, item 9).

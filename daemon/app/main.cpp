@@ -11,6 +11,7 @@
 #include "app/cli.h"
 #include "app/config_check.h"
 #include "app/daemon.h"
+#include "app/pair_cli.h"
 #include "config/config.h"
 #include "drivers/probe/probe.h"
 #include "logging/logging.h"
@@ -48,6 +49,7 @@ int main(int argc, char** argv) {
   }
   if (o.checkConfig) return checkConfigAndState(*o.config, o.stateDb, std::cout, std::cerr);
   if (o.printToken) return printTokenMain(o.config, o.stateDb, std::cout, std::cerr);
+  if (o.pair) return pairMain(o.config, o.stateDb, o.http, std::cout, std::cerr);
 
   Config config;
   if (o.config) {

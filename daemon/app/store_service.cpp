@@ -14,7 +14,8 @@
 namespace xr::app {
 
 std::int64_t unixMsNow() {
-  return std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::system_clock::now().time_since_epoch())
+  return std::chrono::duration_cast<std::chrono::milliseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
       .count();
 }
 
@@ -108,8 +109,10 @@ double columnValue(const rt::RuntimeSnapshot& s, const std::string& name) {
   double out = std::nan("");
   visitTelemetryColumns(s.telemetry, s.start, [&](std::string_view n, const ColumnValue& v) {
     if (n != name) return;
-    if (const double* d = std::get_if<double>(&v)) out = *d;
-    else if (const bool* b = std::get_if<bool>(&v)) out = *b ? 1.0 : 0.0;
+    if (const double* d = std::get_if<double>(&v))
+      out = *d;
+    else if (const bool* b = std::get_if<bool>(&v))
+      out = *b ? 1.0 : 0.0;
   });
   return out;
 }
@@ -126,7 +129,8 @@ void StoreService::housekeeping(const rt::RuntimeSnapshot& s, const BatteryLedge
     const StoreStatus st = store_.appendHistory(nowMs, values);
     if (!st) spdlog::warn("store: history not saved: {}", st.error);
   }
-  const CheckpointReason why = policy_.poll(s.telemetry.now, s.telemetry.field_enable, s.telemetry.stage, false);
+  const CheckpointReason why =
+      policy_.poll(s.telemetry.now, s.telemetry.field_enable, s.telemetry.stage, false);
   if (why != CheckpointReason::None && ledgerValid) {
     const StoreStatus st = store_.checkpoint(ledger, toString(why), nowMs);
     if (!st) spdlog::error("store: checkpoint ({}) failed: {}", toString(why), st.error);
@@ -167,6 +171,22 @@ std::optional<std::string> StoreService::loadValue(const std::string& key) {
 void StoreService::saveValue(const std::string& key, const std::string& value) {
   std::lock_guard lock(m_);
   store_.putBlob(key, value);
+}
+
+std::vector<std::pair<std::string, std::string>> StoreService::documents(std::string_view prefix) {
+  std::lock_guard lock(m_);
+  return store_.blobsWithPrefix(prefix);
+}
+
+bool StoreService::putDocument(std::string_view key, std::string_view value) {
+  std::lock_guard lock(m_);
+  // A pairing that would be gone after a restart is no pairing: refuse it.
+  return !store_.inMemory() && static_cast<bool>(store_.putBlob(key, value));
+}
+
+bool StoreService::eraseDocument(std::string_view key) {
+  std::lock_guard lock(m_);
+  return static_cast<bool>(store_.eraseBlob(key));
 }
 
 }  // namespace xr::app

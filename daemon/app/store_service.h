@@ -59,6 +59,10 @@ class StoreService {
   // Small named strings kept with the state (the Signal K token, issue 23).
   std::optional<std::string> loadValue(const std::string& key);
   void saveValue(const std::string& key, const std::string& value);
+  // Small named documents (store_auth.h keeps the paired devices here).
+  std::vector<std::pair<std::string, std::string>> documents(std::string_view prefix);
+  bool putDocument(std::string_view key, std::string_view value);  // false: not saved
+  bool eraseDocument(std::string_view key);
 
  private:
   std::mutex m_;

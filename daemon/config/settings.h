@@ -63,7 +63,7 @@ struct RuntimeSettings {
 };
 
 struct WebSettings {
-  std::string listen = "127.0.0.1";
+  std::string listen = "0.0.0.0";  // reads on the LAN; writes need pairing (docs/security.md)
   int port = 8080;
   std::string token;  // empty: generated at first start, stored with the state
   double telemetry_rate_hz = 10.0;

@@ -130,7 +130,7 @@ const SettingSpec kSchema[] = {
     XR_S_INT("runtime", runtime.cpu, "cpu", "", -1, 1023, false,
              "Pin the control thread to this CPU (-1 = no pinning)."),
     // [web]
-    XR_S_STR("web", web.listen, "listen", "", "HTTP listen address (127.0.0.1 = this machine only)."),
+    XR_S_STR("web", web.listen, "listen", "", "HTTP listen address (0.0.0.0 = the boat's network: reads open, writes only from paired phones; 127.0.0.1 = this machine only)."),
     XR_S_INT("web", web.port, "port", "", 1, 65535, false, "HTTP port."),
     XR_S_STR("web", web.token, "token", "",
              "Bearer token for writes; empty = generated at first start and kept with the state."),

@@ -115,6 +115,9 @@ class Store {
   // Opaque named documents (control's tuning logs as JSON).
   StoreStatus putBlob(std::string_view key, std::string_view value);
   std::optional<std::string> getBlob(std::string_view key);
+  // Every document whose key starts with prefix (paired devices: "device:"), by key.
+  std::vector<std::pair<std::string, std::string>> blobsWithPrefix(std::string_view prefix);
+  StoreStatus eraseBlob(std::string_view key);
 
   // ---- parameter overrides -------------------------------------------------
   StoreStatus setOverride(std::string_view name, std::string_view value, std::string_view fileValue,

@@ -26,6 +26,22 @@ std::optional<std::string> Store::getBlob(std::string_view key) {
   return std::nullopt;
 }
 
+std::vector<std::pair<std::string, std::string>> Store::blobsWithPrefix(std::string_view prefix) {
+  const std::lock_guard<std::recursive_mutex> lock(mu_);
+  std::vector<std::pair<std::string, std::string>> out;
+  // substr, not LIKE: a '%' or '_' in the prefix must not match anything.
+  sql::Stmt st(db_, "SELECT key, value FROM kv WHERE substr(key, 1, length(?1)) = ?1 ORDER BY key");
+  if (!st.bind(1, prefix).ok()) return out;
+  while (st.step() == SQLITE_ROW) out.emplace_back(st.colText(0), st.colText(1));
+  return out;
+}
+
+StoreStatus Store::eraseBlob(std::string_view key) {
+  const std::lock_guard<std::recursive_mutex> lock(mu_);
+  sql::Stmt st(db_, "DELETE FROM kv WHERE key = ?1");
+  return status(st.bind(1, key).step(), "eraseBlob");
+}
+
 // ---------------------------------------------------------------- overrides
 
 StoreStatus Store::setOverride(std::string_view name, std::string_view value, std::string_view fileValue,

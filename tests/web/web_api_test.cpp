@@ -475,8 +475,8 @@ TEST_F(WebApiTest, Head_OnApiRoutesSendsNoBodyAndPipeliningWorks) {
   start();
   const std::string out =
       rawExchange(port_,
-                  "HEAD /api/params HTTP/1.1\r\nHost: x\r\n\r\n"
-                  "GET /api/nothing-here HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n");
+                  "HEAD /api/params HTTP/1.1\r\nHost: localhost\r\n\r\n"
+                  "GET /api/nothing-here HTTP/1.1\r\nHost: localhost\r\nConnection: close\r\n\r\n");
   const auto first = out.find("HTTP/1.1 200");
   const auto second = out.find("HTTP/1.1 404");
   ASSERT_NE(first, std::string::npos) << out;
@@ -563,7 +563,7 @@ TEST_F(WebApiTest, ConnectionCapRefusesExtraConnections) {
     idle.emplace_back(ioc);
     idle.back().connect(tcp::endpoint(asio::ip::make_address("127.0.0.1"), port_));
   }
-  const auto r = rawExchange(port_, "GET /healthz HTTP/1.1\r\nHost: x\r\n\r\n");
+  const auto r = rawExchange(port_, "GET /healthz HTTP/1.1\r\nHost: localhost\r\n\r\n");
   EXPECT_EQ(r.substr(0, 12), "HTTP/1.1 503");
   EXPECT_GE(server_->stats().connections_refused, 1u);
   idle.clear();

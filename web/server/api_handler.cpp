@@ -65,7 +65,7 @@ std::optional<std::string> queryParam(std::string_view query, std::string_view k
 }
 
 ApiHandler::ApiHandler(DaemonApi& api, const WebServerOptions& opts, std::function<WebServerStats()> stats)
-    : api_(api), opts_(opts), stats_(std::move(stats)) {}
+    : api_(api), opts_(opts), stats_(std::move(stats)), pairing_(opts.auth_store) {}
 
 unsigned ApiHandler::checkRead(std::string_view authorization, std::string_view queryToken) const {
   if (!opts_.reads_require_token) return 0;
@@ -75,9 +75,9 @@ unsigned ApiHandler::checkRead(std::string_view authorization, std::string_view 
     case AuthResult::Missing:
       return 401;
     case AuthResult::Forbidden:
-      return 403;
+      break;
   }
-  return 403;
+  return pairing_.isDeviceToken(authorization.empty() ? queryToken : bearerToken(authorization)) ? 0 : 403;
 }
 
 std::shared_ptr<const std::string> ApiHandler::statusText(std::uint64_t* seqOut) {
@@ -157,17 +157,11 @@ Response ApiHandler::route(const Request& req) {
       r.set(http::field::allow, isParams ? "GET, HEAD, PATCH" : "GET, HEAD, POST");
       return r;
     }
-    // Every write needs the token, whatever reads_require_token says.
-    switch (checkBearer(req[http::field::authorization], "", opts_.token)) {
-      case AuthResult::Missing:
-        return authError(req, 401);
-      case AuthResult::Forbidden:
-        return authError(req, 403);
-      case AuthResult::Ok:
-        break;
-    }
+    // Every write needs a token, whatever reads_require_token says.
+    if (auto code = checkWrite(req[http::field::authorization])) return authError(req, code);
     return isParams ? patchParams(req) : postCommand(req);
   }
+  if (path == "/api/pair" || path.starts_with("/api/pair/")) return pairRoutes(req, path);
   if (path == "/ws") return error(req, http::status::upgrade_required, "WebSocket upgrade required");
   if (path.starts_with("/api/")) return error(req, http::status::not_found, "no such endpoint");
   if (!isGet) return error(req, http::status::method_not_allowed, "method not allowed");

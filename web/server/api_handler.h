@@ -11,6 +11,7 @@
 #include <string>
 
 #include "web/server/daemon_api.h"
+#include "web/server/pairing.h"
 #include "web/server/web_server.h"
 
 namespace xr::web {
@@ -31,7 +32,13 @@ class ApiHandler {
 
   // Authorisation for a read (GET, /ws): Ok when reads are open.
   // Returns 0 when allowed, else 401/403.
+  // A paired device's token counts like the static token.
   unsigned checkRead(std::string_view authorization, std::string_view queryToken) const;
+  // Authorisation for a write: the static or a device token in the
+  // Authorization header (never ?token=). 0, 401 or 403.
+  unsigned checkWrite(std::string_view authorization) const;
+
+  Pairing& pairing() { return pairing_; }
 
  private:
   Response route(const Request& req);
@@ -46,10 +53,13 @@ class ApiHandler {
   Response getMetrics(const Request& req);
   Response getHealth(const Request& req);
   Response getStatic(const Request& req, std::string_view path);
+  Response pairRoutes(const Request& req, std::string_view path);
+  Response postPair(const Request& req);
 
   DaemonApi& api_;
   const WebServerOptions& opts_;
   std::function<WebServerStats()> stats_;
+  Pairing pairing_;
 
   std::mutex cacheMutex_;
   std::uint64_t cachedSeq_ = 0;

@@ -15,18 +15,23 @@ bool constantTimeEquals(std::string_view a, std::string_view b) {
   return diff == 0 && !b.empty();
 }
 
+std::string_view bearerToken(std::string_view authorization) {
+  constexpr std::string_view kScheme = "bearer ";
+  if (authorization.size() < kScheme.size()) return {};
+  for (std::size_t i = 0; i < kScheme.size(); ++i)
+    if (std::tolower(static_cast<unsigned char>(authorization[i])) != kScheme[i]) return {};
+  std::string_view token = authorization.substr(kScheme.size());
+  while (!token.empty() && token.front() == ' ') token.remove_prefix(1);
+  while (!token.empty() && token.back() == ' ') token.remove_suffix(1);
+  return token;
+}
+
 AuthResult checkBearer(std::string_view authorization, std::string_view queryToken,
                        std::string_view expected) {
   std::string_view token;
   if (!authorization.empty()) {
-    constexpr std::string_view kScheme = "bearer ";
-    if (authorization.size() < kScheme.size()) return AuthResult::Forbidden;
-    for (std::size_t i = 0; i < kScheme.size(); ++i)
-      if (std::tolower(static_cast<unsigned char>(authorization[i])) != kScheme[i])
-        return AuthResult::Forbidden;
-    token = authorization.substr(kScheme.size());
-    while (!token.empty() && token.front() == ' ') token.remove_prefix(1);
-    while (!token.empty() && token.back() == ' ') token.remove_suffix(1);
+    token = bearerToken(authorization);
+    if (token.empty()) return AuthResult::Forbidden;
   } else if (!queryToken.empty()) {
     token = queryToken;
   } else {

@@ -16,6 +16,9 @@ enum class AuthResult {
 
 // authorization: the Authorization header value (may be empty);
 // queryToken: ?token=... (WebSocket upgrades from browsers cannot set headers).
+// The token of an "Authorization: Bearer <token>" value; empty when absent.
+std::string_view bearerToken(std::string_view authorization);
+
 AuthResult checkBearer(std::string_view authorization, std::string_view queryToken,
                        std::string_view expected);
 

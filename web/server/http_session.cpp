@@ -1,12 +1,11 @@
 // HTTP sessions: read one request at a time under a deadline, answer it
 // through ApiHandler, or hand the connection to a WebSocket session on an
 // allowed upgrade to /ws.
-#include <algorithm>
 #include <boost/beast/http.hpp>
-#include <cctype>
 #include <optional>
 #include <string_view>
 
+#include "web/server/request_checks.h"
 #include "web/server/server_impl.h"
 #include "web/server/ws_session.h"
 
@@ -14,31 +13,10 @@ namespace xr::web {
 
 namespace {
 
-bool iequals(std::string_view a, std::string_view b) {
-  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
-           return std::tolower(static_cast<unsigned char>(x)) == std::tolower(static_cast<unsigned char>(y));
-         });
-}
-
-// WebSocket upgrades from a browser carry Origin; it must name this host (or
-// a configured origin), so a web page elsewhere cannot read the boat's data
-// through the owner's browser. Non-browser clients send no Origin.
-bool originAllowed(const Request& req, const WebServerOptions& opts) {
-  const std::string_view origin = req[http::field::origin];
-  if (origin.empty()) return true;
-  for (const auto& o : opts.allowed_origins)
-    if (iequals(origin, o)) return true;
-  const auto scheme = origin.find("://");
-  if (scheme == std::string_view::npos) return false;
-  const std::string_view host = origin.substr(scheme + 3);
-  const std::string_view reqHost = req[http::field::host];
-  return !reqHost.empty() && iequals(host, reqHost);
-}
-
 class HttpSession : public std::enable_shared_from_this<HttpSession> {
  public:
-  HttpSession(tcp::socket&& socket, WebServer::Impl& impl)
-      : stream_(std::move(socket)), impl_(impl), guard_(impl.connections) {}
+  HttpSession(tcp::socket&& socket, WebServer::Impl& impl, const asio::ip::address& peer)
+      : stream_(std::move(socket)), impl_(impl), peer_(peer), guard_(impl, peer) {}
 
   void run() {
     asio::dispatch(stream_.get_executor(),
@@ -71,10 +49,14 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     Request req = parser_->release();
     const std::string_view target = req.target();
     const std::string_view path = target.substr(0, target.find('?'));
+    if (!hostAllowed(req[http::field::host], impl_.opts.allowed_hosts, machineHostname()))
+      return sendResponse(makeError(req, http::status::misdirected_request, "Host not served here"));
+    const bool read = req.method() == http::verb::get || req.method() == http::verb::head;
+    const bool sameOrigin =
+        originAllowed(req[http::field::origin], req[http::field::host], impl_.opts.allowed_origins);
     if (websocket::is_upgrade(req)) {
       if (path != "/ws") return sendResponse(makeError(req, http::status::not_found, "no WebSocket here"));
-      if (!originAllowed(req, impl_.opts))
-        return sendResponse(makeError(req, http::status::forbidden, "Origin not allowed"));
+      if (!sameOrigin) return sendResponse(makeError(req, http::status::forbidden, "Origin not allowed"));
       const auto q = target.find('?');
       const auto token =
           q == std::string_view::npos ? std::nullopt : queryParam(target.substr(q + 1), "token");
@@ -82,11 +64,19 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
         return sendResponse(makeError(req, code == 401 ? http::status::unauthorized : http::status::forbidden,
                                       code == 401 ? "missing token" : "invalid token"));
       }
+      // One address may not hold every slot with WebSockets, and all of
+      // them together leave room for /healthz (issue 26, item 5).
+      if (!impl_.reserveWs(peer_))
+        return sendResponse(makeError(req, http::status::service_unavailable, "too many WebSocket clients"));
       impl_.httpRequests.fetch_add(1);
-      auto ws = std::make_shared<WsSession>(stream_.release_socket(), impl_, std::move(guard_));
+      auto ws = std::make_shared<WsSession>(stream_.release_socket(), impl_, std::move(guard_),
+                                            ConnGuard(impl_, peer_, true));
       ws->start(req);
       return;
     }
+    // A page elsewhere may not write through the owner's browser either.
+    if (!read && !sameOrigin)
+      return sendResponse(makeError(req, http::status::forbidden, "Origin not allowed"));
     sendResponse(impl_.handler.handle(req));
   }
 
@@ -128,6 +118,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   beast::tcp_stream stream_;
   beast::flat_buffer buffer_;
   WebServer::Impl& impl_;
+  asio::ip::address peer_;
   ConnGuard guard_;
   std::optional<http::request_parser<http::string_body>> parser_;
   bool first_ = true;
@@ -135,8 +126,8 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
 
 }  // namespace
 
-void startHttpSession(tcp::socket&& socket, WebServer::Impl& impl) {
-  std::make_shared<HttpSession>(std::move(socket), impl)->run();
+void startHttpSession(tcp::socket&& socket, WebServer::Impl& impl, const asio::ip::address& peer) {
+  std::make_shared<HttpSession>(std::move(socket), impl, peer)->run();
 }
 
 }  // namespace xr::web

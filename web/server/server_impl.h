@@ -8,6 +8,7 @@
 #include <boost/beast/core.hpp>
 #include <chrono>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -34,6 +35,50 @@ struct WebServer::Impl {
   std::atomic<std::uint64_t> httpRequests{0}, httpErrors{0}, wsClients{0}, wsSent{0}, wsDropped{0},
       connections{0}, refused{0};
   ApiHandler handler;
+
+  // Per-address counts for the per-client bounds: {connections, WebSockets}.
+  std::mutex ipMutex;
+  std::map<asio::ip::address, std::pair<int, int>> perIp;
+  int wsReserved = 0;  // under ipMutex
+
+  int limitPerIp() const {
+    return opts.max_per_ip > 0 ? opts.max_per_ip : std::max(1, opts.max_connections * 3 / 4);
+  }
+  int limitWsPerIp() const {
+    return opts.max_ws_per_ip > 0 ? opts.max_ws_per_ip : std::max(1, opts.max_connections / 4);
+  }
+  int limitWs() const { return std::max(1, opts.max_connections - std::max(1, opts.max_connections / 8)); }
+  // False when this address already holds its share of connections.
+  bool admit(const asio::ip::address& a) {
+    std::lock_guard lock(ipMutex);
+    auto& c = perIp[a];
+    if (c.first >= limitPerIp()) {
+      if (c.first == 0 && c.second == 0) perIp.erase(a);
+      return false;
+    }
+    ++c.first;
+    return true;
+  }
+  void release(const asio::ip::address& a, bool ws) {
+    std::lock_guard lock(ipMutex);
+    auto it = perIp.find(a);
+    if (it == perIp.end()) return;
+    if (ws) {
+      --it->second.second;
+      --wsReserved;
+    } else {
+      --it->second.first;
+    }
+    if (it->second.first <= 0 && it->second.second <= 0) perIp.erase(it);
+  }
+  bool reserveWs(const asio::ip::address& a) {
+    std::lock_guard lock(ipMutex);
+    auto& c = perIp[a];
+    if (c.second >= limitWsPerIp() || wsReserved >= limitWs()) return false;
+    ++c.second;
+    ++wsReserved;
+    return true;
+  }
 
   std::mutex wsMutex;
   std::vector<std::weak_ptr<WsSession>> wsSessions;
@@ -69,23 +114,29 @@ struct WebServer::Impl {
   }
 };
 
-// Counts one open connection for the cap; moves from the HTTP session to the
-// WebSocket session on upgrade.
+// Counts one open connection (or, ws = true, one WebSocket) of an address
+// for the caps; moves from the HTTP session to the WebSocket session on
+// upgrade.
 class ConnGuard {
  public:
-  explicit ConnGuard(std::atomic<std::uint64_t>& c) : c_(&c) {}
-  ConnGuard(ConnGuard&& o) noexcept : c_(std::exchange(o.c_, nullptr)) {}
+  ConnGuard(WebServer::Impl& impl, asio::ip::address a, bool ws = false) : impl_(&impl), a_(a), ws_(ws) {}
+  ConnGuard(ConnGuard&& o) noexcept : impl_(std::exchange(o.impl_, nullptr)), a_(o.a_), ws_(o.ws_) {}
   ConnGuard& operator=(ConnGuard&&) = delete;
   ~ConnGuard() {
-    if (c_) c_->fetch_sub(1);
+    if (!impl_) return;
+    if (!ws_) impl_->connections.fetch_sub(1);
+    impl_->release(a_, ws_);
   }
 
  private:
-  std::atomic<std::uint64_t>* c_;
+  WebServer::Impl* impl_;
+  asio::ip::address a_;
+  bool ws_;
 };
 
 // Serves HTTP requests on an accepted connection (counted in
 // impl.connections by the caller) until it closes or upgrades to /ws.
-void startHttpSession(tcp::socket&& socket, WebServer::Impl& impl);
+// peer: the client's address, already admitted (Impl::admit).
+void startHttpSession(tcp::socket&& socket, WebServer::Impl& impl, const asio::ip::address& peer);
 
 }  // namespace xr::web

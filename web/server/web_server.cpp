@@ -28,7 +28,10 @@ void WebServer::Impl::doAccept() {
 void WebServer::Impl::onAccept(beast::error_code ec, tcp::socket socket) {
   if (ec == asio::error::operation_aborted || !acceptor->is_open()) return;
   if (!ec) {
-    if (connections.load() >= static_cast<std::uint64_t>(std::max(1, opts.max_connections))) {
+    beast::error_code aec;
+    const auto peer = socket.remote_endpoint(aec).address();
+    if (aec || connections.load() >= static_cast<std::uint64_t>(std::max(1, opts.max_connections)) ||
+        !admit(peer)) {
       refused.fetch_add(1);
       static constexpr std::string_view kBusy =
           "HTTP/1.1 503 Service Unavailable\r\nContent-Type: application/json\r\nContent-Length: 33\r\n"
@@ -40,7 +43,7 @@ void WebServer::Impl::onAccept(beast::error_code ec, tcp::socket socket) {
       socket.close(wec);
     } else {
       connections.fetch_add(1);
-      startHttpSession(std::move(socket), *this);
+      startHttpSession(std::move(socket), *this, peer);
     }
   }
   doAccept();
@@ -141,5 +144,7 @@ void WebServer::stop() {
 std::uint16_t WebServer::port() const { return impl_->boundPort; }
 
 WebServerStats WebServer::stats() const { return impl_->snapshotStats(); }
+
+Pairing::Code WebServer::newPairingCode() { return impl_->handler.pairing().newCode(); }
 
 }  // namespace xr::web

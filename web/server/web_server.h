@@ -21,6 +21,7 @@
 
 #include "config/settings.h"
 #include "web/server/daemon_api.h"
+#include "web/server/pairing.h"
 
 namespace xr::web {
 
@@ -31,17 +32,30 @@ struct WebServerOptions {
   double telemetry_rate_hz = 10.0;   // WebSocket rate, clamped to [0.2, 20]
   bool reads_require_token = false;  // true: GETs and /ws need the token too
   int max_connections = 64;          // HTTP + WebSocket, over it: 503 and close
-  std::string www_root;              // static dashboard files; empty = no static files
-  int threads = 2;                   // Asio threads
+  // Per-client bounds (issue 26, item 5): one address holds at most
+  // max_per_ip connections (0: 3/4 of max_connections) and max_ws_per_ip
+  // WebSockets (0: max_connections / 4); WebSockets together leave
+  // max_connections / 8 slots (at least 1) for plain requests such as /healthz.
+  int max_per_ip = 0;
+  int max_ws_per_ip = 0;
+  std::string www_root;  // static dashboard files; empty = no static files
+  int threads = 2;       // Asio threads
   std::size_t body_limit = 64 * 1024;
   std::size_t header_limit = 8 * 1024;
-  std::chrono::milliseconds request_timeout{10000};  // whole request read / response write
+  std::chrono::milliseconds request_timeout{10000};    // whole request read / response write
   std::chrono::milliseconds keepalive_timeout{10000};  // idle keep-alive (docs/dashboard.md)
-  std::chrono::milliseconds ws_idle_timeout{30000};  // no pong within this: close
+  std::chrono::milliseconds ws_idle_timeout{30000};    // no pong within this: close
+  // A frame the client does not take within this (it never reads): close.
+  std::chrono::milliseconds ws_write_timeout{10000};
   // Kernel send buffer of each WebSocket: bounds what a slow client can hold
   // in the kernel, as the one-pending-frame rule bounds it in the server.
   int ws_send_buffer = 64 * 1024;
-  std::vector<std::string> allowed_origins;  // extra Origins allowed on /ws (same host always ok)
+  std::vector<std::string> allowed_origins;  // extra Origins allowed on /ws and writes (same host always ok)
+  // Extra names the dashboard may be reached by (Host header); IP literals,
+  // localhost and this machine's hostname (also with .local) always are.
+  std::vector<std::string> allowed_hosts;
+  // Paired devices' token hashes (pairing.h); null: kept in memory only.
+  std::shared_ptr<AuthStore> auth_store;
 
   static WebServerOptions fromSettings(const WebSettings& s, std::string token);
 };
@@ -81,6 +95,8 @@ class WebServer {
   void stop();
   std::uint16_t port() const;
   WebServerStats stats() const;
+  // A new single-use pairing code (pairing.h), e.g. for the journal at start.
+  Pairing::Code newPairingCode();
 
   struct Impl;
 

@@ -13,8 +13,12 @@ namespace websocket = beast::websocket;
 
 class WsSession : public std::enable_shared_from_this<WsSession> {
  public:
-  WsSession(tcp::socket&& socket, WebServer::Impl& impl, ConnGuard guard)
-      : ws_(std::move(socket)), impl_(impl), guard_(std::move(guard)) {}
+  WsSession(tcp::socket&& socket, WebServer::Impl& impl, ConnGuard guard, ConnGuard wsSlot)
+      : ws_(std::move(socket)),
+        impl_(impl),
+        guard_(std::move(guard)),
+        wsSlot_(std::move(wsSlot)),
+        writeTimer_(ws_.get_executor()) {}
 
   ~WsSession() {
     if (counted_) impl_.wsClients.fetch_sub(1);
@@ -79,12 +83,22 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
     writing_ = true;
     current_ = std::move(msg);
     ws_.text(true);
+    // A client that never reads keeps pinging, so the idle timeout never
+    // fires; a frame it does not take in time closes it (issue 26, item 5).
+    writeTimer_.expires_after(impl_.opts.ws_write_timeout);
+    writeTimer_.async_wait([self = shared_from_this()](beast::error_code ec) {
+      if (ec || !self->writing_) return;
+      self->closed_ = true;
+      beast::error_code cec;
+      beast::get_lowest_layer(self->ws_).socket().close(cec);
+    });
     ws_.async_write(asio::buffer(*current_),
                     beast::bind_front_handler(&WsSession::onWrite, shared_from_this()));
   }
 
   void onWrite(beast::error_code ec, std::size_t) {
     writing_ = false;
+    writeTimer_.cancel();
     current_.reset();
     if (ec) {
       closed_ = true;
@@ -99,6 +113,8 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
   beast::flat_buffer buffer_;
   WebServer::Impl& impl_;
   ConnGuard guard_;
+  ConnGuard wsSlot_;
+  asio::steady_timer writeTimer_;
   std::shared_ptr<const std::string> current_, pending_;
   bool writing_ = false;
   bool closed_ = false;

@@ -1,0 +1,17 @@
+#pragma once
+// `xregulatord --pair`: asks the running daemon for a new pairing code
+// (POST /api/pair/code on this machine, with the static write token read
+// from the configuration or the state database) and prints it. The daemon
+// keeps the code; nothing is written to the database from here, so a root
+// shell never leaves root-owned files beside the daemon's database.
+#include <iosfwd>
+#include <optional>
+#include <string>
+
+namespace xr::app {
+
+// 0 and the code on out, or 1 with the reason on err.
+int pairMain(const std::optional<std::string>& configPath, const std::optional<std::string>& stateDb,
+             const std::optional<std::string>& http, std::ostream& out, std::ostream& err);
+
+}  // namespace xr::app

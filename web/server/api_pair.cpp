@@ -1,0 +1,117 @@
+// Pairing routes (pairing.h): POST /api/pair for a code, and for a device
+// that may write already: POST /api/pair/code, GET /api/pair/devices,
+// DELETE /api/pair/devices[/<id>].
+#include <boost/json.hpp>
+#include <string>
+
+#include "web/server/api_handler.h"
+#include "web/server/api_reply.h"
+#include "web/server/auth.h"
+
+namespace xr::web {
+
+using namespace api;
+
+unsigned ApiHandler::checkWrite(std::string_view authorization) const {
+  // Header only: a token in a URL ends up in browser history and proxy logs.
+  switch (checkBearer(authorization, "", opts_.token)) {
+    case AuthResult::Ok:
+      return 0;
+    case AuthResult::Missing:
+      return 401;
+    case AuthResult::Forbidden:
+      break;
+  }
+  return pairing_.isDeviceToken(bearerToken(authorization)) ? 0 : 403;
+}
+
+Response ApiHandler::postPair(const Request& req) {
+  std::string err;
+  auto body = parseBody(req, err);
+  if (!body) return error(req, http::status::bad_request, err);
+  const auto* o = body->if_object();
+  const auto* code = o ? o->if_contains("code") : nullptr;
+  if (!code || !code->is_string() || code->get_string().size() > 16)
+    return error(req, http::status::bad_request, "expected {\"code\": \"123456\", \"name\": \"...\"}");
+  std::string name;
+  if (const auto* n = o->if_contains("name"); n && n->is_string()) name = std::string(n->get_string());
+  const auto r = pairing_.pair(std::string_view(code->get_string()), name);
+  json::object out;
+  switch (r.kind) {
+    case Pairing::Outcome::Paired:
+      out["token"] = r.token;
+      out["id"] = r.device.id;
+      out["name"] = r.device.name;
+      return jsonReply(req, http::status::ok, out);
+    case Pairing::Outcome::WrongCode:
+      out["error"] = "wrong or expired pairing code";
+      out["tries_left"] = r.triesLeft;
+      return jsonReply(req, http::status::forbidden, out);
+    case Pairing::Outcome::LockedOut: {
+      out["error"] = "too many wrong codes: pairing is locked and the code is void; make a new code";
+      const auto s = (r.retryAfterMs + 999) / 1000;
+      out["retry_after_s"] = s;
+      auto res = jsonReply(req, http::status::too_many_requests, out);
+      res.set(http::field::retry_after, std::to_string(s));
+      return res;
+    }
+    case Pairing::Outcome::NotSaved:
+      return error(req, http::status::service_unavailable, "the pairing cannot be saved (see /api/system)");
+    case Pairing::Outcome::Full:
+      return error(req, http::status::conflict, "too many paired devices: revoke one first");
+  }
+  return error(req, http::status::internal_server_error, "pairing");
+}
+
+Response ApiHandler::pairRoutes(const Request& req, std::string_view path) {
+  const auto method = req.method();
+  if (path == "/api/pair") {
+    if (method != http::verb::post) {
+      auto r = error(req, http::status::method_not_allowed, "method not allowed");
+      r.set(http::field::allow, "POST");
+      return r;
+    }
+    return postPair(req);
+  }
+  if (auto code = checkWrite(req[http::field::authorization])) return authError(req, code);
+  if (path == "/api/pair/code") {
+    if (method != http::verb::post) return error(req, http::status::method_not_allowed, "method not allowed");
+    const auto c = pairing_.newCode();
+    json::object out;
+    out["code"] = c.code;
+    out["expires_in_s"] = kCodeLifetimeMs / 1000;
+    return jsonReply(req, http::status::ok, out);
+  }
+  if (path == "/api/pair/devices") {
+    if (method == http::verb::get || method == http::verb::head) {
+      json::array list;
+      for (const auto& d : pairing_.devices()) {
+        json::object j;
+        j["id"] = d.id;
+        j["name"] = d.name;
+        j["created"] = static_cast<double>(d.createdMs) / 1000.0;
+        list.push_back(std::move(j));
+      }
+      json::object out;
+      out["devices"] = std::move(list);
+      return jsonReply(req, http::status::ok, out);
+    }
+    if (method == http::verb::delete_) {
+      json::object out;
+      out["revoked"] = pairing_.revokeAll();
+      return jsonReply(req, http::status::ok, out);
+    }
+    return error(req, http::status::method_not_allowed, "method not allowed");
+  }
+  constexpr std::string_view kDevice = "/api/pair/devices/";
+  if (path.starts_with(kDevice) && method == http::verb::delete_) {
+    if (!pairing_.revoke(std::string(path.substr(kDevice.size()))))
+      return error(req, http::status::not_found, "no such device");
+    json::object out;
+    out["revoked"] = 1;
+    return jsonReply(req, http::status::ok, out);
+  }
+  return error(req, http::status::not_found, "no such endpoint");
+}
+
+}  // namespace xr::web

@@ -1,0 +1,169 @@
+// Pairing codes and per-device write tokens (pairing.h).
+#include "web/server/pairing.h"
+
+#include <openssl/evp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <fstream>
+#include <stdexcept>
+
+#include "web/server/auth.h"
+#include "web/server/web_server.h"
+
+namespace xr::web {
+
+std::string sha256Hex(std::string_view text) {
+  unsigned char md[EVP_MAX_MD_SIZE];
+  unsigned int len = 0;
+  if (EVP_Digest(text.data(), text.size(), md, &len, EVP_sha256(), nullptr) != 1)
+    throw std::runtime_error("SHA-256 failed");
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string out;
+  out.reserve(2 * len);
+  for (unsigned int i = 0; i < len; ++i) {
+    out.push_back(kHex[md[i] >> 4]);
+    out.push_back(kHex[md[i] & 15]);
+  }
+  return out;
+}
+
+std::string randomDigits(int digits) {
+  std::ifstream in("/dev/urandom", std::ios::binary);
+  std::string out;
+  while (static_cast<int>(out.size()) < digits) {
+    unsigned char b = 0;
+    if (!in.read(reinterpret_cast<char*>(&b), 1)) throw std::runtime_error("cannot read /dev/urandom");
+    if (b < 250) out.push_back(static_cast<char>('0' + b % 10));  // 250 = 25 * 10: no bias
+  }
+  return out;
+}
+
+std::string cleanDeviceName(std::string_view name) {
+  std::string out;
+  for (char c : name) {
+    if (out.size() >= kMaxDeviceNameLength) break;
+    const auto u = static_cast<unsigned char>(c);
+    if (u >= 0x20 && u < 0x7f && c != '"' && c != '\\') out.push_back(c);
+  }
+  return out.empty() ? "device" : out;
+}
+
+std::vector<PairedDevice> MemoryAuthStore::loadDevices() {
+  std::lock_guard lock(m_);
+  return devices_;
+}
+
+bool MemoryAuthStore::saveDevice(const PairedDevice& d) {
+  std::lock_guard lock(m_);
+  devices_.push_back(d);
+  return true;
+}
+
+bool MemoryAuthStore::removeDevice(const std::string& id) {
+  std::lock_guard lock(m_);
+  return std::erase_if(devices_, [&](const PairedDevice& d) { return d.id == id; }) > 0;
+}
+
+Pairing::Pairing(std::shared_ptr<AuthStore> store, Clock now)
+    : store_(store ? std::move(store) : std::make_shared<MemoryAuthStore>()), clock_(std::move(now)) {
+  devices_ = store_->loadDevices();
+}
+
+std::int64_t Pairing::now() const {
+  if (clock_) return clock_();
+  return std::chrono::duration_cast<std::chrono::milliseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+Pairing::Code Pairing::newCode() {
+  Code c{randomDigits(6), now() + kCodeLifetimeMs};
+  std::lock_guard lock(m_);
+  codeHash_ = sha256Hex(c.code);
+  codeExpiresMs_ = c.expiresMs;
+  wrongTries_ = 0;
+  lockedUntilMs_ = 0;
+  return c;
+}
+
+Pairing::Outcome Pairing::pair(std::string_view code, std::string_view name) {
+  Outcome out;
+  const std::int64_t t = now();
+  std::lock_guard lock(m_);
+  if (t < lockedUntilMs_) {
+    out.kind = Outcome::LockedOut;
+    out.retryAfterMs = lockedUntilMs_ - t;
+    return out;
+  }
+  const bool valid = !codeHash_.empty() && t < codeExpiresMs_;
+  if (!valid || !constantTimeEquals(sha256Hex(code), codeHash_)) {
+    // An expired or absent code counts too: otherwise a guesser could probe
+    // freely while no code is in force and learn nothing, but still load us.
+    if (++wrongTries_ >= kMaxWrongTries) {
+      codeHash_.clear();  // burnt: the owner makes a new one
+      wrongTries_ = 0;
+      lockedUntilMs_ = t + kLockoutMs;
+      out.kind = Outcome::LockedOut;
+      out.retryAfterMs = kLockoutMs;
+      return out;
+    }
+    out.kind = Outcome::WrongCode;
+    out.triesLeft = kMaxWrongTries - wrongTries_;
+    return out;
+  }
+  if (devices_.size() >= kMaxPairedDevices) {
+    out.kind = Outcome::Full;
+    return out;
+  }
+  const std::string token = generateToken();
+  PairedDevice d;
+  d.hash = sha256Hex(token);
+  d.id = d.hash.substr(0, 8);
+  d.name = cleanDeviceName(name);
+  d.createdMs = t;
+  if (!store_->saveDevice(d)) {
+    out.kind = Outcome::NotSaved;  // the code stays valid: the owner may retry
+    return out;
+  }
+  codeHash_.clear();  // single use
+  wrongTries_ = 0;
+  devices_.push_back(d);
+  out.kind = Outcome::Paired;
+  out.token = token;
+  out.device = d;
+  return out;
+}
+
+bool Pairing::isDeviceToken(std::string_view token) const {
+  if (token.empty()) return false;
+  const std::string h = sha256Hex(token);
+  std::lock_guard lock(m_);
+  bool found = false;
+  for (const auto& d : devices_) found |= constantTimeEquals(h, d.hash);
+  return found;
+}
+
+std::vector<PairedDevice> Pairing::devices() const {
+  std::lock_guard lock(m_);
+  return devices_;
+}
+
+bool Pairing::revoke(const std::string& id) {
+  std::lock_guard lock(m_);
+  const auto it = std::find_if(devices_.begin(), devices_.end(), [&](const auto& d) { return d.id == id; });
+  if (it == devices_.end()) return false;
+  store_->removeDevice(id);
+  devices_.erase(it);
+  return true;
+}
+
+std::size_t Pairing::revokeAll() {
+  std::lock_guard lock(m_);
+  for (const auto& d : devices_) store_->removeDevice(d.id);
+  const std::size_t n = devices_.size();
+  devices_.clear();
+  return n;
+}
+
+}  // namespace xr::web

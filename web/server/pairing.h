@@ -1,0 +1,113 @@
+#pragma once
+// Pairing: how a phone on the boat's Wi-Fi gets the right to change things
+// (issue 26, item 9; issue 25, item 15). Reads stay open on the LAN (unless
+// [web] reads_require_token); every write needs a token in the Authorization
+// header: the configured or generated static token (installers' scripts), or
+// a per-device token handed out by POST /api/pair for a short code.
+//
+// The code: 6 digits, valid for kCodeLifetime, single use. It is shown in the
+// journal at start and handed out to an already paired device (or to
+// `xregulatord --pair`, which asks the running daemon with the static token).
+// kMaxWrongTries wrong codes in a row burn the code and lock /api/pair for
+// kLockout: a guesser on the marina Wi-Fi gets 5 tries in 1,000,000 per code
+// the owner makes.
+//
+// Device tokens are 256 random bits; only their SHA-256 is kept (AuthStore,
+// the state database in the daemon), so a copy of the database does not give
+// write access, and revoking a device forgets its hash.
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace xr::web {
+
+inline constexpr std::int64_t kCodeLifetimeMs = 10 * 60 * 1000;
+inline constexpr int kMaxWrongTries = 5;
+inline constexpr std::int64_t kLockoutMs = 5 * 60 * 1000;
+inline constexpr std::size_t kMaxPairedDevices = 32;
+inline constexpr std::size_t kMaxDeviceNameLength = 40;
+
+// SHA-256 of text as 64 lowercase hex digits (OpenSSL).
+std::string sha256Hex(std::string_view text);
+// `digits` random decimal digits from /dev/urandom (uniform: rejection sampling).
+std::string randomDigits(int digits);
+
+struct PairedDevice {
+  std::string id;    // 8 hex digits of the token's hash: names the device in lists and DELETE
+  std::string name;  // what the phone called itself, printable ASCII, at most 40 characters
+  std::string hash;  // sha256Hex(token)
+  std::int64_t createdMs = 0;
+};
+
+// Where paired devices survive a restart. Implementations must be
+// thread-safe (the web threads call them) and never block for long.
+class AuthStore {
+ public:
+  virtual ~AuthStore() = default;
+  virtual std::vector<PairedDevice> loadDevices() = 0;
+  // false: not saved (read-only database...): the pairing is refused.
+  virtual bool saveDevice(const PairedDevice& d) = 0;
+  virtual bool removeDevice(const std::string& id) = 0;
+};
+
+// For tests and for a daemon without a state database: forgotten at exit.
+class MemoryAuthStore final : public AuthStore {
+ public:
+  std::vector<PairedDevice> loadDevices() override;
+  bool saveDevice(const PairedDevice& d) override;
+  bool removeDevice(const std::string& id) override;
+
+ private:
+  std::mutex m_;
+  std::vector<PairedDevice> devices_;
+};
+
+class Pairing {
+ public:
+  using Clock = std::function<std::int64_t()>;  // Unix ms; injectable for tests
+  explicit Pairing(std::shared_ptr<AuthStore> store, Clock now = {});
+
+  struct Code {
+    std::string code;
+    std::int64_t expiresMs = 0;
+  };
+  // A fresh code; replaces the previous one and ends a lock-out.
+  Code newCode();
+
+  struct Outcome {
+    enum Kind { Paired, WrongCode, LockedOut, NotSaved, Full } kind = WrongCode;
+    std::string token;              // Paired: the device's write token (shown once)
+    PairedDevice device;            // Paired
+    int triesLeft = 0;              // WrongCode
+    std::int64_t retryAfterMs = 0;  // LockedOut
+  };
+  Outcome pair(std::string_view code, std::string_view name);
+
+  // True when token is one of the paired devices' tokens.
+  bool isDeviceToken(std::string_view token) const;
+  std::vector<PairedDevice> devices() const;
+  bool revoke(const std::string& id);
+  std::size_t revokeAll();
+
+ private:
+  std::int64_t now() const;
+
+  std::shared_ptr<AuthStore> store_;
+  Clock clock_;
+  mutable std::mutex m_;
+  std::string codeHash_;  // empty: no code in force
+  std::int64_t codeExpiresMs_ = 0;
+  int wrongTries_ = 0;
+  std::int64_t lockedUntilMs_ = 0;
+  std::vector<PairedDevice> devices_;
+};
+
+// Keeps a device name printable and short; empty becomes "device".
+std::string cleanDeviceName(std::string_view name);
+
+}  // namespace xr::web
