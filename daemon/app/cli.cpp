@@ -33,7 +33,7 @@ std::string usageText() {
          "                   [--duration S] [--telemetry-csv FILE] [--telemetry-rate HZ]\n"
          "                   [--http ADDR:PORT] [--state-db FILE] [--check-config]\n"
          "                   [--print-default-config] [--probe] [--version] [--seed N]\n"
-         "                   [--log-level L] [--sim-outputs FILE] [--print-token]\n"
+         "                   [--log-level L] [--sim-outputs FILE] [--print-token] [--print-config]\n"
          "\n"
          "  --config FILE          configuration (default: built-in defaults; the service uses\n"
          "                         /etc/xregulator/xregulator.toml)\n"
@@ -49,6 +49,8 @@ std::string usageText() {
          "                         database, and exit (0 or 78)\n"
          "  --print-token          print the API write token kept in the state database\n"
          "  --print-default-config print the documented default configuration\n"
+         "  --print-config         print the effective configuration (--config, battery profile and\n"
+         "                         stored dashboard settings), each value with its source\n"
          "  --probe                check the hardware and print what to fix\n"
          "  --version              print the version\n"
          "  --seed N               simulation randomness seed (overrides the scenario's)\n"
@@ -67,6 +69,7 @@ CliResult parseCommandLine(const std::vector<std::string>& args) {
       {"--check-config", [&] { o.checkConfig = true; }},
       {"--print-token", [&] { o.printToken = true; }},
       {"--print-default-config", [&] { o.printDefaultConfig = true; }},
+      {"--print-config", [&] { o.printConfig = true; }},
       {"--probe", [&] { o.probe = true; }},
       {"--version", [&] { o.version = true; }},
       {"--help", [&] { o.help = true; }},

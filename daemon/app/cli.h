@@ -36,6 +36,7 @@ struct CliOptions {
   bool checkConfig = false;
   bool printToken = false;
   bool printDefaultConfig = false;
+  bool printConfig = false;  // --print-config: the effective configuration with sources (issue 21)
   bool probe = false;
   bool version = false;
   bool help = false;

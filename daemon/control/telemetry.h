@@ -8,6 +8,7 @@
 
 #include "battery/battery_telemetry.h"
 #include "control/control_telemetry.h"
+#include "core/inputs.h"
 #include "core/modes.h"
 #include "core/time.h"
 #include "protection/protection_telemetry.h"
@@ -36,6 +37,7 @@ struct Telemetry {
   bool alarm = false;  // buzzer
   double charged_wh_lifetime = 0.0;
   double alt_charged_wh_lifetime = 0.0;
+  double battery_temp_c = kNoValue;  // issue 21; NaN while no sample was ever read
 
   ControlTelemetry control;
   ProtectionTelemetry protection;
@@ -71,6 +73,7 @@ void visitTelemetryColumns(const Telemetry& t, TimeNs start, F&& f) {
   f("alarm", ColumnValue{t.alarm});
   f("charged_wh_lifetime", ColumnValue{t.charged_wh_lifetime});
   f("alt_charged_wh_lifetime", ColumnValue{t.alt_charged_wh_lifetime});
+  f("battery_temp_c", ColumnValue{t.battery_temp_c});
 }
 
 }  // namespace xr

@@ -74,6 +74,8 @@ constexpr std::array kReasons{
     XR_NAME(Reason, REASON_SYS_OFF),
     XR_NAME(Reason, REASON_LIMP_HOME),
     XR_NAME(Reason, REASON_SYSTEM_ID),
+    XR_NAME(Reason, REASON_BATTERY_COLD),
+    XR_NAME(Reason, REASON_BATTERY_HOT),
 };
 #undef XR_NAME
 

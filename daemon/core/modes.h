@@ -54,6 +54,8 @@ enum class Reason {
   REASON_SYS_OFF,
   REASON_LIMP_HOME,
   REASON_SYSTEM_ID,
+  REASON_BATTERY_COLD,  // battery below ChargeMinTempC: no charging (issue 21)
+  REASON_BATTERY_HOT,   // battery above ChargeMaxTempC: no charging until 3 degC below
 };
 
 std::string_view toString(FieldControlMode m);

@@ -71,6 +71,10 @@ void ControlCycle::mergeSlowInputs() noexcept {
   } else {
     mergeTemperature();
   }
+  if (h_.batteryTemp.version() == batteryTempVersion_)
+    in_.batteryTempC.fresh = false;
+  else
+    mergeBatteryTemp();
   if (h_.victron.version() == victronVersion_) {
     if (lastVictronStamp_ != 0) {
       in_.VictronCurrent.fresh = false;
@@ -92,6 +96,18 @@ void ControlCycle::mergeTemperature() noexcept {
   }
   lastTempStamp_ = t.stamp;
   in_.tempTaskHeartbeat = t.heartbeat;
+}
+
+void ControlCycle::mergeBatteryTemp() noexcept {
+  BatteryTempHandoff b;
+  batteryTempVersion_ = h_.batteryTemp.load(b);
+  in_.batteryTempSource = b.source;
+  in_.batteryTempC.fresh = b.stamp != 0 && b.stamp != lastBatteryTempStamp_;
+  if (b.stamp != 0) {
+    in_.batteryTempC.value = b.tempC;
+    in_.batteryTempC.stamp = b.stamp;
+  }
+  lastBatteryTempStamp_ = b.stamp;
 }
 
 void ControlCycle::mergeVictron() noexcept {

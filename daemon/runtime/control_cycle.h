@@ -104,6 +104,7 @@ class ControlCycle {
   void mergeSlowInputs() noexcept;
   void mergeTemperature() noexcept;
   void mergeVictron() noexcept;
+  void mergeBatteryTemp() noexcept;
   void readDiscreteInputs() noexcept;
   bool writeOutputs(const Outputs& out) noexcept;
   // What this tick publishes: the snapshot store and/or a telemetry row.
@@ -148,6 +149,8 @@ class ControlCycle {
   TimeNs lastNow_ = 0;
   TimeNs lastTempStamp_ = 0, lastVictronStamp_ = 0;
   std::uint64_t tempVersion_ = ~0ULL, victronVersion_ = ~0ULL;  // odd: never a stored version
+  std::uint64_t batteryTempVersion_ = ~0ULL;
+  TimeNs lastBatteryTempStamp_ = 0;
   TimeNs lastAdsStamp_[4] = {0, 0, 0, 0};
   TimeNs lastInaStamp_ = 0;
   std::array<std::uint32_t, 4> freshTotals_{};  // sensors that do not count: fresh flags summed

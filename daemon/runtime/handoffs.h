@@ -62,6 +62,13 @@ struct TemperatureHandoff {
   TimeNs stamp = 0;      // when the valid sample was taken (0 = never)
   TimeNs heartbeat = 0;  // last completed cycle of the thread (T4), valid or not
 };
+// The battery temperature (issue 21): from the battery DS18B20 today; a BMS or
+// a Victron device posts here the same way, naming itself in `source`.
+struct BatteryTempHandoff {
+  double tempC = kNoValue;
+  TimeNs stamp = 0;  // when the valid sample was taken (0 = none yet)
+  BatteryTempSource source = BatteryTempSource::none;
+};
 struct VictronHandoff {
   double currentA = kNoValue, voltageV = kNoValue, solarW = kNoValue;
   TimeNs stamp = 0;
@@ -128,6 +135,7 @@ class Handoffs {
   SpscQueue<RuntimeSnapshot, 512> rows;  // telemetry rows at --telemetry-rate
   SeqLock<TemperatureHandoff> temperature;
   SeqLock<VictronHandoff> victron;
+  SeqLock<BatteryTempHandoff> batteryTemp;
   SeqLock<BatteryLedger> ledger;  // the core's ledger, copied out ~4 times a second
   CommandAcks acks;
 
