@@ -40,18 +40,6 @@ std::string_view toString(EventCode c) {
     case EventCode::FullChargeDetected: return "FullChargeDetected";
     case EventCode::ShuntGainCorrected: return "ShuntGainCorrected";
     case EventCode::AutoZeroStarted: return "AutoZeroStarted";
-    case EventCode::BatteryTempMissing:
-      if (e.detail == 1) {
-        std::snprintf(buf, sizeof buf,
-                      "Battery temperature missing or stale: charge current capped at C/10 (%.1f A) "
-                      "(BatteryTempRequired)",
-                      e.a);
-        return buf;
-      }
-      return "Battery temperature missing or stale: charging without temperature compensation";
-    case EventCode::BatteryTempBack:
-      std::snprintf(buf, sizeof buf, "Battery temperature back: %.1f C", e.a);
-      return buf;
     case EventCode::AutoZeroDone: return "AutoZeroDone";
     case EventCode::SystemIdDone: return "SystemIdDone";
     case EventCode::TuningCommitted: return "TuningCommitted";

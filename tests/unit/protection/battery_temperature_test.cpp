@@ -104,7 +104,7 @@ TEST(BatteryTemperature, WithoutTemperatureRequiredTheBankChargesUncappedWithAWa
   r.p.BatteryTempRequired = false;
   r.p.TempCompMvPerCellC = -4.0;  // lead-acid: charges uncompensated
   r.now += fromSec(10.0);
-  const auto& d = r.feed(kNoValue, 0);
+  const auto& d = r.feed(kNoValue, 0, BatteryTempSource::none);  // no sensor configured
   EXPECT_EQ(d.currentCapA, 1e300);
   EXPECT_EQ(r.missing, 1);
 }
