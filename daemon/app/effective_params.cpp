@@ -10,8 +10,9 @@ Params withDashboardLayer(const Params& fileParams, const OverrideResolution& re
   Params p = applyLayers(resolved.params, origins);
   const auto errs = checkConsistency(p);
   if (errs.empty()) return p;
-  if (why) *why = "the stored dashboard settings do not fit the battery profile (" + errs.front().message +
-                  "); they are set aside and the configuration file's values apply";
+  if (why)
+    *why = "the stored dashboard settings do not fit the battery profile (" + errs.front().message +
+           "); they are set aside and the configuration file's values apply";
   origins.dashboard.clear();
   return applyLayers(fileParams, origins);
 }

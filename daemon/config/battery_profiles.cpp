@@ -55,13 +55,28 @@ constexpr double kVoltageAlarmLow12 = 11.0;
 
 constexpr double kTargetVoltageSetpoint12 = 13.6;
 
-constexpr std::array<std::string_view, 22> kOwned{
-    "BatteryCells",        "BulkVoltage",        "AbsorptionVoltage",   "FloatVoltage",
-    "RebulkVoltage",       "UseFloat",           "TailCurrent_A",       "AbsorptionTimeoutMs",
-    "MaximumAllowedBatteryAmps", "TempCompMvPerCellC", "TempCompMinC", "TempCompMaxC",
-    "ChargeMinTempC",      "ChargeFullCurrentTempC", "ChargeMaxTempC", "BatteryTempRequired",
-    "ChargedVoltage",      "VoltageAlarmHigh",   "VoltageAlarmLow",     "TailCurrent",
-    "PeukertRatedCurrent_A", "TargetVoltageSetpoint"};
+constexpr std::array<std::string_view, 22> kOwned{"BatteryCells",
+                                                  "BulkVoltage",
+                                                  "AbsorptionVoltage",
+                                                  "FloatVoltage",
+                                                  "RebulkVoltage",
+                                                  "UseFloat",
+                                                  "TailCurrent_A",
+                                                  "AbsorptionTimeoutMs",
+                                                  "MaximumAllowedBatteryAmps",
+                                                  "TempCompMvPerCellC",
+                                                  "TempCompMinC",
+                                                  "TempCompMaxC",
+                                                  "ChargeMinTempC",
+                                                  "ChargeFullCurrentTempC",
+                                                  "ChargeMaxTempC",
+                                                  "BatteryTempRequired",
+                                                  "ChargedVoltage",
+                                                  "VoltageAlarmHigh",
+                                                  "VoltageAlarmLow",
+                                                  "TailCurrent",
+                                                  "PeukertRatedCurrent_A",
+                                                  "TargetVoltageSetpoint"};
 
 bool pinnedName(const NameSet& pinned, std::string_view n) { return pinned.find(n) != pinned.end(); }
 
@@ -75,11 +90,16 @@ const ProfileTable* profileTable(BatteryProfileId id) {
 
 std::string_view toString(BatteryProfileId id) {
   switch (id) {
-    case BatteryProfileId::lifepo4: return "lifepo4";
-    case BatteryProfileId::agm: return "agm";
-    case BatteryProfileId::flooded: return "flooded";
-    case BatteryProfileId::gel: return "gel";
-    case BatteryProfileId::custom: return "custom";
+    case BatteryProfileId::lifepo4:
+      return "lifepo4";
+    case BatteryProfileId::agm:
+      return "agm";
+    case BatteryProfileId::flooded:
+      return "flooded";
+    case BatteryProfileId::gel:
+      return "gel";
+    case BatteryProfileId::custom:
+      return "custom";
   }
   return "custom";
 }
@@ -182,7 +202,8 @@ std::vector<ProfileProblem> checkProfileLimits(const Params& p) {
     // The published LiFePO4 charge ceiling: 3.65 V/cell (DBUS, YAM, §3.10.1;
     // BMS cut-offs sit at 3.80-3.85 V). Only "custom" may go above it.
     constexpr double kMaxCellV = 3.65;
-    const int cells = p.BatteryCells > 0 ? p.BatteryCells : cellsForNominal(id, nominalVoltage(systemClass(p)));
+    const int cells =
+        p.BatteryCells > 0 ? p.BatteryCells : cellsForNominal(id, nominalVoltage(systemClass(p)));
     for (const char* n : {"BulkVoltage", "AbsorptionVoltage", "FloatVoltage"}) {
       const double val = findParam(n)->get(p, 0);
       const double perCell = val / cells;
@@ -193,11 +214,12 @@ std::vector<ProfileProblem> checkProfileLimits(const Params& p) {
                               "to go beyond it)"});
     }
     if (p.TempCompMvPerCellC != 0.0)
-      out.push_back({"TempCompMvPerCellC", v(p.TempCompMvPerCellC, "mV/degC/cell") +
-                                               ": LiFePO4 is charged without temperature compensation (limit 0)"});
+      out.push_back(
+          {"TempCompMvPerCellC", v(p.TempCompMvPerCellC, "mV/degC/cell") +
+                                     ": LiFePO4 is charged without temperature compensation (limit 0)"});
     if (p.ChargeMinTempC < 0.0)
-      out.push_back({"ChargeMinTempC", v(p.ChargeMinTempC, "degC") +
-                                           " is below the LiFePO4 limit 0 degC (lithium plating)"});
+      out.push_back({"ChargeMinTempC",
+                     v(p.ChargeMinTempC, "degC") + " is below the LiFePO4 limit 0 degC (lithium plating)"});
   }
   return out;
 }

@@ -27,16 +27,16 @@ enum class BatteryProfileId { lifepo4 = 0, agm = 1, flooded = 2, gel = 3, custom
 // Published values of one chemistry, as a 12 V bank at 25 degC.
 struct ProfileTable {
   BatteryProfileId id;
-  int cellsPer12V;          // 4 LiFePO4, 6 lead-acid
-  double bulkV12;           // BulkVoltage
-  double absorptionV12;     // AbsorptionVoltage
-  double floatV12;          // FloatVoltage
-  double rebulkV12;         // RebulkVoltage
-  bool useFloat;            // UseFloat (false: rests after absorption)
-  double tailFractionC;     // TailCurrent_A = this x BatteryCapacity_Ah
-  double absorptionHours;   // AbsorptionTimeoutMs
-  double maxChargeRateC;    // MaximumAllowedBatteryAmps = this x BatteryCapacity_Ah
-  double tempCompMvPerCell; // TempCompMvPerCellC
+  int cellsPer12V;           // 4 LiFePO4, 6 lead-acid
+  double bulkV12;            // BulkVoltage
+  double absorptionV12;      // AbsorptionVoltage
+  double floatV12;           // FloatVoltage
+  double rebulkV12;          // RebulkVoltage
+  bool useFloat;             // UseFloat (false: rests after absorption)
+  double tailFractionC;      // TailCurrent_A = this x BatteryCapacity_Ah
+  double absorptionHours;    // AbsorptionTimeoutMs
+  double maxChargeRateC;     // MaximumAllowedBatteryAmps = this x BatteryCapacity_Ah
+  double tempCompMvPerCell;  // TempCompMvPerCellC
   double tempCompMinC, tempCompMaxC;
   double chargeMinC, chargeFullCurrentC, chargeMaxC;
   bool tempRequired;  // BatteryTempRequired

@@ -10,10 +10,14 @@ namespace xr {
 
 std::string_view toString(ParamSource s) {
   switch (s) {
-    case ParamSource::Default: return "default";
-    case ParamSource::Profile: return "profile";
-    case ParamSource::File: return "file";
-    case ParamSource::Dashboard: return "dashboard";
+    case ParamSource::Default:
+      return "default";
+    case ParamSource::Profile:
+      return "profile";
+    case ParamSource::File:
+      return "file";
+    case ParamSource::Dashboard:
+      return "dashboard";
   }
   return "default";
 }

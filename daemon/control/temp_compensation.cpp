@@ -15,7 +15,8 @@ int compensationCells(const Params& p) {
 
 double temperatureCompensationV(const Params& p, double tempC) {
   if (!std::isfinite(tempC) || p.TempCompMvPerCellC == 0.0) return 0.0;
-  const double t = std::clamp(tempC, std::min(p.TempCompMinC, p.TempCompMaxC), std::max(p.TempCompMinC, p.TempCompMaxC));
+  const double t =
+      std::clamp(tempC, std::min(p.TempCompMinC, p.TempCompMaxC), std::max(p.TempCompMinC, p.TempCompMaxC));
   return p.TempCompMvPerCellC / 1000.0 * compensationCells(p) * (t - k::TEMP_COMP_REFERENCE_C);
 }
 

@@ -18,7 +18,8 @@ bool sampleKnown(const Inputs& in) {
 
 }  // namespace
 
-const BatteryTempDecision& BatteryTemperatureGuard::update(const Inputs& in, const Params& p, EventBatch& ev) {
+const BatteryTempDecision& BatteryTemperatureGuard::update(const Inputs& in, const Params& p,
+                                                           EventBatch& ev) {
   if (firstTick_ < 0) firstTick_ = in.now;
   const bool known = sampleKnown(in);
   const double t = known ? in.batteryTempC.value : kNoValue;
@@ -35,8 +36,8 @@ const BatteryTempDecision& BatteryTemperatureGuard::update(const Inputs& in, con
     // Cold lockout with its release hysteresis.
     if (!d_.cold && t < p.ChargeMinTempC) {
       d_.cold = true;
-      ev.push(makeEvent(in.now, EventLevel::Warning, EventCode::ProtectionTrip, Reason::REASON_BATTERY_COLD, t,
-                        p.ChargeMinTempC));
+      ev.push(makeEvent(in.now, EventLevel::Warning, EventCode::ProtectionTrip, Reason::REASON_BATTERY_COLD,
+                        t, p.ChargeMinTempC));
     } else if (d_.cold && t >= p.ChargeMinTempC + k::BATTERY_COLD_HYSTERESIS_C) {
       d_.cold = false;
       ev.push(makeEvent(in.now, EventLevel::Info, EventCode::ProtectionClear, Reason::REASON_BATTERY_COLD, t,

@@ -22,10 +22,10 @@
 namespace xr {
 
 struct BatteryTempDecision {
-  bool known = false;      // a valid sample no older than BATTERY_TEMP_STALE_MS
-  double tempC = kNoValue;  // that sample (NaN when not known)
-  bool cold = false;       // REASON_BATTERY_COLD acting
-  bool hot = false;        // REASON_BATTERY_HOT acting
+  bool known = false;          // a valid sample no older than BATTERY_TEMP_STALE_MS
+  double tempC = kNoValue;     // that sample (NaN when not known)
+  bool cold = false;           // REASON_BATTERY_COLD acting
+  bool hot = false;            // REASON_BATTERY_HOT acting
   double currentCapA = 1e300;  // on the current command (1e300 = none)
 };
 

@@ -1,11 +1,12 @@
 // Battery profiles (issue 21): each profile's effective values at 12, 24 and
 // 48 V against the published figures of plant-facts.md §3.7-3.8, overrides,
 // provenance, and the profile limits that refuse a file.
+#include "config/battery_profiles.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "config/battery_profiles.h"
 #include "config/config.h"
 #include "config/param_sources.h"
 
@@ -18,7 +19,9 @@ Config load(const std::string& text) {
   return r.config.value_or(Config{});
 }
 
-std::vector<ConfigError> errorsOf(const std::string& text) { return loadConfigString(text, "test.toml").errors; }
+std::vector<ConfigError> errorsOf(const std::string& text) {
+  return loadConfigString(text, "test.toml").errors;
+}
 
 // The published 12 V value at 25 degC of each profile, and its source
 // (plant-facts.md): absorption, float, rebulk, tail as % of C, absorption
@@ -89,8 +92,8 @@ TEST(BatteryProfiles, CellsComeFromTheVoltageClassOfAFileBulkVoltage) {
 }
 
 TEST(BatteryProfiles, FileValuesOverrideTheProfileAndCustomIsTodaysBehaviour) {
-  const Config c =
-      load("[battery]\nBatteryProfile = \"lifepo4\"\n[voltage]\nAbsorptionVoltage = 14.0\nFloatVoltage = 13.4\n");
+  const Config c = load(
+      "[battery]\nBatteryProfile = \"lifepo4\"\n[voltage]\nAbsorptionVoltage = 14.0\nFloatVoltage = 13.4\n");
   EXPECT_DOUBLE_EQ(c.params.AbsorptionVoltage, 14.0);
   EXPECT_DOUBLE_EQ(c.params.FloatVoltage, 13.4);
   EXPECT_DOUBLE_EQ(c.params.BulkVoltage, 14.2);  // still the profile's
@@ -138,8 +141,9 @@ TEST(BatteryProfiles, LifepoAbsorptionAbove365PerCellIsRefusedNamingValueAndLimi
                        "AbsorptionVoltage = 14.6\n")
                   .empty());
   // 14.64 V = 3.66 V/cell: just above, refused.
-  const auto errs = errorsOf("[battery]\nBatteryProfile = \"lifepo4\"\n[voltage]\nBulkVoltage = 14.64\n"
-                             "AbsorptionVoltage = 14.64\n");
+  const auto errs = errorsOf(
+      "[battery]\nBatteryProfile = \"lifepo4\"\n[voltage]\nBulkVoltage = 14.64\n"
+      "AbsorptionVoltage = 14.64\n");
   EXPECT_TRUE(names(errs, "voltage.AbsorptionVoltage", "14.64 V is 3.66 V/cell"));
   EXPECT_TRUE(names(errs, "voltage.AbsorptionVoltage", "3.65 V/cell"));
   // The same values with the custom profile are the user's business.

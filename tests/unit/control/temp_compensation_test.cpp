@@ -31,9 +31,9 @@ TEST(TempCompensation, ZeroAtTheReferenceAndMinus4mVPerCellPerDegree) {
 
 TEST(TempCompensation, TemperatureClampedAtTheConfiguredLimits) {
   const Params p = agm();
-  EXPECT_NEAR(temperatureCompensationV(p, 50.0), -0.6, 1e-12);   // at the upper limit
+  EXPECT_NEAR(temperatureCompensationV(p, 50.0), -0.6, 1e-12);    // at the upper limit
   EXPECT_NEAR(temperatureCompensationV(p, 49.9), -0.5976, 1e-9);  // just inside
-  EXPECT_NEAR(temperatureCompensationV(p, 60.0), -0.6, 1e-12);   // beyond: held
+  EXPECT_NEAR(temperatureCompensationV(p, 60.0), -0.6, 1e-12);    // beyond: held
   EXPECT_NEAR(temperatureCompensationV(p, -10.0), 0.84, 1e-12);
   EXPECT_NEAR(temperatureCompensationV(p, -20.0), 0.84, 1e-12);
 }

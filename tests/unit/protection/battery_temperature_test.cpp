@@ -28,7 +28,8 @@ struct Rig {
   EventBatch ev;
   int trips = 0, clears = 0, missing = 0, back = 0;
 
-  const BatteryTempDecision& feed(double tempC, TimeNs stamp, BatteryTempSource src = BatteryTempSource::ds18b20) {
+  const BatteryTempDecision& feed(double tempC, TimeNs stamp,
+                                  BatteryTempSource src = BatteryTempSource::ds18b20) {
     Inputs in;
     in.now = now;
     in.batteryTempSource = src;
@@ -51,7 +52,7 @@ struct Rig {
 
 TEST(BatteryTemperature, ColdLockoutAtThresholdNotJustAboveAndReleasedWithHysteresis) {
   Rig r;
-  EXPECT_FALSE(r.at(0.0).cold);  // at ChargeMinTempC: not below it
+  EXPECT_FALSE(r.at(0.0).cold);     // at ChargeMinTempC: not below it
   EXPECT_TRUE(r.at(-0.0625).cold);  // one DS18B20 step below
   EXPECT_EQ(r.trips, 1);
   EXPECT_TRUE(r.at(0.25).cold);     // inside the 0.5 degC release hysteresis
@@ -74,7 +75,7 @@ TEST(BatteryTemperature, HotStopAboveMaxResumesOnly3DegreesBelow) {
   Rig r;
   EXPECT_FALSE(r.at(45.0).hot);  // at the limit
   EXPECT_TRUE(r.at(45.0625).hot);
-  EXPECT_TRUE(r.at(42.1).hot);  // 2.9 degC below: still stopped
+  EXPECT_TRUE(r.at(42.1).hot);   // 2.9 degC below: still stopped
   EXPECT_FALSE(r.at(42.0).hot);  // 3 degC below: resumes
   EXPECT_EQ(r.trips, 1);
   EXPECT_EQ(r.clears, 1);
@@ -158,11 +159,12 @@ TEST(BatteryTemperature, ColdAndHotAreOrdersInEveryModeLikeTheBms) {
 }
 
 TEST(BatteryTemperature, EventsReadAsSentences) {
-  EXPECT_EQ(describe(makeEvent(0, EventLevel::Warning, EventCode::ProtectionTrip, Reason::REASON_BATTERY_COLD, -5,
-                               0)),
+  EXPECT_EQ(describe(makeEvent(0, EventLevel::Warning, EventCode::ProtectionTrip, Reason::REASON_BATTERY_COLD,
+                               -5, 0)),
             "Battery too cold to charge: -5.0 C < 0.0 C. Field off until it warms");
-  EXPECT_EQ(describe(makeEvent(0, EventLevel::Warning, EventCode::BatteryTempMissing, Reason::NONE, 20, 0, 1)),
-            "Battery temperature missing or stale: charge current capped at C/10 (20.0 A) (BatteryTempRequired)");
+  EXPECT_EQ(
+      describe(makeEvent(0, EventLevel::Warning, EventCode::BatteryTempMissing, Reason::NONE, 20, 0, 1)),
+      "Battery temperature missing or stale: charge current capped at C/10 (20.0 A) (BatteryTempRequired)");
 }
 
 }  // namespace
