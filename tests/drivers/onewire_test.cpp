@@ -132,12 +132,12 @@ TEST_F(Ds18b20ReaderTest, FirstFoundSkipsTheBatterySensor) {
   Ds18b20Reader alt(d.path(), "", 1'000'000'000, now());
   alt.excludeId("28-000000000001");
   alt.readOnce();
-  EXPECT_EQ(alt.sensorPath(), d.path().string() + "/28-00000abc/w1_slave");
+  EXPECT_EQ(alt.sensorPath(), d.path() + "/28-00000abc/w1_slave");
   EXPECT_NEAR(alt.latest().tempF, -10.125 * 9 / 5 + 32, 1e-9);
   // Without the exclusion the first found would have been the battery's.
   Ds18b20Reader plain(d.path(), "", 1'000'000'000, now());
   plain.readOnce();
-  EXPECT_EQ(plain.sensorPath(), d.path().string() + "/28-000000000001/w1_slave");
+  EXPECT_EQ(plain.sensorPath(), d.path() + "/28-000000000001/w1_slave");
 }
 
 TEST_F(Ds18b20ReaderTest, BatterySampleBecomesAHandoffInCelsiusNamingItsSource) {
