@@ -6,14 +6,12 @@
 //   xr_gendocs markdown            print docs/parameters.md
 //   xr_gendocs write ROOT          write both into the source tree at ROOT
 //   xr_gendocs check ROOT          exit 1 when a committed file is stale
-#include <algorithm>
 #include <fstream>
 #include <iostream>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include "config/battery_profiles.h"
 #include "config/format.h"
 #include "config/settings_schema.h"
 #include "params/params.h"
@@ -150,12 +148,6 @@ std::string tomlText() {
       std::string meta = paramRange(s);
       if (!s.unit.empty()) meta += " " + std::string(s.unit);
       comment(o, meta + ". Default " + paramDefault(s, false) + ".");
-      // A value the battery profile owns is left commented out: written
-      // here, it would override the profile (docs/batteries.md).
-      const auto owned = profileOwnedNames();
-      if (std::find(owned.begin(), owned.end(), s.name) != owned.end()) {
-        o << "# Set by BatteryProfile unless you set it here.\n# ";
-      }
       o << s.name << " = " << paramDefault(s, true) << "\n";
     }
   }
