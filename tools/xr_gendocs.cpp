@@ -59,6 +59,7 @@ std::string tomlString(std::string_view s) {
 }
 
 std::string paramDefault(const ParamSpec& s, bool toml) {
+  if (!s.choices.empty()) return tomlString(std::string(choiceName(s, static_cast<int>(s.defaultValue))));
   switch (s.kind) {
     case ParamKind::Float: return toml ? tomlFloat(s.defaultValue) : formatNumber(s.defaultValue);
     case ParamKind::Int: return formatNumber(s.defaultValue);
@@ -77,6 +78,7 @@ std::string paramDefault(const ParamSpec& s, bool toml) {
 
 std::string paramRange(const ParamSpec& s) {
   if (s.kind == ParamKind::Bool) return "true/false (or 1/0)";
+  if (!s.choices.empty()) return "one of " + std::string(s.choices);
   std::string r = formatNumber(s.min) + " to " + formatNumber(s.max);
   if (s.kind == ParamKind::Int) r += ", whole";
   if (s.kind == ParamKind::Table) r = std::to_string(RPM_TABLE_SIZE) + " values, each " + r;

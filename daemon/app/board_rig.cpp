@@ -68,7 +68,12 @@ BoardRig::BoardRig(const Settings& settings) {
     watchdogWarning_ = watchdog_.warning();
   }
   ds18b20_ = std::make_unique<Ds18b20Reader>(hw.w1_root, hw.onewire_sensor_id);
+  ds18b20_->excludeId(hw.battery_temp_sensor);
   ds18b20_->start();
+  if (!hw.battery_temp_sensor.empty()) {
+    batteryDs18b20_ = std::make_unique<Ds18b20Reader>(hw.w1_root, hw.battery_temp_sensor);
+    batteryDs18b20_->start();
+  }
   if (!hw.vedirect_port.empty()) {
     vedirect_ = std::make_unique<VeDirectReader>(hw.vedirect_port);
     vedirect_->start();
@@ -77,6 +82,7 @@ BoardRig::BoardRig(const Settings& settings) {
 
 BoardRig::~BoardRig() {
   if (vedirect_) vedirect_->stop();
+  if (batteryDs18b20_) batteryDs18b20_->stop();
   if (ds18b20_) ds18b20_->stop();
 }
 
@@ -121,6 +127,16 @@ void BoardRig::beforeTick(TimeNs) {
     handoffs_->temperature.store(temperatureHandoff(s));
     lastTempHeartbeat_ = s.heartbeat;
     lastTempStamp_ = s.stamp;
+  }
+  if (batteryDs18b20_) {
+    // Posted from the first tick on (source ds18b20 before the first
+    // reading), then whenever the reader completes a cycle.
+    const Ds18b20Sample b = batteryDs18b20_->latest();
+    if (!batteryTempPosted_ || b.heartbeat != lastBatteryHeartbeat_) {
+      handoffs_->batteryTemp.store(batteryTempHandoff(b));
+      batteryTempPosted_ = true;
+      lastBatteryHeartbeat_ = b.heartbeat;
+    }
   }
   if (vedirect_) {
     const VeDirectSample v = vedirect_->latest();

@@ -47,6 +47,9 @@ class BoardRig final : public rt::TickHook {
   std::string watchdogWarning_;
   std::string readyLineWarning_;
   std::unique_ptr<Ds18b20Reader> ds18b20_;
+  std::unique_ptr<Ds18b20Reader> batteryDs18b20_;  // [hardware] battery_temp_sensor (issue 21)
+  bool batteryTempPosted_ = false;
+  TimeNs lastBatteryHeartbeat_ = 0;
   std::unique_ptr<VeDirectReader> vedirect_;
   rt::Handoffs* handoffs_ = nullptr;
   std::uint64_t lastVictronFrames_ = 0;

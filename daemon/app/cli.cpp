@@ -34,6 +34,7 @@ std::string usageText() {
          "                   [--http ADDR:PORT] [--state-db FILE] [--check-config]\n"
          "                   [--print-default-config] [--probe] [--version] [--seed N]\n"
          "                   [--log-level L] [--sim-outputs FILE] [--print-token] [--pair]\n"
+         "                   [--print-config]\n"
          "\n"
          "  --config FILE          configuration (default: built-in defaults; the service uses\n"
          "                         /etc/xregulator/xregulator.toml)\n"
@@ -51,6 +52,8 @@ std::string usageText() {
          "  --pair                 ask the running daemon for a new phone pairing code\n"
          "                         (needs --config FILE, or --http ADDR:PORT and --state-db FILE)\n"
          "  --print-default-config print the documented default configuration\n"
+         "  --print-config         print the effective configuration (--config, battery profile and\n"
+         "                         stored dashboard settings), each value with its source\n"
          "  --probe                check the hardware and print what to fix\n"
          "  --version              print the version\n"
          "  --seed N               simulation randomness seed (overrides the scenario's)\n"
@@ -70,6 +73,7 @@ CliResult parseCommandLine(const std::vector<std::string>& args) {
       {"--print-token", [&] { o.printToken = true; }},
       {"--pair", [&] { o.pair = true; }},
       {"--print-default-config", [&] { o.printDefaultConfig = true; }},
+      {"--print-config", [&] { o.printConfig = true; }},
       {"--probe", [&] { o.probe = true; }},
       {"--version", [&] { o.version = true; }},
       {"--help", [&] { o.help = true; }},

@@ -37,6 +37,7 @@ struct CliOptions {
   bool printToken = false;
   bool pair = false;  // --pair: a new pairing code from the running daemon
   bool printDefaultConfig = false;
+  bool printConfig = false;  // --print-config: the effective configuration with sources (issue 21)
   bool probe = false;
   bool version = false;
   bool help = false;

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <ostream>
 
+#include "app/effective_params.h"
 #include "app/stored_overrides.h"
 #include "config/config.h"
 #include "config/web_checks.h"
@@ -33,6 +34,39 @@ int checkConfigAndState(const std::string& configPath, const std::optional<std::
       << (rows.size() - res.dropped.size() == 1 ? "" : "s") << " fit the configuration";
   if (!res.dropped.empty()) out << ", " << res.dropped.size() << " will be dropped";
   out << "\n";
+  return 0;
+}
+
+int printConfigMain(const std::optional<std::string>& configPath, const std::optional<std::string>& stateDb,
+                    std::ostream& out, std::ostream& err) {
+  Config config;
+  if (configPath) {
+    LoadResult r = loadConfigFile(*configPath);
+    if (!r.ok()) {
+      for (const auto& e : r.errors) err << e.toString() << "\n";
+      return kExitConfig;
+    }
+    config = std::move(*r.config);
+  }
+  ParamOrigins origins;
+  origins.file = config.fileParamNames;
+  Params params = applyLayers(config.params, origins);
+  const std::string db = stateDb.value_or(configPath ? config.settings.store.path : std::string());
+  std::error_code ec;
+  if (!db.empty() && std::filesystem::exists(db, ec)) {
+    std::string why;
+    const auto rows = readOverridesReadOnly(db, &why);
+    if (!why.empty()) {
+      err << "warning: " << why << " (stored dashboard settings not shown)\n";
+    } else {
+      const OverrideResolution res = resolveStoredOverrides(params, rows);
+      for (const auto& d : res.dropped) err << "warning: " << d.text() << "\n";
+      std::string setAside;
+      params = withDashboardLayer(params, res, origins, &setAside);
+      if (!setAside.empty()) err << "warning: " << setAside << "\n";
+    }
+  }
+  out << effectiveConfigText(config.settings, params, origins);
   return 0;
 }
 

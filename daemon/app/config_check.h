@@ -14,6 +14,13 @@ namespace xr::app {
 int checkConfigAndState(const std::string& configPath, const std::optional<std::string>& stateDb,
                         std::ostream& out, std::ostream& err);
 
+// `--print-config` (issue 21): the effective configuration as TOML, each
+// value with its source (# default / # profile / # file / # dashboard); the
+// dashboard layer is read from the state database when there is one. 0, or
+// kExitConfig (78) with the errors on err when the file is refused.
+int printConfigMain(const std::optional<std::string>& configPath, const std::optional<std::string>& stateDb,
+                    std::ostream& out, std::ostream& err);
+
 // Prints the stored token on out. 0, or 1 with the reason on err.
 int printTokenMain(const std::optional<std::string>& configPath, const std::optional<std::string>& stateDb,
                    std::ostream& out, std::ostream& err);

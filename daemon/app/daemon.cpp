@@ -1,5 +1,7 @@
 #include "app/daemon.h"
 
+#include "app/effective_params.h"
+
 #include <signal.h>
 #include <spdlog/spdlog.h>
 #include <systemd/sd-daemon.h>
@@ -87,11 +89,14 @@ int Daemon::run() {
 
   // ---- parameters: file, then scenario [config], then stored overrides ----
   Params fileParams = config_.params;
+  ParamOrigins origins;  // issue 21: where each value comes from
+  origins.file = config_.fileParamNames;
   std::optional<sim::Scenario> scenario;
   if (cli_.sim) {
     try {
       scenario = cli_.scenario ? sim::loadScenario(*cli_.scenario) : sim::defaultScenario();
       sim::applyOverrides(fileParams, scenario->config, scenario->source);
+      for (const auto& c : scenario->config) origins.file.insert(c.name);
     } catch (const std::exception& e) {
       // A bad scenario is bad input on the command line (issue 20: exit 64,
       // EX_USAGE), not a bad configuration file (78).
@@ -103,6 +108,7 @@ int Daemon::run() {
                  cli_.seed ? *cli_.seed : scenario->seed);
   }
 
+  fileParams = applyLayers(fileParams, origins);  // the profile under the file and [config]
   std::unique_ptr<StoreService> store;
   std::string dbPath = cli_.stateDb.value_or(cli_.sim ? std::string() : settings.store.path);
   Params params = fileParams;
@@ -119,8 +125,10 @@ int Daemon::run() {
       spdlog::info("store: ledger restored (saved for '{}')", saved->reason);
     }
     const OverrideResolution resolved = store->applyOverrides(fileParams);
-    params = resolved.params;
     for (const auto& d : resolved.dropped) spdlog::error("{}", d.text());
+    std::string why;
+    params = withDashboardLayer(fileParams, resolved, origins, &why);
+    if (!why.empty()) spdlog::error("{}", why);
   }
 
   // ---- the core and the hand-offs ----
@@ -213,6 +221,7 @@ int Daemon::run() {
     WebApiContext ctx;
     ctx.handoffs = handoffs.get();
     ctx.fileParams = fileParams;
+    ctx.origins = origins;
     ctx.store = store.get();
     ctx.events = &recent;
     ctx.sim = cli_.sim;

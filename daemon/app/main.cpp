@@ -50,6 +50,7 @@ int main(int argc, char** argv) {
   if (o.checkConfig) return checkConfigAndState(*o.config, o.stateDb, std::cout, std::cerr);
   if (o.printToken) return printTokenMain(o.config, o.stateDb, std::cout, std::cerr);
   if (o.pair) return pairMain(o.config, o.stateDb, o.http, std::cout, std::cerr);
+  if (o.printConfig) return printConfigMain(o.config, o.stateDb, std::cout, std::cerr);
 
   Config config;
   if (o.config) {

@@ -96,6 +96,8 @@ OverrideResolution resolveStoredOverrides(const Params& fileParams, const std::v
     errs = checkConsistency(applyActive(fileParams, cands, none));
   }
   r.params = applyActive(fileParams, cands, none);
+  for (const auto& c : cands)
+    if (c.active) r.applied.push_back(c.row->name);
   return r;
 }
 

@@ -26,6 +26,7 @@ struct DroppedOverride {
 struct OverrideResolution {
   Params params;                         // file + every override that fits, consistent
   std::vector<DroppedOverride> dropped;  // in the order they were dropped
+  std::vector<std::string> applied;      // names of the overrides in force (issue 21: their source)
 };
 
 // Deterministic: first every row that is malformed on its own (unknown name,

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <thread>
 
+#include "app/effective_params.h"
 #include "config/config.h"
 #include "core/modes.h"
 
@@ -76,6 +77,13 @@ bool WebApi::latestStatus(web::StatusSnapshot& out) {
 
 Params WebApi::currentParams() { return ctx_.handoffs->acceptedParams(); }
 
+std::map<std::string, std::string> WebApi::paramSources() {
+  std::lock_guard lock(patchMutex_);
+  std::map<std::string, std::string> out;
+  for (const auto& s : catalogue()) out.emplace(s.name, toString(ctx_.origins.of(s.name)));
+  return out;
+}
+
 web::PatchResult WebApi::patchParams(const std::vector<web::ParamChange>& changes) {
   web::PatchResult r;
   std::lock_guard lock(patchMutex_);
@@ -94,6 +102,14 @@ web::PatchResult WebApi::patchParams(const std::vector<web::ParamChange>& change
     }
     c.spec->set(p, idx, c.value);
   }
+  // The patched names join the dashboard layer; the battery profile fills
+  // again what nobody set (a new BatteryProfile, BatteryCells or capacity
+  // moves its values), and the whole set is checked (issue 21).
+  std::vector<std::string> patched;
+  for (const auto& c : changes)
+    if (c.spec) patched.emplace_back(c.spec->name);
+  ParamOrigins origins = ctx_.origins;
+  if (r.errors.empty()) p = withPatch(p, patched, origins);
   if (r.errors.empty()) {
     // Bare parameter names, like every other error of the API (issue 26,
     // item 12): the loader's keys carry the file's table ("voltage.").
@@ -105,12 +121,21 @@ web::PatchResult WebApi::patchParams(const std::vector<web::ParamChange>& change
   // not applied for this run only and silently lost at the next start
   // (issue 26, item 7).
   if (ctx_.store) {
-    if (std::string why = ctx_.store->saveOverrides(ctx_.fileParams, before, p); !why.empty()) {
+    // Only what the patch named is stored: values the profile moved stay the
+    // profile's, and follow it at the next start.
+    Params named = before;
+    for (const auto& name : patched) {
+      const ParamSpec* spec = findParam(name);
+      for (std::size_t i = 0; i < (spec->kind == ParamKind::Table ? RPM_TABLE_SIZE : 1); ++i)
+        spec->set(named, i, spec->get(p, i));
+    }
+    if (std::string why = ctx_.store->saveOverrides(ctx_.fileParams, before, named); !why.empty()) {
       r.errors.push_back({"store", why + "; nothing applied"});
       return r;
     }
   }
   ctx_.handoffs->submitParams(p);  // whole swap, between ticks
+  ctx_.origins = std::move(origins);
   logPatch(changes.size());
   return r;
 }

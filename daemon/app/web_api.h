@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "app/status_source.h"
+#include "config/param_sources.h"
 #include "app/store_service.h"
 #include "runtime/handoffs.h"
 #include "web/server/daemon_api.h"
@@ -20,6 +21,7 @@ namespace xr::app {
 struct WebApiContext {
   rt::Handoffs* handoffs = nullptr;
   Params fileParams;
+  ParamOrigins origins;  // where each value comes from (issue 21)
   StoreService* store = nullptr;  // may be null (no --state-db in --sim)
   RecentEvents* events = nullptr;
   bool sim = false;
@@ -38,6 +40,7 @@ class WebApi final : public web::DaemonApi {
   bool latestStatus(web::StatusSnapshot& out) override;
   Params currentParams() override;
   Params fileParams() override { return ctx_.fileParams; }
+  std::map<std::string, std::string> paramSources() override;
   web::PatchResult patchParams(const std::vector<web::ParamChange>& changes) override;
   web::CommandResult command(const Command& cmd) override;
   std::vector<web::EventRecord> events(const web::EventQuery& q) override;

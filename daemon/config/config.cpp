@@ -8,6 +8,7 @@
 #include <map>
 #include <ostream>
 
+#include "config/battery_profiles.h"
 #include "config/bounded_read.h"
 #include "config/format.h"
 #include "config/integration_checks.h"
@@ -96,6 +97,12 @@ class Loader {
       return std::move(result_);
     }
     for (auto&& [k, node] : root) topLevel(k, node);
+    // The battery profile fills what the file did not set (issue 21).
+    {
+      ProfileApplied pa = applyBatteryProfile(config_.params, config_.fileParamNames);
+      config_.params = pa.params;
+      config_.profileParamNames = std::move(pa.setByProfile);
+    }
 
     for (auto& e : checkConsistency(config_.params, file_)) {
       // Point consistency errors at the key in the file when it was written there.
@@ -176,6 +183,7 @@ class Loader {
         continue;
       }
       setParamValue(config_.params, *spec, std::get<ParamValue>(v));
+      config_.fileParamNames.insert(name);
     }
   }
 
@@ -330,6 +338,9 @@ std::vector<ConfigError> checkConsistency(const Params& p, std::string_view file
     err("LoadDumpDtThresh", "load dump tiers must satisfy LoadDumpDtThresh1 >= LoadDumpDtThresh >= LoadDumpDtThresh3 (" +
                                 formatNumber(p.LoadDumpDtThresh1) + ", " + formatNumber(p.LoadDumpDtThresh) + ", " +
                                 formatNumber(p.LoadDumpDtThresh3) + " A/s)");
+  // The battery profile's own limits (issue 21): LiFePO4 cell voltage,
+  // inverted temperature ranges.
+  for (auto& pr : checkProfileLimits(p)) errs.push_back({f, 0, 0, dotted(pr.name.c_str()), std::move(pr.message)});
   for (std::size_t i = 1; i < RPM_TABLE_SIZE; ++i) {
     if (p.rpmTableRPMPoints[i] <= p.rpmTableRPMPoints[i - 1]) {
       err("rpmTableRPMPoints", "breakpoints must be strictly ascending (element " + std::to_string(i) + " = " +

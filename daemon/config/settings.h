@@ -2,6 +2,7 @@
 // Non-parameter settings of xregulator.toml: [hardware], [runtime], [web],
 // [store], [log], [integrations.*]. Parameters (the catalogue) live in params/params.h.
 #include <cstdint>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,7 @@ struct HardwareSettings {
   int watchdog_timeout_s = 16;
   std::string w1_root = "/sys/bus/w1/devices";
   std::string onewire_sensor_id;  // "28-..." or empty for the first found
+  std::string battery_temp_sensor;  // battery DS18B20 "28-..."; empty = none (issue 21)
   std::string vedirect_port;      // e.g. /dev/ttyUSB0, empty = none
 };
 
@@ -143,7 +145,11 @@ struct Settings {
 // The whole configuration: settings plus the parameter set.
 struct Config {
   Settings settings;
-  Params params;
+  Params params;  // defaults, then the battery profile, then the file
+  // Where the values came from (issue 21, --print-config, GET /api/params):
+  // the parameters written in the file, and those the profile filled.
+  std::set<std::string, std::less<>> fileParamNames;
+  std::set<std::string, std::less<>> profileParamNames;
 };
 
 }  // namespace xr

@@ -93,6 +93,9 @@ const SettingSpec kSchema[] = {
     XR_S_STR("hardware", hardware.w1_root, "w1_root", "", "1-Wire sysfs devices directory."),
     XR_S_STR("hardware", hardware.onewire_sensor_id, "onewire_sensor_id", "",
              "DS18B20 id (\"28-...\"); empty = the first one found."),
+    XR_S_STR("hardware", hardware.battery_temp_sensor, "battery_temp_sensor", "",
+             "Battery DS18B20 id (\"28-...\") on the same 1-Wire bus; empty = no battery temperature sensor "
+             "(docs/batteries.md). Set onewire_sensor_id too when two sensors are wired."),
     XR_S_STR("hardware", hardware.vedirect_port, "vedirect_port", "",
              "VE.Direct serial port (e.g. /dev/ttyUSB0); empty = none."),
     // [hardware.frontend]

@@ -40,6 +40,14 @@ std::string describeNode(const toml::node& n) {
 std::variant<ParamValue, std::string> paramValueFromNode(const ParamSpec& spec, const toml::node& n) {
   const std::string allowed = "allowed " + rangeText(spec.min, spec.max, spec.unit);
   ParamValue v;
+  if (!spec.choices.empty()) {
+    // A named choice is written by name ("lifepo4"), never by its number.
+    const auto* str = n.as_string();
+    if (!str) return "expected one of " + std::string(spec.choices) + " (a quoted name), got " + describeNode(n);
+    const auto idx = choiceIndex(spec, str->get());
+    if (!idx) return "\"" + std::string(str->get()) + "\" is not one of: " + std::string(spec.choices);
+    return ParamValue{static_cast<double>(*idx)};
+  }
   switch (spec.kind) {
     case ParamKind::Float:
     case ParamKind::Int: {

@@ -75,6 +75,7 @@ double ControlLaw::computeUTarget(const ControlSensors& s, const Params& p) {
 
   double I_cmd = std::clamp(I_cap_ - penalty, 0.0, p.MaxTableValue);
   I_cmd = std::min(I_cmd, p.MaximumAllowedBatteryAmps);
+  I_cmd = std::min(I_cmd, s.batteryChargeCapA);  // battery temperature (issue 21)
   // Warm-up ceiling (ours, off by default): for WarmupCeilingSec after the
   // field turns on, the command is held under WarmupCeilingAmps so a cold
   // alternator and belt are not loaded at full current at once.
@@ -265,7 +266,7 @@ double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const Fa
   if (p.CVTuningMode && finite(s.IBV)) cvTuning_.score(s.IBV, dt, p);
 
   // Non-thermal ceiling for T0's implied-penalty anti-windup (next tick).
-  double c = std::min(p.MaxTableValue, p.MaximumAllowedBatteryAmps);
+  double c = std::min({p.MaxTableValue, p.MaximumAllowedBatteryAmps, s.batteryChargeCapA});
   if (warmupActive_) c = std::min(c, p.WarmupCeilingAmps);
   c = std::min(c, bmsAltCap_);
   if (p.MaintainMode) c = 0.0;

@@ -44,6 +44,8 @@ struct ControlSensors {
   TimeNs tempStamp = 0;
   double SOC_percent = kNoValue;
   bool socKnown = true;  // false while the battery monitor's SoC is only a guess (no SOC gating then)
+  // Battery temperature current cap (issue 21: cold ramp, no temperature).
+  double batteryChargeCapA = 1e300;
 };
 
 // What the fast-OV supervisors (Groups 1/2/3, load dump) decided this tick.

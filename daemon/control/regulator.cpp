@@ -20,6 +20,8 @@
 
 #include "battery/battery_monitor.h"
 #include "control/control_law.h"
+#include "control/temp_compensation.h"
+#include "protection/battery_temperature.h"
 #include "params/derived.h"
 #include "protection/mode_selection.h"
 #include "protection/protection_supervisor.h"
@@ -40,6 +42,8 @@ struct Regulator::State {
   ControlLaw law;
   ProtectionSupervisor prot;
   BatteryMonitor bat;
+  BatteryTemperatureGuard batTemp;  // issue 21
+  Params compensated;               // p with temperature-compensated targets (when compensating)
   Outputs out;
 
   // Operator state (commands).
@@ -178,11 +182,21 @@ const Outputs& Regulator::step(const Inputs& in) {
   // tick) quiets the tach: the RPM gate must know it is not a stopped engine.
   s.prot.setFieldResting(s.law.fieldResting());
   s.prot.updateDetectors(in, MeasuredAmps, ev);
+  // Battery temperature (issue 21): cold/hot orders, current cap, and the
+  // compensated targets the stage machine and the voltage loop see.
+  const BatteryTempDecision& bt = s.batTemp.update(in, p, ev);
+  cs.batteryChargeCapA = bt.currentCapA;
+  const double compV = temperatureCompensationV(p, bt.tempC);
+  const Params* stageParams = &p;
+  if (compV != 0.0) {
+    compensateTargets(p, compV, s.compensated);
+    stageParams = &s.compensated;
+  }
 
   // 4. The BMS's limits, then the charging stage (suppressed in override modes and manual).
   s.law.updateBms(in.bms, in.now, Bcur, p, ev);
   const bool manualMode = p.ManualMode || s.opManual;
-  s.law.updateChargingStage(cs, p, manualMode, ev);
+  s.law.updateChargingStage(cs, *stageParams, manualMode, ev);
 
   // 5. Immutable snapshot and mode selection by priority.
   TickSnapshot snap;
@@ -196,6 +210,8 @@ const Outputs& Regulator::step(const Inputs& in) {
   snap.bmsChargeEnabled = in.bmsChargeEnabled && s.law.bms().chargeAllowed();
   snap.weatherModeActive = p.weatherModeEnabled && s.currentWeatherMode;
   snap.idleStage = s.law.stages().inIdleStage();
+  snap.batteryCold = bt.cold;
+  snap.batteryHot = bt.hot;
   snap.autoZeroActive = autoZeroActive;
   const ModeDecision d = selectFieldMode(snap);
 
@@ -318,6 +334,7 @@ const Outputs& Regulator::step(const Inputs& in) {
   t.alt_a = MeasuredAmps;
   t.rpm = in.rpm.value;
   t.temp_f = temp.value;
+  t.battery_temp_c = in.batteryTempC.value;
   t.duty_pct = out.dutyPct;
   t.field_enable = out.fieldEnable;
   t.fast_ov_active = fastOvActive;

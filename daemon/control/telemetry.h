@@ -9,6 +9,7 @@
 #include "battery/battery_telemetry.h"
 #include "control/bms_limiter.h"
 #include "control/control_telemetry.h"
+#include "core/inputs.h"
 #include "core/modes.h"
 #include "core/time.h"
 #include "protection/protection_telemetry.h"
@@ -43,6 +44,7 @@ struct Telemetry {
   double bms_ccl_a = kBmsNoValue;
   double bms_soc_pct = kBmsNoValue;
   BmsState bms_state = BmsState::OFF;
+  double battery_temp_c = kNoValue;  // issue 21; NaN while no sample was ever read
 
   ControlTelemetry control;
   ProtectionTelemetry protection;
@@ -82,6 +84,7 @@ void visitTelemetryColumns(const Telemetry& t, TimeNs start, F&& f) {
   f("bms_ccl_a", ColumnValue{t.bms_ccl_a});
   f("bms_soc_pct", ColumnValue{t.bms_soc_pct});
   f("bms_state", ColumnValue{toString(t.bms_state)});
+  f("battery_temp_c", ColumnValue{t.battery_temp_c});
 }
 
 }  // namespace xr

@@ -47,6 +47,8 @@ std::string_view toString(EventCode c) {
     case EventCode::CommandRejected: return "CommandRejected";
     case EventCode::Message: return "Message";
     case EventCode::AlarmCondition: return "AlarmCondition";
+    case EventCode::BatteryTempMissing: return "BatteryTempMissing";
+    case EventCode::BatteryTempBack: return "BatteryTempBack";
   }
   return "?";
 }
@@ -77,6 +79,12 @@ std::string tripText(const Event& e, char* buf, std::size_t n) {
       return buf;
     case Reason::REASON_ALT_HARD_SHUTDOWN:
       std::snprintf(buf, n, "Alternator hard shutdown: IBV=%.2f V > %.2f V. Ramping field down", e.a, e.b);
+      return buf;
+    case Reason::REASON_BATTERY_COLD:
+      std::snprintf(buf, n, "Battery too cold to charge: %.1f C < %.1f C. Field off until it warms", e.a, e.b);
+      return buf;
+    case Reason::REASON_BATTERY_HOT:
+      std::snprintf(buf, n, "Battery too hot to charge: %.1f C > %.1f C. Field off until 3 C cooler", e.a, e.b);
       return buf;
     case Reason::REASON_RPM_LOW:
       std::snprintf(buf, n, "RPM below minimum: %.0f < %.0f RPM. Field off", e.a, e.b);
@@ -182,6 +190,18 @@ std::string describe(const Event& e) {
     case EventCode::AutoZeroStarted:
       return e.detail ? "Auto-zero of alternator current started (temperature shift): field off"
                       : "Auto-zero of alternator current started (scheduled): field off";
+    case EventCode::BatteryTempMissing:
+      if (e.detail == 1) {
+        std::snprintf(buf, sizeof buf,
+                      "Battery temperature missing or stale: charge current capped at C/10 (%.1f A) "
+                      "(BatteryTempRequired)",
+                      e.a);
+        return buf;
+      }
+      return "Battery temperature missing or stale: charging without temperature compensation";
+    case EventCode::BatteryTempBack:
+      std::snprintf(buf, sizeof buf, "Battery temperature back: %.1f C", e.a);
+      return buf;
     case EventCode::AutoZeroDone:
       std::snprintf(buf, sizeof buf, "Auto-zero done: DynamicAltCurrentZero %.3f A from %.0f samples%s", e.a, e.b,
                     e.detail ? " (rejected, offset kept)" : "");

@@ -43,6 +43,9 @@ enum class EventCode {
   CommandRejected,
   Message,              // generic; text chosen by detail code
   AlarmCondition,       // one buzzer-table row holds (detail = AlarmRow, a = value, b = threshold); 30 s throttled
+  BatteryTempMissing,   // battery temperature missing or stale (detail 1: current capped at C/10, a = cap A;
+                        // detail 0: charging uncompensated); once per episode (issue 21)
+  BatteryTempBack,      // a fresh battery temperature again (a = degC)
 };
 
 struct Event {

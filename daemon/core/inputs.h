@@ -20,6 +20,12 @@ struct Reading {
   bool fresh = false;
 };
 
+// Where Inputs::batteryTempC comes from (issue 21). One input, several
+// sources: the battery DS18B20 on the 1-Wire bus today; a BMS over CAN
+// (0x356 temperature) and a Victron device fill the same Reading later and
+// name themselves here. `none`: no source is configured.
+enum class BatteryTempSource { none, ds18b20, bms, victron };
+
 struct Inputs {
   TimeNs now = 0;
 
@@ -41,6 +47,11 @@ struct Inputs {
   // DS18B20 over 1-Wire (slow thread).
   Reading AlternatorTemperatureF;
   TimeNs tempTaskHeartbeat = 0;  // last time the temperature thread completed a cycle (T4)
+
+  // Battery temperature (slow: a sample a second or slower), degC, with the
+  // source that provides it. The core decides when it is too old.
+  Reading batteryTempC;
+  BatteryTempSource batteryTempSource = BatteryTempSource::none;
 
   // VE.Direct (slow thread).
   Reading VictronCurrent;  // A, + = charging

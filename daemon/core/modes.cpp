@@ -75,6 +75,8 @@ constexpr std::array kReasons{
     XR_NAME(Reason, REASON_LIMP_HOME),
     XR_NAME(Reason, REASON_SYSTEM_ID),
     XR_NAME(Reason, REASON_BMS_STALE),
+    XR_NAME(Reason, REASON_BATTERY_COLD),
+    XR_NAME(Reason, REASON_BATTERY_HOT),
 };
 #undef XR_NAME
 

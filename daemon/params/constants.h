@@ -93,4 +93,25 @@ inline constexpr double PEUKERT_FACTOR_MIN = 0.5;
 inline constexpr double PEUKERT_FACTOR_MAX = 2.0;
 inline constexpr std::int64_t CRITICAL_ZONE_MS = 5000;  // field-off edge + 5 s checkpoint
 
+// Ours, issue 21 (docs/batteries.md): battery temperature. A sample older than
+// this is stale (the DS18B20 posts every second, a BMS about as often).
+inline constexpr std::int64_t BATTERY_TEMP_STALE_MS = 20000;
+// After start, a configured source has this long to post its first sample;
+// until then a bank that needs its temperature is not charged at all.
+inline constexpr std::int64_t BATTERY_TEMP_FIRST_SAMPLE_MS = 5000;
+// DS18B20 measuring range (datasheet-facts §3); outside it a value is invalid.
+inline constexpr double BATTERY_TEMP_VALID_MIN_C = -55.0;
+inline constexpr double BATTERY_TEMP_VALID_MAX_C = 125.0;
+// Hot stop resumes this far below ChargeMaxTempC (issue 21); the cold lockout
+// releases this far above ChargeMinTempC (the current cap ramps from there).
+inline constexpr double BATTERY_HOT_HYSTERESIS_C = 3.0;
+inline constexpr double BATTERY_COLD_HYSTERESIS_C = 0.5;
+// Without a temperature, a bank with BatteryTempRequired charges at C/10.
+inline constexpr double BATTERY_NO_TEMP_RATE_C = 0.1;
+// Lead-acid compensation is referred to 25 degC (plant-facts §3.7.1) and never
+// raises a target closer than this to the hard-shutdown trip or the INA228
+// limit (the same margin CVTuningMode keeps).
+inline constexpr double TEMP_COMP_REFERENCE_C = 25.0;
+inline constexpr double TEMP_COMP_TRIP_MARGIN_V = 0.2;
+
 }  // namespace xr::k

@@ -21,6 +21,19 @@ const ParamSpec kCatalogue[] = {
             [](const Params& p, std::size_t) { return static_cast<double>(p.name); },           \
             [](Params& p, std::size_t, double v) { p.name = static_cast<detail::kind##_t>(v); }, \
             RpmTable{}},
+#define XR_CHOICE(name, group, def, count, choices, help)                                   \
+  ParamSpec{#name,                                                                         \
+            ParamKind::Int,                                                                \
+            ParamGroup::group,                                                             \
+            "",                                                                            \
+            static_cast<double>(def),                                                      \
+            0.0,                                                                           \
+            static_cast<double>((count) - 1),                                              \
+            help,                                                                          \
+            [](const Params& p, std::size_t) { return static_cast<double>(p.name); },     \
+            [](Params& p, std::size_t, double v) { p.name = static_cast<int>(v); },        \
+            RpmTable{},                                                                    \
+            choices},
 #define XR_TABLE(name, group, unit, lo, hi, help, ...)                        \
   ParamSpec{#name,                                                            \
             ParamKind::Table,                                                 \
@@ -35,6 +48,7 @@ const ParamSpec kCatalogue[] = {
             RpmTable{__VA_ARGS__}},
 #include "params/catalogue.def"
 #undef XR_PARAM
+#undef XR_CHOICE
 #undef XR_TABLE
 };
 
@@ -94,6 +108,23 @@ std::string_view toString(ParamKind k) {
     case ParamKind::Table: return "table";
   }
   return "?";
+}
+
+std::string_view choiceName(const ParamSpec& spec, int index) {
+  std::string_view rest = spec.choices;
+  for (int i = 0; !rest.empty(); ++i) {
+    const auto comma = rest.find(',');
+    if (i == index) return rest.substr(0, comma);
+    if (comma == std::string_view::npos) break;
+    rest.remove_prefix(comma + 1);
+  }
+  return {};
+}
+
+std::optional<int> choiceIndex(const ParamSpec& spec, std::string_view name) {
+  for (int i = 0; !choiceName(spec, i).empty(); ++i)
+    if (choiceName(spec, i) == name) return i;
+  return std::nullopt;
 }
 
 bool valueFits(const ParamSpec& spec, double v) {

@@ -39,9 +39,11 @@ using Bool_t = bool;
 
 struct Params {
 #define XR_PARAM(name, kind, group, unit, def, lo, hi, help) detail::kind##_t name = def;
+#define XR_CHOICE(name, group, def, count, choices, help) int name = def;
 #define XR_TABLE(name, group, unit, lo, hi, help, ...) RpmTable name{__VA_ARGS__};
 #include "params/catalogue.def"
 #undef XR_PARAM
+#undef XR_CHOICE
 #undef XR_TABLE
   bool operator==(const Params&) const = default;
 };
@@ -61,6 +63,9 @@ struct ParamSpec {
   double (*get)(const Params&, std::size_t index);
   void (*set)(Params&, std::size_t index, double value);
   RpmTable tableDefault;
+  // XR_CHOICE parameters (kind Int, values 0..n-1): the names of the values,
+  // comma-separated ("lifepo4,agm,..."); empty for every other parameter.
+  std::string_view choices = {};
 };
 
 std::span<const ParamSpec> catalogue();
@@ -68,6 +73,11 @@ const ParamSpec* findParam(std::string_view name);
 std::string_view toString(ParamGroup g);       // "Voltage"
 std::string_view tomlTableName(ParamGroup g);  // "voltage"
 std::string_view toString(ParamKind k);
+
+// The name of choice `index` of spec ("agm"), empty when spec has no choices
+// or index is out of range; and the index of a name (nullopt when unknown).
+std::string_view choiceName(const ParamSpec& spec, int index);
+std::optional<int> choiceIndex(const ParamSpec& spec, std::string_view name);
 
 // True when v is acceptable for spec: finite, within [min, max], whole for
 // Int/Bool (Bool: 0 or 1).

@@ -40,6 +40,7 @@ void ControlCycle::applyPending() noexcept {
 
 void ControlCycle::mergeSlowInputs() noexcept {
   mergeTemperature();
+  mergeBatteryTemp();
   mergeVictron();
   // A BMS's limits: copied whole when posted; their stamp carries staleness.
   h_.bms.load(in_.bms);
@@ -55,6 +56,18 @@ void ControlCycle::mergeTemperature() noexcept {
   }
   lastTempStamp_ = t.stamp;
   in_.tempTaskHeartbeat = t.heartbeat;
+}
+
+void ControlCycle::mergeBatteryTemp() noexcept {
+  BatteryTempHandoff b;
+  h_.batteryTemp.load(b);
+  in_.batteryTempSource = b.source;
+  in_.batteryTempC.fresh = b.stamp != 0 && b.stamp != lastBatteryTempStamp_;
+  if (b.stamp != 0) {
+    in_.batteryTempC.value = b.tempC;
+    in_.batteryTempC.stamp = b.stamp;
+  }
+  lastBatteryTempStamp_ = b.stamp;
 }
 
 void ControlCycle::mergeVictron() noexcept {

@@ -86,6 +86,7 @@ class ControlCycle {
   void mergeSlowInputs() noexcept;
   void mergeTemperature() noexcept;
   void mergeVictron() noexcept;
+  void mergeBatteryTemp() noexcept;
   void readDiscreteInputs() noexcept;
   bool writeOutputs(const Outputs& out) noexcept;
   // What this tick publishes: the snapshot store and/or a telemetry row.
@@ -119,6 +120,7 @@ class ControlCycle {
   const Outputs* lastOut_ = nullptr;
   TimeNs lastNow_ = 0;
   TimeNs lastTempStamp_ = 0, lastVictronStamp_ = 0;
+  TimeNs lastBatteryTempStamp_ = 0;
   TimeNs lastAdsStamp_[4] = {0, 0, 0, 0};
   TimeNs lastInaStamp_ = 0;
   std::array<std::uint32_t, 4> freshTotals_{};  // sensors that do not count: fresh flags summed

@@ -16,4 +16,14 @@ inline rt::TemperatureHandoff temperatureHandoff(const Ds18b20Sample& s) noexcep
   return th;
 }
 
+// The battery DS18B20 (issue 21): degC, source ds18b20 even before its first
+// valid reading, so the core knows a sensor is expected.
+inline rt::BatteryTempHandoff batteryTempHandoff(const Ds18b20Sample& s) noexcept {
+  rt::BatteryTempHandoff bh;
+  bh.tempC = s.stamp != 0 ? (s.tempF - 32.0) * 5.0 / 9.0 : kNoValue;
+  bh.stamp = s.stamp;
+  bh.source = BatteryTempSource::ds18b20;
+  return bh;
+}
+
 }  // namespace xr

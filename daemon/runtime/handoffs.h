@@ -62,6 +62,13 @@ struct TemperatureHandoff {
   TimeNs stamp = 0;      // when the valid sample was taken (0 = never)
   TimeNs heartbeat = 0;  // last completed cycle of the thread (T4), valid or not
 };
+// The battery temperature (issue 21): from the battery DS18B20 today; a BMS or
+// a Victron device posts here the same way, naming itself in `source`.
+struct BatteryTempHandoff {
+  double tempC = kNoValue;
+  TimeNs stamp = 0;  // when the valid sample was taken (0 = none yet)
+  BatteryTempSource source = BatteryTempSource::none;
+};
 struct VictronHandoff {
   double currentA = kNoValue, voltageV = kNoValue, solarW = kNoValue;
   TimeNs stamp = 0;
@@ -129,6 +136,7 @@ class Handoffs {
   SeqLock<TemperatureHandoff> temperature;
   SeqLock<VictronHandoff> victron;
   SeqLock<BmsLimits> bms;  // a BMS's limits (CAN link or another source), posted on each change
+  SeqLock<BatteryTempHandoff> batteryTemp;
   SeqLock<BatteryLedger> ledger;  // the core's ledger, copied out ~4 times a second
   CommandAcks acks;
 

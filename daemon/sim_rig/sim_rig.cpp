@@ -20,6 +20,14 @@ std::filesystem::path makeW1Dir() {
   return dir;
 }
 
+// The battery DS18B20 of the simulated board (issue 21): the configured id,
+// else a fixed one when the scenario puts a sensor on the bank ([battery]
+// temp_sensor = true). It sorts after the alternator's simulated sensor.
+std::string batteryW1IdOf(const Scenario& s, const Settings& settings) {
+  if (!settings.hardware.battery_temp_sensor.empty()) return settings.hardware.battery_temp_sensor;
+  return s.plant.battery.temp_sensor ? std::string(kSimBatteryW1Id) : std::string();
+}
+
 WorldConfig worldConfigOf(const Scenario& s, const Settings& settings, const SimRigOptions& o,
                           const std::filesystem::path& w1) {
   WorldConfig c;
@@ -27,6 +35,7 @@ WorldConfig worldConfigOf(const Scenario& s, const Settings& settings, const Sim
   c.noise = s.noise;
   c.seed = o.seed.value_or(s.seed);
   c.w1Root = w1;
+  c.batteryW1Id = batteryW1IdOf(s, settings);
   c.maxStep = fromUs(settings.runtime.control_period_us);
   return c;
 }
@@ -49,9 +58,15 @@ SimRig::SimRig(Scenario scenario, const Settings& settings, SimRigOptions option
   nextTempRead_ = start_;
   ds18b20_ = std::make_unique<Ds18b20Reader>(scratch_.string(), settings.hardware.onewire_sensor_id,
                                              fromSec(1.0), [this] { return world_.now(); });
+  const std::string batteryId = batteryW1IdOf(scenario_, settings);
+  ds18b20_->excludeId(batteryId);
+  if (!batteryId.empty())
+    batteryDs18b20_ = std::make_unique<Ds18b20Reader>(scratch_.string(), batteryId, fromSec(1.0),
+                                                      [this] { return world_.now(); });
 }
 
 SimRig::~SimRig() {
+  batteryDs18b20_.reset();
   ds18b20_.reset();
   std::error_code ec;
   std::filesystem::remove_all(scratch_, ec);
@@ -88,6 +103,10 @@ void SimRig::playDue(TimeNs t) {
     nextTempRead_ += fromSec(1.0);
     ds18b20_->readOnce();
     handoffs_->temperature.store(temperatureHandoff(ds18b20_->latest()));
+    if (batteryDs18b20_) {
+      batteryDs18b20_->readOnce();
+      handoffs_->batteryTemp.store(batteryTempHandoff(batteryDs18b20_->latest()));
+    }
   }
 }
 

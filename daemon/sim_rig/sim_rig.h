@@ -105,6 +105,7 @@ class SimRig final : public rt::TruthSource {
   DriverSensors sensors_;
   SimReadyEdges readyEdges_;
   std::unique_ptr<Ds18b20Reader> ds18b20_;
+  std::unique_ptr<Ds18b20Reader> batteryDs18b20_;  // [hardware] battery_temp_sensor (issue 21)
   ScenarioPlayer player_;
   rt::Handoffs* handoffs_ = nullptr;
   std::function<void(int, const std::string&)> problem_;
@@ -112,5 +113,8 @@ class SimRig final : public rt::TruthSource {
   TimeNs start_ = 0;
   TimeNs nextTempRead_ = 0;
 };
+
+// The simulated battery DS18B20's w1 id when the scenario asks for one.
+inline constexpr const char* kSimBatteryW1Id = "28-00000b0a77e1";
 
 }  // namespace xr::sim

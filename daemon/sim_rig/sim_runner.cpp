@@ -1,5 +1,7 @@
 #include "sim_rig/sim_runner.h"
 
+#include "config/battery_profiles.h"
+
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -39,8 +41,12 @@ struct SimRunner::Impl {
   }
   static Params initialParams(const SimRunOptions& o) {
     Params p = o.baseParams.value_or(Params{});
+    // The battery profile fills what neither the base set (its values that
+    // differ from the defaults) nor the scenario's [config] set (issue 21).
+    NameSet pinned = namesDifferingFromDefaults(p);
     applyOverrides(p, o.scenario.config, o.scenario.source);
-    return p;
+    for (const auto& c : o.scenario.config) pinned.insert(c.name);
+    return applyBatteryProfile(p, pinned).params;
   }
 
   explicit Impl(SimRunOptions o)

@@ -65,8 +65,11 @@ void Ds18b20Reader::readOnce() {
   if (path_.empty()) {
     std::string id = id_;
     if (id.empty()) {
-      const auto all = w1::listDs18b20(root_);
-      if (!all.empty()) id = all.front();
+      for (const auto& found : w1::listDs18b20(root_)) {
+        if (found == exclude_) continue;
+        id = found;
+        break;
+      }
     }
     if (!id.empty()) path_ = root_ + "/" + id + "/w1_slave";
   }

@@ -35,6 +35,10 @@ class Ds18b20Reader {
   Ds18b20Reader(const Ds18b20Reader&) = delete;
   Ds18b20Reader& operator=(const Ds18b20Reader&) = delete;
 
+  // With an empty sensorId, "the first one found" skips this id (the battery
+  // sensor on the same bus, issue 21).
+  void excludeId(std::string id) { exclude_ = std::move(id); }
+
   void start();
   void stop() noexcept;
   // One read cycle (what the thread does each period); public for tests.
@@ -50,6 +54,7 @@ class Ds18b20Reader {
   void closeSlave() noexcept;
   std::string root_;
   std::string id_;
+  std::string exclude_;
   std::string path_;
   int fd_ = -1;  // w1_slave, held open between readings
   TimeNs period_;

@@ -23,7 +23,12 @@ ParamOverride paramOverride(const Ctx& c, const toml::key& k, const toml::node& 
   if (!spec) c.fail(o.line, "unknown parameter '" + o.name + "'");
   auto one = [&](const toml::node& n) {
     double d;
-    if (n.is_boolean())
+    if (n.is_string() && !spec->choices.empty()) {
+      // A named choice ("lifepo4"), as in xregulator.toml.
+      const auto idx = choiceIndex(*spec, *n.value<std::string>());
+      if (!idx) c.fail(lineOf(n), "parameter '" + o.name + "' must be one of " + std::string(spec->choices));
+      d = *idx;
+    } else if (n.is_boolean())
       d = *n.value<bool>() ? 1.0 : 0.0;
     else if (n.is_integer() || n.is_floating_point())
       d = *n.value<double>();

@@ -31,6 +31,9 @@ void parseBattery(const Ctx& c, const toml::table& t, BatteryConfig& b) {
       b.r_ohm = number(c, k, v, 0.0, 1.0);
     } else if (n == "temp_c") {
       b.temp_c = number(c, k, v, -40.0, 80.0);
+    } else if (n == "temp_sensor") {
+      if (!v.is_boolean()) c.fail(lineOf(v), "[battery] temp_sensor must be true or false");
+      b.temp_sensor = *v.value<bool>();
     } else if (n == "ocv_soc_pct") {
       socs = numbers(c, k, v, 0.0, 100.0);
       ocvLine = socLine = lineOf(v);

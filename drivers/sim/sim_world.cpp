@@ -37,9 +37,12 @@ SimWorld::SimWorld(const WorldConfig& cfg, const HardwareSettings& hw)
   bus_.attach(hw.ina228_address, &ina_);
   bus_.attach(hw.ads1115_address, &ads_);
   if (!cfg.w1Root.empty()) w1_ = std::make_unique<SimOneWire>(cfg.w1Root);
+  if (!cfg.w1Root.empty() && !cfg.batteryW1Id.empty())
+    batteryW1_ = std::make_unique<SimOneWire>(cfg.w1Root, cfg.batteryW1Id);
   lm2907V_ = frontend::adcFromRpm(hw_.frontend, plant_.rpm());
   refreshAnalog(0.0);
   if (w1_) w1_->update(0, fToC(plant_.truth().alt_temp_f));
+  if (batteryW1_) batteryW1_->update(0, plant_.truth().battery_temp_c);
 }
 
 SimWorld::~SimWorld() = default;
@@ -144,6 +147,7 @@ void SimWorld::refreshAnalog(double dt) noexcept {
   ads_.setInput(3, ch3V_);  // CH3: the thermistor node carries the temperature noise (slow refresh)
 
   if (w1_ && now_ >= w1_->nextConversion()) w1_->update(now_, fToC(tempSenseF_));
+  if (batteryW1_ && now_ >= batteryW1_->nextConversion()) batteryW1_->update(now_, p.battery_temp_c);
 }
 
 void SimWorld::stepPlant(TimeNs to) noexcept {

@@ -49,6 +49,9 @@ struct WorldConfig {
   // Where the simulated w1 sysfs tree lives (a temp directory); empty = no
   // 1-Wire sensor simulated.
   std::filesystem::path w1Root;
+  // A second DS18B20 on that tree reading the plant's battery temperature
+  // (issue 21): its w1 id, empty = none.
+  std::string batteryW1Id;
   double inaDieTempC = 35.0;
   double adsClockScale = 1.0;  // ADS1115 oscillator: 1.1 = 10 % slow
   TimeNs maxStep = fromUs(2500);
@@ -106,6 +109,7 @@ class SimWorld {
   Ina228Model& ina() noexcept { return ina_; }
   Ads1115Model& ads() noexcept { return ads_; }
   SimOneWire* onewire() noexcept { return w1_.get(); }
+  SimOneWire* batteryOnewire() noexcept { return batteryW1_.get(); }
   Plant& plant() noexcept { return plant_; }
   SimPwm& simPwm() noexcept { return pwm_; }
   SimDigitalOutput& simFieldEnable() noexcept { return fieldEnable_; }
@@ -150,6 +154,7 @@ class SimWorld {
   Ina228Model ina_;
   Ads1115Model ads_;
   std::unique_ptr<SimOneWire> w1_;
+  std::unique_ptr<SimOneWire> batteryW1_;
   SimPwm pwm_;
   SimDigitalOutput fieldEnable_;
   SimDigitalOutput buzzer_;

@@ -3,11 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cmath>
 #include <thread>
 
 #include "drivers/onewire/ds18b20_reader.h"
 #include "drivers/onewire/latest_value.h"
 #include "drivers/onewire/w1_therm.h"
+#include "runtime/ds18b20_handoff.h"
 #include "temp_dir.h"
 
 namespace xr {
@@ -120,6 +122,35 @@ TEST_F(Ds18b20ReaderTest, ThreadPublishesAndStops) {
   r.stop();
   EXPECT_GE(r.latest().good, 2u);
   EXPECT_GT(r.latest().heartbeat, 0);
+}
+
+// Issue 21: a second DS18B20 (the battery's) on the same bus.
+TEST_F(Ds18b20ReaderTest, FirstFoundSkipsTheBatterySensor) {
+  test::writeFile(d / "28-000000000001/w1_slave", kGood);  // the battery's, sorts first
+  test::writeFile(d / "28-00000abc/w1_slave",
+                  "5e ff 4b 46 7f ff 02 10 41 : crc=41 YES\n5e ff 4b 46 7f ff 02 10 41 t=-10125\n");
+  Ds18b20Reader alt(d.path(), "", 1'000'000'000, now());
+  alt.excludeId("28-000000000001");
+  alt.readOnce();
+  EXPECT_EQ(alt.sensorPath(), d.path() + "/28-00000abc/w1_slave");
+  EXPECT_NEAR(alt.latest().tempF, -10.125 * 9 / 5 + 32, 1e-9);
+  // Without the exclusion the first found would have been the battery's.
+  Ds18b20Reader plain(d.path(), "", 1'000'000'000, now());
+  plain.readOnce();
+  EXPECT_EQ(plain.sensorPath(), d.path() + "/28-000000000001/w1_slave");
+}
+
+TEST_F(Ds18b20ReaderTest, BatterySampleBecomesAHandoffInCelsiusNamingItsSource) {
+  test::writeFile(d / "28-000000000001/w1_slave", kGood);
+  Ds18b20Reader bat(d.path(), "28-000000000001", 1'000'000'000, now());
+  rt::BatteryTempHandoff before = batteryTempHandoff(bat.latest());
+  EXPECT_EQ(before.source, BatteryTempSource::ds18b20);  // a sensor is expected before its first reading
+  EXPECT_EQ(before.stamp, 0);
+  EXPECT_TRUE(std::isnan(before.tempC));
+  bat.readOnce();
+  const rt::BatteryTempHandoff h = batteryTempHandoff(bat.latest());
+  EXPECT_NEAR(h.tempC, 18.75, 1e-9);
+  EXPECT_EQ(h.stamp, fakeNow);
 }
 
 struct Big {

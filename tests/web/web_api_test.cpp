@@ -168,6 +168,34 @@ TEST_F(WebApiTest, Params_ListsEveryCatalogueEntryWithMetadata) {
   EXPECT_FALSE(o.at("groups").as_array().empty());
 }
 
+// Issue 21: each parameter names its source; BatteryProfile is a named choice.
+TEST_F(WebApiTest, Params_NameTheirSourceAndTheProfileItsChoices) {
+  start();
+  ASSERT_EQ(patch(R"({"BulkVoltage": 14.2})").status, 200);
+  bool sawProfile = false;
+  for (const auto& p : obj(get("/api/params")).at("params").as_array()) {
+    const auto& e = p.as_object();
+    const std::string name(e.at("name").as_string());
+    const std::string src(e.at("source").as_string());
+    EXPECT_EQ(src, name == "BulkVoltage" ? "dashboard" : "default") << name;
+    if (name == "BatteryProfile") {
+      sawProfile = true;
+      EXPECT_EQ(e.at("value_name").as_string(), "custom");
+      EXPECT_EQ(e.at("choices").as_array().size(), 5u);
+    }
+  }
+  EXPECT_TRUE(sawProfile);
+  // By name: applied; an unknown name: 400, nothing applied.
+  ASSERT_EQ(patch(R"({"BatteryProfile": "agm"})").status, 200);
+  EXPECT_EQ(api_.currentParams().BatteryProfile, 1);
+  const auto bad = patch(R"({"BatteryProfile": "lithium", "BulkVoltage": 14.3})");
+  EXPECT_EQ(bad.status, 400);
+  EXPECT_NE(std::string(obj(bad).at("errors").as_object().at("BatteryProfile").as_string()).find("one of"),
+            std::string::npos);
+  EXPECT_EQ(api_.currentParams().BatteryProfile, 1);
+  EXPECT_DOUBLE_EQ(api_.currentParams().BulkVoltage, 14.2);
+}
+
 TEST_F(WebApiTest, Patch_AppliesValidChangesAndMarksThemChanged) {
   start();
   const auto r = patch(R"({"BulkVoltage": 14.2, "TuningMode": true, "PidSampleDivisor": 2})");

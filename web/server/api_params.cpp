@@ -30,6 +30,15 @@ std::string rangeText(const ParamSpec& spec) {
 // One scalar value for spec, or an error message.
 std::optional<double> scalarFor(const ParamSpec& spec, const json::value& v, std::string& err) {
   std::optional<double> d;
+  if (!spec.choices.empty() && v.is_string()) {
+    // A named choice by name ("agm"), as in the file.
+    const auto idx = choiceIndex(spec, std::string_view(v.get_string()));
+    if (!idx) {
+      err = "expected one of " + std::string(spec.choices);
+      return std::nullopt;
+    }
+    return static_cast<double>(*idx);
+  }
   if (spec.kind == ParamKind::Bool && v.is_bool())
     d = v.get_bool() ? 1.0 : 0.0;
   else
@@ -87,7 +96,8 @@ Response patchErrors(const Request& req, const std::vector<FieldError>& errors) 
 }  // namespace
 
 Response ApiHandler::getParams(const Request& req) {
-  return jsonReply(req, http::status::ok, paramsToJson(api_.currentParams(), api_.fileParams()));
+  return jsonReply(req, http::status::ok,
+                   paramsToJson(api_.currentParams(), api_.fileParams(), api_.paramSources()));
 }
 
 Response ApiHandler::patchParams(const Request& req) {

@@ -167,6 +167,10 @@ class DaemonApi {
   // (before runtime overrides). Defaults are Params{} (catalogue defaults).
   virtual Params currentParams() = 0;
   virtual Params fileParams() = 0;
+  // Where each parameter's value comes from, by name: "default", "profile",
+  // "file" or "dashboard" (issue 21). Empty: the server infers it from
+  // currentParams() and fileParams() (no profile known).
+  virtual std::map<std::string, std::string> paramSources() { return {}; }
 
   // Apply a set of changes atomically: validate them TOGETHER against the
   // current set (cross-field rules), then hand the whole new Params to the

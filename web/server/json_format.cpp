@@ -163,7 +163,8 @@ json::object statusToJson(const StatusSnapshot& s) {
 
 std::string serializeStatus(const StatusSnapshot& s) { return json::serialize(statusToJson(s)); }
 
-json::object paramsToJson(const Params& current, const Params& file) {
+json::object paramsToJson(const Params& current, const Params& file,
+                          const std::map<std::string, std::string>& sources) {
   const Params defaults{};
   json::array list;
   for (const auto& spec : catalogue()) {
@@ -180,6 +181,17 @@ json::object paramsToJson(const Params& current, const Params& file) {
     p["file"] = paramValue(spec, file);
     p["changed"] = !sameValue(spec, current, defaults);  // differs from the catalogue default
     p["overridden"] = !sameValue(spec, current, file);   // differs from the config file (runtime override)
+    if (auto it = sources.find(std::string(spec.name)); it != sources.end())
+      p["source"] = it->second;
+    else
+      p["source"] = !sameValue(spec, current, file) ? "dashboard" : !sameValue(spec, file, defaults) ? "file" : "default";
+    if (!spec.choices.empty()) {
+      // A named choice (BatteryProfile): its names, and the current one.
+      json::array names;
+      for (int i = 0; !choiceName(spec, i).empty(); ++i) names.push_back(json::string(choiceName(spec, i)));
+      p["choices"] = std::move(names);
+      p["value_name"] = choiceName(spec, static_cast<int>(spec.get(current, 0)));
+    }
     list.push_back(std::move(p));
   }
   json::array groups;

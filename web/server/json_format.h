@@ -3,6 +3,7 @@
 // daemon's plain structs: the same status text goes to GET /api/status and to
 // every WebSocket client (serialised once per tick).
 #include <boost/json.hpp>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -19,7 +20,10 @@ std::string serializeStatus(const StatusSnapshot& s);
 
 // /api/params: {"params":[{name, group, kind, unit, min, max, help, value,
 // default, file, changed, overridden}...], "groups":[...]}.
-boost::json::object paramsToJson(const Params& current, const Params& file);
+// sources: name -> "default" | "profile" | "file" | "dashboard" (issue 21);
+// a name missing from it is inferred from current, file and the defaults.
+boost::json::object paramsToJson(const Params& current, const Params& file,
+                                 const std::map<std::string, std::string>& sources = {});
 
 boost::json::object eventToJson(const EventRecord& e);
 boost::json::object historyToJson(const HistoryResult& h);

@@ -122,3 +122,43 @@ TEST(WebApiEvents, EventsOfAnEarlierRunAreShownAndPaged) {
 
 }  // namespace
 }  // namespace xr::app
+
+// Issue 21: PATCH /api/params and the battery profile.
+namespace xr::app {
+namespace {
+
+TEST(WebApiProfiles, AProfileChangeMovesItsValuesAndNamesTheirSources) {
+  TempDir d;
+  Rig r(d.file("p.db"));
+  const auto res = r.api->patchParams({change("BatteryProfile", 0)});  // lifepo4
+  ASSERT_TRUE(res.errors.empty()) << res.errors[0].message;
+  const Params p = r.api->currentParams();
+  EXPECT_DOUBLE_EQ(p.AbsorptionVoltage, 14.2);
+  EXPECT_EQ(p.UseFloat, false);
+  const auto src = r.api->paramSources();
+  EXPECT_EQ(src.at("BatteryProfile"), "dashboard");
+  EXPECT_EQ(src.at("AbsorptionVoltage"), "profile");
+  EXPECT_EQ(src.at("PidKp"), "default");
+  // Only the named value is stored: the profile's follow it at the next start.
+  ASSERT_TRUE(r.store);
+}
+
+TEST(WebApiProfiles, ABadProfileValueIsRefusedAndNothingApplied) {
+  Rig r;
+  ASSERT_TRUE(r.api->patchParams({change("BatteryProfile", 0)}).errors.empty());
+  const Params before = r.api->currentParams();
+  // 14.8 V on 4 LiFePO4 cells = 3.7 V/cell, over the 3.65 V/cell limit.
+  const auto res = r.api->patchParams({change("AbsorptionVoltage", 14.8), change("BulkVoltage", 14.8)});
+  ASSERT_FALSE(res.errors.empty());
+  bool named = false;
+  for (const auto& e : res.errors)
+    named |= e.name == "AbsorptionVoltage" && e.message.find("3.65 V/cell") != std::string::npos;
+  EXPECT_TRUE(named);
+  EXPECT_EQ(r.api->currentParams(), before);
+  // An inverted temperature range, too.
+  EXPECT_FALSE(r.api->patchParams({change("ChargeMaxTempC", 4.0)}).errors.empty());
+  EXPECT_EQ(r.api->currentParams(), before);
+}
+
+}  // namespace
+}  // namespace xr::app

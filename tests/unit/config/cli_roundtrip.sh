@@ -34,4 +34,21 @@ printf '[voltage\n' >"$tmp/syntax.toml"
 rc=$?
 [ $rc = 78 ] && grep -q "syntax.toml:1:" "$tmp/err" && echo "ok: syntax error exits 78 with file:line" \
   || { cat "$tmp/err"; echo "FAIL: syntax error: exit $rc"; fail=1; }
+
+# Issue 21: a profile's limits through the binary (exit 78 naming value and
+# limit), and --print-config naming each value's source.
+printf '[battery]\nBatteryProfile = "lifepo4"\n[voltage]\nBulkVoltage = 14.8\nAbsorptionVoltage = 14.8\n' >"$tmp/lfp.toml"
+"$exe" --config "$tmp/lfp.toml" --check-config >"$tmp/out" 2>"$tmp/err"
+rc=$?
+want="lfp.toml:5:1: voltage.AbsorptionVoltage: 14.8 V is 3.7 V/cell on 4 cells, above the LiFePO4 limit 3.65 V/cell"
+[ $rc = 78 ] && grep -qF "$want" "$tmp/err" && echo "ok: LiFePO4 over 3.65 V/cell exits 78 naming the limit" \
+  || { cat "$tmp/err"; echo "FAIL: LiFePO4 limit: exit $rc"; fail=1; }
+printf '[battery]\nBatteryProfile = "agm"\n[voltage]\nFloatVoltage = 13.2\n' >"$tmp/agm.toml"
+"$exe" --config "$tmp/agm.toml" --state-db "$tmp/none.db" --print-config >"$tmp/out" 2>"$tmp/err"
+rc=$?
+for want in 'BatteryProfile = "agm"  # file' 'FloatVoltage = 13.2  # file' 'AbsorptionVoltage = 14.4  # profile' \
+  'TempCompMvPerCellC = -4  # profile' 'PidKp = 0.3  # default'; do
+  [ $rc = 0 ] && grep -qF "$want" "$tmp/out" && echo "ok: --print-config has: $want" \
+    || { echo "FAIL: --print-config (exit $rc) lacks: $want"; cat "$tmp/err"; fail=1; }
+done
 exit $fail

@@ -1,0 +1,227 @@
+#include "config/battery_profiles.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "config/format.h"
+#include "params/derived.h"
+
+namespace xr {
+namespace {
+
+// Published 12 V values at 25 degC. Source keys are those of plant-facts.md
+// (§0.2, §0.3); the section each number comes from is named beside it.
+constexpr ProfileTable kTables[] = {
+    // LiFePO4: 14.2 V absorption and 13.5 V float (VIC-CHG "Li-ion", VIC-LFP,
+    // §3.8; BB 14.2-14.6 V); no float by default, a resting bank (BB "no
+    // float needed", §3.6.3); revert 12.9 V, exit 15 A of a 500 Ah bank = 3 %
+    // C and 1 h acceptance (TAR profile 8, §4.1.4); no temperature
+    // compensation (VIC-LFP, BB, TAR); no charge below 0 degC (TAR 8, LISHEN,
+    // SUNL, §3.7.2), full current from 5 degC (VIC-LFP "better not to charge
+    // below 5 degC"), none above 45 degC (SUNL, LBS; BB IEC 62133 3-45 degC);
+    // at most 0.5 C (SUNL, 15-45 degC).
+    {BatteryProfileId::lifepo4, 4, 14.2, 14.2, 13.5, 12.9, false, 0.03, 1.0, 0.5, 0.0, -10.0, 50.0, 0.0, 5.0,
+     45.0, true},
+    // AGM: 14.4 V (LL 14.2-14.4, VIC-CHG "Normal", E82 14.4-14.7, §3.8);
+    // float 13.3 V (LL 13.2-13.3); full at 0.5 % C tail (MS, CONC, §3.6.1);
+    // about 3 h absorption (MV, §3.8); revert 12.8 V (TAR, §4.1.4);
+    // -4 mV/degC/cell (TAR AGM 0.024 V/degC per 12 V, §3.7.1); 0.4 C
+    // (MS tests charged Lifeline AGM at 0.4 C, §3.6.1).
+    {BatteryProfileId::agm, 6, 14.4, 14.4, 13.3, 12.8, true, 0.005, 3.0, 0.4, -4.0, -10.0, 50.0, -45.0, -45.0,
+     50.0, false},
+    // Flooded: 14.7 V = 2.45 V/cell (VIC-CHG "High", TROJ 2.45-2.58 V/cell,
+    // TAR standard FLA 14.8 V); float 13.5 V (TAR FLA); end amps 2 % C20
+    // (ROLLS, §3.6.1); about 4 h absorption (MV); -5 mV/degC/cell (TAR FLA,
+    // TROJ, §3.7.1), compensation limited below -9 degC (TAR; -10 here);
+    // at most C/5 (HP, ROLLS max 20 % of C20).
+    {BatteryProfileId::flooded, 6, 14.7, 14.7, 13.5, 12.8, true, 0.02, 4.0, 0.2, -5.0, -10.0, 50.0, -45.0,
+     -45.0, 50.0, false},
+    // Gel: 14.4 V = 2.40 V/cell and float 13.5 V = 2.25 V/cell (TROJ gel,
+    // AMPLE, §3.8); exit 5 A of 500 Ah = 1 % C (TAR gel, §4.1.4); about 3 h
+    // (MV); -5 mV/degC/cell (TROJ gel "always temperature-compensate",
+    // §3.7.1); C/5 (HP, lead-acid).
+    {BatteryProfileId::gel, 6, 14.4, 14.4, 13.5, 12.8, true, 0.01, 3.0, 0.2, -5.0, -10.0, 50.0, -45.0, -45.0,
+     50.0, false},
+};
+
+// Scaled with the bank (x cells / cellsPer12V), from the catalogue's 12 V
+// defaults: the full-charge voltage of the SoC monitor and the buzzer limits.
+constexpr double kChargedVoltage12 = 13.8;
+constexpr double kVoltageAlarmHigh12 = 15.0;
+constexpr double kVoltageAlarmLow12 = 11.0;
+// Issue 21: LiFePO4 with no battery temperature charges at most C/10; the
+// profile's BatteryTempRequired turns that on.
+
+constexpr double kTargetVoltageSetpoint12 = 13.6;
+
+constexpr std::array<std::string_view, 22> kOwned{"BatteryCells",
+                                                  "BulkVoltage",
+                                                  "AbsorptionVoltage",
+                                                  "FloatVoltage",
+                                                  "RebulkVoltage",
+                                                  "UseFloat",
+                                                  "TailCurrent_A",
+                                                  "AbsorptionTimeoutMs",
+                                                  "MaximumAllowedBatteryAmps",
+                                                  "TempCompMvPerCellC",
+                                                  "TempCompMinC",
+                                                  "TempCompMaxC",
+                                                  "ChargeMinTempC",
+                                                  "ChargeFullCurrentTempC",
+                                                  "ChargeMaxTempC",
+                                                  "BatteryTempRequired",
+                                                  "ChargedVoltage",
+                                                  "VoltageAlarmHigh",
+                                                  "VoltageAlarmLow",
+                                                  "TailCurrent",
+                                                  "PeukertRatedCurrent_A",
+                                                  "TargetVoltageSetpoint"};
+
+bool pinnedName(const NameSet& pinned, std::string_view n) { return pinned.find(n) != pinned.end(); }
+
+}  // namespace
+
+const ProfileTable* profileTable(BatteryProfileId id) {
+  for (const auto& t : kTables)
+    if (t.id == id) return &t;
+  return nullptr;
+}
+
+std::string_view toString(BatteryProfileId id) {
+  switch (id) {
+    case BatteryProfileId::lifepo4:
+      return "lifepo4";
+    case BatteryProfileId::agm:
+      return "agm";
+    case BatteryProfileId::flooded:
+      return "flooded";
+    case BatteryProfileId::gel:
+      return "gel";
+    case BatteryProfileId::custom:
+      return "custom";
+  }
+  return "custom";
+}
+
+int cellsForNominal(BatteryProfileId id, int nominalV) {
+  const ProfileTable* t = profileTable(id);
+  const int per12 = t ? t->cellsPer12V : 6;  // custom: lead-acid cells (compensation is a lead-acid rule)
+  return per12 * std::max(1, nominalV / 12);
+}
+
+std::span<const std::string_view> profileOwnedNames() { return kOwned; }
+
+ProfileApplied applyBatteryProfile(const Params& in, const NameSet& pinned) {
+  ProfileApplied r{in, {}};
+  Params& p = r.params;
+  const Params defaults{};
+  for (std::string_view n : kOwned) {
+    if (pinnedName(pinned, n)) continue;
+    const ParamSpec* s = findParam(n);
+    s->set(p, 0, s->get(defaults, 0));
+  }
+  const auto id = static_cast<BatteryProfileId>(p.BatteryProfile);
+  const ProfileTable* t = profileTable(id);
+  if (!t) return r;
+
+  // Cells: the user's, else the voltage class of a BulkVoltage the user set
+  // (today's system class), else a 12 V bank.
+  int cells = p.BatteryCells;
+  if (cells <= 0) {
+    const int nominal = pinnedName(pinned, "BulkVoltage") ? nominalVoltage(systemClass(p)) : 12;
+    cells = cellsForNominal(id, nominal);
+  }
+  const double scale = static_cast<double>(cells) / t->cellsPer12V;
+  const double cap = p.BatteryCapacity_Ah;
+  auto put = [&](std::string_view n, double v) {
+    if (pinnedName(pinned, n)) return;
+    const ParamSpec* s = findParam(n);
+    if (s->kind == ParamKind::Int || s->kind == ParamKind::Bool) v = std::round(v);
+    s->set(p, 0, std::clamp(v, s->min, s->max));
+    r.setByProfile.emplace(n);
+  };
+  put("BatteryCells", cells);
+  put("BulkVoltage", t->bulkV12 * scale);
+  put("AbsorptionVoltage", t->absorptionV12 * scale);
+  put("FloatVoltage", t->floatV12 * scale);
+  put("RebulkVoltage", t->rebulkV12 * scale);
+  put("UseFloat", t->useFloat ? 1.0 : 0.0);
+  put("TailCurrent_A", t->tailFractionC * cap);
+  put("AbsorptionTimeoutMs", t->absorptionHours * 3600.0 * 1000.0);
+  put("MaximumAllowedBatteryAmps", t->maxChargeRateC * cap);
+  put("TempCompMvPerCellC", t->tempCompMvPerCell);
+  put("TempCompMinC", t->tempCompMinC);
+  put("TempCompMaxC", t->tempCompMaxC);
+  put("ChargeMinTempC", t->chargeMinC);
+  put("ChargeFullCurrentTempC", t->chargeFullCurrentC);
+  put("ChargeMaxTempC", t->chargeMaxC);
+  put("BatteryTempRequired", t->tempRequired ? 1.0 : 0.0);
+  put("ChargedVoltage", kChargedVoltage12 * scale);
+  put("VoltageAlarmHigh", kVoltageAlarmHigh12 * scale);
+  put("VoltageAlarmLow", kVoltageAlarmLow12 * scale);
+  put("TargetVoltageSetpoint", kTargetVoltageSetpoint12 * scale);
+  // The SoC monitor's full-charge tail (% of C) and Peukert's rated current
+  // (C/20) follow the same battery.
+  put("TailCurrent", t->tailFractionC * 100.0);
+  put("PeukertRatedCurrent_A", cap / 20.0);
+  return r;
+}
+
+NameSet namesDifferingFromDefaults(const Params& p) {
+  const Params defaults{};
+  NameSet out;
+  for (const auto& s : catalogue()) {
+    const std::size_t n = s.kind == ParamKind::Table ? RPM_TABLE_SIZE : 1;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (s.get(p, i) != s.get(defaults, i)) {
+        out.emplace(s.name);
+        break;
+      }
+    }
+  }
+  return out;
+}
+
+std::vector<ProfileProblem> checkProfileLimits(const Params& p) {
+  std::vector<ProfileProblem> out;
+  auto v = [](double x, const char* unit) { return formatNumber(x) + " " + unit; };
+  if (p.ChargeMinTempC > p.ChargeFullCurrentTempC)
+    out.push_back({"ChargeMinTempC", v(p.ChargeMinTempC, "degC") + " is above ChargeFullCurrentTempC " +
+                                         v(p.ChargeFullCurrentTempC, "degC") +
+                                         ": the temperature range is inverted"});
+  if (p.ChargeFullCurrentTempC >= p.ChargeMaxTempC)
+    out.push_back({"ChargeMaxTempC", v(p.ChargeMaxTempC, "degC") + " must be above ChargeFullCurrentTempC " +
+                                         v(p.ChargeFullCurrentTempC, "degC") +
+                                         ": the temperature range is inverted"});
+  if (p.TempCompMinC >= p.TempCompMaxC)
+    out.push_back({"TempCompMinC", v(p.TempCompMinC, "degC") + " must be below TempCompMaxC " +
+                                       v(p.TempCompMaxC, "degC") + ": the compensation range is inverted"});
+  const auto id = static_cast<BatteryProfileId>(p.BatteryProfile);
+  if (id == BatteryProfileId::lifepo4) {
+    // The published LiFePO4 charge ceiling: 3.65 V/cell (DBUS, YAM, §3.10.1;
+    // BMS cut-offs sit at 3.80-3.85 V). Only "custom" may go above it.
+    constexpr double kMaxCellV = 3.65;
+    const int cells =
+        p.BatteryCells > 0 ? p.BatteryCells : cellsForNominal(id, nominalVoltage(systemClass(p)));
+    for (const char* n : {"BulkVoltage", "AbsorptionVoltage", "FloatVoltage"}) {
+      const double val = findParam(n)->get(p, 0);
+      const double perCell = val / cells;
+      if (perCell > kMaxCellV + 1e-9)
+        out.push_back({n, v(val, "V") + " is " + formatNumber(std::round(perCell * 1000.0) / 1000.0) +
+                              " V/cell on " + std::to_string(cells) +
+                              " cells, above the LiFePO4 limit 3.65 V/cell (use BatteryProfile = \"custom\" "
+                              "to go beyond it)"});
+    }
+    if (p.TempCompMvPerCellC != 0.0)
+      out.push_back(
+          {"TempCompMvPerCellC", v(p.TempCompMvPerCellC, "mV/degC/cell") +
+                                     ": LiFePO4 is charged without temperature compensation (limit 0)"});
+    if (p.ChargeMinTempC < 0.0)
+      out.push_back({"ChargeMinTempC",
+                     v(p.ChargeMinTempC, "degC") + " is below the LiFePO4 limit 0 degC (lithium plating)"});
+  }
+  return out;
+}
+
+}  // namespace xr
