@@ -126,6 +126,12 @@ export const REASONS = {
     action: "Ventilate the battery space; check where the battery temperature sensor sits.",
     detail: "Battery above ChargeMaxTempC: no charging until 3 °C below it.",
   },
+  REASON_BMS_STALE: {
+    title: "Battery management silent", kind: "warn",
+    meaning: "The battery's management system stopped sending its charge limits, so charging continues at a reduced, safe current.",
+    action: "Check the CAN cable and termination to the BMS, and that the BMS is switched on. Charging returns to normal when its limits come back.",
+    detail: "No BMS limits for BmsStaleS: alternator current capped at BmsFallbackCapA (docs/integrations.md, CAN).",
+  },
   REASON_WEATHER_MODE: {
     title: "Weather mode: solar first", kind: "state",
     meaning: "Weather mode leaves charging to the solar panels today.",
