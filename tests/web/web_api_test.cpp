@@ -173,7 +173,10 @@ TEST_F(WebApiTest, Params_NameTheirSourceAndTheProfileItsChoices) {
   start();
   ASSERT_EQ(patch(R"({"BulkVoltage": 14.2})").status, 200);
   bool sawProfile = false;
-  for (const auto& p : obj(get("/api/params")).at("params").as_array()) {
+  // Kept in a variable: a range-for over a member of obj()'s temporary would
+  // read a destroyed value.
+  const json::object params = obj(get("/api/params"));
+  for (const auto& p : params.at("params").as_array()) {
     const auto& e = p.as_object();
     const std::string name(e.at("name").as_string());
     const std::string src(e.at("source").as_string());

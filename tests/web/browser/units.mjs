@@ -69,7 +69,8 @@ await test("temperatures in the chosen unit", () => {
 await test("every Reason of daemon/core/modes.h has plain words; normal states are not alarms", () => {
   const header = fs.readFileSync(path.join(root, "daemon/core/modes.h"), "utf8");
   const body = header.slice(header.indexOf("enum class Reason"));
-  const codes = body.slice(body.indexOf("{") + 1, body.indexOf("}")).split(",").map((s) => s.trim()).filter(Boolean);
+  const enumBody = body.slice(body.indexOf("{") + 1, body.indexOf("}")).replace(/\/\/[^\n]*/g, "");
+  const codes = enumBody.split(",").map((s) => s.trim()).filter(Boolean);
   assert.ok(codes.length >= 20, `found ${codes.length} reasons`);
   for (const c of codes) {
     const r = N.REASONS[c];
