@@ -86,6 +86,10 @@ std::string tripText(const Event& e, char* buf, std::size_t n) {
     case Reason::REASON_BATTERY_HOT:
       std::snprintf(buf, n, "Battery too hot to charge: %.1f C > %.1f C. Field off until 3 C cooler", e.a, e.b);
       return buf;
+    case Reason::REASON_TEMP_SOAK:
+      std::snprintf(buf, n, "Alternator hot after an engine stop: %.1f F > %.1f F. Field off until it cools", e.a,
+                    e.b);
+      return buf;
     case Reason::REASON_RPM_LOW:
       std::snprintf(buf, n, "RPM below minimum: %.0f < %.0f RPM. Field off", e.a, e.b);
       return buf;

@@ -77,6 +77,7 @@ constexpr std::array kReasons{
     XR_NAME(Reason, REASON_BMS_STALE),
     XR_NAME(Reason, REASON_BATTERY_COLD),
     XR_NAME(Reason, REASON_BATTERY_HOT),
+    XR_NAME(Reason, REASON_TEMP_SOAK),
 };
 #undef XR_NAME
 

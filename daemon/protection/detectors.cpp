@@ -45,6 +45,7 @@ void ProtectionSupervisor::updateDetectors(const Inputs& in, double MeasuredAmps
 
   updateInaLatch(in, ev);
   updateVoltageSensors(in, ev);
+  updateRpmGate(ev);
   updateTemperature(in, ev);
   updateCurrent(in, MeasuredAmps, ev);
   updateFastSamples(in);
@@ -153,7 +154,29 @@ void ProtectionSupervisor::updateTemperature(const Inputs& in, EventBatch& ev) {
   const bool usable = tr.stamp != 0 && !stale && inRange && !p_.IgnoreTemperature;
   const double t = tr.value;
 
-  const bool t1 = usable && t > p_.TemperatureLimitF + p_.TempWarnExcess;
+  // Ours (issue 27, docs/deviations.md "Heat soak after an engine stop"):
+  // with the engine stopped the field is off and the fan still, so heat
+  // stored in the windings lifts the case; the field caused none of that
+  // rise and can cool none of it, so T1/T2 do not count it. An engine that
+  // restarts above TemperatureLimitF keeps the field off until the running
+  // fan has cooled the case to the limit; T1/T2 count again from then. T3
+  // and T5 are unchanged in every state.
+  // The RPM gate alone says "stopped": an ignition that is off with the tach
+  // still turning keeps the seed's T1 (DisabledRamp.WarningDuringDisabled...).
+  const bool engineStopped = flags_.rpmBelowMin;
+  const bool aboveLimit = usable && t > p_.TemperatureLimitF;
+  flags_.tempSoakHold = aboveLimit && (engineStopped || flags_.tempSoakHold);
+  const bool holding = flags_.tempSoakHold && !engineStopped;  // acting on the field now
+  if (holding && !evSoak_.logged) {
+    push(ev, EventCode::ProtectionTrip, EventLevel::Warning, Reason::REASON_TEMP_SOAK, t,
+         p_.TemperatureLimitF);
+    evSoak_.logged = true;
+  } else if (!flags_.tempSoakHold && evSoak_.logged) {
+    push(ev, EventCode::ProtectionClear, EventLevel::Info, Reason::REASON_TEMP_SOAK, t, p_.TemperatureLimitF);
+    evSoak_.logged = false;
+  }
+  const bool t1 =
+      usable && !engineStopped && !flags_.tempSoakHold && t > p_.TemperatureLimitF + p_.TempWarnExcess;
   // Ours: a T3 that fired is not released by a reading going stale or out
   // of range (MANUAL has no T5 to stop it); only a usable cooler reading does.
   const bool t3 =
@@ -187,14 +210,9 @@ void ProtectionSupervisor::updateTemperature(const Inputs& in, EventBatch& ev) {
   flags_.tempTaskAlarm = hung;
 }
 
-// Hard overcurrent, RPM gate, current data stale.
-void ProtectionSupervisor::updateCurrent(const Inputs& in, double MeasuredAmps, EventBatch& ev) {
-  const double trip = hardOCTripAmps(p_);
-  flags_.hardOvercurrent =
-      sustained(hardOcT_, finite(MeasuredAmps) && MeasuredAmps > trip, fromMs(p_.HardOCDebounceMs));
-  edge(evHardOc_, flags_.hardOvercurrent, Reason::REASON_HARD_OVERCURRENT, MeasuredAmps, trip, ev,
-       EventLevel::Critical);
-
+// The RPM gate. Before the temperature detectors, which need to know
+// whether the engine turns this tick (the heat-soak rule).
+void ProtectionSupervisor::updateRpmGate(EventBatch& ev) {
   // RPM < MinRPMForField; an unknown RPM counts as below (field stays off).
   // Ours: a resting field (control's full-bank rest) quiets a stator tach;
   // during the rest and RPM_REST_GRACE_MS after, an RPM that was fine when
@@ -208,6 +226,15 @@ void ProtectionSupervisor::updateCurrent(const Inputs& in, double MeasuredAmps, 
       (fieldResting_ || (restEndedAt_ >= 0 && now_ - restEndedAt_ < fromMs(k::RPM_REST_GRACE_MS)));
   flags_.rpmBelowMin = !p_.IgnoreRPM && !rpmLive && !restHold;
   edge(evRpm_, flags_.rpmBelowMin, Reason::REASON_RPM_LOW, rpm_, p_.MinRPMForField, ev, EventLevel::Info);
+}
+
+// Hard overcurrent, current data stale.
+void ProtectionSupervisor::updateCurrent(const Inputs& in, double MeasuredAmps, EventBatch& ev) {
+  const double trip = hardOCTripAmps(p_);
+  flags_.hardOvercurrent =
+      sustained(hardOcT_, finite(MeasuredAmps) && MeasuredAmps > trip, fromMs(p_.HardOCDebounceMs));
+  edge(evHardOc_, flags_.hardOvercurrent, Reason::REASON_HARD_OVERCURRENT, MeasuredAmps, trip, ev,
+       EventLevel::Critical);
 
   // Current data stale (our definition, docs/protections.md): no fresh CH1
   // sample for CurrentStaleMs, or no fresh INA228 sample for CurrentStaleMs

@@ -77,6 +77,10 @@ ModeDecision selectFieldMode(const TickSnapshot& s) {
   if (s.autoZeroActive) return {M::MODE_LOCKOUT_RAMP, Reason::REASON_AUTO_ZERO};
   // 7. Charging disabled: clean ramp, no alarm.
   if (Reason r = disableReason(s); r != Reason::NONE) return {M::MODE_DISABLED_RAMP, r};
+  // 7b. Ours: a heat-soaked alternator cools before the field returns (a
+  // clean hold, no alarm: nothing is wrong with it). After the disable
+  // reasons, so an ignition that is off is named as such.
+  if (f.tempSoakHold) return {M::MODE_DISABLED_RAMP, Reason::REASON_TEMP_SOAK};
   // 8. Normal.
   return {M::MODE_NORMAL_AUTO_PID, Reason::NONE};
 }

@@ -42,6 +42,10 @@ struct ProtectionFlags {
   bool voltageDisagreeWarning = false;  // > VoltageDisagreeThreshold for VoltageDisagreeTimeout
   bool tempWarning = false;             // T1
   bool tempSustained = false;           // T2: latched until reenable_field
+  // Ours (docs/deviations.md "Heat soak after an engine stop"): the engine
+  // restarted with the alternator above TemperatureLimitF; the field stays
+  // off until the running fan has cooled it to the limit.
+  bool tempSoakHold = false;
 
   // A warning/critical ramp, once started, runs to its GPIO4 cut even if the
   // trigger clears meanwhile (otherwise a fault that clears because the duty

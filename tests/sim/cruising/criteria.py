@@ -11,6 +11,11 @@ from dataclasses import dataclass, field
 
 TRIP_MODES = {"MODE_WARNING_RAMP_AND_LOCKOUT", "MODE_LOCKOUT_RAMP", "MODE_CRITICAL_RAMP"}
 HOLDING_STAGES = {"ABSORPTION", "FLOAT"}
+# Rows where the engine is stopped, or has just restarted with the
+# alternator still heat-soaked from it (docs/deviations.md "Heat soak after an
+# engine stop"): the field is off and no regulator action reaches the case
+# temperature, so the temperature target does not judge them.
+ENGINE_STOPPED_REASONS = {"REASON_RPM_LOW", "REASON_IGNITION_OFF", "REASON_TEMP_SOAK"}
 
 
 @dataclass
@@ -198,3 +203,19 @@ def thermal_utilisation(run: Run, ambient_f: float, limit_f: float, window_s: fl
     end = run.t[-1]
     temps = [x for t, x in zip(run.t, run.alt_temp_f) if t >= end - window_s]
     return (statistics.mean(temps) - ambient_f) / (limit_f - ambient_f)
+
+
+def hottest_while_running(run: Run) -> float:
+    """Highest plant alternator temperature over the rows where the field can
+    act on it (see ENGINE_STOPPED_REASONS); every row when there are none."""
+    acting = [x for x, r in zip(run.alt_temp_f, run.reason) if r not in ENGINE_STOPPED_REASONS]
+    return max(acting) if acting else max(run.alt_temp_f)
+
+
+def resumed_after(run: Run, at_s: float) -> float | None:
+    """Seconds from at_s until the regulator drives the field again in AUTO
+    (field on, MODE_NORMAL_AUTO_PID); None if it never does."""
+    for t, on, m in zip(run.t, run.field_on, run.mode):
+        if t >= at_s and on == 1 and m == "MODE_NORMAL_AUTO_PID":
+            return t - at_s
+    return None

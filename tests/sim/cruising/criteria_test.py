@@ -138,5 +138,25 @@ class FieldOff(unittest.TestCase):
         self.assertIsNone(C.field_off_after(make_run(10, dt=0.1), 0.5))
 
 
+
+class HeatSoak(unittest.TestCase):
+    def test_engine_stopped_rows_do_not_count(self):
+        temps = [140.0] * 5 + [153.7] * 5 + [151.0] * 5
+        reasons = ["NONE"] * 5 + ["REASON_RPM_LOW"] * 3 + ["REASON_TEMP_SOAK"] * 2 + ["NONE"] * 5
+        r = make_run(15, alt_temp_f=temps, reason=reasons)
+        self.assertEqual(C.hottest_while_running(r), 151.0)  # 151 > limit + 1 would still fail
+
+    def test_a_hot_running_row_counts(self):
+        temps = [140.0] * 5 + [153.7] * 5
+        reasons = ["REASON_RPM_LOW"] * 5 + ["REASON_LOCKOUT"] * 5
+        self.assertEqual(C.hottest_while_running(make_run(10, alt_temp_f=temps, reason=reasons)), 153.7)
+
+    def test_resumed_after(self):
+        on = [1] * 3 + [0] * 4 + [1] * 3
+        modes = ["MODE_NORMAL_AUTO_PID"] * 3 + ["MODE_DISABLED_RAMP"] * 4 + ["MODE_NORMAL_AUTO_PID"] * 3
+        r = make_run(10, field_on=on, mode=modes)
+        self.assertEqual(C.resumed_after(r, 3.0), 4.0)
+        self.assertIsNone(C.resumed_after(make_run(10, field_on=0), 3.0))
+
 if __name__ == "__main__":
     unittest.main()

@@ -71,8 +71,11 @@ def judge(run: C.Run, crit: dict, params: dict, scenario: dict) -> C.Verdict:
         v.failures.append(f"{trips} protection trips (max {crit['max_trips']})")
 
     limit = float(params["TemperatureLimitF"])
-    hottest = max(run.alt_temp_f)
+    hottest = C.hottest_while_running(run)
     v.figures["alt max F"] = f"{hottest:.1f}/{limit:.0f}"
+    soak = max(run.alt_temp_f)
+    if soak > hottest + 0.05:
+        v.figures["soak max F"] = f"{soak:.1f}"
     if fault_at == float("inf") and hottest > limit + crit["temp_margin_f"]:
         v.failures.append(f"alternator reached {hottest:.1f} F, limit {limit:.0f} + {crit['temp_margin_f']}")
 
@@ -126,6 +129,12 @@ def judge(run: C.Run, crit: dict, params: dict, scenario: dict) -> C.Verdict:
         v.figures["field off s"] = "never" if off is None else f"{off:.2f}"
         if off is None or off > crit["field_off_within_s"]:
             v.failures.append(f"field not off within {crit['field_off_within_s']} s of the fault")
+
+    if "resumes_after_s" in crit:
+        back = C.resumed_after(run, crit["resumes_after_s"])
+        v.figures["resume s"] = "never" if back is None else f"{back:.0f}"
+        if back is None or back > crit["resume_within_s"]:
+            v.failures.append(f"charging not resumed within {crit['resume_within_s']} s of {crit['resumes_after_s']} s")
 
     v.figures["end"] = f"{run.stage[-1]} {run.soc[-1]:.0f}%"
     if crit.get("known_failure"):

@@ -50,6 +50,10 @@ TEST(ModeSelection, TwoSimultaneousFaultsHigherPriorityWins) {
       {[](ProtectionFlags& f) { f.lockoutActive = f.tempWarning = true; }, Reason::REASON_LOCKOUT},
       {[](ProtectionFlags& f) { f.lockoutActive = f.hardOvercurrent = true; },
        Reason::REASON_HARD_OVERCURRENT},
+      {[](ProtectionFlags& f) { f.tempSoakHold = f.rpmBelowMin = true; }, Reason::REASON_RPM_LOW},
+      {[](ProtectionFlags& f) { f.tempSoakHold = f.tempCritical = true; }, Reason::REASON_TEMP_CRITICAL},
+      {[](ProtectionFlags& f) { f.tempSoakHold = f.lockoutActive = true; }, Reason::REASON_LOCKOUT},
+      {[](ProtectionFlags& f) { f.tempSoakHold = true; }, Reason::REASON_TEMP_SOAK},
   };
   for (const Case& c : cases) {
     TickSnapshot s = healthy();

@@ -126,6 +126,12 @@ export const REASONS = {
     action: "Ventilate the battery space; check where the battery temperature sensor sits.",
     detail: "Battery above ChargeMaxTempC: no charging until 3 °C below it.",
   },
+  REASON_TEMP_SOAK: {
+    title: "Alternator cooling after the engine stop", kind: "warn",
+    meaning: "The engine restarted while the alternator was still hot from its last run (heat soaks into the case once the engine and its fan stop), so the field stays off until the running fan has cooled it.",
+    action: "Nothing; charging resumes by itself once the alternator is back under its temperature limit, usually within minutes.",
+    detail: "Engine restarted above TemperatureLimitF: field off until TempToUse <= TemperatureLimitF; T1/T2 do not count the engine-off soak (docs/deviations.md).",
+  },
   REASON_BMS_STALE: {
     title: "Battery management silent", kind: "warn",
     meaning: "The battery's management system stopped sending its charge limits, so charging continues at a reduced, safe current.",
