@@ -5,6 +5,7 @@
 
 #include "app/effective_params.h"
 #include "app/stored_overrides.h"
+#include "config/battery_profiles.h"
 #include "config/config.h"
 #include "config/web_checks.h"
 
@@ -18,6 +19,8 @@ int checkConfigAndState(const std::string& configPath, const std::optional<std::
   if (!r.ok()) return kExitConfig;  // changed between the two reads
   if (auto w = tokenFileWarning(configPath, r.config->settings.web.token); !w.empty())
     out << "warning: " << w << "\n";
+  if (auto n = profileShadowNotice(r.config->params, r.config->fileParamNames); !n.empty())
+    out << "warning: " << n << "\n";
 
   const std::string db = stateDb.value_or(r.config->settings.store.path);
   std::error_code ec;

@@ -26,6 +26,7 @@
 #include "app/store_service.h"
 #include "app/thread_names.h"
 #include "app/web_api.h"
+#include "config/battery_profiles.h"
 #include "config/config.h"
 #include "config/web_checks.h"
 #include "control/regulator.h"
@@ -88,6 +89,7 @@ int Daemon::run() {
                kernel.how);
 
   // ---- parameters: file, then scenario [config], then stored overrides ----
+  if (auto n = profileShadowNotice(config_.params, config_.fileParamNames); !n.empty()) spdlog::warn("{}", n);
   Params fileParams = config_.params;
   ParamOrigins origins;  // issue 21: where each value comes from
   origins.file = config_.fileParamNames;

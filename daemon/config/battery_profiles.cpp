@@ -168,6 +168,35 @@ ProfileApplied applyBatteryProfile(const Params& in, const NameSet& pinned) {
   return r;
 }
 
+std::vector<std::string> profileValuesTheFileOverrides(const Params& effective, const NameSet& fileNames) {
+  std::vector<std::string> out;
+  if (!profileTable(static_cast<BatteryProfileId>(effective.BatteryProfile))) return out;
+  // What the profile gives with nothing pinned but what shapes it: its name,
+  // the capacity and the cells in force (the effective BatteryCells already
+  // holds the count the profile took from the file's BulkVoltage class).
+  const NameSet shaping{"BatteryProfile", "BatteryCells", "BatteryCapacity_Ah"};
+  const Params fromProfile = applyBatteryProfile(effective, shaping).params;
+  for (std::string_view n : kOwned) {
+    if (!pinnedName(fileNames, n) || shaping.count(n)) continue;
+    const ParamSpec* s = findParam(n);
+    const double mine = s->get(effective, 0), theirs = s->get(fromProfile, 0);
+    if (mine != theirs)
+      out.push_back(std::string(n) + " = " + formatNumber(mine) + " (profile: " + formatNumber(theirs) + ")");
+  }
+  return out;
+}
+
+std::string profileShadowNotice(const Params& effective, const NameSet& fileNames) {
+  const auto values = profileValuesTheFileOverrides(effective, fileNames);
+  if (values.empty()) return "";
+  std::string list;
+  for (const auto& v : values) list += (list.empty() ? "" : ", ") + v;
+  return "BatteryProfile = \"" +
+         std::string(toString(static_cast<BatteryProfileId>(effective.BatteryProfile))) +
+         "\": the configuration file sets " + list +
+         " itself, and the file wins; delete or comment out those lines to follow the profile";
+}
+
 NameSet namesDifferingFromDefaults(const Params& p) {
   const Params defaults{};
   NameSet out;

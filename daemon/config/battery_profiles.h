@@ -63,6 +63,15 @@ struct ProfileApplied {
 // scenario's [config] or the dashboard; their values in p are kept.
 ProfileApplied applyBatteryProfile(const Params& p, const NameSet& pinned);
 
+// The values the file (or a scenario's [config]) pins that the chosen profile
+// would set otherwise, each as "Name = file value (profile: its value)"; empty
+// for custom. The packaged default file writes every key, so choosing a
+// profile there changes nothing until those lines go: the start log and
+// --check-config say so rather than leave the user believing the profile acts.
+std::vector<std::string> profileValuesTheFileOverrides(const Params& effective, const NameSet& fileNames);
+// The same as one line for the journal and --check-config; empty when none.
+std::string profileShadowNotice(const Params& effective, const NameSet& fileNames);
+
 // Names whose value in p differs from the catalogue default (a base set
 // whose explicit names are not known, e.g. a test's Params).
 NameSet namesDifferingFromDefaults(const Params& p);

@@ -192,5 +192,33 @@ TEST(BatteryProfiles, PrintConfigNamesTheSourceOfEachValue) {
   EXPECT_EQ(back.config->params, p);
 }
 
+// The packaged file writes every key: a profile chosen there is shadowed by
+// those lines, and the user is told which (start log, --check-config).
+TEST(BatteryProfile, TheValuesTheFilePinsOverTheProfileAreNamed) {
+  const Config c = load(
+      "[battery]\nBatteryProfile = \"agm\"\nBatteryCapacity_Ah = 200\n"
+      "[voltage]\nAbsorptionVoltage = 14.3\nFloatVoltage = 13.3\nVoltageKp = 20\n");
+  const auto v = profileValuesTheFileOverrides(c.params, c.fileParamNames);
+  // FloatVoltage 13.3 is the AGM profile's own value: nothing to say.
+  ASSERT_EQ(v.size(), 1u);
+  EXPECT_EQ(v[0], "AbsorptionVoltage = 14.3 (profile: 14.4)");
+}
+
+TEST(BatteryProfile, CustomOrAnUnpinnedFileShadowsNothing) {
+  Config c = load("[battery]\nBatteryProfile = \"custom\"\n[voltage]\nAbsorptionVoltage = 14.3\n");
+  EXPECT_TRUE(profileValuesTheFileOverrides(c.params, c.fileParamNames).empty());
+  c = load("[battery]\nBatteryProfile = \"lifepo4\"\nBatteryCells = 8\n");
+  EXPECT_TRUE(profileValuesTheFileOverrides(c.params, c.fileParamNames).empty());
+}
+
+TEST(BatteryProfile, A24VoltFileIsComparedWithThe24VoltProfile) {
+  // BulkVoltage 28.8 makes a 24 V class; LiFePO4 at 8 cells absorbs at 28.4 V.
+  const Config c = load(
+      "[battery]\nBatteryProfile = \"lifepo4\"\n[voltage]\nBulkVoltage = 28.8\nAbsorptionVoltage = 28.4\n");
+  const auto v = profileValuesTheFileOverrides(c.params, c.fileParamNames);
+  ASSERT_EQ(v.size(), 1u);
+  EXPECT_EQ(v[0], "BulkVoltage = 28.8 (profile: 28.4)");
+}
+
 }  // namespace
 }  // namespace xr
