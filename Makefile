@@ -36,6 +36,7 @@ deps:
 	else echo "deps: all present"; fi
 	@if [ -f web/package.json ]; then $(MAKE) --no-print-directory -C web deps; fi
 	@$(MAKE) --no-print-directory -C tests/integrations/signalk deps
+	@$(MAKE) --no-print-directory -C tests/integrations/n2k deps
 
 $(BUILD)/CMakeCache.txt:
 	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo

@@ -34,7 +34,7 @@ std::string usageText() {
          "                   [--http ADDR:PORT] [--state-db FILE] [--check-config]\n"
          "                   [--print-default-config] [--probe] [--version] [--seed N]\n"
          "                   [--log-level L] [--sim-outputs FILE] [--print-token] [--pair]\n"
-         "                   [--print-config]\n"
+         "                   [--print-config] [--can-log FILE]\n"
          "\n"
          "  --config FILE          configuration (default: built-in defaults; the service uses\n"
          "                         /etc/xregulator/xregulator.toml)\n"
@@ -58,7 +58,9 @@ std::string usageText() {
          "  --version              print the version\n"
          "  --seed N               simulation randomness seed (overrides the scenario's)\n"
          "  --log-level L          trace|debug|info|warn|error|critical|off\n"
-         "  --sim-outputs FILE     --sim: mirror the last PWM duty / field enable / buzzer into FILE\n";
+         "  --sim-outputs FILE     --sim: mirror the last PWM duty / field enable / buzzer into FILE\n"
+         "  --can-log FILE         write every CAN frame sent and received, on both buses, to FILE\n"
+         "                         (candump log format; times since the start of the run in --sim)\n";
 }
 
 CliResult parseCommandLine(const std::vector<std::string>& args) {
@@ -114,6 +116,11 @@ CliResult parseCommandLine(const std::vector<std::string>& args) {
       {"--sim-outputs",
        [&](const std::string& v) {
          o.simOutputs = v;
+         return std::string();
+       }},
+      {"--can-log",
+       [&](const std::string& v) {
+         o.canLog = v;
          return std::string();
        }},
       {"--speed",

@@ -4,7 +4,7 @@
 //     [--duration S] [--telemetry-csv FILE] [--telemetry-rate HZ]
 //     [--http ADDR:PORT] [--state-db FILE] [--check-config]
 //     [--print-default-config] [--probe] [--version] [--seed N]
-//     [--log-level L] [--sim-outputs FILE]
+//     [--log-level L] [--sim-outputs FILE] [--can-log FILE]
 // Both "--opt value" and "--opt=value" are accepted. A bad argument is a
 // usage error: exit 64 (EX_USAGE) with a message naming it.
 #include <optional>
@@ -44,6 +44,7 @@ struct CliOptions {
   std::optional<unsigned long long> seed;
   std::optional<std::string> logLevel;
   std::optional<std::string> simOutputs;
+  std::optional<std::string> canLog;  // candump log of every CAN frame (issue 22)
   TestFault testFault = TestFault::None;
   double testFaultAtS = 1.0;
 };

@@ -1,7 +1,5 @@
 #include "app/daemon.h"
 
-#include "app/effective_params.h"
-
 #include <signal.h>
 #include <spdlog/spdlog.h>
 #include <systemd/sd-daemon.h>
@@ -17,8 +15,10 @@
 #include <thread>
 
 #include "app/board_rig.h"
+#include "app/can_wiring.h"
 #include "app/csv_writer.h"
 #include "app/daemon_notices.h"
+#include "app/effective_params.h"
 #include "app/integrations_wiring.h"
 #include "app/sim_wiring.h"
 #include "app/status_source.h"
@@ -179,6 +179,7 @@ int Daemon::run() {
   cycleCfg.rowPeriod = cli_.telemetryCsv ? fromSec(1.0 / cli_.telemetryRateHz) : 0;
   cycleCfg.blockOnFullRows = cli_.sim && cli_.speed <= 0.0;
   if (cli_.sim && cli_.speed <= 0.0) cycleCfg.thinForUnpacedRun();
+  cycleCfg.rpmFromN2k = settings.can.RpmSource == "n2k";  // engine speed from the CAN service (issue 22)
   rt::ControlCycle cycle(core, devices, *handoffs, stats, *wall, cycleCfg);
   cycle.driveSafeState();  // field known LOW before anything runs
 
@@ -212,6 +213,9 @@ int Daemon::run() {
 
   // The boat's network (issue 23): its own thread, reading the snapshot only.
   const auto integrations = startIntegrations(settings, *handoffs, store.get());
+  // CAN (issue 22): on a board the xr-can thread; the sim rig runs its own.
+  const auto canThread =
+      boardRig ? startCanThread(settings, *handoffs, boardRig->loopClock(), cli_.canLog) : nullptr;
 
   std::atomic<std::int64_t> lastHeartbeatWallMs{0};
   std::atomic<bool> outputsFault{false};

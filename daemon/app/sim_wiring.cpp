@@ -7,11 +7,14 @@
 #include <exception>
 #include <stdexcept>
 
+#include "app/can_wiring.h"
+
 namespace xr::app {
 
 namespace {
-sim::SimRigOptions rigOptions(const CliOptions& cli) {
+sim::SimRigOptions rigOptions(const CliOptions& cli, std::ostream* canLog) {
   sim::SimRigOptions o;
+  o.canLog = canLog;
   if (cli.seed) o.seed = *cli.seed;
   o.speed = 0.0;  // pacing is ours (PacedClock) so the period error is measured
   return o;
@@ -19,7 +22,10 @@ sim::SimRigOptions rigOptions(const CliOptions& cli) {
 }  // namespace
 
 SimWiring::SimWiring(const sim::Scenario& scenario, const Settings& settings, const CliOptions& cli)
-    : cli_(cli), rig_(scenario, settings, rigOptions(cli)) {
+    : cli_(cli),
+      canLog_(cli.canLog ? openCanLog(*cli.canLog) : nullptr),
+      rig_(scenario, settings, rigOptions(cli, canLog_.get())) {
+  rig_.onCanReport([](const std::string& what) { spdlog::warn("{}", what); });
   rig_.onScenarioProblem(
       [](int line, const std::string& what) { spdlog::error("scenario line {}: {}", line, what); });
   if (cli.speed > 0.0) paced_ = std::make_unique<rt::PacedClock>(rig_.clock(), wall_, cli.speed);

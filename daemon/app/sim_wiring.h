@@ -3,6 +3,7 @@
 // adds around it: pacing against wall time (--speed X; none under --speed
 // max), the --sim-outputs mirror of the field outputs, and the hidden test
 // faults that prove every exit path leaves the field off.
+#include <fstream>
 #include <functional>
 #include <memory>
 
@@ -37,6 +38,7 @@ class SimWiring final : public rt::TickHook {
 
  private:
   CliOptions cli_;
+  std::unique_ptr<std::ofstream> canLog_;  // --can-log (before rig_: the rig writes to it)
   sim::SimRig rig_;
   rt::MonotonicClock wall_;
   std::unique_ptr<rt::PacedClock> paced_;

@@ -66,4 +66,25 @@ std::vector<std::pair<std::string, std::string>> checkIntegrations(const Integra
   return out;
 }
 
+std::vector<std::pair<std::string, std::string>> checkCan(const CanSettings& s) {
+  std::vector<std::pair<std::string, std::string>> out;
+  // A Linux interface name: at most 15 bytes (IFNAMSIZ - 1), no '/', ':'
+  // or white space; anything else could never be opened.
+  auto badName = [](const std::string& n) {
+    if (n.size() > 15) return true;
+    for (unsigned char c : n)
+      if (c == '/' || c == ':' || std::isspace(c) || !std::isprint(c)) return true;
+    return false;
+  };
+  for (const auto& [key, name] :
+       {std::pair<const char*, const std::string&>{"can.bms_interface", s.bms_interface},
+        std::pair<const char*, const std::string&>{"can.n2k_interface", s.n2k_interface}})
+    if (badName(name)) out.emplace_back(key, "'" + name + "' is not a network interface name (e.g. can0)");
+  if (!s.bms_interface.empty() && s.bms_interface == s.n2k_interface)
+    out.emplace_back("can.n2k_interface", "must not be the BMS bus: the two run at different bit rates");
+  if (s.RpmSource == "n2k" && s.n2k_interface.empty())
+    out.emplace_back("can.RpmSource", "n2k needs [can] n2k_interface, the bus the engine speed comes from");
+  return out;
+}
+
 }  // namespace xr

@@ -1,7 +1,7 @@
 #pragma once
-// Checks of [integrations.*] that the loader makes (issue 23): a value an
-// integration could not use is a configuration error with its key, not a
-// surprise on the boat's network later.
+// Checks of [integrations.*] (issue 23) and [can] (issue 22) that the loader
+// makes: a value an integration could not use is a configuration error with
+// its key, not a surprise on the boat's network later.
 #include <string>
 #include <utility>
 #include <vector>
@@ -15,5 +15,6 @@ bool isAlphanumericId(const std::string& text);
 
 // (dotted key, message) for every problem; empty when all are usable.
 std::vector<std::pair<std::string, std::string>> checkIntegrations(const IntegrationsSettings& s);
+std::vector<std::pair<std::string, std::string>> checkCan(const CanSettings& s);
 
 }  // namespace xr

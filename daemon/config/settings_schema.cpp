@@ -59,10 +59,10 @@ const SettingSpec kSchema[] = {
                   const auto& l = std::get<std::vector<std::int64_t>>(v);
                   s.hardware.ads_channel_sequence.assign(l.begin(), l.end());
                 }},
-    XR_S_INT(
-        "hardware", hardware.ads_alert_rdy_line, "ads_alert_rdy_line", "", -1, 1023, false,
-        "GPIO line of the ADS1115 ALERT/RDY pin: every conversion is used, CH1 ~430 Hz (-1 = not wired: "
-        "single-shot, ~200 Hz; a configured line with no edges is retried once, then falls back to single-shot after 500 ms)."),
+    XR_S_INT("hardware", hardware.ads_alert_rdy_line, "ads_alert_rdy_line", "", -1, 1023, false,
+             "GPIO line of the ADS1115 ALERT/RDY pin: every conversion is used, CH1 ~430 Hz (-1 = not wired: "
+             "single-shot, ~200 Hz; a configured line with no edges is retried once, then falls back to "
+             "single-shot after 500 ms)."),
     XR_S_STR("hardware", hardware.pwm_sysfs_root, "pwm_sysfs_root", "", "sysfs PWM class directory."),
     XR_S_INT("hardware", hardware.pwm_chip, "pwm_chip", "", 0, 63, false,
              "pwmchipN driving the field (dtoverlay=pwm,pin=18,func=2 gives pwmchip0)."),
@@ -133,7 +133,9 @@ const SettingSpec kSchema[] = {
     XR_S_INT("runtime", runtime.cpu, "cpu", "", -1, 1023, false,
              "Pin the control thread to this CPU (-1 = no pinning)."),
     // [web]
-    XR_S_STR("web", web.listen, "listen", "", "HTTP listen address (0.0.0.0 = the boat's network: reads open, writes only from paired phones; 127.0.0.1 = this machine only)."),
+    XR_S_STR("web", web.listen, "listen", "",
+             "HTTP listen address (0.0.0.0 = the boat's network: reads open, writes only from paired phones; "
+             "127.0.0.1 = this machine only)."),
     XR_S_INT("web", web.port, "port", "", 1, 65535, false, "HTTP port."),
     XR_S_STR("web", web.token, "token", "",
              "Bearer token for writes; empty = generated at first start and kept with the state."),
@@ -157,15 +159,18 @@ const SettingSpec kSchema[] = {
         "can", can.bms_protocol, "bms_protocol", "victron,pylontech",
         "What the BMS speaks: victron (the 0x351/0x355/0x356/0x35A/0x35E set most LFP BMSs and Victron GX "
         "devices send), pylontech (the same set with Pylontech's 0x359 protection and warning flags)."),
-    XR_S_STR("can", can.n2k_interface, "n2k_interface", "",
-             "SocketCAN interface of the NMEA 2000 bus (250 kbit/s, 29-bit); empty = no NMEA 2000."),
+    XR_S_STR(
+        "can", can.n2k_interface, "n2k_interface", "",
+        "SocketCAN interface of the NMEA 2000 bus (250 kbit/s, 29-bit); empty = no NMEA 2000. Our node "
+        "publishes battery and charger status there (docs/integrations.md); --sim uses its simulated bus."),
     XR_S_INT("can", can.n2k_preferred_address, "n2k_preferred_address", "", 0, 251, false,
              "NMEA 2000 source address claimed first (ISO 11783-5 address claim, PGN 60928); moved on a "
              "conflict."),
     XR_S_STR(
         "can", can.RpmSource, "RpmSource", "tach,n2k",
         "Where RPM comes from: tach (ADS1115 CH2, the W terminal or the stator) or n2k (engine speed from "
-        "PGN 127488 on the NMEA 2000 bus, for engines without a W terminal)."),
+        "PGN 127488 or J1939 61444 on the NMEA 2000 bus, engine instance 0, for engines without a W "
+        "terminal; needs n2k_interface). An ECU silent for 1 s reads 0 rpm, as a tach with no pulses does."),
     // [log]
     XR_S_STR("log", log.level, "level", "trace,debug,info,warn,error,critical,off",
              "Log level (overridden by --log-level)."),

@@ -10,12 +10,7 @@ namespace xr::rt {
 
 ControlCycle::ControlCycle(ControlCore& core, const CycleDevices& devices, Handoffs& handoffs,
                            LoopStats& stats, const Clock& timing, CycleConfig config)
-    : core_(core),
-      dev_(devices),
-      h_(handoffs),
-      stats_(stats),
-      timing_(timing),
-      cfg_(config) {}
+    : core_(core), dev_(devices), h_(handoffs), stats_(stats), timing_(timing), cfg_(config) {}
 
 bool ControlCycle::onEvery(int ticks) const noexcept {
   return ticks <= 1 || tick_ % std::uint64_t(ticks) == 0;
@@ -42,6 +37,7 @@ void ControlCycle::mergeSlowInputs() noexcept {
   mergeTemperature();
   mergeBatteryTemp();
   mergeVictron();
+  if (cfg_.rpmFromN2k) mergeEngineRpm();
   // A BMS's limits: copied whole when posted; their stamp carries staleness.
   h_.bms.load(in_.bms);
 }
@@ -80,6 +76,15 @@ void ControlCycle::mergeVictron() noexcept {
     in_.solarPowerW = Reading{v.solarW, v.stamp, fresh};
   }
   lastVictronStamp_ = v.stamp;
+}
+
+void ControlCycle::mergeEngineRpm() noexcept {
+  EngineRpmHandoff r;
+  h_.engineRpm.load(r);
+  const bool heard = r.stamp != 0 && in_.now - r.stamp <= fromSec(CycleConfig::kEngineRpmStaleS);
+  // A silent ECU reads like a tach with no pulses: 0 rpm, fresh each tick.
+  in_.rpm = heard ? Reading{r.rpm, r.stamp, r.stamp != lastEngineRpmStamp_} : Reading{0.0, in_.now, true};
+  lastEngineRpmStamp_ = r.stamp;
 }
 
 void ControlCycle::readDiscreteInputs() noexcept {

@@ -28,6 +28,11 @@ struct CycleConfig {
   // and the final state are never thinned.
   int publishEveryTicks = 1;
   int timeEveryTicks = 1;
+  // RpmSource = n2k (issue 22): the RPM input is the engine speed the CAN
+  // service posts (Handoffs::engineRpm), not the tach on ADS1115 CH2. None
+  // for kEngineRpmStaleS (a silent ECU) reads 0 rpm, as a lost tach does.
+  bool rpmFromN2k = false;
+  static constexpr double kEngineRpmStaleS = 1.0;  // 127488 comes every 0.1 s
   // The thinning for an unpaced run (--speed max, SimRunner at speed 0):
   // ~10 snapshots per simulated second at 400 Hz.
   void thinForUnpacedRun() noexcept {
@@ -86,6 +91,7 @@ class ControlCycle {
   void mergeSlowInputs() noexcept;
   void mergeTemperature() noexcept;
   void mergeVictron() noexcept;
+  void mergeEngineRpm() noexcept;
   void mergeBatteryTemp() noexcept;
   void readDiscreteInputs() noexcept;
   bool writeOutputs(const Outputs& out) noexcept;
@@ -119,7 +125,7 @@ class ControlCycle {
   std::uint64_t tick_ = 0;
   const Outputs* lastOut_ = nullptr;
   TimeNs lastNow_ = 0;
-  TimeNs lastTempStamp_ = 0, lastVictronStamp_ = 0;
+  TimeNs lastTempStamp_ = 0, lastVictronStamp_ = 0, lastEngineRpmStamp_ = 0;
   TimeNs lastBatteryTempStamp_ = 0;
   TimeNs lastAdsStamp_[4] = {0, 0, 0, 0};
   TimeNs lastInaStamp_ = 0;

@@ -69,6 +69,12 @@ struct BatteryTempHandoff {
   TimeNs stamp = 0;  // when the valid sample was taken (0 = none yet)
   BatteryTempSource source = BatteryTempSource::none;
 };
+// Engine speed from NMEA 2000 (127488) or J1939 (61444), for RpmSource = n2k
+// (issue 22): posted by the CAN service on each message.
+struct EngineRpmHandoff {
+  double rpm = kNoValue;
+  TimeNs stamp = 0;  // when it arrived (0 = never)
+};
 struct VictronHandoff {
   double currentA = kNoValue, voltageV = kNoValue, solarW = kNoValue;
   TimeNs stamp = 0;
@@ -136,6 +142,7 @@ class Handoffs {
   SeqLock<TemperatureHandoff> temperature;
   SeqLock<VictronHandoff> victron;
   SeqLock<BmsLimits> bms;  // a BMS's limits (CAN link or another source), posted on each change
+  SeqLock<EngineRpmHandoff> engineRpm;
   SeqLock<BatteryTempHandoff> batteryTemp;
   SeqLock<BatteryLedger> ledger;  // the core's ledger, copied out ~4 times a second
   CommandAcks acks;

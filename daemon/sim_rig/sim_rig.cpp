@@ -52,7 +52,9 @@ SimRig::SimRig(Scenario scenario, const Settings& settings, SimRigOptions option
       // configuration names a line, as on the board.
       sensors_(world_.i2c(), settings.hardware, simClock_, settings.hardware.ads_alert_rdy_line >= 0),
       readyEdges_(world_),
-      player_(scenario_) {
+      player_(scenario_),
+      canLog_(options.canLog),
+      canSettings_(settings.can) {
   world_.advanceTo(world_.now() + options.poweredBefore);
   start_ = world_.now();
   nextTempRead_ = start_;
@@ -70,6 +72,17 @@ SimRig::~SimRig() {
   ds18b20_.reset();
   std::error_code ec;
   std::filesystem::remove_all(scratch_, ec);
+}
+
+void SimRig::attach(rt::Handoffs& h) {
+  handoffs_ = &h;
+  can_ = std::make_unique<SimCanRig>(scenario_, canSettings_, h, start_, canLog_,
+                                     [this](const std::string& what) {
+                                       if (canReport_)
+                                         canReport_(what);
+                                       else
+                                         std::fprintf(stderr, "%s\n", what.c_str());
+                                     });
 }
 
 rt::CycleDevices SimRig::devices() noexcept {
@@ -99,6 +112,7 @@ void SimRig::RigClock::sleepUntil(TimeNs t) noexcept {
 
 void SimRig::playDue(TimeNs t) {
   player_.applyDue(toSec(t - start_), world_, [this](const ScenarioEvent& e) { applyControl(e); });
+  if (can_) can_->step(world_.now(), world_.plant());
   if (handoffs_ && t >= nextTempRead_) {
     nextTempRead_ += fromSec(1.0);
     ds18b20_->readOnce();
@@ -117,6 +131,7 @@ void SimRig::applyControl(const ScenarioEvent& e) {
     else
       std::fprintf(stderr, "scenario line %d: %s\n", e.line, what.c_str());
   };
+  if (can_ && e.touchesSimCan()) can_->apply(e);
   if (!handoffs_) return;
   if (e.command && !handoffs_->submitCommand(*e.command)) problem("command queue full, command dropped");
   if (!e.set.empty()) {

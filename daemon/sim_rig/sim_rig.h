@@ -29,6 +29,7 @@
 #include "runtime/cycle_devices.h"
 #include "runtime/driver_sensors.h"
 #include "runtime/handoffs.h"
+#include "sim_rig/sim_can_rig.h"
 #include "sim_rig/sim_ready_edges.h"
 
 namespace xr::sim {
@@ -41,6 +42,8 @@ struct SimRigOptions {
   // driver that trusts a result register before the first conversion would
   // read 0 on a cold chip; that case has its own test, with 0 here).
   TimeNs poweredBefore = fromMs(100);
+  // --can-log: every CAN frame of the run, candump format (may be null).
+  std::ostream* canLog = nullptr;
 };
 
 class SimRig final : public rt::TruthSource {
@@ -53,7 +56,8 @@ class SimRig final : public rt::TruthSource {
   SimRig& operator=(const SimRig&) = delete;
 
   // Where scenario commands and parameter sets go. Call before the loop runs.
-  void attach(rt::Handoffs& h) noexcept { handoffs_ = &h; }
+  // The CAN side (sim_can_rig.h) starts here: it posts into `h`.
+  void attach(rt::Handoffs& h);
   // A scenario [[events]] set that cannot be applied, or a command the full
   // queue dropped. The loop goes on (the clock cannot throw); without a
   // handler the problem is printed on stderr.
@@ -64,6 +68,11 @@ class SimRig final : public rt::TruthSource {
   // must see at the virtual time of the tick just done (the runner drains
   // its rows here, with the plant's truth of that tick).
   void beforeAdvance(std::function<void()> f) { beforeAdvance_ = std::move(f); }
+  // What the CAN service reports (a bus down, bad frames, rate-limited).
+  // Without a handler it is printed on stderr.
+  void onCanReport(std::function<void(const std::string&)> f) { canReport_ = std::move(f); }
+  // The CAN side; null before attach().
+  const SimCanRig* can() const noexcept { return can_.get(); }
 
   // The seams of one control cycle: the sensors, the world's outputs and
   // inputs, the truth, and the ALERT/RDY edges when the drivers pace on them.
@@ -110,6 +119,10 @@ class SimRig final : public rt::TruthSource {
   rt::Handoffs* handoffs_ = nullptr;
   std::function<void(int, const std::string&)> problem_;
   std::function<void()> beforeAdvance_;
+  std::function<void(const std::string&)> canReport_;
+  std::ostream* canLog_ = nullptr;
+  CanSettings canSettings_;
+  std::unique_ptr<SimCanRig> can_;
   TimeNs start_ = 0;
   TimeNs nextTempRead_ = 0;
 };

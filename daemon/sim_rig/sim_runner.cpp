@@ -1,7 +1,5 @@
 #include "sim_rig/sim_runner.h"
 
-#include "config/battery_profiles.h"
-
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -10,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "config/battery_profiles.h"
 #include "control/regulator.h"
 #include "params/derived.h"
 #include "runtime/control_cycle.h"
@@ -30,12 +29,14 @@ struct SimRunner::Impl {
   std::unique_ptr<rt::ControlCycle> cycle;
   std::unique_ptr<rt::ControlLoop> loop;
   std::vector<std::string> scenarioProblems;
+  std::vector<std::string> canReports;
   std::atomic<bool> stopEarly{false};
 
   static SimRigOptions rigOptions(const SimRunOptions& o) {
     SimRigOptions r;
     r.seed = o.seed;
     r.speed = o.speed;
+    r.canLog = o.canLog;
     if (o.coldStart) r.poweredBefore = 0;
     return r;
   }
@@ -56,6 +57,7 @@ struct SimRunner::Impl {
         core(regulator),
         handoffs(initialParams(opts)) {
     rig.attach(handoffs);
+    rig.onCanReport([this](const std::string& what) { canReports.push_back(what); });
     rig.onScenarioProblem([this](int line, const std::string& what) {
       scenarioProblems.push_back(opts.scenario.source + ":" + std::to_string(line) + ": " + what);
     });
@@ -85,6 +87,7 @@ SimRunResult SimRunner::run() {
   cc.rowPeriod = d.opts.telemetryRateHz > 0 ? fromSec(1.0 / d.opts.telemetryRateHz) : 0;
   cc.blockOnFullRows = false;  // drained at every deadline below, never full
   if (d.opts.speed <= 0.0) cc.thinForUnpacedRun();
+  cc.rpmFromN2k = d.opts.settings.can.RpmSource == "n2k";
   d.cycle =
       std::make_unique<rt::ControlCycle>(d.core, d.rig.devices(), d.handoffs, d.stats, d.rig.clock(), cc);
 
@@ -125,6 +128,7 @@ SimRunResult SimRunner::run() {
 
   res.finalTruth = world.truth().plant;
   res.health = d.cycle->health();
+  res.canReports = d.canReports;
   res.loop = d.stats.summary();
   res.ticks = d.cycle->ticks();
   res.i2cTransfers = world.bus().transfers();

@@ -13,6 +13,7 @@
 #include <iosfwd>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "config/settings.h"
@@ -37,6 +38,7 @@ struct SimRunOptions {
   bool coldStart = false;             // start the loop the instant the chips power up
   std::function<void(const struct SimRow&)> onRow;  // streaming (CSV writer)
   std::function<void(const Event&)> onEvent;        // events, in order
+  std::ostream* canLog = nullptr;                   // every CAN frame, candump format
 };
 
 // One telemetry row: what the daemon publishes plus the plant's truth.
@@ -51,6 +53,7 @@ struct SimRow {
 struct SimRunResult {
   std::vector<SimRow> rows;
   std::vector<Event> events;
+  std::vector<std::string> canReports;  // what the CAN service reported (bus down, bad frames)
   PlantTruth finalTruth;
   rt::RuntimeHealth health;
   rt::LoopStatsSummary loop;  // the control loop's statistics at the end (rates on virtual time)

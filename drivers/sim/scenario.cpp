@@ -98,6 +98,7 @@ ScenarioEvent parseEvent(const Ctx& c, const toml::table& t, double duration) {
       if (s != "charge_enabled" && s != "charge_disabled")
         c.fail(lineOf(v), "bms_input must be \"charge_enabled\" or \"charge_disabled\"");
       e.bms_charge_enabled = s == "charge_enabled";
+    } else if (parseBmsEventKey(c, k, v, e)) {
     } else if (n == "command") {
       // handled above
     } else if (!cmdArgName.empty() && n == cmdArgName) {
@@ -147,7 +148,8 @@ ScenarioEvent parseEvent(const Ctx& c, const toml::table& t, double duration) {
     e.command = command;
   }
   const bool any = e.rpm || e.house_a || e.ambient_f || e.battery_temp_c || e.ignition || e.bms_connected ||
-                   e.bms_charge_enabled || e.command || !e.set.empty() || e.fault || e.clear;
+                   e.bms_charge_enabled || e.touchesSimCan() || e.command || !e.set.empty() || e.fault ||
+                   e.clear;
   if (!any) c.fail(e.line, "event does nothing");
   return e;
 }
@@ -177,10 +179,14 @@ Scenario parseTable(const Ctx& c, const toml::table& root) {
       parseAlternator(c, tableOf(c, k, v), s.plant.alternator);
     } else if (n == "engine") {
       for (auto&& [ek, ev] : tableOf(c, k, v)) {
-        if (ek.str() == "rpm")
+        if (ek.str() == "rpm") {
           s.plant.rpm = number(c, ek, ev, 0.0, 10000.0);
-        else
+        } else if (ek.str() == "ecu") {
+          if (!ev.is_boolean()) c.fail(lineOf(ev), "[engine] ecu must be true or false");
+          s.engine_ecu = *ev.value<bool>();
+        } else {
           unknownKey(c, ek, "[engine]");
+        }
       }
     } else if (n == "loads") {
       for (auto&& [lk, lv] : tableOf(c, k, v)) {
@@ -198,6 +204,8 @@ Scenario parseTable(const Ctx& c, const toml::table& root) {
         else
           unknownKey(c, bk, "[bus]");
       }
+    } else if (n == "bms") {
+      parseBms(c, tableOf(c, k, v), s.bms);
     } else if (n == "noise") {
       parseNoise(c, tableOf(c, k, v), s.noise);
     } else if (n == "events") {
@@ -219,6 +227,7 @@ Scenario parseTable(const Ctx& c, const toml::table& root) {
       unknownKey(c, k, "");
     }
   }
+  checkBmsEvents(c, s);
   if (s.name.empty()) s.name = c.src;
   return s;
 }

@@ -31,6 +31,21 @@ struct ParamOverride {
   int line = 0;
 };
 
+// What the simulated BMS does on its bus (bms_can = ...): talks, is silent
+// (a cut wire), or sends its limits in frames too short to decode.
+enum class BmsCanMode { Talking, Silent, ShortFrames };
+
+// [bms] (issue 22): a simulated LFP BMS on the simulated BMS CAN bus, driven
+// by the plant's truth, opening the plant's BMS disconnect when its limits
+// are ignored (drivers/sim/bms/sim_bms.h).
+struct ScenarioBms {
+  bool can = false;                  // can = true: the BMS talks on the bus
+  std::string protocol = "victron";  // victron | pylontech (what the daemon decodes)
+  double cvl_v = 14.2;               // its charge voltage limit
+  double ccl_max_a = 100.0;          // its CCL before the SoC / cold taper
+  double open_after_s = 3.0;         // limits ignored this long: the contactor opens
+};
+
 struct ScenarioEvent {
   double at_s = 0.0;
   int line = 0;
@@ -38,6 +53,13 @@ struct ScenarioEvent {
   std::optional<bool> ignition;            // ignition = "on" | "off"
   std::optional<bool> bms_connected;       // bms = "connect" | "disconnect"
   std::optional<bool> bms_charge_enabled;  // bms_input = "charge_enabled" | "charge_disabled"
+  // The simulated BMS on CAN (issue 22; only with [bms] can = true):
+  std::optional<BmsCanMode> bms_can;  // bms_can = "talking" | "silent" | "short_frames"
+  std::optional<double> bms_ccl_a;    // forced CCL (A); < 0 = "auto" (the BMS's own taper)
+  std::optional<double> bms_cvl_v;    // forced CVL (V); < 0 = "auto"
+  std::optional<bool> bms_warn;       // bms_warn = "high_voltage" | "none"
+  std::optional<bool> ecu_talking;    // ecu = "talking" | "silent" (only with [engine] ecu = true)
+  bool touchesSimCan() const { return bms_can || bms_ccl_a || bms_cvl_v || bms_warn || ecu_talking; }
   std::optional<Command> command;
   std::vector<ParamOverride> set;
   std::optional<Fault> fault;  // inject (with value where one applies)
@@ -53,6 +75,10 @@ struct Scenario {
   std::vector<ParamOverride> config;
   PlantConfig plant;
   NoiseConfig noise;
+  ScenarioBms bms;
+  // [engine] ecu = true: a simulated engine ECU on the simulated NMEA 2000
+  // bus sends 127488 (engine speed, every 0.1 s) from the plant's rpm.
+  bool engine_ecu = false;
   std::vector<ScenarioEvent> events;  // sorted by at_s (the file must be)
 };
 
@@ -71,14 +97,14 @@ class ScenarioPlayer {
  public:
   explicit ScenarioPlayer(const Scenario& s) : s_(s) {}
   // Apply every event with at_s <= t (seconds since start) to the world;
-  // returns the events that carry a command or a parameter set, for the
-  // caller to apply.
+  // returns the events that carry a command, a parameter set or a change of
+  // the simulated BMS, for the caller to apply.
   template <typename OnControl>
   void applyDue(double t, SimWorld& w, OnControl&& onControl) {
     while (next_ < s_.events.size() && s_.events[next_].at_s <= t) {
       const ScenarioEvent& e = s_.events[next_++];
       applyToWorld(e, w);
-      if (e.command || !e.set.empty()) onControl(e);
+      if (e.command || !e.set.empty() || e.touchesSimCan()) onControl(e);
     }
   }
   static void applyToWorld(const ScenarioEvent& e, SimWorld& w);

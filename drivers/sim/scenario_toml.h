@@ -31,5 +31,12 @@ const toml::table& tableOf(const Ctx& c, const toml::key& k, const toml::node& v
 void parseBattery(const Ctx& c, const toml::table& t, BatteryConfig& b);
 void parseAlternator(const Ctx& c, const toml::table& t, AlternatorConfig& a);
 void parseNoise(const Ctx& c, const toml::table& t, NoiseConfig& n);
+// [bms] and the bms_* event keys (scenario_bms.cpp). parseBmsEventKey
+// returns false when `k` is not one of its keys.
+void parseBms(const Ctx& c, const toml::table& t, ScenarioBms& b);
+bool parseBmsEventKey(const Ctx& c, const toml::key& k, const toml::node& v, ScenarioEvent& e);
+// An event that changes the simulated BMS or engine ECU in a scenario
+// without one.
+void checkBmsEvents(const Ctx& c, const Scenario& s);
 
 }  // namespace xr::sim::scenario_toml

@@ -53,9 +53,11 @@ std::vector<CanFrame> SimBms::step(TimeNs now, const SimBmsTruth& t) {
   if (!talking || now < nextSend_) return out;
   nextSend_ = now + fromSec(kPeriodS);
   out.push_back(can::encode351(cvl(), ccl(t), 200.0, 10.0));
+  if (shortFrames) out.back().dlc = 4;
   out.push_back(can::encode355(t.socPct, 100.0));
   out.push_back(can::encode356(t.batteryV, t.batteryA, t.tempC));
   out.push_back(can::encode35A(0, warning(t) ? bmswarn::HighVoltage : 0u));
+  if (pylontech) out.push_back(can::encode359(0, warning(t) ? bmswarn::HighVoltage : 0u));
   return out;
 }
 

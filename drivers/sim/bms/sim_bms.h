@@ -11,7 +11,9 @@
 // If its limits are ignored (charge current above CCL + 5 A, or any charge
 // above 2 A while it warns) for openAfterS, it opens its contactor: the
 // caller disconnects the plant's battery (the plant's BMS disconnect).
-// `talking = false` (bms_can = "silent") stops its frames.
+// `talking = false` (bms_can = "silent") stops its frames; `shortFrames`
+// (bms_can = "short_frames") sends its limits (0x351) with DLC 4, which a
+// decoder must reject. `pylontech` adds the 0x359 flags frame.
 #include <cstdint>
 #include <vector>
 
@@ -36,6 +38,8 @@ class SimBms {
   double forcedCclA = -1.0;  // < 0: not forced
   double forcedCvlV = -1.0;
   bool forcedWarning = false;
+  bool shortFrames = false;
+  bool pylontech = false;
 
   // One step of `dt` seconds; returns the frames to send now (every
   // kPeriodS of simulated time while talking).

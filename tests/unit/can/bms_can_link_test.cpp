@@ -1,7 +1,7 @@
 // BmsCanLink: frames from a (simulated) BMS become posted limits; bad frames
 // are counted and reported at most once per 30 s; the candump log holds
 // every frame.
-#include "app/bms_can_link.h"
+#include "canlink/bms_can_link.h"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 #include "drivers/can/candump_log.h"
 #include "drivers/can/sim_can_bus.h"
 
-namespace xr::app {
+namespace xr::canlink {
 namespace {
 
 struct LinkRig {
@@ -74,4 +74,4 @@ TEST(BmsCanLink, LogsEveryFrameInCandumpFormat) {
 }
 
 }  // namespace
-}  // namespace xr::app
+}  // namespace xr::canlink

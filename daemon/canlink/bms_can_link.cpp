@@ -1,5 +1,5 @@
 // BmsCanLink (see bms_can_link.h).
-#include "app/bms_can_link.h"
+#include "canlink/bms_can_link.h"
 
 #include <chrono>
 #include <cstdio>
@@ -7,7 +7,7 @@
 
 #include "drivers/can/candump_log.h"
 
-namespace xr::app {
+namespace xr::canlink {
 
 BmsCanLink::BmsCanLink(CanBus& bus, can::BmsProtocol protocol, std::string interface, Post post,
                        Report report)
@@ -38,4 +38,4 @@ void BmsCanLink::poll(TimeNs now) {
   }
 }
 
-}  // namespace xr::app
+}  // namespace xr::canlink

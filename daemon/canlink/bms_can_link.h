@@ -12,7 +12,7 @@
 #include "can/bms_codec.h"
 #include "drivers/hal/can_bus.h"
 
-namespace xr::app {
+namespace xr::canlink {
 
 class BmsCanLink {
  public:
@@ -40,4 +40,4 @@ class BmsCanLink {
   std::uint64_t reportedRejects_ = 0;
 };
 
-}  // namespace xr::app
+}  // namespace xr::canlink

@@ -1,0 +1,56 @@
+// CanService (see can_service.h).
+#include "canlink/can_service.h"
+
+namespace xr::canlink {
+
+void CanService::setBmsBus(std::unique_ptr<BusSlot> slot, can::BmsProtocol protocol) {
+  bms_ = std::move(slot);
+  protocol_ = protocol;
+  bmsLink_.reset();
+  bmsRecorded_.reset();
+}
+
+void CanService::setN2kBus(std::unique_ptr<BusSlot> slot, std::uint8_t preferredAddress,
+                           std::string version) {
+  n2k_ = std::move(slot);
+  n2kAddress_ = preferredAddress;
+  version_ = std::move(version);
+  n2kNode_.reset();
+  n2kRecorded_.reset();
+}
+
+void CanService::poll(TimeNs now) {
+  if (bms_) {
+    CanBus* bus = bms_->get(now);
+    if (bms_->takeOpened() && bus) {
+      // A (re)opened bus: the decoder starts over. The limits posted before
+      // keep their stamp in the hand-off and go stale on their own.
+      if (sink_) {
+        bmsRecorded_ = std::make_unique<can::RecordingCanBus>(*bus, bms_->interface(), *sink_);
+        bus = bmsRecorded_.get();
+      }
+      bmsLink_ = std::make_unique<BmsCanLink>(
+          *bus, protocol_, bms_->interface(), [this](const BmsLimits& l) { h_.bms.store(l); }, report_);
+    }
+    if (bus && bmsLink_) bmsLink_->poll(now);
+  }
+  if (n2k_) {
+    CanBus* bus = n2k_->get(now);
+    if (n2k_->takeOpened() && bus) {
+      // A (re)opened bus: claim an address again before anything else.
+      if (sink_) {
+        n2kRecorded_ = std::make_unique<can::RecordingCanBus>(*bus, n2k_->interface(), *sink_);
+        bus = n2kRecorded_.get();
+      }
+      n2kNode_ = std::make_unique<N2kNode>(*bus, n2kAddress_, h_, version_);
+      // Engine speed (127488 or J1939 61444) for RpmSource = n2k; engine
+      // instance 0 (the single or port engine).
+      n2kNode_->onMessage([this](const can::N2kMessage& m, TimeNs at) {
+        if (auto s = can::decodeEngineSpeed(m); s && s->instance == 0) h_.engineRpm.store({s->rpm, at});
+      });
+    }
+    if (bus && n2kNode_) n2kNode_->poll(now);
+  }
+}
+
+}  // namespace xr::canlink

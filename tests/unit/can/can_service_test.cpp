@@ -1,0 +1,169 @@
+// The CAN service (issue 22): buses opened with retry and backoff, limits
+// posted into the hand-off stamped with the caller's clock, every frame in
+// the candump log.
+#include "canlink/can_service.h"
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "drivers/can/candump_log.h"
+#include "drivers/can/sim_can_bus.h"
+#include "drivers/can/socketcan_bus.h"
+
+namespace xr::canlink {
+namespace {
+
+TEST(BusSlot, AMissingBusIsRetriedWithBackoffAndReported) {
+  can::SimCanSegment seg;
+  can::SimCanNode& node = seg.attach();
+  int attempts = 0;
+  int failFor = 4;
+  std::vector<std::string> reports;
+  struct Borrowed final : CanBus {
+    CanBus& b;
+    explicit Borrowed(CanBus& x) : b(x) {}
+    bool send(const CanFrame& f) noexcept override { return b.send(f); }
+    std::optional<CanFrame> receive(std::chrono::milliseconds t) noexcept override { return b.receive(t); }
+    CanBusStats stats() const noexcept override { return b.stats(); }
+  };
+  BusSlot slot(
+      "can9",
+      [&]() -> std::unique_ptr<CanBus> {
+        ++attempts;
+        if (attempts <= failFor) throw std::runtime_error("no such device");
+        return std::make_unique<Borrowed>(node);
+      },
+      [&](const std::string& r) { reports.push_back(r); });
+  // Attempts at 0, then 1 s, 2 s, 4 s later: 0, 1, 3, 7 s.
+  EXPECT_EQ(slot.get(0), nullptr);
+  EXPECT_EQ(attempts, 1);
+  ASSERT_EQ(reports.size(), 1u);
+  EXPECT_NE(reports[0].find("can9: no such device; retry in 1 s"), std::string::npos) << reports[0];
+  EXPECT_EQ(slot.get(fromSec(0.99)), nullptr);
+  EXPECT_EQ(attempts, 1);  // not yet
+  EXPECT_EQ(slot.get(fromSec(1.0)), nullptr);
+  EXPECT_EQ(attempts, 2);
+  EXPECT_EQ(slot.get(fromSec(2.9)), nullptr);
+  EXPECT_EQ(attempts, 2);
+  EXPECT_EQ(slot.get(fromSec(3.0)), nullptr);
+  EXPECT_EQ(slot.get(fromSec(6.9)), nullptr);
+  EXPECT_EQ(attempts, 3);
+  EXPECT_EQ(slot.get(fromSec(7.0)), nullptr);
+  EXPECT_EQ(attempts, 4);
+  EXPECT_NE(reports.back().find("retry in 8 s"), std::string::npos) << reports.back();
+  EXPECT_FALSE(slot.takeOpened());
+  EXPECT_NE(slot.get(fromSec(15.0)), nullptr);  // the fifth attempt opens it
+  EXPECT_TRUE(slot.takeOpened());
+  EXPECT_FALSE(slot.takeOpened());  // once per open
+  EXPECT_NE(reports.back().find("open again after 4 failed attempt(s)"), std::string::npos) << reports.back();
+  EXPECT_EQ(slot.failures(), 4u);
+  // Lost: closed, retried from 1 s again.
+  slot.lost(fromSec(20.0), "bus gone");
+  EXPECT_EQ(slot.get(fromSec(20.5)), nullptr);
+  EXPECT_NE(slot.get(fromSec(21.0)), nullptr);
+}
+
+TEST(BusSlot, TheBackoffStopsAtSixtySeconds) {
+  int attempts = 0;
+  BusSlot slot(
+      "can9",
+      [&]() -> std::unique_ptr<CanBus> {
+        ++attempts;
+        throw std::runtime_error("down");
+      },
+      [](const std::string&) {});
+  TimeNs t = 0;
+  for (int i = 0; i < 12; ++i) {
+    slot.get(t);
+    t += fromSec(60.0);  // one attempt per minute at most, never slower
+  }
+  EXPECT_EQ(attempts, 12);
+}
+
+// This machine (and CI) has no AF_CAN: the real backend's open fails with a
+// clear error, which is the path a board takes with the HAT missing.
+TEST(BusSlot, TheSocketCanBackendOnAMissingInterfaceIsReportedNotThrown) {
+  std::vector<std::string> reports;
+  BusSlot slot(
+      "xrcan-missing0", [] { return std::unique_ptr<CanBus>(new can::SocketCanBus("xrcan-missing0")); },
+      [&](const std::string& r) { reports.push_back(r); });
+  EXPECT_EQ(slot.get(0), nullptr);
+  ASSERT_EQ(reports.size(), 1u);
+  EXPECT_NE(reports[0].find("xrcan-missing0"), std::string::npos) << reports[0];
+}
+
+struct ServiceRig {
+  can::SimCanSegment seg;
+  can::SimCanNode& bms = seg.attach();
+  can::SimCanNode& us = seg.attach();
+  rt::Handoffs h{Params{}};
+  std::vector<std::string> reports;
+  std::ostringstream log;
+  double logTime = 0.0;
+  can::CandumpSink sink{log, [this] { return logTime; }};
+  CanService svc{h, [this](const std::string& r) { reports.push_back(r); }};
+  ServiceRig() {
+    svc.setLog(&sink);
+    svc.setBmsBus(std::make_unique<BusSlot>("simcan0", us), can::BmsProtocol::Victron);
+  }
+};
+
+TEST(CanService, PostsTheLimitsStampedWithTheCallersClock) {
+  ServiceRig r;
+  r.svc.poll(fromSec(1.0));
+  EXPECT_EQ(r.h.bms.load().stamp, 0);  // nothing heard yet: nothing posted
+  r.bms.send(can::encode351(14.1, 55.0, 100.0, 12.0));
+  r.svc.poll(fromSec(2.5));
+  const BmsLimits l = r.h.bms.load();
+  EXPECT_EQ(l.stamp, fromSec(2.5));
+  EXPECT_NEAR(l.cclA, 55.0, 1e-9);
+  EXPECT_NEAR(l.cvlV, 14.1, 1e-9);
+  EXPECT_EQ(l.source, BmsSource::Can);
+}
+
+TEST(CanService, BadFramesNeverReachTheHandoff) {
+  ServiceRig r;
+  r.bms.send(can::encode351(14.1, 55.0, 100.0, 12.0));
+  r.svc.poll(fromSec(1.0));
+  CanFrame bad = can::encode351(14.1, 6000.0, 100.0, 12.0);  // clamps to 3276.7 A: still rejected
+  r.bms.send(bad);
+  CanFrame shortOne = can::encode351(14.1, 20.0, 100.0, 12.0);
+  shortOne.dlc = 4;
+  r.bms.send(shortOne);
+  r.svc.poll(fromSec(2.0));
+  const BmsLimits l = r.h.bms.load();
+  EXPECT_NEAR(l.cclA, 55.0, 1e-9);
+  EXPECT_EQ(l.stamp, fromSec(1.0));  // the good limits stand with their time: they go stale
+  ASSERT_EQ(r.reports.size(), 1u);
+  EXPECT_NE(r.reports[0].find("2 bad frame(s) ignored"), std::string::npos) << r.reports[0];
+  ASSERT_NE(r.svc.bmsLink(), nullptr);
+  EXPECT_EQ(r.svc.bmsLink()->decoder().rejected(), 2u);
+}
+
+TEST(CanService, EveryReceivedFrameIsInTheCandumpLog) {
+  ServiceRig r;
+  r.logTime = 12.5;
+  r.bms.send(can::encode351(14.1, 55.0, 100.0, 12.0));
+  r.bms.send(can::encode355(80.0, 99.0));
+  r.svc.poll(fromSec(1.0));
+  std::istringstream in(r.log.str());
+  std::string line;
+  std::vector<can::CandumpLine> lines;
+  while (std::getline(in, line)) {
+    auto p = can::parseCandump(line);
+    ASSERT_TRUE(p) << line;
+    lines.push_back(*p);
+  }
+  ASSERT_EQ(lines.size(), 2u);
+  EXPECT_EQ(lines[0].interface, "simcan0");
+  EXPECT_DOUBLE_EQ(lines[0].timeSec, 12.5);
+  EXPECT_EQ(lines[0].frame, can::encode351(14.1, 55.0, 100.0, 12.0));
+  EXPECT_EQ(lines[1].frame, can::encode355(80.0, 99.0));
+}
+
+}  // namespace
+}  // namespace xr::canlink

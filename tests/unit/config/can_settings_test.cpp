@@ -1,0 +1,63 @@
+// [can] (issue 22): values the CAN service could never use are configuration
+// errors at their line (--check-config exits 78 on them).
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "config/config.h"
+#include "test_files.h"
+
+namespace xr {
+namespace {
+
+using ::testing::HasSubstr;
+
+std::vector<std::string> messages(std::string_view text) {
+  std::vector<std::string> m;
+  for (const auto& e : loadConfigString(text, "test.toml").errors) m.push_back(e.toString());
+  return m;
+}
+
+TEST(CanSettings, TheDefaultsAndAUsualBoardAreAccepted) {
+  EXPECT_TRUE(messages("").empty());
+  EXPECT_TRUE(messages("[can]\nbms_interface = \"can0\"\nbms_protocol = \"pylontech\"\n"
+                       "n2k_interface = \"can1\"\nRpmSource = \"n2k\"\n")
+                  .empty());
+}
+
+TEST(CanSettings, RpmFromN2kNeedsTheN2kBus) {
+  const auto m = messages("[can]\nbms_interface = \"can0\"\nRpmSource = \"n2k\"\n");
+  ASSERT_EQ(m.size(), 1u);
+  EXPECT_THAT(m[0], HasSubstr("test.toml:3"));
+  EXPECT_THAT(m[0], HasSubstr("n2k_interface"));
+  xr::testing::TempFile f("[can]\nRpmSource = \"n2k\"\n");
+  std::ostringstream out, err;
+  EXPECT_EQ(checkConfigMain(f.path(), out, err), 78);  // what --check-config returns
+  EXPECT_THAT(err.str(), HasSubstr("can.RpmSource"));
+}
+
+TEST(CanSettings, InterfaceNamesTheKernelCouldNeverHaveAreRefused) {
+  auto m = messages("[can]\nbms_interface = \"can0 \"\n");
+  ASSERT_EQ(m.size(), 1u);
+  EXPECT_THAT(m[0], HasSubstr("test.toml:2"));
+  m = messages("[can]\nn2k_interface = \"/dev/can1\"\n");
+  ASSERT_EQ(m.size(), 1u);
+  m = messages("[can]\nn2k_interface = \"can0123456789abc\"\n");  // 16 bytes: one too many
+  ASSERT_EQ(m.size(), 1u);
+  EXPECT_TRUE(messages("[can]\nn2k_interface = \"can0123456789ab\"\n").empty());  // 15: the limit
+}
+
+TEST(CanSettings, TheTwoBusesAreNotOneInterface) {
+  const auto m = messages("[can]\nbms_interface = \"can0\"\nn2k_interface = \"can0\"\n");
+  ASSERT_EQ(m.size(), 1u);
+  EXPECT_THAT(m[0], HasSubstr("bit rates"));
+}
+
+TEST(CanSettings, AnUnknownProtocolOrRpmSourceIsRefused) {
+  EXPECT_EQ(messages("[can]\nbms_protocol = \"rec\"\n").size(), 1u);
+  EXPECT_EQ(messages("[can]\nRpmSource = \"w-terminal\"\n").size(), 1u);
+}
+
+}  // namespace
+}  // namespace xr
