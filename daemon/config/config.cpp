@@ -93,7 +93,8 @@ class Loader {
       root = toml::parse(text, file_);
     } catch (const toml::parse_error& e) {
       const auto loc = where(e.source());
-      result_.errors.push_back({file_, loc.line, loc.column, "", "TOML syntax error: " + std::string(e.description())});
+      result_.errors.push_back(
+          {file_, loc.line, loc.column, "", "TOML syntax error: " + std::string(e.description())});
       return std::move(result_);
     }
     for (auto&& [k, node] : root) topLevel(k, node);
@@ -114,11 +115,12 @@ class Loader {
     }
     settingsConsistency();
 
-    std::stable_sort(result_.errors.begin(), result_.errors.end(), [](const ConfigError& a, const ConfigError& b) {
-      const int la = a.line == 0 ? INT32_MAX : a.line;
-      const int lb = b.line == 0 ? INT32_MAX : b.line;
-      return la != lb ? la < lb : a.column < b.column;
-    });
+    std::stable_sort(result_.errors.begin(), result_.errors.end(),
+                     [](const ConfigError& a, const ConfigError& b) {
+                       const int la = a.line == 0 ? INT32_MAX : a.line;
+                       const int lb = b.line == 0 ? INT32_MAX : b.line;
+                       return la != lb ? la < lb : a.column < b.column;
+                     });
     if (result_.errors.empty()) result_.config = config_;
     return std::move(result_);
   }
@@ -173,7 +175,8 @@ class Loader {
         continue;
       }
       if (spec->group != group) {
-        error(k, dotted, name + " belongs in [" + std::string(tomlTableName(spec->group)) + "], not [" + table + "]");
+        error(k, dotted,
+              name + " belongs in [" + std::string(tomlTableName(spec->group)) + "], not [" + table + "]");
         continue;
       }
       paramLoc_[dotted] = where(k.source());
@@ -209,9 +212,13 @@ class Loader {
         for (const auto& s : settingsSchema())
           if (s.table == table) keys.push_back(s.key);
         std::string msg = "unknown setting";
-        if (auto near = closest(name, keys); !near.empty()) msg += " (did you mean " + near + "?)";
+        if (const char* why = retiredSetting(dotted))
+          msg = why;
+        else if (auto near = closest(name, keys); !near.empty())
+          msg += " (did you mean " + near + "?)";
         else if (const auto* p = findParam(name))
-          msg += " (" + name + " is a parameter: put it under [" + std::string(tomlTableName(p->group)) + "])";
+          msg +=
+              " (" + name + " is a parameter: put it under [" + std::string(tomlTableName(p->group)) + "])";
         error(k, dotted, msg);
       }
     }
@@ -231,9 +238,10 @@ class Loader {
   // buzzer or an input would make "field LOW" impossible to guarantee.
   void settingsConsistency() {
     const auto& h = config_.settings.hardware;
-    const std::pair<const char*, int> others[] = {
-        {"buzzer_line", h.buzzer_line}, {"bms_line", h.bms_line}, {"ignition_line", h.ignition_line},
-        {"ads_alert_rdy_line", h.ads_alert_rdy_line}};
+    const std::pair<const char*, int> others[] = {{"buzzer_line", h.buzzer_line},
+                                                  {"bms_line", h.bms_line},
+                                                  {"ignition_line", h.ignition_line},
+                                                  {"ads_alert_rdy_line", h.ads_alert_rdy_line}};
     for (const auto& [name, line] : others) {
       if (line >= 0 && line == h.field_enable_line) {
         settingError("hardware." + std::string(name),
@@ -241,7 +249,8 @@ class Loader {
       }
     }
     webSettings();
-    for (auto& [key, message] : checkIntegrations(config_.settings.integrations)) settingError(key, message);
+    for (auto& [key, message] : checkIntegrations(config_.settings.integrations, config_.settings.can))
+      settingError(key, message);
   }
 
   void settingError(const std::string& key, std::string message) {
@@ -295,22 +304,25 @@ LoadResult loadConfigFile(const std::string& path) {
 std::vector<ConfigError> checkConsistency(const Params& p, std::string_view file) {
   std::vector<ConfigError> errs;
   const std::string f(file.empty() ? std::string_view("params") : file);
-  auto err = [&](const char* key, std::string msg) { errs.push_back({f, 0, 0, dotted(key), std::move(msg)}); };
+  auto err = [&](const char* key, std::string msg) {
+    errs.push_back({f, 0, 0, dotted(key), std::move(msg)});
+  };
   auto v = [](double x, const char* unit) { return formatNumber(x) + " " + unit; };
 
   if (p.AbsorptionVoltage > p.BulkVoltage)
     err("AbsorptionVoltage", v(p.AbsorptionVoltage, "V") + " is above BulkVoltage " + v(p.BulkVoltage, "V") +
                                  "; it must not exceed it");
   if (p.FloatVoltage > p.AbsorptionVoltage)
-    err("FloatVoltage", v(p.FloatVoltage, "V") + " is above AbsorptionVoltage " + v(p.AbsorptionVoltage, "V") +
-                            "; it must not exceed it");
+    err("FloatVoltage", v(p.FloatVoltage, "V") + " is above AbsorptionVoltage " +
+                            v(p.AbsorptionVoltage, "V") + "; it must not exceed it");
   if (p.RebulkVoltage >= p.FloatVoltage)
     err("RebulkVoltage", v(p.RebulkVoltage, "V") + " must be below FloatVoltage " + v(p.FloatVoltage, "V"));
   // A software trip at or below the charging target would trip in normal
   // bulk charging (safeties-and-protections.md "Alternator Hard Shutdown").
   if (p.AlternatorHardShutdownV != 0.0 && p.AlternatorHardShutdownV <= p.BulkVoltage)
     err("AlternatorHardShutdownV", v(p.AlternatorHardShutdownV, "V") + " must be above BulkVoltage " +
-                                       v(p.BulkVoltage, "V") + " (or 0 for the first-boot default BulkVoltage + 0.3 V)");
+                                       v(p.BulkVoltage, "V") +
+                                       " (or 0 for the first-boot default BulkVoltage + 0.3 V)");
   // The INA228 hardware limit is BulkVoltage + 0.3 V: a higher target would
   // trip the hardware ALERT in normal operation.
   if (p.TargetVoltageSetpoint > voltageHardwareLimit(p))
@@ -319,13 +331,15 @@ std::vector<ConfigError> checkConsistency(const Params& p, std::string_view file
   {
     const auto range = plausibleVoltageRange(p);
     if (p.FloatVoltage < range.min || p.RebulkVoltage < range.min)
-      err("FloatVoltage", "FloatVoltage/RebulkVoltage must lie in the plausible range of the system class set by "
-                          "BulkVoltage (" + v(range.min, "V") + " to " + v(range.max, "V") + ")");
+      err("FloatVoltage",
+          "FloatVoltage/RebulkVoltage must lie in the plausible range of the system class set by "
+          "BulkVoltage (" +
+              v(range.min, "V") + " to " + v(range.max, "V") + ")");
   }
-  if (p.MinDuty > p.MaxDuty)
-    err("MinDuty", v(p.MinDuty, "%") + " is above MaxDuty " + v(p.MaxDuty, "%"));
+  if (p.MinDuty > p.MaxDuty) err("MinDuty", v(p.MinDuty, "%") + " is above MaxDuty " + v(p.MaxDuty, "%"));
   if (p.VoltageAlarmLow >= p.VoltageAlarmHigh)
-    err("VoltageAlarmLow", v(p.VoltageAlarmLow, "V") + " must be below VoltageAlarmHigh " + v(p.VoltageAlarmHigh, "V"));
+    err("VoltageAlarmLow",
+        v(p.VoltageAlarmLow, "V") + " must be below VoltageAlarmHigh " + v(p.VoltageAlarmHigh, "V"));
   if (p.TempAlarmLow != 0.0 && p.TempAlarmLow >= p.TempAlarm)
     err("TempAlarmLow", v(p.TempAlarmLow, "degF") + " must be below TempAlarm " + v(p.TempAlarm, "degF"));
   if (p.TempWarnExcess >= p.TempCritExcess)
@@ -335,17 +349,20 @@ std::vector<ConfigError> checkConsistency(const Params& p, std::string_view file
     err("SOC_AllowRebulk_percent", v(p.SOC_AllowRebulk_percent, "%") + " is above SOC_BlockRebulk_percent " +
                                        v(p.SOC_BlockRebulk_percent, "%"));
   if (!(p.LoadDumpDtThresh1 >= p.LoadDumpDtThresh && p.LoadDumpDtThresh >= p.LoadDumpDtThresh3))
-    err("LoadDumpDtThresh", "load dump tiers must satisfy LoadDumpDtThresh1 >= LoadDumpDtThresh >= LoadDumpDtThresh3 (" +
-                                formatNumber(p.LoadDumpDtThresh1) + ", " + formatNumber(p.LoadDumpDtThresh) + ", " +
-                                formatNumber(p.LoadDumpDtThresh3) + " A/s)");
+    err("LoadDumpDtThresh",
+        "load dump tiers must satisfy LoadDumpDtThresh1 >= LoadDumpDtThresh >= LoadDumpDtThresh3 (" +
+            formatNumber(p.LoadDumpDtThresh1) + ", " + formatNumber(p.LoadDumpDtThresh) + ", " +
+            formatNumber(p.LoadDumpDtThresh3) + " A/s)");
   // The battery profile's own limits (issue 21): LiFePO4 cell voltage,
   // inverted temperature ranges.
-  for (auto& pr : checkProfileLimits(p)) errs.push_back({f, 0, 0, dotted(pr.name.c_str()), std::move(pr.message)});
+  for (auto& pr : checkProfileLimits(p))
+    errs.push_back({f, 0, 0, dotted(pr.name.c_str()), std::move(pr.message)});
   for (std::size_t i = 1; i < RPM_TABLE_SIZE; ++i) {
     if (p.rpmTableRPMPoints[i] <= p.rpmTableRPMPoints[i - 1]) {
-      err("rpmTableRPMPoints", "breakpoints must be strictly ascending (element " + std::to_string(i) + " = " +
-                                   formatNumber(p.rpmTableRPMPoints[i]) + " RPM is not above element " +
-                                   std::to_string(i - 1) + " = " + formatNumber(p.rpmTableRPMPoints[i - 1]) + " RPM)");
+      err("rpmTableRPMPoints", "breakpoints must be strictly ascending (element " + std::to_string(i) +
+                                   " = " + formatNumber(p.rpmTableRPMPoints[i]) +
+                                   " RPM is not above element " + std::to_string(i - 1) + " = " +
+                                   formatNumber(p.rpmTableRPMPoints[i - 1]) + " RPM)");
       break;
     }
   }
@@ -356,7 +373,8 @@ int checkConfigMain(const std::string& path, std::ostream& out, std::ostream& er
   const LoadResult r = loadConfigFile(path);
   if (r.ok()) {
     const auto changed = overridesFromDefaults(r.config->params).size();
-    out << path << ": OK (" << catalogue().size() << " parameters, " << changed << " differ from the defaults)\n";
+    out << path << ": OK (" << catalogue().size() << " parameters, " << changed
+        << " differ from the defaults)\n";
     return 0;
   }
   for (const auto& e : r.errors) err << e.toString() << "\n";

@@ -59,10 +59,10 @@ const SettingSpec kSchema[] = {
                   const auto& l = std::get<std::vector<std::int64_t>>(v);
                   s.hardware.ads_channel_sequence.assign(l.begin(), l.end());
                 }},
-    XR_S_INT(
-        "hardware", hardware.ads_alert_rdy_line, "ads_alert_rdy_line", "", -1, 1023, false,
-        "GPIO line of the ADS1115 ALERT/RDY pin: every conversion is used, CH1 ~430 Hz (-1 = not wired: "
-        "single-shot, ~200 Hz; a configured line with no edges is retried once, then falls back to single-shot after 500 ms)."),
+    XR_S_INT("hardware", hardware.ads_alert_rdy_line, "ads_alert_rdy_line", "", -1, 1023, false,
+             "GPIO line of the ADS1115 ALERT/RDY pin: every conversion is used, CH1 ~430 Hz (-1 = not wired: "
+             "single-shot, ~200 Hz; a configured line with no edges is retried once, then falls back to "
+             "single-shot after 500 ms)."),
     XR_S_STR("hardware", hardware.pwm_sysfs_root, "pwm_sysfs_root", "", "sysfs PWM class directory."),
     XR_S_INT("hardware", hardware.pwm_chip, "pwm_chip", "", 0, 63, false,
              "pwmchipN driving the field (dtoverlay=pwm,pin=18,func=2 gives pwmchip0)."),
@@ -133,7 +133,9 @@ const SettingSpec kSchema[] = {
     XR_S_INT("runtime", runtime.cpu, "cpu", "", -1, 1023, false,
              "Pin the control thread to this CPU (-1 = no pinning)."),
     // [web]
-    XR_S_STR("web", web.listen, "listen", "", "HTTP listen address (0.0.0.0 = the boat's network: reads open, writes only from paired phones; 127.0.0.1 = this machine only)."),
+    XR_S_STR("web", web.listen, "listen", "",
+             "HTTP listen address (0.0.0.0 = the boat's network: reads open, writes only from paired phones; "
+             "127.0.0.1 = this machine only)."),
     XR_S_INT("web", web.port, "port", "", 1, 65535, false, "HTTP port."),
     XR_S_STR("web", web.token, "token", "",
              "Bearer token for writes; empty = generated at first start and kept with the state."),
@@ -209,8 +211,6 @@ const SettingSpec kSchema[] = {
              "VRM portal id of the GX (Settings > VRM online portal)."),
     XR_S_INT("integrations.victron", integrations.victron.battery_instance, "battery_instance", "", 0, 65535,
              false, "Device instance of the battery service (512 for most BMS on CAN)."),
-    XR_S_FLT("integrations.victron", integrations.victron.stale_s, "stale_s", "s", 1.0, 600.0,
-             "Limits older than this are stale (REASON_BMS_STALE)."),
 };
 
 #undef XR_S_STR
