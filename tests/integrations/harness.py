@@ -126,12 +126,14 @@ class Harness:
     # ---- the daemon ----
     def start_daemon(self, integrations_toml, extra_args=(), speed=1):
         """xregulatord --sim --speed `speed` with this configuration text
-        added to the default one (a 20 ms control period: the loop's own
-        timing is not what these tests measure)."""
+        added to the default one. The control period is 20 ms of wall time
+        (20 ms x speed simulated): the loop's own timing is not what these
+        tests measure, and an overrun (a wake-up one wall period late) must
+        mean the same thing at every speed on a busy build machine."""
         self.http_port = free_port()
         conf = os.path.join(self.dir, "xregulator.toml")
         with open(conf, "w") as f:
-            f.write("[runtime]\ncontrol_period_us = 20000\n\n" + integrations_toml)
+            f.write(f"[runtime]\ncontrol_period_us = {int(20000 * speed)}\n\n" + integrations_toml)
         self.daemon_log = os.path.join(self.dir, "daemon.log")
         log = open(self.daemon_log, "a")
         args = [self.daemon_bin, "--sim", "--speed", str(speed), "--config", conf,
