@@ -2,6 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include "integrations/victron_bms_hop.h"
+
 namespace xr::app {
 
 std::unique_ptr<integrations::IntegrationsService> startIntegrations(const Settings& s,
@@ -19,9 +21,18 @@ std::unique_ptr<integrations::IntegrationsService> startIntegrations(const Setti
     tokens.load = [store](const std::string& key) { return store->loadValue(key); };
     tokens.save = [store](const std::string& key, const std::string& value) { store->saveValue(key, value); };
   }
+  // The GX's battery limits go to the control law through Handoffs::bms,
+  // like a BMS on CAN (the loader refuses both at once: one writer).
+  integrations::VictronLimitsSink bmsLimits;
+  if (s.integrations.victron.enabled) {
+    auto hop = std::make_shared<integrations::VictronBmsHop>(handoffs);
+    bmsLimits = [hop](const integrations::VictronLimits& l) { (*hop)(l); };
+    if (!handoffs.acceptedParams().BmsLimitsEnabled)
+      spdlog::warn("victron: BmsLimitsEnabled is off: the GX's battery limits are shown, not followed");
+  }
   try {
     auto service = std::make_unique<integrations::IntegrationsService>(s.integrations, handoffs, sink, tokens,
-                                                                       XR_VERSION_STRING);
+                                                                       XR_VERSION_STRING, bmsLimits);
     if (!service->anyEnabled()) return nullptr;
     service->start();
     return service;

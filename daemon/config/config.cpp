@@ -212,7 +212,9 @@ class Loader {
         for (const auto& s : settingsSchema())
           if (s.table == table) keys.push_back(s.key);
         std::string msg = "unknown setting";
-        if (auto near = closest(name, keys); !near.empty())
+        if (const char* why = retiredSetting(dotted))
+          msg = why;
+        else if (auto near = closest(name, keys); !near.empty())
           msg += " (did you mean " + near + "?)";
         else if (const auto* p = findParam(name))
           msg +=
@@ -247,7 +249,8 @@ class Loader {
       }
     }
     webSettings();
-    for (auto& [key, message] : checkIntegrations(config_.settings.integrations)) settingError(key, message);
+    for (auto& [key, message] : checkIntegrations(config_.settings.integrations, config_.settings.can))
+      settingError(key, message);
     for (auto& [key, message] : checkCan(config_.settings.can)) settingError(key, message);
   }
 

@@ -30,7 +30,8 @@ bool isAlphanumericId(const std::string& text) {
   return true;
 }
 
-std::vector<std::pair<std::string, std::string>> checkIntegrations(const IntegrationsSettings& s) {
+std::vector<std::pair<std::string, std::string>> checkIntegrations(const IntegrationsSettings& s,
+                                                                   const CanSettings& can) {
   std::vector<std::pair<std::string, std::string>> out;
   auto bad = [&](std::string key, std::string msg) { out.emplace_back(std::move(key), std::move(msg)); };
 
@@ -63,6 +64,13 @@ std::vector<std::pair<std::string, std::string>> checkIntegrations(const Integra
   if (v.enabled && !isTopicId(v.portal_id))
     bad("integrations.victron.portal_id",
         "'" + v.portal_id + "' is not a VRM portal id (letters and digits)");
+  // The control law follows one BMS (Handoffs::bms has one writer). Two
+  // sources would overwrite each other's limits and hide each other's
+  // silence, so the choice is the user's, made here.
+  if (v.enabled && !can.bms_interface.empty())
+    bad("integrations.victron.enabled",
+        "a BMS on CAN ([can] bms_interface = \"" + can.bms_interface +
+            "\") already gives the battery limits: use one source (the GX relays the same BMS)");
   return out;
 }
 
@@ -85,6 +93,13 @@ std::vector<std::pair<std::string, std::string>> checkCan(const CanSettings& s) 
   if (s.RpmSource == "n2k" && s.n2k_interface.empty())
     out.emplace_back("can.RpmSource", "n2k needs [can] n2k_interface, the bus the engine speed comes from");
   return out;
+}
+
+const char* retiredSetting(const std::string& dottedKey) {
+  if (dottedKey == "integrations.victron.stale_s")
+    return "no longer a setting: the Victron limits go stale after the BmsStaleS parameter (under [can]), "
+           "as a BMS on CAN does";
+  return nullptr;
 }
 
 }  // namespace xr

@@ -53,9 +53,9 @@ struct HardwareSettings {
   std::string watchdog_device = "/dev/watchdog";
   int watchdog_timeout_s = 16;
   std::string w1_root = "/sys/bus/w1/devices";
-  std::string onewire_sensor_id;  // "28-..." or empty for the first found
+  std::string onewire_sensor_id;    // "28-..." or empty for the first found
   std::string battery_temp_sensor;  // battery DS18B20 "28-..."; empty = none (issue 21)
-  std::string vedirect_port;      // e.g. /dev/ttyUSB0, empty = none
+  std::string vedirect_port;        // e.g. /dev/ttyUSB0, empty = none
 };
 
 struct RuntimeSettings {
@@ -113,7 +113,7 @@ struct VictronSettings {
   int port = 1883;
   std::string portal_id;
   int battery_instance = 512;
-  double stale_s = 10.0;  // no limits for this long: REASON_BMS_STALE
+  // Staleness is the BmsStaleS parameter, shared with a BMS on CAN.
 };
 
 struct IntegrationsSettings {

@@ -214,8 +214,6 @@ const SettingSpec kSchema[] = {
              "VRM portal id of the GX (Settings > VRM online portal)."),
     XR_S_INT("integrations.victron", integrations.victron.battery_instance, "battery_instance", "", 0, 65535,
              false, "Device instance of the battery service (512 for most BMS on CAN)."),
-    XR_S_FLT("integrations.victron", integrations.victron.stale_s, "stale_s", "s", 1.0, 600.0,
-             "Limits older than this are stale (REASON_BMS_STALE)."),
 };
 
 #undef XR_S_STR

@@ -16,7 +16,11 @@ IntegrationsService::IntegrationsService(const IntegrationsSettings& s, rt::Hand
   if (s.mqtt.enabled) ha_ = std::make_unique<HomeAssistantBridge>(io_, s.mqtt, handoffs, commands, version);
   if (s.signalk.enabled)
     signalk_ = std::make_unique<SignalKClient>(io_, s.signalk, handoffs, std::move(tokens));
-  if (s.victron.enabled) victron_ = std::make_unique<VictronGxBridge>(io_, s.victron, std::move(bmsLimits));
+  if (s.victron.enabled) {
+    // One staleness limit for every BMS source: the BmsStaleS parameter.
+    victron_ = std::make_unique<VictronGxBridge>(io_, s.victron, std::move(bmsLimits),
+                                                 [&handoffs] { return handoffs.acceptedParams().BmsStaleS; });
+  }
 }
 
 IntegrationsService::~IntegrationsService() { stop(); }

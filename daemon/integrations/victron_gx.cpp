@@ -2,6 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+
 namespace xr::integrations {
 
 namespace {
@@ -17,10 +19,11 @@ constexpr VictronField kFields[] = {VictronField::MaxChargeVoltage, VictronField
 }  // namespace
 
 VictronGxBridge::VictronGxBridge(boost::asio::io_context& io, const VictronSettings& s,
-                                 VictronLimitsSink sink)
+                                 VictronLimitsSink sink, StaleSeconds staleS)
     : settings_(s),
       topics_{s.portal_id, s.battery_instance},
       sink_(std::move(sink)),
+      staleS_(std::move(staleS)),
       health_("victron"),
       timer_(io) {
   MqttOptions o;
@@ -54,6 +57,7 @@ void VictronGxBridge::onMessage(const std::string& topic, std::string_view paylo
     health_.refused(r->refused);  // never reaches the limits
     return;
   }
+  const bool limit = r->field == VictronField::MaxChargeVoltage || r->field == VictronField::MaxChargeCurrent;
   {
     std::lock_guard lock(m_);
     const double v = r->known ? r->value : kNoValue;
@@ -74,36 +78,64 @@ void VictronGxBridge::onMessage(const std::string& topic, std::string_view paylo
         limits_.allowToCharge = r->known ? static_cast<int>(v) : -1;
         break;
     }
-    lastAccepted_ = std::chrono::steady_clock::now();
-    limits_.stale = false;
-    limits_.ageS = 0;
+    // Only a limit that is known refreshes: a null or a vanished battery
+    // leaves the old arrival time, so the limits go stale after BmsStaleS.
+    if (limit && r->known) {
+      lastLimits_ = std::chrono::steady_clock::now();
+      ++limits_.limitUpdates;
+      limits_.stale = false;
+      limits_.ageS = 0;
+    }
   }
-  if (staleLogged_) {
+  if (r->gone && !goneLogged_) {
+    goneLogged_ = true;
+    spdlog::warn("victron: battery {} left the GX (empty payload): its limits are unknown",
+                 settings_.battery_instance);
+  } else if (r->known) {
+    goneLogged_ = false;
+  }
+  if (limit && r->known && staleLogged_) {
     staleLogged_ = false;
     spdlog::info("victron: battery limits fresh again");
   }
   publishToSink();
 }
 
+// Venus publishes a value only when it changes; a read request makes it
+// publish the current one, so a steady CCL still arrives on every poll and a
+// GX (or battery) that stopped answering goes stale.
+void VictronGxBridge::requestLimits() {
+  for (auto f : kFields) link_->publish(topics_.readRequest(f), "", false);
+}
+
 void VictronGxBridge::tick() {
   const auto now = std::chrono::steady_clock::now();
-  if (link_->connected() && now - lastKeepalive_ >= kKeepalivePeriod) {
-    link_->publish(topics_.keepalive(), kKeepaliveQuiet, false);
-    lastKeepalive_ = now;
+  const double staleS = staleS_ ? staleS_() : 10.0;
+  if (link_->connected()) {
+    if (now - lastKeepalive_ >= kKeepalivePeriod) {
+      link_->publish(topics_.keepalive(), kKeepaliveQuiet, false);
+      lastKeepalive_ = now;
+    }
+    requestLimits();
   }
+  bool stale = true;
   {
     std::lock_guard lock(m_);
-    if (lastAccepted_ != std::chrono::steady_clock::time_point{}) {
-      limits_.ageS = std::chrono::duration<double>(now - lastAccepted_).count();
-      limits_.stale = limits_.ageS > settings_.stale_s;
+    if (lastLimits_ != std::chrono::steady_clock::time_point{}) {
+      limits_.ageS = std::chrono::duration<double>(now - lastLimits_).count();
+      limits_.stale = limits_.ageS > staleS;
+      stale = limits_.stale;
     }
   }
-  if (limits().stale && lastAccepted_ != std::chrono::steady_clock::time_point{} && !staleLogged_) {
+  if (stale && lastLimits_ != std::chrono::steady_clock::time_point{} && !staleLogged_) {
     staleLogged_ = true;
-    spdlog::warn("victron: no battery limits for {} s: stale (REASON_BMS_STALE)", settings_.stale_s);
+    spdlog::warn("victron: no battery limits for {} s: stale (REASON_BMS_STALE)", staleS);
   }
   publishToSink();
-  timer_.expires_after(1s);
+  // At least four polls within BmsStaleS, so one lost answer is not stale;
+  // never faster than 4 Hz (five small publishes each).
+  const auto period = std::chrono::duration<double>(std::clamp(staleS / 4.0, 0.25, 1.0));
+  timer_.expires_after(std::chrono::duration_cast<std::chrono::steady_clock::duration>(period));
   timer_.async_wait([this](const boost::system::error_code& ec) {
     if (!ec) tick();
   });
@@ -127,7 +159,8 @@ IntegrationStatus VictronGxBridge::status() const {
               {"battery_temp_c", l.temp_c},
               {"allow_to_charge", static_cast<double>(l.allowToCharge)},
               {"age_s", l.ageS},
-              {"stale", l.stale ? 1.0 : 0.0}};
+              {"stale", l.stale ? 1.0 : 0.0},
+              {"limit_updates", static_cast<double>(l.limitUpdates)}};
   return s;
 }
 

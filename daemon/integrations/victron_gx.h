@@ -6,6 +6,7 @@
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/steady_timer.hpp>
 #include <chrono>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -18,24 +19,32 @@
 
 namespace xr::integrations {
 
-// The newest limits from the GX. NaN / -1: not known.
+// The newest limits from the GX. NaN / -1: not known (Venus's null, or the
+// battery service gone).
 struct VictronLimits {
   double cvl_v = kNoValue;  // Info/MaxChargeVoltage
   double ccl_a = kNoValue;  // Info/MaxChargeCurrent
   double soc_pct = kNoValue;
   double temp_c = kNoValue;
   int allowToCharge = -1;  // Io/AllowToCharge: 1 yes, 0 no
-  double ageS = -1;        // seconds since the last accepted value (-1: none yet)
-  bool stale = true;       // nothing accepted within stale_s (REASON_BMS_STALE)
+  // Freshness is that of the limits (a known CVL or CCL), not of SoC or
+  // temperature: a GX that still sends SoC but no limits is not followed.
+  std::uint64_t limitUpdates = 0;  // known CVL/CCL values accepted so far
+  double ageS = -1;                // seconds since the last of them (-1: none yet)
+  bool stale = true;               // none within BmsStaleS (REASON_BMS_STALE)
 };
 
 // Called on the integrations thread with the newest limits after every
-// accepted value and once a second (so staleness is seen without traffic).
+// accepted value and on every poll (so staleness is seen without traffic).
 using VictronLimitsSink = std::function<void(const VictronLimits&)>;
+// The staleness limit in seconds (the BmsStaleS parameter, which the
+// dashboard may change while running).
+using StaleSeconds = std::function<double()>;
 
 class VictronGxBridge {
  public:
-  VictronGxBridge(boost::asio::io_context& io, const VictronSettings& s, VictronLimitsSink sink);
+  VictronGxBridge(boost::asio::io_context& io, const VictronSettings& s, VictronLimitsSink sink,
+                  StaleSeconds staleS);
   void start();
   void stop();
   IntegrationStatus status() const;
@@ -45,19 +54,22 @@ class VictronGxBridge {
   void onConnected();
   void onMessage(const std::string& topic, std::string_view payload);
   void tick();
+  void requestLimits();
   void publishToSink();
 
   VictronSettings settings_;
   VictronTopics topics_;
   VictronLimitsSink sink_;
+  StaleSeconds staleS_;
   IntegrationHealth health_;
   std::unique_ptr<MqttLink> link_;
   boost::asio::steady_timer timer_;
   mutable std::mutex m_;  // limits_ are read by the web threads
   VictronLimits limits_;
-  std::chrono::steady_clock::time_point lastAccepted_{};
+  std::chrono::steady_clock::time_point lastLimits_{};  // last known CVL/CCL accepted
   std::chrono::steady_clock::time_point lastKeepalive_{};
   bool staleLogged_ = false;
+  bool goneLogged_ = false;
 };
 
 }  // namespace xr::integrations

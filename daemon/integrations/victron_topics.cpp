@@ -48,12 +48,22 @@ VictronRange victronRange(VictronField f) {
 
 std::string VictronTopics::topic(VictronField f) const { return prefix() + toString(f); }
 
+std::string VictronTopics::readRequest(VictronField f) const {
+  return "R/" + portalId + "/battery/" + std::to_string(batteryInstance) + "/" + toString(f);
+}
+
 std::optional<VictronReading> decodeVictron(const VictronTopics& t, const std::string& topic,
                                             std::string_view payload) {
   for (auto f : kAll) {
     if (topic != t.topic(f)) continue;
     VictronReading r;
     r.field = f;
+    if (payload.empty()) {
+      // dbus-flashmq: "If [a device disappears] a notification will be sent
+      // for all topics related to the device. The payload will be empty."
+      r.gone = true;
+      return r;
+    }
     boost::system::error_code ec;
     const json::value v = json::parse(payload, ec);
     if (ec || !v.is_object() || !v.as_object().contains("value")) {

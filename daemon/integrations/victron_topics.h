@@ -19,13 +19,20 @@ struct VictronTopics {
   std::string prefix() const { return "N/" + portalId + "/battery/" + std::to_string(batteryInstance) + "/"; }
   std::string keepalive() const { return "R/" + portalId + "/keepalive"; }
   std::string topic(VictronField f) const;
+  // A read request: Venus re-reads the D-Bus value and publishes topic(f)
+  // again, changed or not. Venus publishes only on change, so this is how a
+  // steady limit proves it is still current (dbus-flashmq README, "Read
+  // requests").
+  std::string readRequest(VictronField f) const;
 };
 
-// What one message said: a value to use, "no value" (Venus's null), or a
-// refusal with its reason (not JSON, a string, NaN, out of range).
+// What one message said: a value to use, "no value" (Venus's null), "the
+// device is gone" (Venus's empty payload), or a refusal with its reason (not
+// JSON, a string, NaN, out of range).
 struct VictronReading {
   VictronField field = VictronField::MaxChargeVoltage;
-  bool known = false;  // false: null payload value, the battery has none
+  bool known = false;  // false: null payload value (the battery has none) or gone
+  bool gone = false;   // empty payload: the battery service left the GX's D-Bus
   double value = 0.0;
   std::string refused;  // non-empty: bad input, not used
 };

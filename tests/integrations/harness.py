@@ -124,17 +124,19 @@ class Harness:
         subprocess.run(args + self._auth(), check=True, timeout=10)
 
     # ---- the daemon ----
-    def start_daemon(self, integrations_toml, extra_args=()):
-        """xregulatord --sim --speed 1 with this configuration text added to
-        the default one (a 20 ms control period: the loop's own timing is not
-        what these tests measure)."""
+    def start_daemon(self, integrations_toml, extra_args=(), speed=1):
+        """xregulatord --sim --speed `speed` with this configuration text
+        added to the default one. The control period is 20 ms of wall time
+        (20 ms x speed simulated): the loop's own timing is not what these
+        tests measure, and an overrun (a wake-up one wall period late) must
+        mean the same thing at every speed on a busy build machine."""
         self.http_port = free_port()
         conf = os.path.join(self.dir, "xregulator.toml")
         with open(conf, "w") as f:
-            f.write("[runtime]\ncontrol_period_us = 20000\n\n" + integrations_toml)
+            f.write(f"[runtime]\ncontrol_period_us = {int(20000 * speed)}\n\n" + integrations_toml)
         self.daemon_log = os.path.join(self.dir, "daemon.log")
         log = open(self.daemon_log, "a")
-        args = [self.daemon_bin, "--sim", "--speed", "1", "--config", conf,
+        args = [self.daemon_bin, "--sim", "--speed", str(speed), "--config", conf,
                 "--http", f"127.0.0.1:{self.http_port}", "--state-db", os.path.join(self.dir, "state.db")]
         self.daemon = subprocess.Popen(args + list(extra_args), stdout=log, stderr=log)
         self.procs.append(self.daemon)
@@ -162,8 +164,27 @@ class Harness:
                 return i
         raise AssertionError(f"/api/system lists no integration '{name}'")
 
+    def metrics(self):
+        """GET /metrics as {"name{labels}": value}."""
+        out = {}
+        for line in (self.get("/metrics") or "").splitlines():
+            if line and not line.startswith("#"):
+                k, _, v = line.rpartition(" ")
+                out[k] = float(v)
+        return out
+
     def overruns(self):
         return self.status()["loop"]["overruns"]
+
+    def stop_daemon(self):
+        """SIGTERM and wait: the daemon's clean stop (CSV flushed)."""
+        if self.daemon and self.daemon.poll() is None:
+            self.daemon.send_signal(signal.SIGTERM)
+            try:
+                self.daemon.wait(timeout=30)
+            except subprocess.TimeoutExpired:
+                self.daemon.kill()
+                self.daemon.wait()
 
     def stop(self):
         for p in reversed(self.procs):

@@ -66,5 +66,35 @@ TEST(IntegrationConfig, ErrorsNameTheKeyAndLine) {
   EXPECT_EQ(p.errors[0].key, "integrations.victron.port");
 }
 
+// One source of BMS limits: a GX and a BMS on CAN together are refused
+// (exit 78), at the Victron key's line.
+TEST(IntegrationConfig, VictronAndACanBmsTogetherAreRefused) {
+  const char* both = R"([can]
+bms_interface = "can0"
+[integrations.victron]
+portal_id = "c0619ab1cafe"
+enabled = true
+)";
+  auto r = loadConfigString(both, "test.toml");
+  ASSERT_FALSE(r.config);
+  ASSERT_EQ(r.errors.size(), 1u);
+  EXPECT_EQ(r.errors[0].key, "integrations.victron.enabled");
+  EXPECT_EQ(r.errors[0].line, 5);
+  EXPECT_NE(r.errors[0].message.find("can0"), std::string::npos) << r.errors[0].message;
+  // Either alone is fine.
+  EXPECT_TRUE(loadConfigString("[can]\nbms_interface = \"can0\"\n", "test.toml").config);
+  EXPECT_TRUE(loadConfigString("[can]\nbms_interface = \"can0\"\n[integrations.victron]\nenabled = false\n",
+                               "test.toml")
+                  .config);
+}
+
+// stale_s gave way to the BmsStaleS parameter: the loader says where it went.
+TEST(IntegrationConfig, RetiredStaleSNamesItsReplacement) {
+  auto r = loadConfigString("[integrations.victron]\nstale_s = 10.0\n", "test.toml");
+  ASSERT_FALSE(r.config);
+  EXPECT_EQ(r.errors[0].key, "integrations.victron.stale_s");
+  EXPECT_NE(r.errors[0].message.find("BmsStaleS"), std::string::npos) << r.errors[0].message;
+}
+
 }  // namespace
 }  // namespace xr

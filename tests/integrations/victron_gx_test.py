@@ -7,8 +7,11 @@ Venus-style topics (N/<portalId>/battery/<instance>/..., JSON {"value": ...})
 are played into the broker; the daemon must subscribe, write the keepalive
 Venus requires, take the good values, refuse and count bad ones (a string, a
 bare NaN, absurd limits, not JSON) without letting them replace a good value,
-mark the limits stale after stale_s of silence (and fresh again after), and
-ride out the broker being killed without a control overrun."""
+take an empty payload as Venus's "the battery is gone" (unknown, not refused),
+send read requests (Venus publishes only on change), mark the limits stale
+after BmsStaleS of silence (and fresh again after), and ride out the broker
+being killed without a control overrun. The regulator's following of the
+limits is victron_follow_test.py."""
 import sys
 import time
 
@@ -27,19 +30,23 @@ def main():
     h = Harness(sys.argv[1])
     try:
         h.start_broker()
-        keepalive = h.sub_start(f"R/{PORTAL}/keepalive", fresh_only=False)
-        h.start_daemon(f"""[integrations.victron]
+        keepalive = h.sub_start(f"R/{PORTAL}/#", fresh_only=False)
+        h.start_daemon(f"""[can]
+BmsStaleS = 3.0
+
+[integrations.victron]
 enabled = true
 host = "127.0.0.1"
 port = {h.broker_port}
 portal_id = "{PORTAL}"
 battery_instance = 512
-stale_s = 3.0
 """)
         wait_until("victron connected", lambda: h.integration("victron")["connected"], 20)
-        time.sleep(1)
+        time.sleep(1.5)
         got = h.sub_collect(keepalive)
         c.check(any(t == f"R/{PORTAL}/keepalive" for t, _ in got), f"keepalive written on connect: {got}")
+        c.check(any(t == f"R/{PORTAL}/battery/512/Info/MaxChargeCurrent" for t, _ in got),
+                f"read requests for the limits: {got}")
 
         good = {"Info/MaxChargeVoltage": 14.2, "Info/MaxChargeCurrent": 50.0, "Soc": 81.5,
                 "Dc/0/Temperature": 22.5, "Io/AllowToCharge": 1}
@@ -77,7 +84,15 @@ stale_s = 3.0
         h.pub(BASE + "Dc/0/Temperature", '{"value": null}')
         wait_until("null temperature", lambda: values(h).get("battery_temp_c", 0) is None, 10)
 
-        # Silence: stale after stale_s, fresh again with the next value.
+        # Venus's empty payload: the battery service left the GX. Unknown,
+        # not refused.
+        refused1 = h.integration("victron")["values_refused"]
+        h.pub(BASE + "Info/MaxChargeCurrent", "")
+        wait_until("the gone battery's CCL unknown", lambda: values(h).get("bms_ccl_a", 0) is None, 10)
+        c.check(h.integration("victron")["values_refused"] == refused1, "an empty payload is not a refusal")
+        c.check("left the GX" in h.log_text(), "the vanished battery is logged")
+
+        # Silence: stale after BmsStaleS, fresh again with the next value.
         wait_until("stale after 3 s of silence", lambda: values(h).get("stale") == 1, 15)
         c.check("stale (REASON_BMS_STALE)" in h.log_text(), "staleness logged")
         h.pub(BASE + "Info/MaxChargeCurrent", '{"value": 40}')

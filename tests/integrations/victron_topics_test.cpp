@@ -30,6 +30,20 @@ TEST(VictronTopics, NullIsNoValueNotARefusal) {
   EXPECT_FALSE(r->known);
 }
 
+TEST(VictronTopics, EmptyPayloadMeansTheDeviceIsGoneNotARefusal) {
+  auto r = decodeVictron(kT, kT.topic(VictronField::MaxChargeCurrent), "");
+  ASSERT_TRUE(r);
+  EXPECT_TRUE(r->refused.empty());
+  EXPECT_TRUE(r->gone);
+  EXPECT_FALSE(r->known);
+}
+
+TEST(VictronTopics, ReadRequestNames) {
+  EXPECT_EQ(kT.readRequest(VictronField::MaxChargeCurrent),
+            "R/c0619ab1cafe/battery/512/Info/MaxChargeCurrent");
+  EXPECT_EQ(kT.readRequest(VictronField::AllowToCharge), "R/c0619ab1cafe/battery/512/Io/AllowToCharge");
+}
+
 TEST(VictronTopics, OtherTopicsAreNotOurs) {
   EXPECT_FALSE(decodeVictron(kT, "N/c0619ab1cafe/battery/513/Soc", R"({"value": 50})"));
   EXPECT_FALSE(decodeVictron(kT, "N/other/battery/512/Soc", R"({"value": 50})"));
@@ -37,7 +51,7 @@ TEST(VictronTopics, OtherTopicsAreNotOurs) {
 
 TEST(VictronTopics, BadInputIsRefusedWithAReason) {
   const auto ccl = kT.topic(VictronField::MaxChargeCurrent);
-  for (const char* p : {R"({"value": "12"})", R"({"value": NaN})", "NaN", "", "[1]", R"({"v": 1})",
+  for (const char* p : {R"({"value": "12"})", R"({"value": NaN})", "NaN", " ", "[1]", R"({"v": 1})",
                         R"({"value": true})", R"({"value": -1})", R"({"value": 2000.5})"}) {
     auto r = decodeVictron(kT, ccl, p);
     ASSERT_TRUE(r) << p;
