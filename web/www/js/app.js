@@ -1,10 +1,11 @@
 // xregulator dashboard: WebSocket, routing, commands with confirmation.
-import { command, forgetToken, getJson, toast } from "./api.js";
+import { command, getJson, toast } from "./api.js";
 import { backfillLive, chartDebug, drawLive, initCharts, loadHistory, pushLive } from "./charts.js";
 import { CONFIRM_TEXT, confirmAction } from "./confirm.js";
 import { parseDecimal } from "./format.js";
 import { latestStatus, renderLive, tick } from "./live.js";
 import { loadEvents, loadSystem, renderBattery, renderProtections, renderTuning } from "./pages.js";
+import { initPairing, loadDevices } from "./pairing.js";
 import { initSettings, loadSettings, setParam } from "./settings.js";
 import { initSetup } from "./setup.js";
 
@@ -56,7 +57,7 @@ function route() {
   const fail = (e) => toast(e.message, true);
   if (page === "settings") loadSettings().catch(fail);
   if (page === "events") loadEvents().catch(fail);
-  if (page === "system") loadSystem().catch(fail);
+  if (page === "system") { loadSystem().catch(fail); loadDevices().catch(fail); }
   if (page === "tuning") loadSettingsFlags().catch(fail);
   if (page === "live") { drawLive(); loadHistory(); }
   const s = latestStatus();
@@ -129,7 +130,7 @@ function init() {
       .catch((e) => { el.checked = !el.checked; toast(e.message, true); })));
   $("events-more").addEventListener("click", () => loadEvents("more").catch((e) => toast(e.message, true)));
   $("hist-range").addEventListener("change", loadHistory);
-  $("forget-token").addEventListener("click", () => { forgetToken(); toast("token forgotten"); });
+  initPairing();
   initSettings();
   initSetup(runCommand);
   initCharts();

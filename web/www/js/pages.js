@@ -128,5 +128,5 @@ export async function loadSystem() {
   kvTable("sys-versions", obj(s.versions));
   kvTable("sys-loop", obj(s.loop).map(([k, v]) => [k.replace(/_/g, " "), v, k === "overruns" ? (v ? "bad" : "good") : ""]));
   kvTable("sys-probes", (s.probes || []).map((p) => [p.device, `${p.ok ? "OK" : "FAIL"} ${p.detail || ""}`, p.ok ? "good" : "bad"]));
-  kvTable("sys-web", obj(s.web).concat([["telemetry rate (Hz)", s.telemetry_rate_hz]]));
+  kvTable("sys-web", obj(s.web).map(([k, v]) => [k.replace(/_/g, " "), v]).concat([["telemetry rate (Hz)", s.telemetry_rate_hz]]));
 }
