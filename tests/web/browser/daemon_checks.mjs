@@ -108,6 +108,9 @@ export async function daemonChecks(t) {
   // Item 10: no target while off, and the headline says so in words.
   await page.waitForFunction(() => document.getElementById("v-target").textContent.startsWith("nothing"));
   await page.waitForFunction(() => document.getElementById("headline").textContent.startsWith("Not charging · Switched off"));
+  // Item 7: the owner's own Off is not an alarm.
+  assert.equal(await page.textContent("#v-alarms"), "none");
+  assert.equal(await page.isVisible("#hdr-alarm"), false);
   const offBox = await page.locator("#off-button").boundingBox();
   assert.ok(offBox.height >= 44 && offBox.width >= 300, `Off button ${offBox.width}x${offBox.height}`);
   // Manual with an empty box sends nothing; a comma decimal is a number.
@@ -182,7 +185,7 @@ export async function daemonChecks(t) {
     return td ? getComputedStyle(td).color : null;
   }));
   assert.ok(colours[0] && colours[1] && colours[0] !== colours[1], `warning ${colours[0]} vs info ${colours[1]}`);
-  assert.match(await page.textContent("#events-body"), /Command manual \(duty 25\.5 %\) applied/);
+  assert.match(await page.textContent("#events-body"), /Command Manual \(duty 25\.5 %\) applied/);
   // A settings change names each value, old → new, and who made it (the set-up's PATCH).
   await olderUntil(/BatteryCapacity_Ah/, "the set-up's settings change");
   const setupRow = await page.locator("#events-body tr", { hasText: "BatteryCapacity_Ah" }).first().textContent();
@@ -192,8 +195,13 @@ export async function daemonChecks(t) {
   const rows0 = await page.locator("#events-body tr").count();
   await send({ command: "reset_alarm_latch" });
   await page.waitForFunction((n) => document.querySelectorAll("#events-body tr").length > n, rows0);
-  assert.match(await page.locator("#events-body tr").first().textContent(), /reset_alarm_latch/);
+  assert.match(await page.locator("#events-body tr").first().textContent(), /Command Reset alarm latch applied/);
   console.log("ok - events: warnings coloured, command arguments and settings changes (old → new, by whom) shown, new events appear live");
+  // Item 7: a refused command's answer in words, without the API's command name (TuningMode is off).
+  await page.goto(server.base + "/#tuning");
+  await page.click('button[data-cmd="tuning_commit"]');
+  await page.waitForFunction(() => /^Commit current-loop tuning:/.test(document.getElementById("toast").textContent));
+  assert.match(await page.textContent("#toast"), /^Commit current-loop tuning: refused — TuningMode is off/);
 
   // ---- Items 5, 6, 8: settings on the desktop.
   await page.setViewportSize(DESKTOP);

@@ -168,7 +168,17 @@ await test("event texts in plain words: no GPIO4, no reason codes, no nan", () =
   assert.equal(P.eventText({ text: "RPM below minimum: nan < 200 RPM. Field off", code: "ProtectionTrip", reason: "NONE" }),
     "RPM below minimum: — < 200 RPM. Field off");
   assert.equal(P.eventText({ text: "Command manual (duty 25.5 %) applied", code: "CommandApplied", reason: "NONE" }),
-    "Command manual (duty 25.5 %) applied");
+    "Command Manual (duty 25.5 %) applied");
+  assert.equal(P.eventText({ text: "Command reset_alarm_latch applied", code: "CommandApplied", reason: "NONE" }),
+    "Command Reset alarm latch applied");
+});
+
+await test("command answers without the API's command names (item 7)", () => {
+  assert.equal(N.commandAnswer("applied: limp_home"), "done");
+  assert.equal(N.commandAnswer("tuning_commit refused by the regulator: TuningMode is off, or the tuning has no result to commit yet"),
+    "refused — TuningMode is off, or the tuning has no result to commit yet");
+  assert.equal(N.commandAnswer("command queue full, try again"), "command queue full, try again");
+  assert.equal(N.plainCommand("reset_alt_zero"), "Reset alternator zero");
 });
 
 await test("settings changes are events with old → new and who made them, shown as sent", () => {

@@ -4,6 +4,7 @@ import { backfillLive, chartDebug, drawLive, initCharts, loadHistory, pushLive }
 import { CONFIRM_TEXT, confirmAction } from "./confirm.js";
 import { parseDecimal } from "./format.js";
 import { latestStatus, renderLive, tick } from "./live.js";
+import { commandAnswer, plainCommand } from "./names.js";
 import { loadEvents, loadSystem, renderBattery, renderProtections, renderTuning } from "./pages.js";
 import { initPairing, loadDevices } from "./pairing.js";
 import { initSettings, loadSettings, setParam } from "./settings.js";
@@ -81,14 +82,14 @@ async function loadSettingsFlags() {
 export async function runCommand(name, args = {}) {
   if (CONFIRM_TEXT[name]) {
     const [text, ok] = CONFIRM_TEXT[name](args);
-    if (!(await confirmAction(text, ok))) { toast(`${name.replace("_", " ")}: cancelled`); return false; }
+    if (!(await confirmAction(text, ok))) { toast(`${plainCommand(name)}: cancelled`); return false; }
   }
   try {
     const r = await command(name, args);
-    toast(`${name.replace("_", " ")}: ${r.message || "done"}`);
+    toast(`${plainCommand(name)}: ${commandAnswer(r.message)}`);
     return true;
   } catch (e) {
-    toast(`${name.replace("_", " ")}: ${e.message}`, true);
+    toast(`${plainCommand(name)}: ${commandAnswer(e.message)}`, true);
     return false;
   }
 }
