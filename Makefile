@@ -61,7 +61,7 @@ scenarios: build
 	$(PLOT_PYTHON) tests/sim/cruising/suite.py --daemon $(BUILD)/daemon/app/xregulatord --out $(BUILD)/scenarios
 
 # The phone screenshots of docs/dashboard.md (Live while charging, during a
-# fault, the set-up flow), taken by the browser test against the simulator.
+# fault, the set-up flow, pairing), taken by the browser test against the simulator.
 dashboard-screenshots: build
 	node tests/web/browser/dashboard.mjs --mode daemon --web-dir web --server $(BUILD)/daemon/app/xregulatord \
 	  --www $(BUILD)/web/www --artifacts $(BUILD)/test-artifacts/web --docs-dir docs/img

@@ -104,6 +104,12 @@ void StoreService::appendEvent(const Event& e) {
   if (!st) spdlog::warn("store: event not saved: {}", st.error);
 }
 
+void StoreService::appendRecord(const EventRecord& r) {
+  std::lock_guard lock(m_);
+  const StoreStatus st = store_.appendEvents(std::span<const EventRecord>(&r, 1));
+  if (!st) spdlog::warn("store: event not saved: {}", st.error);
+}
+
 namespace {
 double columnValue(const rt::RuntimeSnapshot& s, const std::string& name) {
   double out = std::nan("");

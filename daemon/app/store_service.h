@@ -47,6 +47,8 @@ class StoreService {
   Status status();
 
   void appendEvent(const Event& e);
+  // An event of the daemon's own, already in words (a settings change).
+  void appendRecord(const EventRecord& r);
   // Once a second from the supervisor.
   void housekeeping(const rt::RuntimeSnapshot& s, const BatteryLedger& ledger, bool ledgerValid);
   void stop(const BatteryLedger& ledger, bool ledgerValid);

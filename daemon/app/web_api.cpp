@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "app/effective_params.h"
+#include "app/param_change_text.h"
 #include "config/config.h"
 #include "core/modes.h"
 
@@ -84,7 +85,8 @@ std::map<std::string, std::string> WebApi::paramSources() {
   return out;
 }
 
-web::PatchResult WebApi::patchParams(const std::vector<web::ParamChange>& changes) {
+web::PatchResult WebApi::patchParams(const std::vector<web::ParamChange>& changes,
+                                     const std::string& source) {
   web::PatchResult r;
   std::lock_guard lock(patchMutex_);
   const Params before = ctx_.handoffs->acceptedParams();
@@ -137,7 +139,29 @@ web::PatchResult WebApi::patchParams(const std::vector<web::ParamChange>& change
   ctx_.handoffs->submitParams(p);  // whole swap, between ticks
   ctx_.origins = std::move(origins);
   logPatch(changes.size());
+  // Who changed what, in the event list (issue 25, item 11); a PATCH that
+  // changes nothing (the same values again) makes no event.
+  if (const std::string text = paramChangeText(before, p, patched, source); !text.empty())
+    recordEvent("ParamsChanged", text);
   return r;
+}
+
+void WebApi::recordEvent(const std::string& code, const std::string& text) {
+  const std::int64_t nowMs = unixMsNow();
+  if (ctx_.store) {
+    EventRecord e;
+    e.tMs = nowMs;
+    e.level = "info";
+    e.code = code;
+    e.reason = "NONE";
+    e.message = text;
+    ctx_.store->appendRecord(e);
+  }
+  if (ctx_.events) {
+    Event e;
+    e.code = EventCode::Message;
+    ctx_.events->add(e, static_cast<double>(nowMs) / 1000.0, text);
+  }
 }
 
 web::CommandResult WebApi::command(const Command& cmd) {

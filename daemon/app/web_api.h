@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "app/status_source.h"
-#include "config/param_sources.h"
 #include "app/store_service.h"
+#include "config/param_sources.h"
 #include "runtime/handoffs.h"
 #include "web/server/daemon_api.h"
 
@@ -21,7 +21,7 @@ namespace xr::app {
 struct WebApiContext {
   rt::Handoffs* handoffs = nullptr;
   Params fileParams;
-  ParamOrigins origins;  // where each value comes from (issue 21)
+  ParamOrigins origins;           // where each value comes from (issue 21)
   StoreService* store = nullptr;  // may be null (no --state-db in --sim)
   RecentEvents* events = nullptr;
   bool sim = false;
@@ -41,7 +41,8 @@ class WebApi final : public web::DaemonApi {
   Params currentParams() override;
   Params fileParams() override { return ctx_.fileParams; }
   std::map<std::string, std::string> paramSources() override;
-  web::PatchResult patchParams(const std::vector<web::ParamChange>& changes) override;
+  web::PatchResult patchParams(const std::vector<web::ParamChange>& changes,
+                               const std::string& source) override;
   web::CommandResult command(const Command& cmd) override;
   std::vector<web::EventRecord> events(const web::EventQuery& q) override;
   web::HistoryResult history(const web::HistoryQuery& q) override;
@@ -56,6 +57,9 @@ class WebApi final : public web::DaemonApi {
 
  private:
   void logPatch(std::size_t values);
+  // An event of the daemon's own (not the core's): into the store, and the
+  // in-memory list that serves without one.
+  void recordEvent(const std::string& code, const std::string& text);
 
   WebApiContext ctx_;
   std::mutex patchMutex_;  // read-modify-write of the whole Params

@@ -82,9 +82,10 @@ class FakeDaemonApi : public DaemonApi {
     return file_;
   }
   // Cross-field rule (like the real validation): FloatVoltage <= BulkVoltage.
-  PatchResult patchParams(const std::vector<ParamChange>& changes) override {
+  PatchResult patchParams(const std::vector<ParamChange>& changes, const std::string& source) override {
     std::lock_guard lock(m_);
     ++patchCalls_;
+    lastPatchSource_ = source;
     Params next = current_;
     for (const auto& c : changes)
       c.spec->set(next, c.index < 0 ? 0 : static_cast<std::size_t>(c.index), c.value);
@@ -154,6 +155,10 @@ class FakeDaemonApi : public DaemonApi {
     std::lock_guard lock(m_);
     return patchCalls_;
   }
+  std::string lastPatchSource() {
+    std::lock_guard lock(m_);
+    return lastPatchSource_;
+  }
   HistoryQuery lastHistory() {
     std::lock_guard lock(m_);
     return lastHistory_;
@@ -169,6 +174,7 @@ class FakeDaemonApi : public DaemonApi {
   std::vector<EventRecord> events_;
   HistoryQuery lastHistory_;
   int patchCalls_ = 0;
+  std::string lastPatchSource_;
   bool healthy_ = true;
   bool refuseCommands_ = false;
 };

@@ -215,6 +215,16 @@ TEST_F(AuthServerTest, APairedPhoneWritesAndAStrangerDoesNot) {
   EXPECT_EQ(patchWith(kToken).status, 200);
 }
 
+// Issue 25, item 11: the daemon's settings-change event names who asked.
+TEST_F(AuthServerTest, APatchTellsTheDaemonWhichDeviceSentIt) {
+  start();
+  const std::string token = pairNewDevice("Anna's phone");
+  ASSERT_EQ(patchWith(token).status, 200);
+  EXPECT_EQ(api_.lastPatchSource(), "device \"Anna's phone\"");
+  ASSERT_EQ(patchWith(kToken).status, 200);
+  EXPECT_EQ(api_.lastPatchSource(), "the installer token");
+}
+
 TEST_F(AuthServerTest, WritesNeverTakeATokenFromTheUrl) {
   start();
   const std::string token = pairNewDevice("phone");

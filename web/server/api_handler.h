@@ -54,6 +54,9 @@ class ApiHandler {
   Response getHealth(const Request& req);
   Response getStatic(const Request& req, std::string_view path);
   Response pairRoutes(const Request& req, std::string_view path);
+  // Who an authorised write comes from, for the event it makes: the paired
+  // device's name, or the static token.
+  std::string writerName(std::string_view authorization) const;
   Response postPair(const Request& req);
 
   DaemonApi& api_;

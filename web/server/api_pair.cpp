@@ -25,6 +25,11 @@ unsigned ApiHandler::checkWrite(std::string_view authorization) const {
   return pairing_.isDeviceToken(bearerToken(authorization)) ? 0 : 403;
 }
 
+std::string ApiHandler::writerName(std::string_view authorization) const {
+  if (auto d = pairing_.deviceFor(bearerToken(authorization))) return "device \"" + d->name + "\"";
+  return "the installer token";
+}
+
 Response ApiHandler::postPair(const Request& req) {
   std::string err;
   auto body = parseBody(req, err);

@@ -152,7 +152,7 @@ Response ApiHandler::patchParams(const Request& req) {
     if (!errors.empty()) return patchErrors(req, errors);
   }
 
-  PatchResult result = api_.patchParams(changes);
+  PatchResult result = api_.patchParams(changes, writerName(req[http::field::authorization]));
   if (!result.errors.empty()) return patchErrors(req, result.errors);
   json::array applied;
   for (const auto& kv : obj) applied.push_back(json::string(kv.key()));

@@ -176,7 +176,10 @@ class DaemonApi {
   // current set (cross-field rules), then hand the whole new Params to the
   // control thread between ticks and persist the overrides; or reject them
   // all. The server has already checked names, kinds and catalogue ranges.
-  virtual PatchResult patchParams(const std::vector<ParamChange>& changes) = 0;
+  // source: who asked (a paired device's name, "the installer token"); the
+  // daemon records an applied change as an event naming each value's old and
+  // new value and the source (issue 25, item 11).
+  virtual PatchResult patchParams(const std::vector<ParamChange>& changes, const std::string& source) = 0;
 
   // Queue an operator command for the control thread (core/commands.h).
   virtual CommandResult command(const Command& cmd) = 0;

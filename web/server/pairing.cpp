@@ -144,6 +144,15 @@ bool Pairing::isDeviceToken(std::string_view token) const {
   return found;
 }
 
+std::optional<PairedDevice> Pairing::deviceFor(std::string_view token) const {
+  if (token.empty()) return std::nullopt;
+  const std::string h = sha256Hex(token);
+  std::lock_guard lock(m_);
+  for (const auto& d : devices_)
+    if (constantTimeEquals(h, d.hash)) return d;
+  return std::nullopt;
+}
+
 std::vector<PairedDevice> Pairing::devices() const {
   std::lock_guard lock(m_);
   return devices_;

@@ -90,6 +90,8 @@ class Pairing {
 
   // True when token is one of the paired devices' tokens.
   bool isDeviceToken(std::string_view token) const;
+  // The paired device that token belongs to (events name who changed what).
+  std::optional<PairedDevice> deviceFor(std::string_view token) const;
   std::vector<PairedDevice> devices() const;
   bool revoke(const std::string& id);
   std::size_t revokeAll();

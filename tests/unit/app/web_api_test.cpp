@@ -67,7 +67,8 @@ TEST(WebApiHistory, AbsurdStepFromAndToAreRejectedBeforeAnyConversion) {
 
 TEST(WebApiPatch, CrossParameterErrorsUseBareNames) {
   Rig r;
-  const auto res = r.api->patchParams({change("FloatVoltage", 14.6)});  // above the default Absorption
+  const auto res =
+      r.api->patchParams({change("FloatVoltage", 14.6)}, "test");  // above the default Absorption
   ASSERT_FALSE(res.errors.empty());
   EXPECT_EQ(res.errors[0].name, "FloatVoltage");  // before: "voltage.FloatVoltage"
 }
@@ -80,7 +81,7 @@ TEST(WebApiPatch, AChangeThatCannotBeSavedIsRefusedAndNotApplied) {
   Rig r(d.file("afile/x.db"));
   ASSERT_FALSE(r.store->status().persistent);
   const double before = r.api->currentParams().MaxDuty;
-  const auto res = r.api->patchParams({change("MaxDuty", 80)});
+  const auto res = r.api->patchParams({change("MaxDuty", 80)}, "test");
   ASSERT_EQ(res.errors.size(), 1u);  // before: no error, lost at the next start
   EXPECT_EQ(res.errors[0].name, "store");
   EXPECT_THAT(res.errors[0].message, HasSubstr("would be lost at the next start"));
@@ -91,7 +92,7 @@ TEST(WebApiPatch, AChangeThatCannotBeSavedIsRefusedAndNotApplied) {
 TEST(WebApiPatch, AChangeThatIsSavedIsAppliedAndTheStoreShowsOk) {
   TempDir d;
   Rig r(d.file("x.db"));
-  EXPECT_TRUE(r.api->patchParams({change("MaxDuty", 80)}).errors.empty());
+  EXPECT_TRUE(r.api->patchParams({change("MaxDuty", 80)}, "test").errors.empty());
   EXPECT_DOUBLE_EQ(r.api->currentParams().MaxDuty, 80.0);
   EXPECT_THAT(r.api->versions()["store"], HasSubstr("ok: "));
 }
@@ -130,7 +131,7 @@ namespace {
 TEST(WebApiProfiles, AProfileChangeMovesItsValuesAndNamesTheirSources) {
   TempDir d;
   Rig r(d.file("p.db"));
-  const auto res = r.api->patchParams({change("BatteryProfile", 0)});  // lifepo4
+  const auto res = r.api->patchParams({change("BatteryProfile", 0)}, "test");  // lifepo4
   ASSERT_TRUE(res.errors.empty()) << res.errors[0].message;
   const Params p = r.api->currentParams();
   EXPECT_DOUBLE_EQ(p.AbsorptionVoltage, 14.2);
@@ -145,10 +146,11 @@ TEST(WebApiProfiles, AProfileChangeMovesItsValuesAndNamesTheirSources) {
 
 TEST(WebApiProfiles, ABadProfileValueIsRefusedAndNothingApplied) {
   Rig r;
-  ASSERT_TRUE(r.api->patchParams({change("BatteryProfile", 0)}).errors.empty());
+  ASSERT_TRUE(r.api->patchParams({change("BatteryProfile", 0)}, "test").errors.empty());
   const Params before = r.api->currentParams();
   // 14.8 V on 4 LiFePO4 cells = 3.7 V/cell, over the 3.65 V/cell limit.
-  const auto res = r.api->patchParams({change("AbsorptionVoltage", 14.8), change("BulkVoltage", 14.8)});
+  const auto res =
+      r.api->patchParams({change("AbsorptionVoltage", 14.8), change("BulkVoltage", 14.8)}, "test");
   ASSERT_FALSE(res.errors.empty());
   bool named = false;
   for (const auto& e : res.errors)
@@ -156,7 +158,7 @@ TEST(WebApiProfiles, ABadProfileValueIsRefusedAndNothingApplied) {
   EXPECT_TRUE(named);
   EXPECT_EQ(r.api->currentParams(), before);
   // An inverted temperature range, too.
-  EXPECT_FALSE(r.api->patchParams({change("ChargeMaxTempC", 4.0)}).errors.empty());
+  EXPECT_FALSE(r.api->patchParams({change("ChargeMaxTempC", 4.0)}, "test").errors.empty());
   EXPECT_EQ(r.api->currentParams(), before);
 }
 

@@ -112,9 +112,11 @@ async function fakeChecks(page) {
   assert.equal(await cells.count(), 10);
   await cells.nth(4).fill("42,5");
   await page.click("#param-apply");
-  await page.waitForSelector("#token-dialog[open]");
+  // The installer's token instead of a pairing code (the fake has no journal).
+  await page.waitForSelector("#pair-dialog[open]");
+  await page.click("#pair-dialog summary");
   await page.fill("#token-input", token);
-  await page.click('#token-dialog button[value="ok"]');
+  await page.click("#pair-ok");
   await page.waitForFunction(() => document.getElementById("param-msg").textContent.startsWith("Applied"));
   const params = (await (await fetch(server.base + "/api/params")).json()).params;
   assert.equal(params.find((p) => p.name === "UseFloat").value, false);

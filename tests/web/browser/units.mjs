@@ -1,7 +1,8 @@
 // Unit tests of the dashboard's pure modules under node (no browser):
 // formatting and parsing (issue 25 items 6, 13), plain names and the one
 // reasons table shared with docs/operations.md (items 2, 7), the TOML
-// export/import (item 8), the settings' choices and sources (items 5, 8).
+// export/import (item 8), the settings' choices and sources (items 5, 8),
+// event texts (item 11), pairing messages (item 15).
 //   node units.mjs --root <repository root>
 import assert from "node:assert/strict";
 import fs from "node:fs";
@@ -22,6 +23,7 @@ const T = await mod("web/www/js/toml.js");
 const S = await mod("web/www/js/settings.js");
 const D = await mod("web/tools/reasons-doc.mjs");
 const P = await mod("web/www/js/pages.js");
+const A = await mod("web/www/js/pairing.js");
 let n = 0;
 const test = async (name, fn) => { await fn(); n++; console.log("ok - " + name); };
 
@@ -109,13 +111,15 @@ const params = [
   { name: "TempSource", group: "Temperature", kind: "int", value: 0, help: "Temperature used: 0 = DS18B20 (1-Wire), 1 = thermistor (ADS1115 CH3)." },
   { name: "rpmCapCurrentTable", group: "RpmTables", kind: "table", value: [0, 50, 50, 50, 50, 50, 50, 50, 50, 50], help: "" },
   { name: "VoltageDisagreeThreshold", group: "SensorHealth", kind: "float", value: 0.15, help: "x" },
+  { name: "BatteryProfile", group: "Battery", kind: "int", value: 1, choices: ["lifepo4", "agm", "custom"], help: "" },
 ];
-const groups = ["Voltage", "SensorHealth", "Charging", "Temperature", "RpmTables"];
+const groups = ["Voltage", "SensorHealth", "Charging", "Temperature", "RpmTables", "Battery"];
 
 await test("TOML export re-imports to the same values; sections are the file's", () => {
   const text = T.exportToml(params, groups);
   assert.match(text, /\[sensor_health\]\nVoltageDisagreeThreshold = 0\.15|\[sensor_health\]\n# x\nVoltageDisagreeThreshold = 0\.15/);
   assert.match(text, /\[rpm_tables\][^[]*rpmCapCurrentTable = \[0, 50,/);
+  assert.match(text, /\[battery\]\nBatteryProfile = "agm"/);  // a named choice as the daemon's file has it
   const back = T.parseParamsToml(text, params);
   assert.deepEqual(back.errors, []);
   for (const p of params) assert.deepEqual(back.values[p.name], p.value, p.name);
@@ -130,6 +134,7 @@ await test("TOML import refuses the whole file on any bad line and names it", ()
   assert.deepEqual(r.skipped, ["web"]);
   const wrongSection = T.parseParamsToml("[charging]\nBulkVoltage = 14.2\n", params);
   assert.match(wrongSection.errors[0], /belongs in \[voltage\]/);
+  assert.match(T.parseParamsToml('[battery]\nBatteryProfile = "lithium"\n', params).errors[0], /line 2: BatteryProfile: expected one of lifepo4/);
   const bool01 = T.parseParamsToml("[charging]\nUseFloat = 0  # off\n", params);
   assert.deepEqual(bool01, { values: { UseFloat: false }, errors: [], skipped: [] });
 });
@@ -150,6 +155,9 @@ await test("help texts lose the specification's jargon", () => {
     "Nameplate capacity. 200 Ah is a common house bank.");
   assert.equal(S.plainHelp("Ours: a resting field wakes."), "a resting field wakes.");
   assert.equal(S.plainHelp("Cap (seed section 4.2) in amps."), "Cap in amps.");
+  assert.equal(S.plainHelp("Rate above which the bleed drains cv_I."), "Rate above which the bleed drains the voltage loop's integral.");
+  assert.equal(S.plainHelp("No charging below this (REASON_BATTERY_COLD)."), `No charging below this (“${N.REASONS.REASON_BATTERY_COLD.title}”).`);
+  assert.equal(S.plainHelp("Not in the seeds: 500 ms is 100 ticks. 0 = always BULK, as the seed."), "500 ms is 100 ticks. 0 = always BULK.");
 });
 
 await test("event texts in plain words: no GPIO4, no reason codes, no nan", () => {
@@ -161,7 +169,42 @@ await test("event texts in plain words: no GPIO4, no reason codes, no nan", () =
   assert.equal(P.eventText({ text: "RPM below minimum: nan < 200 RPM. Field off", code: "ProtectionTrip", reason: "NONE" }),
     "RPM below minimum: — < 200 RPM. Field off");
   assert.equal(P.eventText({ text: "Command manual (duty 25.5 %) applied", code: "CommandApplied", reason: "NONE" }),
-    "Command manual (duty 25.5 %) applied");
+    "Command Manual (duty 25.5 %) applied");
+  assert.equal(P.eventText({ text: "Command reset_alarm_latch applied", code: "CommandApplied", reason: "NONE" }),
+    "Command Reset alarm latch applied");
+});
+
+await test("command answers without the API's command names (item 7)", () => {
+  assert.equal(N.commandAnswer("applied: limp_home"), "done");
+  assert.equal(N.commandAnswer("tuning_commit refused by the regulator: TuningMode is off, or the tuning has no result to commit yet"),
+    "refused — TuningMode is off, or the tuning has no result to commit yet");
+  assert.equal(N.commandAnswer("command queue full, try again"), "command queue full, try again");
+  assert.equal(N.plainCommand("reset_alt_zero"), "Reset alternator zero");
+});
+
+await test("settings changes are events with old → new and who made them, shown as sent", () => {
+  const text = 'Settings changed by device "Anna\'s phone": FloatVoltage 13.5 → 13.4; rpmCapCurrentTable point 4 40 → 45';
+  assert.equal(P.eventText({ text, code: "Message", reason: "NONE" }), text);
+});
+
+await test("pairing refusals in words the owner can act on (item 15)", () => {
+  assert.match(A.pairingError(403, { error: "wrong or expired pairing code", tries_left: 4 }), /^Wrong or expired code — 4 tries left/);
+  assert.match(A.pairingError(403, { tries_left: 1 }), /1 try left/);
+  assert.match(A.pairingError(429, { retry_after_s: 300 }), /locked for 5 min.*xregulatord --pair/);
+  assert.match(A.pairingError(409, {}), /revoke one/);
+  assert.match(A.pairingError(503, {}), /cannot save/);
+  assert.equal(A.guessDeviceName("Mozilla/5.0 (iPhone; CPU iPhone OS 17_0 like Mac OS X)"), "iPhone");
+  assert.equal(A.guessDeviceName("Mozilla/5.0 (Linux; Android 14; Pixel 8) Mobile Safari"), "Android phone");
+});
+
+await test("the Settings page names every value that differs from the file (item 8)", () => {
+  const ps = [{ name: "FloatVoltage", value: 13.4, file: 13.5, overridden: true, changed: true },
+    { name: "UseFloat", value: false, file: true, overridden: true, changed: true },
+    { name: "BulkVoltage", value: 14.4, file: 14.4, overridden: false, changed: true }];
+  const note = S.fileNotice(ps);
+  assert.match(note, /^2 values set from the dashboard differ from xregulator\.toml: FloatVoltage 13\.4 \(file: 13\.5\), UseFloat off \(file: on\)\./);
+  assert.doesNotMatch(note, /BulkVoltage/);
+  assert.equal(S.fileNotice([ps[2]]), "");
 });
 
 console.log(`${n} dashboard unit tests passed`);

@@ -1,57 +1,81 @@
-// HTTP helpers and the write token (asked once, kept in localStorage).
+// HTTP helpers and this device's write credential: a paired device's token
+// (POST /api/pair) or the installer's static token, kept in localStorage.
 const TOKEN_KEY = "xregulator.token";
+const DEVICE_KEY = "xregulator.device";  // {id, name} of this device's pairing; absent for the static token
 
 export function getToken() { return localStorage.getItem(TOKEN_KEY) || ""; }
-export function forgetToken() { localStorage.removeItem(TOKEN_KEY); }
-
-// Shows the token dialog; resolves with the token or "" when cancelled.
-export function askToken() {
-  const dlg = document.getElementById("token-dialog");
-  const input = document.getElementById("token-input");
-  input.value = "";
-  return new Promise((resolve) => {
-    dlg.addEventListener("close", () => {
-      if (dlg.returnValue === "ok" && input.value.trim()) {
-        localStorage.setItem(TOKEN_KEY, input.value.trim());
-        resolve(input.value.trim());
-      } else resolve("");
-    }, { once: true });
-    dlg.showModal();
-    input.focus();
-  });
+// This device's pairing ({id, name}) or null (not paired, or the installer's token).
+export function getDevice() {
+  try { return JSON.parse(localStorage.getItem(DEVICE_KEY) || "null"); } catch { return null; }
 }
+export function saveCredential(token, device = null) {
+  localStorage.setItem(TOKEN_KEY, token);
+  if (device) localStorage.setItem(DEVICE_KEY, JSON.stringify({ id: device.id, name: device.name }));
+  else localStorage.removeItem(DEVICE_KEY);
+}
+export function forgetToken() { localStorage.removeItem(TOKEN_KEY); localStorage.removeItem(DEVICE_KEY); }
+
+// How a write gets a credential when it has none or the server refused it:
+// pairing.js installs the "Pair this device" dialog here. It resolves with a
+// token, or "" when the user cancels.
+let authorise = async () => "";
+export function setAuthoriser(fn) { authorise = fn; }
+
+async function send(method, path, payload, token) {
+  const headers = {};
+  if (payload !== undefined) headers["Content-Type"] = "application/json";
+  if (token) headers.Authorization = "Bearer " + token;
+  const res = await fetch(path, { method, headers, cache: "no-store",
+    body: payload === undefined ? undefined : JSON.stringify(payload) });
+  const body = await res.json().catch(() => ({}));
+  return { res, body };
+}
+const failure = (res, body) => Object.assign(new Error(body.error || res.statusText), { status: res.status, body });
 
 export async function getJson(path) {
-  const headers = {};
-  const t = getToken();
-  if (t) headers.Authorization = "Bearer " + t;
-  const res = await fetch(path, { headers, cache: "no-store" });
-  const body = await res.json().catch(() => ({}));
-  if (!res.ok) throw Object.assign(new Error(body.error || res.statusText), { status: res.status, body });
+  const { res, body } = await send("GET", path, undefined, getToken());
+  if (!res.ok) throw failure(res, body);
   return body;
 }
 
-// A write (PATCH /api/params, POST /api/commands). Asks for the token when
-// none is stored, or when the server says 401/403, then retries once.
+// A write (PATCH /api/params, POST /api/commands, the pairing list). Without
+// a credential, or when the server refuses it (401/403: never paired, or this
+// device was revoked), asks to pair, then retries once with the new token.
 export async function write(method, path, payload) {
-  let token = getToken() || (await askToken());
-  if (!token) throw new Error("no token");
+  let token = getToken() || (await authorise("Changes need a paired device."));
+  if (!token) throw new Error("not paired: nothing was changed");
   for (let attempt = 0; attempt < 2; attempt++) {
-    const res = await fetch(path, {
-      method, body: JSON.stringify(payload),
-      headers: { "Content-Type": "application/json", Authorization: "Bearer " + token },
-    });
-    const body = await res.json().catch(() => ({}));
+    const { res, body } = await send(method, path, payload, token);
     if ((res.status === 401 || res.status === 403) && attempt === 0) {
       forgetToken();
-      token = await askToken();
-      if (!token) throw new Error("no token");
+      token = await authorise("This device is no longer allowed to change things (it was revoked, or the token changed). Pair it again.");
+      if (!token) throw new Error("not paired: nothing was changed");
       continue;
     }
-    if (!res.ok) throw Object.assign(new Error(body.error || res.statusText), { status: res.status, body });
+    if (!res.ok) throw failure(res, body);
     return body;
   }
-  throw new Error("token refused");
+  throw new Error("the regulator refused this device's credential");
+}
+
+// A request with this device's credential that never asks to pair (the
+// System page's list: a revoked device shows that, not a dialog).
+export async function quietRequest(method, path) {
+  const { res, body } = await send(method, path, undefined, getToken());
+  return { ok: res.ok, status: res.status, body };
+}
+
+// POST /api/pair: no credential needed. Resolves with {token, id, name}, or
+// throws with the server's message (wrong code, locked, full).
+export async function pair(code, name) {
+  const { res, body } = await send("POST", "/api/pair", { code, name });
+  if (!res.ok) throw failure(res, body);
+  return body;
+}
+// Checks a token as a write credential (GET /api/pair/devices needs one).
+export async function tokenWorks(token) {
+  const { res } = await send("GET", "/api/pair/devices", undefined, token);
+  return res.ok;
 }
 
 export function command(name, args = {}) {

@@ -1,10 +1,12 @@
 // xregulator dashboard: WebSocket, routing, commands with confirmation.
-import { command, forgetToken, getJson, toast } from "./api.js";
+import { command, getJson, toast } from "./api.js";
 import { backfillLive, chartDebug, drawLive, initCharts, loadHistory, pushLive } from "./charts.js";
 import { CONFIRM_TEXT, confirmAction } from "./confirm.js";
 import { parseDecimal } from "./format.js";
 import { latestStatus, renderLive, tick } from "./live.js";
+import { commandAnswer, plainCommand } from "./names.js";
 import { loadEvents, loadSystem, renderBattery, renderProtections, renderTuning } from "./pages.js";
+import { initPairing, loadDevices } from "./pairing.js";
 import { initSettings, loadSettings, setParam } from "./settings.js";
 import { initSetup } from "./setup.js";
 
@@ -56,7 +58,7 @@ function route() {
   const fail = (e) => toast(e.message, true);
   if (page === "settings") loadSettings().catch(fail);
   if (page === "events") loadEvents().catch(fail);
-  if (page === "system") loadSystem().catch(fail);
+  if (page === "system") { loadSystem().catch(fail); loadDevices().catch(fail); }
   if (page === "tuning") loadSettingsFlags().catch(fail);
   if (page === "live") { drawLive(); loadHistory(); }
   const s = latestStatus();
@@ -80,14 +82,14 @@ async function loadSettingsFlags() {
 export async function runCommand(name, args = {}) {
   if (CONFIRM_TEXT[name]) {
     const [text, ok] = CONFIRM_TEXT[name](args);
-    if (!(await confirmAction(text, ok))) { toast(`${name.replace("_", " ")}: cancelled`); return false; }
+    if (!(await confirmAction(text, ok))) { toast(`${plainCommand(name)}: cancelled`); return false; }
   }
   try {
     const r = await command(name, args);
-    toast(`${name.replace("_", " ")}: ${r.message || "done"}`);
+    toast(`${plainCommand(name)}: ${commandAnswer(r.message)}`);
     return true;
   } catch (e) {
-    toast(`${name.replace("_", " ")}: ${e.message}`, true);
+    toast(`${plainCommand(name)}: ${commandAnswer(e.message)}`, true);
     return false;
   }
 }
@@ -129,7 +131,7 @@ function init() {
       .catch((e) => { el.checked = !el.checked; toast(e.message, true); })));
   $("events-more").addEventListener("click", () => loadEvents("more").catch((e) => toast(e.message, true)));
   $("hist-range").addEventListener("change", loadHistory);
-  $("forget-token").addEventListener("click", () => { forgetToken(); toast("token forgotten"); });
+  initPairing();
   initSettings();
   initSetup(runCommand);
   initCharts();

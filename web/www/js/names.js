@@ -186,6 +186,22 @@ export const MODES = {
   MODE_LOCKOUT_RAMP: "Cooling down",
   MODE_DISABLED_RAMP: "Switching off",
 };
+// The commands (POST /api/commands) as their buttons say them.
+export const COMMANDS = { auto: "Auto", manual: "Manual", off: "Off", limp_home: "Limp home", limp_home_off: "Limp home off",
+  reenable_field: "Re-enable field", reset_alarm_latch: "Reset alarm latch", reset_soc_gain: "Reset SoC gain",
+  reset_alt_zero: "Reset alternator zero", set_soc: "Set SoC", system_id_start: "Start SystemID",
+  tuning_commit: "Commit current-loop tuning", cv_tuning_commit: "Commit voltage-loop tuning", weather_mode: "Weather mode" };
+export const plainCommand = (c) => COMMANDS[c] || String(c || "—").replace(/_/g, " ");
+// The regulator's answer to a command ("applied: limp_home", "tuning_commit
+// refused by the regulator: ...") in words, without the command's API name.
+export function commandAnswer(message) {
+  const m = String(message || "");
+  if (/^applied\b/.test(m)) return "done";
+  if (/^queued\b/.test(m)) return "sent; the regulator has not answered yet";
+  const refused = m.match(/refused by the regulator: (.*)$/);
+  if (refused) return "refused — " + refused[1];
+  return m.replace(/\b[a-z]+(?:_[a-z]+)+\b/g, (c) => (COMMANDS[c] ? `“${COMMANDS[c]}”` : c));
+}
 export const plainStage = (s) => STAGES[s] || String(s || "—");
 export const plainMode = (m) => MODES[m] || String(m || "—");
 

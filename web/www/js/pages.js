@@ -2,7 +2,7 @@
 // the event list and the System page. Plain names, rounded numbers, clock times.
 import { getJson } from "./api.js";
 import { clock, hmin, hminFromSeconds, plain } from "./format.js";
-import { REASONS, plainMode, reasonInfo } from "./names.js";
+import { REASONS, plainCommand, plainMode, reasonInfo } from "./names.js";
 
 const $ = (id) => document.getElementById(id);
 
@@ -86,6 +86,7 @@ export function eventText(e) {
   // "GPIO4" is the field enable, reason codes get their titles.
   let text = String(e.text || e.code).replace(/\bnan\b/gi, "—")
     .replace(/\s*\(GPIO4 (HIGH|LOW)\)/g, "").replace(/\bGPIO4\b/g, "Field")
+    .replace(/^Command ([a-z_]+)/, (m, c) => "Command " + plainCommand(c))
     .replace(/\b(?:REASON_)?([A-Z]{2,}(?:_[A-Z0-9]+)+)\b/g, (m, code) =>
       (REASONS["REASON_" + code] ? REASONS["REASON_" + code].title.toLowerCase() : m));
   if (e.reason && e.reason !== "NONE" && !text.toLowerCase().includes(reasonInfo(e.reason).title.toLowerCase()))
@@ -128,5 +129,5 @@ export async function loadSystem() {
   kvTable("sys-versions", obj(s.versions));
   kvTable("sys-loop", obj(s.loop).map(([k, v]) => [k.replace(/_/g, " "), v, k === "overruns" ? (v ? "bad" : "good") : ""]));
   kvTable("sys-probes", (s.probes || []).map((p) => [p.device, `${p.ok ? "OK" : "FAIL"} ${p.detail || ""}`, p.ok ? "good" : "bad"]));
-  kvTable("sys-web", obj(s.web).concat([["telemetry rate (Hz)", s.telemetry_rate_hz]]));
+  kvTable("sys-web", obj(s.web).map(([k, v]) => [k.replace(/_/g, " "), v]).concat([["telemetry rate (Hz)", s.telemetry_rate_hz]]));
 }

@@ -3,6 +3,7 @@
 // each value comes from, and the server's messages next to each field.
 import { getJson, write } from "./api.js";
 import { parseDecimal } from "./format.js";
+import { REASONS } from "./names.js";
 
 let params = [];
 let groups = [];
@@ -38,9 +39,13 @@ export function sourceOf(p) {
 }
 
 // Help texts cite the firmware's specification ("No seed default: ...",
-// "Ours: ..."); the owner needs only the sentence itself.
-export const plainHelp = (h) => String(h || "").replace(/No seed default[:.]?\s*/gi, "").replace(/\bOurs:\s*/g, "")
-  .replace(/\s*\([^)]*\bseeds?\b[^)]*\)/gi, "").trim();
+// "Ours: ...") and its variable names (cv_I, REASON_*): the owner needs only
+// the sentence itself, in words (docs/parameters.md keeps the engineer's text).
+export const plainHelp = (h) => String(h || "").replace(/(No seed default|Not in the seeds)[:.]?\s*/gi, "")
+  .replace(/\bOurs:\s*/g, "").replace(/\s*\([^)]*\bseeds?\b[^)]*\)/gi, "").replace(/,\s*as the seeds?\b/gi, "")
+  .replace(/\bCV seed\b/g, "voltage-loop restart").replace(/\bcv_I_aw_cap\b/g, "the voltage loop's integral cap")
+  .replace(/\bcv_I\b/g, "the voltage loop's integral")
+  .replace(/\bREASON_[A-Z0-9_]+\b/g, (c) => (REASONS[c] ? `“${REASONS[c].title}”` : c)).trim();
 
 function fmt(v) {
   if (Array.isArray(v)) return "[" + v.join(", ") + "]";
@@ -177,12 +182,29 @@ function render() {
   }
 }
 
+// Dashboard changes are kept in the regulator's state database and win over
+// xregulator.toml; the file is never rewritten (docs/dashboard.md "Dashboard
+// changes and the file"). So the page says, above everything, which values
+// differ from the file and how to make the file say the same.
+export function fileNotice(list) {
+  const dash = list.filter((p) => sourceOf(p) === "dashboard");
+  if (!dash.length) return "";
+  const names = dash.map((p) => `${p.name} ${fmt(p.value)} (file: ${fmt(p.file)})`);
+  return `${dash.length} value${dash.length > 1 ? "s" : ""} set from the dashboard differ${dash.length > 1 ? "" : "s"} ` +
+    `from xregulator.toml: ${names.join(", ")}. The regulator keeps ${dash.length > 1 ? "them" : "it"} in its state ` +
+    "database (kept across restarts, ahead of the file); the file is not changed. To make the file say the same, " +
+    "export below and copy the sections over the unit's file.";
+}
+
 export async function loadSettings() {
   const body = await getJson("/api/params");
   params = body.params;
   groups = body.groups;
   pending.clear();
   invalid.clear();
+  const note = fileNotice(params);
+  $("param-file-note").textContent = note;
+  $("param-file-note").hidden = !note;
   render();
   updateButtons();
 }

@@ -42,7 +42,7 @@ function renderSteps() {
   steps.push(`<h3>${steps.length + 1} · Battery bank</h3>` +
     `<label class="field"><span>Bank voltage</span><select id="su-bank">${[12, 24, 48].map((b) => `<option ${b === bank ? "selected" : ""}>${b}</option>`).join("")}</select></label>` +
     field("Capacity", "su-capacity", find("BatteryCapacity_Ah").value, "Ah", "The nameplate capacity of the whole bank.") +
-    (cells ? field("Cells in series", "su-cells", cells.value, "", "") : ""));
+    (cells ? field("Cells in series", "su-cells", cells.value, "", "0 = worked out from the bank voltage; LiFePO4 4/8/16, lead-acid 6/12/24.") : ""));
   steps.push(`<h3>${steps.length + 1} · Alternator and belt</h3>` +
     field("Alternator rating", "su-rating", find("MaxTableValue").value, "A", "The most current the regulator ever asks for.") +
     field("Belt limit", "su-belt", Math.max(...find("rpmCapCurrentTable").value), "A", "The most the belt and the alternator take for long; caps every engine speed.") +
@@ -76,7 +76,8 @@ function collect() {
       if (find(n)) body[n] = Math.round((find(n).value * bank) / was * 100) / 100;
   }
   body.BatteryCapacity_Ah = read("su-capacity", "Capacity", 1, 100000);
-  if ($("su-cells")) body.BatteryCells = Math.round(read("su-cells", "Cells", 1, 64));
+  // BatteryCells 0 means "from the bank voltage" (its default): the catalogue's range, not 1..64.
+  if ($("su-cells")) body.BatteryCells = Math.round(read("su-cells", "Cells", find("BatteryCells").min, find("BatteryCells").max));
   const rating = read("su-rating", "Alternator rating", 1, 1000);
   const belt = read("su-belt", "Belt limit", 1, 1000);
   body.MaxTableValue = rating;

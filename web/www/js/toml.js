@@ -18,7 +18,9 @@ export function exportToml(params, groups, stamp = "") {
     lines.push(`[${sectionOf(g)}]`);
     for (const p of list) {
       if (p.help) lines.push(`# ${String(p.help).replace(/\s+/g, " ")}`);
-      lines.push(`${p.name} = ${tomlValue(p.value)}`);
+      // A named choice is a quoted name in the file (BatteryProfile = "agm"), as the daemon reads it.
+      const named = Array.isArray(p.choices) && p.choices[p.value] !== undefined;
+      lines.push(`${p.name} = ${named ? JSON.stringify(String(p.choices[p.value])) : tomlValue(p.value)}`);
     }
     lines.push("");
   }
@@ -63,6 +65,13 @@ export function parseParamsToml(text, params) {
       if (v.some((x) => typeof x !== "number")) v = undefined;
     } else v = parseScalar(raw);
     const kind = String(p.kind).toLowerCase();
+    const quoted = raw.trim().match(/^"([^"\\]*)"$/);
+    if (quoted && Array.isArray(p.choices)) {
+      const choice = p.choices.map(String).indexOf(quoted[1]);
+      if (choice < 0) { errors.push(`line ${i + 1}: ${name}: expected one of ${p.choices.join(", ")}`); continue; }
+      values[name] = choice;
+      continue;
+    }
     if (v === undefined) { errors.push(`line ${i + 1}: ${name}: cannot read "${raw.trim()}"`); continue; }
     if (kind === "table" && (!Array.isArray(v) || v.length !== p.value.length)) {
       errors.push(`line ${i + 1}: ${name}: expected ${p.value.length} numbers`); continue;
