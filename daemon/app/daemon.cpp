@@ -1,7 +1,5 @@
 #include "app/daemon.h"
 
-#include "app/effective_params.h"
-
 #include <signal.h>
 #include <spdlog/spdlog.h>
 #include <systemd/sd-daemon.h>
@@ -19,6 +17,7 @@
 #include "app/board_rig.h"
 #include "app/csv_writer.h"
 #include "app/daemon_notices.h"
+#include "app/effective_params.h"
 #include "app/integrations_wiring.h"
 #include "app/sim_wiring.h"
 #include "app/status_source.h"
@@ -116,8 +115,8 @@ int Daemon::run() {
   if (!dbPath.empty()) {
     store = std::make_unique<StoreService>(dbPath, settings.store.checkpoint_interval_s);
     const OpenResult& o = store->openResult();
-    if (o.alarm())
-      spdlog::error("store: {}", o.message);
+    if (const char* code = StoreService::alarmCode(o))
+      spdlog::error("store: {}: {}", code, o.message);  // the line to look for (docs/operations.md)
     else
       spdlog::info("store: {} ({})", dbPath, o.message);
     if (auto saved = store->loadLedger()) {
