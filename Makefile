@@ -19,7 +19,7 @@ DEB_PACKAGES := build-essential cmake pkg-config ninja-build \
   chromium wrk curl python3 python3-matplotlib clang libclang-rt-14-dev valgrind clang-format graphviz \
   debhelper devscripts lintian fakeroot dpkg-dev
 
-.PHONY: all deps build run test bench deb clean format deps-cross test-arm64 scenarios dashboard-screenshots
+.PHONY: all deps build run test bench deb clean format deps-cross test-arm64 scenarios dashboard-screenshots soak
 
 all: build
 
@@ -59,6 +59,16 @@ test: build
 PLOT_PYTHON ?= /usr/bin/python3
 scenarios: build
 	$(PLOT_PYTHON) tests/sim/cruising/suite.py --daemon $(BUILD)/daemon/app/xregulatord --out $(BUILD)/scenarios
+
+# The soak test (issue 26): the daemon in --sim at speed 20 through a simulated
+# day (tests/soak/day.toml) against 20 WebSocket clients, 5 API requests a
+# second and dashboard writes. Reports RSS growth after warm-up, overruns (all,
+# and the daemon's own), the store's size and errors; fails on >= 1 MB growth,
+# an own overrun or an error. SOAK_S wall seconds: 4320 = 24 simulated hours.
+SOAK_S ?= 4320
+soak: build
+	python3 tests/soak/soak.py --daemon $(BUILD)/daemon/app/xregulatord --duration-s $(SOAK_S) \
+	  --www $(BUILD)/web/www --out $(BUILD)/soak
 
 # The phone screenshots of docs/dashboard.md (Live while charging, during a
 # fault, the set-up flow, pairing), taken by the browser test against the simulator.

@@ -118,8 +118,8 @@ int Daemon::run() {
   if (!dbPath.empty()) {
     store = std::make_unique<StoreService>(dbPath, settings.store.checkpoint_interval_s);
     const OpenResult& o = store->openResult();
-    if (o.alarm())
-      spdlog::error("store: {}", o.message);
+    if (const char* code = StoreService::alarmCode(o))
+      spdlog::error("store: {}: {}", code, o.message);  // the line to look for (docs/operations.md)
     else
       spdlog::info("store: {} ({})", dbPath, o.message);
     if (auto saved = store->loadLedger()) {

@@ -38,6 +38,30 @@ StoreService::StoreService(const std::string& path, int checkpointIntervalS)
     else
       spdlog::error("store: {} is readable by every user and cannot be changed: {}", f, std::strerror(errno));
   }
+  recordOpenAlarm();
+}
+
+const char* StoreService::alarmCode(const OpenResult& o) {
+  if (o.newerSchema) return "StoreNewerSchema";
+  if (o.restored) return "StoreRestored";
+  if (o.recovered) return "StoreReset";
+  if (o.inMemory) return "StoreNotSaving";
+  return nullptr;
+}
+
+void StoreService::recordOpenAlarm() {
+  // Told once: the event is stored with the data it is about (in memory
+  // too, so the dashboard's event list shows it for this run).
+  const char* code = alarmCode(open_);
+  if (!code || !store_.isOpen()) return;
+  EventRecord e;
+  e.tMs = unixMsNow();
+  e.level = open_.restored ? "error" : "critical";
+  e.code = code;
+  e.reason = "NONE";
+  e.message = open_.message;
+  if (const StoreStatus st = store_.appendEvents(std::span<const EventRecord>(&e, 1)); !st)
+    spdlog::warn("store: event not saved: {}", st.error);
 }
 
 std::optional<SavedLedger> StoreService::loadLedger() {
@@ -90,7 +114,11 @@ StoreService::Status StoreService::status() {
   s.path = store_.path();
   s.persistent = store_.isOpen() && !store_.inMemory();
   s.recovered = open_.recovered;
+  s.restored = open_.restored;
+  s.newerSchema = open_.newerSchema;
   s.message = open_.message;
+  s.backupPath = store_.backupPath();
+  s.lastBackupMs = store_.lastBackupMs();
   return s;
 }
 
@@ -141,6 +169,8 @@ void StoreService::housekeeping(const rt::RuntimeSnapshot& s, const BatteryLedge
     const StoreStatus st = store_.checkpoint(ledger, toString(why), nowMs);
     if (!st) spdlog::error("store: checkpoint ({}) failed: {}", toString(why), st.error);
   }
+  if (const StoreStatus st = store_.backupIfDue(nowMs); !st)
+    spdlog::error("store: {} (the previous backup stays; retried in an hour)", st.error);
 }
 
 void StoreService::stop(const BatteryLedger& ledger, bool ledgerValid) {

@@ -2,8 +2,11 @@
 // The SQLite store as the running daemon uses it, off the RT thread: one
 // mutex around Store (the main/supervisor thread, the event pump and the web
 // threads all reach it; the RT thread never does).
-//   start : restore the ledger and the parameter overrides
-//   1 Hz  : chart history; CheckpointPolicy decides when to save the ledger
+//   start : restore the ledger and the parameter overrides; a damaged, lost
+//           or newer database is reported once as an event (StoreRestored,
+//           StoreReset, StoreNewerSchema, StoreNotSaving)
+//   1 Hz  : chart history; CheckpointPolicy decides when to save the ledger;
+//           the daily verified backup
 //   events: appended as the pump delivers them
 //   stop  : final checkpoint ("stop")
 #include <mutex>
@@ -40,9 +43,13 @@ class StoreService {
   // For /api/system and the journal.
   struct Status {
     std::string path;
-    bool persistent = false;  // false: running on the in-memory fallback
-    bool recovered = false;   // the old file was damaged and set aside at start
+    bool persistent = false;   // false: running on the in-memory fallback
+    bool recovered = false;    // the old file was damaged and set aside at start
+    bool restored = false;     // ... and its data came back from the verified backup
+    bool newerSchema = false;  // a newer release's file: read, left untouched, nothing saved
     std::string message;
+    std::string backupPath;         // the verified copy (<path>.bak)
+    std::int64_t lastBackupMs = 0;  // when it was last written (UTC ms; 0 = none this run)
   };
   Status status();
 
@@ -66,7 +73,13 @@ class StoreService {
   bool putDocument(std::string_view key, std::string_view value);  // false: not saved
   bool eraseDocument(std::string_view key);
 
+  // The event code of a start that found the database not as it should be
+  // (nullptr: a normal start).
+  static const char* alarmCode(const OpenResult& o);
+
  private:
+  void recordOpenAlarm();
+
   std::mutex m_;
   Store store_;
   OpenResult open_;

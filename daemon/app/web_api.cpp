@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <thread>
 
 #include "app/effective_params.h"
@@ -309,6 +310,17 @@ std::vector<web::ProbeResult> WebApi::probeResults() {
   return {};
 }
 
+namespace {
+std::string utcText(std::int64_t unixMs) {
+  const std::time_t t = static_cast<std::time_t>(unixMs / 1000);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M UTC", &tm);
+  return buf;
+}
+}  // namespace
+
 web::VersionMap WebApi::versions() {
   web::VersionMap v{{"xregulatord", XR_VERSION_STRING}, {"mode", ctx_.sim ? "sim" : "board"}};
   // The store's state on the System page (issue 26, item 7): whether changes
@@ -317,8 +329,13 @@ web::VersionMap WebApi::versions() {
     v["store"] = "none: no state database, changes last for this run only";
   } else {
     const StoreService::Status st = ctx_.store->status();
-    v["store"] = st.persistent ? (st.recovered ? "recovered at start: " : "ok: ") + st.path
-                               : "NOT SAVING: " + st.message + "; changes are refused";
+    if (!st.persistent)
+      v["store"] = "NOT SAVING: " + st.message + "; changes are refused";
+    else if (st.restored || st.recovered)
+      v["store"] = (st.restored ? "RESTORED FROM BACKUP at start: " : "RESET at start: ") + st.message;
+    else
+      v["store"] = "ok: " + st.path;
+    v["store_backup"] = st.lastBackupMs > 0 ? st.backupPath + " of " + utcText(st.lastBackupMs) : "none yet";
   }
   return v;
 }

@@ -32,7 +32,8 @@ LoopExit ControlLoop::run() {
 
     cycle_.serviceEdges(next);  // ADS1115 ready edges until the deadline (if wired)
     clock_.sleepUntil(next);
-    if (paced) stats_.onPeriodError(cfg_.wall->now() - cfg_.wallDeadlineOf(next));
+    const TimeNs woke = paced ? cfg_.wall->now() : clock_.now();
+    if (paced) stats_.onPeriodError(woke - cfg_.wallDeadlineOf(next));
     cycle_.tick(clock_.now());
     // Single writer (this thread): a plain load + store, not a locked
     // read-modify-write on every tick.
@@ -43,18 +44,26 @@ LoopExit ControlLoop::run() {
     // on the wall clock when there is one (in a paced simulation the virtual
     // clock does not move while the tick runs). Skip the missed deadlines
     // rather than bursting to catch up.
+    // The tick's own length tells whose the overrun is (issue 26, soak:
+    // "overruns attributable to the daemon"): a tick longer than a period
+    // is ours (counted so even when the thread was preempted inside it);
+    // a short tick after a late wake-up is the machine's.
     TimeNs missed = 0;
+    bool own = false;
     if (paced) {
       const TimeNs due = cfg_.wallDeadlineOf(next);
       const TimeNs wallPeriod = cfg_.wallDeadlineOf(next + cfg_.period) - due;
-      const TimeNs late = cfg_.wall->now() - due;
+      const TimeNs wallNow = cfg_.wall->now();
+      const TimeNs late = wallNow - due;
       if (wallPeriod > 0 && late >= wallPeriod) missed = late / wallPeriod;
+      own = wallNow - woke >= wallPeriod;
     } else {
       const TimeNs now = clock_.now();
       if (now >= next + cfg_.period) missed = (now - next) / cfg_.period;
+      own = now - woke >= cfg_.period;
     }
     if (missed > 0) {
-      stats_.onOverrun(static_cast<std::uint64_t>(missed));
+      stats_.onOverrun(static_cast<std::uint64_t>(missed), own);
       next += missed * cfg_.period;
     }
   }

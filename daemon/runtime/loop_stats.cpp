@@ -70,6 +70,7 @@ LoopStatsSummary LoopStats::summary() const noexcept {
   LoopStatsSummary s;
   s.ticks = ticks_;
   s.overruns = overruns_;
+  s.overrunsOwn = overrunsOwn_;
   s.periodMeasured = periodMeasured_;
   s.periodErrP50Us = us(periodErr_.quantile(0.50));
   s.periodErrP99Us = us(periodErr_.quantile(0.99));

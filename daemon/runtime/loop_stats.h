@@ -39,7 +39,11 @@ inline constexpr std::array<int, 7> kPeriodErrorEdgesUs{10, 50, 100, 200, 500, 1
 
 struct LoopStatsSummary {
   std::uint64_t ticks = 0;
-  std::uint64_t overruns = 0;   // deadlines missed entirely
+  std::uint64_t overruns = 0;  // deadlines missed entirely
+  // Of them, those the daemon caused: the tick itself (read, step, write)
+  // outlasted a period. The others were missed while the thread waited to
+  // run (a late wake-up: another process had the CPU).
+  std::uint64_t overrunsOwn = 0;
   bool periodMeasured = false;  // false under --speed max (no deadlines)
   double periodErrP50Us = 0, periodErrP99Us = 0, periodErrMaxUs = 0;
   double computeP50Us = 0, computeP99Us = 0, computeMaxUs = 0;
@@ -62,7 +66,11 @@ class LoopStats {
   void onIo(TimeNs dt) noexcept { io_.add(dt); }
   void onCompute(TimeNs dt) noexcept { compute_.add(dt); }
   void onTick() noexcept { ++ticks_; }
-  void onOverrun(std::uint64_t missed) noexcept { overruns_ += missed; }
+  // own: the tick before the missed deadlines took longer than a period.
+  void onOverrun(std::uint64_t missed, bool own = false) noexcept {
+    overruns_ += missed;
+    if (own) overrunsOwn_ += missed;
+  }
   // New samples seen this tick (per ADS channel: how many results arrived;
   // with ready-edge pacing a tick may bring two); rates are computed over 1 s
   // windows of loop time (virtual time in simulation).
@@ -90,7 +98,7 @@ class LoopStats {
   void rollWindow(TimeNs now, const std::array<std::uint32_t, 4>& adsTotals) noexcept;
 
   LatencyHistogram periodErr_, compute_, io_, edgeIo_;
-  std::uint64_t ticks_ = 0, overruns_ = 0, edges_ = 0;
+  std::uint64_t ticks_ = 0, overruns_ = 0, overrunsOwn_ = 0, edges_ = 0;
   bool periodMeasured_ = false;
   TimeNs windowStart_ = -1;
   std::array<std::uint32_t, 4> adsTotals_{};  // onSamples(): its running totals

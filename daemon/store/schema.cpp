@@ -87,6 +87,25 @@ int migrate(sql::Db& db) {
   return SQLITE_OK;
 }
 
+std::string missingForReading(sql::Db& db) {
+  // The columns the store's queries read (store_*.cpp), table by table.
+  static constexpr const char* kReads[] = {
+      "SELECT name, value FROM ledger",
+      "SELECT saved_at_ms, reason FROM ledger_meta",
+      "SELECT name, value, file_value, changed_at_ms FROM overrides",
+      "SELECT id, t_ms, level, code, reason, message, a, b FROM events",
+      "SELECT key, value FROM kv",
+      "SELECT id, name FROM series",
+      "SELECT key, data FROM history_1s",
+      "SELECT key, data FROM history_1m",
+  };
+  for (const char* q : kReads) {
+    sql::Stmt st(db, std::string(q) + " LIMIT 0");
+    if (!st.ok()) return std::string(q) + ": " + db.lastError();
+  }
+  return {};
+}
+
 int createAtVersion(sql::Db& db, int v) {
   for (int cur = 0; cur < v; ++cur) {
     const int rc = migrateStep(db, cur);

@@ -8,6 +8,8 @@
 //       events gain reason/a/b, kv (web token, tuning logs)
 //   v3  history_1s / history_1m (packed float buckets, rowid = bucket * 64 + series)
 //       + series names, events index
+#include <string>
+
 #include "store/sqlite_db.h"
 
 namespace xr::store {
@@ -26,5 +28,9 @@ int migrateStep(sql::Db& db, int from);
 int migrate(sql::Db& db);
 // Builds exactly version `v` (tests: a database "written by an older release").
 int createAtVersion(sql::Db& db, int v);
+// Whether every table and column this release reads exists in db (a newer
+// release's database, issue 26 item 4: read what we can). Empty when all
+// do, else the first that does not.
+std::string missingForReading(sql::Db& db);
 
 }  // namespace xr::store

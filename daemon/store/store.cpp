@@ -1,42 +1,28 @@
-// Store: opening (with recovery from a corrupt or unwritable file), closing,
-// configuring the connection, and diagnostics. The other jobs of the class
-// live beside it: store_ledger.cpp, store_settings.cpp, store_events.cpp,
-// store_history.cpp.
+// Store: closing, configuring the connection, backups and diagnostics.
+// Opening (with recovery from a damaged, newer or unwritable file) is in
+// store_open.cpp; the other jobs of the class live beside it:
+// store_ledger.cpp, store_settings.cpp, store_events.cpp, store_history.cpp.
 #include "store/store.h"
 
 #include <sqlite3.h>
+#include <sys/stat.h>
 
-#include <ctime>
-#include <filesystem>
-#include <system_error>
 
-#include "store/floor_div.h"
+#include "store/backup.h"
 #include "store/schema.h"
 
 namespace xr {
 
-namespace fs = std::filesystem;
-
 namespace {
 
-std::string utcStamp(std::int64_t unixMs) {
-  const std::time_t t = static_cast<std::time_t>(store::floorDiv(unixMs, 1000));
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y%m%dT%H%M%SZ", &tm);
-  return buf;
+// The backup holds the web token like the database: the owner may read and
+// write it, its group read it when it may read the database, nobody else.
+unsigned backupMode(const std::string& dbPath) {
+  struct stat st {};
+  if (::stat(dbPath.c_str(), &st) != 0) return 0600;
+  return (static_cast<unsigned>(st.st_mode) & 0040u) | 0600u;
 }
 
-// Result codes meaning "this file is not a usable database": move it aside.
-bool isCorruption(int rc) {
-  const int primary = rc & 0xff;
-  return primary == SQLITE_CORRUPT || primary == SQLITE_NOTADB || primary == SQLITE_MISMATCH ||
-         primary == SQLITE_FORMAT;
-}
-
-// SQLite stores NaN as NULL, which the NOT NULL value columns refuse: a
-// stale reading in an event's values (or a NaN ledger field) must not cost
 }  // namespace
 
 Store::Store(StoreOptions options) : opt_(std::move(options)) {}
@@ -65,7 +51,7 @@ StoreStatus Store::status(int rc, std::string_view what) {
   return s;
 }
 
-int Store::configure() {
+int Store::configureConnection() {
   int rc = db_.exec("PRAGMA busy_timeout = " + std::to_string(opt_.busyTimeoutMs));
   if (rc != SQLITE_OK) return rc;
   if (!inMemory_) {
@@ -92,99 +78,64 @@ int Store::configure() {
   const std::string check = db_.queryText("PRAGMA quick_check", &rc);
   if (!sql::isOk(rc)) return rc;
   if (check != "ok") return db_.setError(SQLITE_CORRUPT, "quick_check: " + check);
+  return SQLITE_OK;
+}
+
+int Store::configure() {
+  int rc = configureConnection();
+  if (rc != SQLITE_OK) return rc;
+  if (!inMemory_) {
+    // Before a migration, a verified copy of the old schema: a downgrade to
+    // the release that wrote it finds its data there (issue 26, item 4).
+    const int v = static_cast<int>(db_.queryInt("PRAGMA user_version", &rc));
+    if (!sql::isOk(rc)) return rc;
+    if (v >= 1 && v < store::kSchemaVersion) {
+      const std::string why =
+          store::writeVerifiedBackup(db_, path_ + ".bak-v" + std::to_string(v), backupMode(path_));
+      // No migration without the copy: the in-memory fallback then reads
+      // the old file without changing it.
+      if (!why.empty()) return db_.setError(SQLITE_IOERR, "no migration without a backup (" + why + ")");
+    }
+  }
   return store::migrate(db_);
 }
 
-OpenResult Store::open(const std::string& path, std::int64_t nowUnixMs) {
+// ---------------------------------------------------------------- backups
+
+StoreStatus Store::backup(std::int64_t nowUnixMs) {
   const std::lock_guard<std::recursive_mutex> lock(mu_);
-  close();
-  OpenResult r;
-  path_ = path;
-  inMemory_ = false;
-  std::error_code ec;
-  const fs::path p(path);
-  if (p.has_parent_path()) fs::create_directories(p.parent_path(), ec);
-
-  int rc = SQLITE_CANTOPEN;
-  const bool existed = fs::exists(p, ec);
-  if (existed) {
-    // Version before migration, for the log (0 when unreadable).
-    rc = db_.open(path);
-    if (rc == SQLITE_OK) {
-      int vrc = 0;
-      r.fromVersion = static_cast<int>(db_.queryInt("PRAGMA user_version", &vrc));
-      if (!sql::isOk(vrc)) r.fromVersion = 0;
-      rc = configure();
-    }
-  } else {
-    rc = db_.open(path);
-    if (rc == SQLITE_OK) rc = configure();
+  StoreStatus s;
+  if (!db_.isOpen() || inMemory_ || !backupsAllowed_) {
+    s.ok = false;
+    s.code = SQLITE_MISUSE;
+    s.error = !db_.isOpen() ? "no database open"
+              : inMemory_   ? "running in memory: nothing to back up"
+                            : "the backup " + backupPath() + " is kept as it is (see the start-up message)";
+    return s;
   }
-
-  if (rc != SQLITE_OK && existed && isCorruption(rc)) {
-    // A corrupt or foreign file never stops charging: keep a copy, start fresh.
-    const std::string why = db_.lastError();
-    db_.close();
-    const std::string copy = path + ".corrupt-" + utcStamp(nowUnixMs);
-    fs::rename(p, copy, ec);
-    if (!ec) {
-      for (const char* suffix : {"-wal", "-shm"}) {
-        std::error_code e2;
-        if (fs::exists(path + suffix, e2)) fs::rename(path + suffix, copy + suffix, e2);
-      }
-      r.recovered = true;
-      r.corruptCopy = copy;
-      r.message = "database " + path + " unreadable (" + why + "); kept as " + copy + ", started fresh";
-      rc = db_.open(path);
-      if (rc == SQLITE_OK) rc = configure();
-    } else {
-      r.message = "database " + path + " unreadable (" + why + ") and could not be moved aside (" +
-                  ec.message() + ")";
-    }
+  flushHistory();  // the copy holds the charts up to now
+  const std::string why = store::writeVerifiedBackup(db_, backupPath(), backupMode(path_));
+  if (!why.empty()) {
+    s.ok = false;
+    s.code = SQLITE_IOERR;
+    s.error = "backup " + backupPath() + ": " + why;
+    return s;
   }
+  lastBackupMs_ = nowUnixMs;
+  settingsChanged_ = false;
+  return s;
+}
 
-  if (rc == SQLITE_OK) {
-    r.ok = true;
-    if (r.message.empty())
-      r.message = existed ? "database " + path + " opened (schema v" + std::to_string(r.fromVersion) +
-                                " -> v" + std::to_string(store::kSchemaVersion) + ")"
-                          : "database " + path + " created";
-  } else {
-    // Last resort: an in-memory database keeps the API working (overrides,
-    // events, charts for this session); nothing survives a restart.
-    const std::string why = db_.lastError();
-    db_.close();
-    inMemory_ = true;
-    r.inMemory = true;
-    r.ok = false;
-    r.message += (r.message.empty() ? "" : "; ") + std::string("cannot use database ") + path + " (" + why +
-                 "): running without persistence";
-    rc = db_.open(":memory:");
-    // A read-only state directory (read-only root file systems exist) still
-    // lets us read the last checkpoint: copy the file into memory.
-    if (rc == SQLITE_OK && existed && !r.recovered && path.find_first_of("?#%") == std::string::npos) {
-      sql::Db ro;
-      if (ro.open("file:" + path + "?immutable=1", SQLITE_OPEN_READONLY | SQLITE_OPEN_URI) == SQLITE_OK) {
-        if (sqlite3_backup* b = sqlite3_backup_init(db_.handle(), "main", ro.handle(), "main")) {
-          const int brc = sqlite3_backup_step(b, -1);
-          sqlite3_backup_finish(b);
-          if (brc == SQLITE_DONE) r.message += "; last saved state loaded read-only";
-        }
-      }
-    }
-    if (rc == SQLITE_OK) rc = configure();
-    if (rc != SQLITE_OK) {
-      // The copy was unusable: an empty in-memory database then.
-      db_.close();
-      rc = db_.open(":memory:");
-      if (rc == SQLITE_OK) rc = configure();
-      if (rc != SQLITE_OK) db_.close();
-    }
-  }
-  seriesIds_.clear();
-  if (db_.isOpen())
-    for (const auto& s : opt_.historySeries) seriesIds_.push_back(seriesId(s));
-  return r;
+StoreStatus Store::backupIfDue(std::int64_t nowUnixMs) {
+  const std::lock_guard<std::recursive_mutex> lock(mu_);
+  const std::int64_t since = nowUnixMs - lastBackupMs_;
+  const bool due =
+      since >= opt_.backupIntervalS * 1000 || (settingsChanged_ && since >= opt_.settingsBackupS * 1000);
+  if (!backupsAllowed_ || inMemory_ || !db_.isOpen() || !due || nowUnixMs < retryBackupAtMs_) return {};
+  StoreStatus s = backup(nowUnixMs);
+  // A failed backup (a full disk) is tried again an hour later, not every second.
+  if (!s) retryBackupAtMs_ = nowUnixMs + 3'600'000;
+  return s;
 }
 
 // ---------------------------------------------------------------- diagnostics

@@ -7,12 +7,17 @@
 // number of non-RT threads may call (the store thread writes, HTTP threads
 // query): one internal mutex serialises the calls on the one connection.
 //
-// Failure policy: nothing throws and nothing aborts. A corrupt or unreadable
-// file is moved aside (`<path>.corrupt-<UTC time>`) and a fresh database is
-// started; a file that cannot be written at all (read-only directory) leaves
-// the store running on an in-memory database. Both are reported by
-// OpenResult::alarm() so the runtime raises an alarm event. Write errors (a
-// full disk) come back as StoreStatus values.
+// Failure policy: nothing throws and nothing aborts, and the user's data
+// (settings, lifetime energy, cycles, the web token) outlives a damaged file
+// (issue 26, item 4). A verified copy `<path>.bak` is written at open, once a
+// day and, as `<path>.bak-v<N>`, before a migration from schema N. A corrupt
+// or unreadable file is moved aside (`<path>.corrupt-<UTC time>`) and the
+// copy restored; without a usable copy a fresh database is started. A file of
+// a newer schema (a downgrade) is never written, migrated or moved: it is
+// read into memory and nothing is saved. A file that cannot be written at
+// all (read-only directory) leaves the store running on an in-memory
+// database. All of these are reported by OpenResult::alarm() so the daemon
+// raises an event. Write errors (a full disk) come back as StoreStatus values.
 #include <cstdint>
 #include <map>
 #include <mutex>
@@ -52,16 +57,26 @@ struct StoreOptions {
   std::vector<std::string> historySeries = defaultHistorySeries();
   // Tests: PRAGMA max_page_count, to simulate a full disk (0 = unlimited).
   std::int64_t maxPageCount = 0;
+  // A verified backup this often (of the wall clock), besides the one at open,
+  // and sooner, but at most this often, after the settings changed
+  // (overrides, the token, paired devices): they are rare and precious.
+  std::int64_t backupIntervalS = 24 * 3600;
+  std::int64_t settingsBackupS = 600;
 };
 
 struct OpenResult {
-  bool ok = false;          // the database file is open and up to date
-  bool recovered = false;   // the old file was corrupt or unreadable: copy kept, started fresh
-  bool inMemory = false;    // the file cannot be used at all: running in memory, nothing persists
-  std::string message;      // what happened, for the log
-  std::string corruptCopy;  // where the bad file was moved
-  int fromVersion = 0;      // schema version found (0 = new file)
-  bool alarm() const { return recovered || inMemory; }
+  bool ok = false;                   // the database file is open and up to date
+  bool recovered = false;            // the old file was damaged or unreadable: kept aside (corruptCopy)
+  bool restored = false;             // the data came back from the verified backup (backupUsed)
+  bool newerSchema = false;          // a newer release's file: left untouched, read into memory
+  bool inMemory = false;             // the file cannot be used at all: running in memory, nothing persists
+  std::string message;               // what happened, for the log
+  std::string corruptCopy;           // where the bad file was moved
+  std::string backupUsed;            // the backup restored (or read, with newerSchema)
+  std::int64_t backupTakenAtMs = 0;  // when that backup was written (UTC ms)
+  std::string backupError;           // the backup at open failed (the store runs; the old copy stays)
+  int fromVersion = 0;               // schema version found (0 = new file)
+  bool alarm() const { return recovered || restored || inMemory || newerSchema; }
 };
 
 struct SavedLedger {
@@ -152,6 +167,16 @@ class Store {
   // The stored token, or a new random 32-byte hex token stored now.
   std::string getOrCreateToken();
 
+  // ---- backups (backup.h) ------------------------------------------------------
+  std::string backupPath() const { return path_ + ".bak"; }
+  // Writes the verified copy now (not in memory, not over a newer release's copy).
+  StoreStatus backup(std::int64_t nowUnixMs);
+  // backup() when backupIntervalS has passed since the last one, or
+  // settingsBackupS after a settings change; a failure is retried an hour
+  // later. ok and nothing done when not due.
+  StoreStatus backupIfDue(std::int64_t nowUnixMs);
+  std::int64_t lastBackupMs() const { return lastBackupMs_; }
+
   // ---- diagnostics -----------------------------------------------------------
   std::string integrityCheck();  // "ok" when healthy
   const std::string& lastError() const { return db_.lastError(); }
@@ -161,7 +186,12 @@ class Store {
     std::vector<float> data;  // series-major: data[s * 60 + slot]
   };
   StoreStatus status(int rc, std::string_view what);
+  StoreStatus changed(StoreStatus s);  // a settings write: marks them for the next backup
+  int configureConnection();
   int configure();
+  int restoreFromBackup(OpenResult& r, std::int64_t backupTakenAtMs);
+  void openNewer(OpenResult& r, int version);
+  void openInMemory(OpenResult& r, bool existed);
   int seriesId(std::string_view name);
   int writeBuckets(std::string_view table, std::map<std::int64_t, Bucket>& pending, std::int64_t bucketSpanS);
   void closeMinute();
@@ -172,6 +202,10 @@ class Store {
   sql::Db db_;
   std::string path_;
   bool inMemory_ = false;
+  bool backupsAllowed_ = false;  // false: in memory, or a copy we must not replace
+  std::int64_t lastBackupMs_ = 0;
+  bool settingsChanged_ = false;      // since the last backup
+  std::int64_t retryBackupAtMs_ = 0;  // after a failed backup
   std::vector<int> seriesIds_;
   std::map<std::int64_t, Bucket> pending1s_;  // key: minute start (s)
   std::map<std::int64_t, Bucket> pending1m_;  // key: hour start (s)

@@ -10,13 +10,18 @@
 
 namespace xr {
 
+StoreStatus Store::changed(StoreStatus s) {
+  if (s) settingsChanged_ = true;  // backupIfDue() copies them soon
+  return s;
+}
+
 // ---------------------------------------------------------------- documents
 
 StoreStatus Store::putBlob(std::string_view key, std::string_view value) {
   const std::lock_guard<std::recursive_mutex> lock(mu_);
   sql::Stmt st(
       db_, "INSERT INTO kv(key, value) VALUES(?1, ?2) ON CONFLICT(key) DO UPDATE SET value = excluded.value");
-  return status(st.bind(1, key).bind(2, value).step(), "putBlob");
+  return changed(status(st.bind(1, key).bind(2, value).step(), "putBlob"));
 }
 
 std::optional<std::string> Store::getBlob(std::string_view key) {
@@ -39,7 +44,7 @@ std::vector<std::pair<std::string, std::string>> Store::blobsWithPrefix(std::str
 StoreStatus Store::eraseBlob(std::string_view key) {
   const std::lock_guard<std::recursive_mutex> lock(mu_);
   sql::Stmt st(db_, "DELETE FROM kv WHERE key = ?1");
-  return status(st.bind(1, key).step(), "eraseBlob");
+  return changed(status(st.bind(1, key).step(), "eraseBlob"));
 }
 
 // ---------------------------------------------------------------- overrides
@@ -51,7 +56,8 @@ StoreStatus Store::setOverride(std::string_view name, std::string_view value, st
                "INSERT INTO overrides(name, value, file_value, changed_at_ms) VALUES(?1, ?2, ?3, ?4) "
                "ON CONFLICT(name) DO UPDATE SET value = excluded.value, file_value = excluded.file_value, "
                "changed_at_ms = excluded.changed_at_ms");
-  return status(st.bind(1, name).bind(2, value).bind(3, fileValue).bind(4, nowUnixMs).step(), "setOverride");
+  return changed(
+      status(st.bind(1, name).bind(2, value).bind(3, fileValue).bind(4, nowUnixMs).step(), "setOverride"));
 }
 
 std::vector<OverrideRow> Store::overrides() {
@@ -74,7 +80,7 @@ std::optional<OverrideRow> Store::findOverride(std::string_view name) {
 StoreStatus Store::resetOverride(std::string_view name) {
   const std::lock_guard<std::recursive_mutex> lock(mu_);
   sql::Stmt st(db_, "DELETE FROM overrides WHERE name = ?1");
-  return status(st.bind(1, name).step(), "resetOverride");
+  return changed(status(st.bind(1, name).step(), "resetOverride"));
 }
 
 // ---------------------------------------------------------------- token

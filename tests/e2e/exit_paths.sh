@@ -218,6 +218,43 @@ case "$case_name" in
     grep -q "token is set in a file every user of this machine can read" "$tmp/log" || fail "no world-readable warning"
     [ "$(stat -c %a "$tmp/s.db")" = 600 ] || fail "state database mode $(stat -c %a "$tmp/s.db"), expected 600"
     ;;
+  store_damaged | store_newer)
+    # issue 26, item 4 through the daemon binary: the user's data survives a
+    # damaged state database (restored from the verified .bak, said once in
+    # the log) and a newer release's database is never written; the field
+    # control runs either way.
+    db="$tmp/s.db"
+    "$bin" --sim --speed max --duration 600 --state-db "$db" --http 127.0.0.1:0 >"$tmp/log" 2>&1 || fail "first run: exit $?"
+    token=$("$bin" --print-token --state-db "$db" 2>/dev/null) || fail "no token stored"
+    energy() { sqlite3 "file:$db?mode=ro" "SELECT value FROM ledger WHERE name = 'ChargedEnergy_AllTime'"; }
+    e1=$(energy)
+    awk -v e="$e1" 'BEGIN { exit !(e > 0) }' || fail "no lifetime energy after the first run ($e1)"
+    "$bin" --sim --speed max --duration 1 --state-db "$db" >"$tmp/log" 2>&1 || fail "second run: exit $?"
+    [ -s "$db.bak" ] || fail "no backup $db.bak"
+    if [ "$case_name" = store_damaged ]; then
+      head -c 40000 /dev/urandom >"$db"
+      rm -f "$db-wal" "$db-shm"
+    else
+      sqlite3 "$db" "PRAGMA user_version = 99" || fail "cannot set user_version"
+      before=$(md5sum <"$db")
+    fi
+    "$bin" --sim --speed max --duration 20 --state-db "$db" --sim-outputs "$tmp/out" >"$tmp/log" 2>&1
+    rc=$?
+    [ "$rc" = 0 ] || fail "exit code $rc with a $case_name database"
+    grep -q "Field enabled" "$tmp/log" || fail "the regulator never enabled the field"
+    expect_field_off "$tmp/out" stop
+    if [ "$case_name" = store_damaged ]; then
+      [ "$(grep -c 'error store: StoreRestored: .*restored from the verified backup' "$tmp/log")" = 1 ] ||
+        fail "not said once in the log"
+      ls "$db".corrupt-* >/dev/null 2>&1 || fail "the damaged file was not kept"
+      [ "$("$bin" --print-token --state-db "$db" 2>/dev/null)" = "$token" ] || fail "the token changed"
+      awk -v a="$(energy)" -v b="$e1" 'BEGIN { exit !(a >= b) }' || fail "lifetime energy went down: $(energy) < $e1"
+    else
+      grep -q "error store: StoreNewerSchema: .*schema v99.*NOTHING IS SAVED" "$tmp/log" || fail "not said loudly"
+      [ "$(md5sum <"$db")" = "$before" ] || fail "the newer release's database was changed"
+      ls "$db".corrupt-* >/dev/null 2>&1 && fail "the newer database was moved aside"
+    fi
+    ;;
   *) fail "unknown case" ;;
 esac
 echo "PASS [$case_name]"

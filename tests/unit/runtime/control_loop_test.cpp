@@ -1,12 +1,12 @@
 #include "runtime/control_loop.h"
 
-#include <stdexcept>
-
-#include "runtime/monotonic_clock.h"
-
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <stdexcept>
+
 #include "fakes.h"
+#include "runtime/monotonic_clock.h"
 
 namespace xr::rt {
 namespace {
@@ -121,6 +121,7 @@ TEST(ControlLoop, DetectsAndSkipsOverruns) {
   // Deadlines 11 and 12 passed entirely during the stall and are skipped;
   // deadline 13 runs 100 µs late.
   EXPECT_EQ(r.stats.summary().overruns, 2u);
+  EXPECT_EQ(r.stats.summary().overrunsOwn, 2u);  // the tick itself stalled
   EXPECT_EQ(r.core.steps, 40 - 2);
 }
 
@@ -222,13 +223,54 @@ TEST(ControlLoop, PacedSimulationJudgesOverrunsOnTheWallClock) {
   const TimeNs virt0 = r.clock.t, wall0 = wall.t;
   cfg.wallDeadlineOf = [&](TimeNs t) { return wall0 + (t - virt0); };  // speed 1
   r.core.onStep = [&](const Inputs&) {
-    wall.t = cfg.wallDeadlineOf(r.clock.t);  // on time...
+    wall.t = cfg.wallDeadlineOf(r.clock.t);                            // on time...
     if (r.core.steps == 10) wall.t += fromUs(2500) * 3 + fromUs(100);  // ...except one 7.6 ms wall stall
   };
   ControlLoop loop(*r.cycle, r.clock, r.stats, cfg);
   loop.run();
   EXPECT_EQ(r.stats.summary().overruns, 2u);  // the virtual clock alone would see none
+  EXPECT_EQ(r.stats.summary().overrunsOwn, 2u);
   EXPECT_EQ(r.core.steps, 38);
+}
+
+// A wall clock that jumps at a chosen read: the thread woke late (another
+// process had the CPU), not because of its own tick.
+class JumpingWall final : public Clock {
+ public:
+  TimeNs now() const noexcept override {
+    if (jumpInReads == 0) t += jump;
+    if (jumpInReads >= 0) --jumpInReads;
+    return t;
+  }
+  void sleepUntil(TimeNs until) noexcept override {
+    if (until > t) t = until;
+  }
+  mutable TimeNs t = 5'000'000'000;
+  mutable int jumpInReads = -1;
+  TimeNs jump = 0;
+};
+
+TEST(ControlLoop, ALateWakeUpIsAnOverrunButNotTheDaemons) {
+  LoopRig r;
+  JumpingWall wall;
+  LoopConfig cfg;
+  cfg.duration = fromMs(100);  // 40 deadlines
+  cfg.wall = &wall;
+  const TimeNs virt0 = r.clock.t, wall0 = wall.t;
+  cfg.wallDeadlineOf = [&](TimeNs t) { return wall0 + (t - virt0); };  // speed 1
+  r.core.onStep = [&](const Inputs&) {
+    wall.t = std::max(wall.t, cfg.wallDeadlineOf(r.clock.t));  // each tick takes no wall time
+    if (r.core.steps == 10) {
+      // After this tick's overrun check, the next wake-up comes 10.1 ms after
+      // this deadline: 7.6 ms late, deadlines 12 and 13 are missed.
+      wall.jump = fromUs(2500) * 4 + fromUs(100);
+      wall.jumpInReads = 1;
+    }
+  };
+  ControlLoop loop(*r.cycle, r.clock, r.stats, cfg);
+  loop.run();
+  EXPECT_EQ(r.stats.summary().overruns, 2u);
+  EXPECT_EQ(r.stats.summary().overrunsOwn, 0u);
 }
 
 }  // namespace
