@@ -52,7 +52,7 @@ std::string seasonOfUse(const std::string& db) {
   std::string token;
   {
     Daemon d(db);
-    EXPECT_TRUE(d.api->patchParams({{findParam("MaxDuty"), -1, 80.0}}).errors.empty());
+    EXPECT_TRUE(d.api->patchParams({{findParam("MaxDuty"), -1, 80.0}}, "test").errors.empty());
     d.ledger.ChargedEnergy_AllTime_Wh = 98765.0;
     token = d.store.token();
   }
@@ -78,7 +78,7 @@ TEST(StoreRestore, ADamagedDatabaseKeepsSettingEnergyAndTokenAndSaysSoOnce) {
     EXPECT_THAT(v["store_backup"], HasSubstr("x.db.bak of "));
     EXPECT_EQ(d.eventsWithCode("StoreRestored"), 1);
     // Changes are saved again at once.
-    EXPECT_TRUE(d.api->patchParams({{findParam("MaxDuty"), -1, 81.0}}).errors.empty());
+    EXPECT_TRUE(d.api->patchParams({{findParam("MaxDuty"), -1, 81.0}}, "test").errors.empty());
   }
   Daemon next(db);
   EXPECT_EQ(StoreService::alarmCode(next.store.openResult()), nullptr);
@@ -106,7 +106,7 @@ TEST(StoreRestore, ANewerDatabaseIsReadNeverWrittenAndChangesAreRefused) {
     EXPECT_THAT(d.api->versions()["store"], HasSubstr("NOT SAVING"));
     EXPECT_THAT(d.api->versions()["store"], HasSubstr("schema v99"));
     EXPECT_EQ(d.eventsWithCode("StoreNewerSchema"), 1);
-    const auto res = d.api->patchParams({{findParam("MaxDuty"), -1, 70.0}});
+    const auto res = d.api->patchParams({{findParam("MaxDuty"), -1, 70.0}}, "test");
     ASSERT_EQ(res.errors.size(), 1u);
     EXPECT_EQ(res.errors[0].name, "store");
   }
