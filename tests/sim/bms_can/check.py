@@ -88,6 +88,12 @@ def check_ccl_step(rows, log) -> list[str]:
     mid = window(rows, 100, 119)
     if not mid or max(num(r, "bcur_a") for r in mid) < 20:
         f.append("with CCL 30 A the battery took under 20 A: the cap is not followed, only undershot")
+    # No battery DS18B20 in this scenario: the BMS's 0x356 temperature (0.1
+    # degC) is the battery temperature input.
+    # The bank warms a little while it charges.
+    temps = [num(r, "battery_temp_c") for r in window(rows, 2, 300)]
+    if not temps or not all(17.95 <= x <= 18.5 for x in temps):
+        f.append(f"battery_temp_c {min(temps, default=None)}..{max(temps, default=None)} is not the BMS's ~18 degC")
     shown = {round(num(r, "bms_ccl_a")) for r in window(rows, 62, 118)}
     if shown != {30}:
         f.append(f"bms_ccl_a shows {sorted(shown)} under CCL 30 A")
