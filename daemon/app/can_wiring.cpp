@@ -41,7 +41,9 @@ CanThread::CanThread(const Settings& s, rt::Handoffs& h, Clock& clock, std::uniq
               spdlog::error("{}: the BMS limits go stale; the regulator runs on the fallback cap meanwhile",
                             what);
             }),
-        can::parseBmsProtocol(s.can.bms_protocol).value_or(can::BmsProtocol::Victron));
+        can::parseBmsProtocol(s.can.bms_protocol).value_or(can::BmsProtocol::Victron),
+        s.hardware.battery_temp_sensor
+            .empty());  // the BMS's 0x356 temperature, unless a DS18B20 is on the bank
   }
   if (!s.can.n2k_interface.empty()) {
     const std::string iface = s.can.n2k_interface;

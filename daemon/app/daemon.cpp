@@ -22,6 +22,7 @@
 #include "app/integrations_wiring.h"
 #include "app/sim_wiring.h"
 #include "app/status_source.h"
+#include "app/stop_signal.h"
 #include "app/store_auth.h"
 #include "app/store_service.h"
 #include "app/thread_names.h"
@@ -46,38 +47,6 @@ namespace xr::app {
 namespace {
 
 double wallSecondsNow() { return static_cast<double>(unixMsNow()) / 1000.0; }
-
-// A signal taken by the supervisor (runtime/signals.h). Every signal that
-// would end the process stops it through the controlled ramp: the field is
-// LOW before the process ends, and the journal says why.
-void handleSignal(int sig, rt::ControlLoop& loop, bool& stopRequested, int& exitCode) {
-  using rt::signals::Handling;
-  const Handling h = rt::signals::handlingOf(sig);
-  const char* name = rt::signals::name(sig);
-  if (h == Handling::Ignore) {
-    if (sig == SIGHUP)
-      spdlog::info("SIGHUP ignored: parameters change through the API; restart to reload the file");
-    else
-      spdlog::warn("{} ignored: the regulator cannot be paused", name);
-    return;
-  }
-  if (stopRequested) {
-    spdlog::info("{}: already stopping", name);
-    return;
-  }
-  if (h == Handling::Stop) {
-    spdlog::info("{}: stopping through the controlled ramp", name);
-  } else {
-    exitCode = 128 + sig;
-    spdlog::warn(
-        "{}: not a signal xregulatord uses; stopping through the controlled ramp (field enable LOW), "
-        "exit {} so that systemd restarts the regulator",
-        name, exitCode);
-  }
-  sd_notify(0, "STOPPING=1\nSTATUS=stopping: ramping the field down");
-  loop.requestStop();
-  stopRequested = true;
-}
 
 }  // namespace
 

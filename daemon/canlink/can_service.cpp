@@ -1,11 +1,14 @@
 // CanService (see can_service.h).
 #include "canlink/can_service.h"
 
+#include <cmath>
+
 namespace xr::canlink {
 
-void CanService::setBmsBus(std::unique_ptr<BusSlot> slot, can::BmsProtocol protocol) {
+void CanService::setBmsBus(std::unique_ptr<BusSlot> slot, can::BmsProtocol protocol, bool batteryTemp) {
   bms_ = std::move(slot);
   protocol_ = protocol;
+  batteryTemp_ = batteryTemp;
   bmsLink_.reset();
   bmsRecorded_.reset();
 }
@@ -20,6 +23,7 @@ void CanService::setN2kBus(std::unique_ptr<BusSlot> slot, std::uint8_t preferred
 }
 
 void CanService::poll(TimeNs now) {
+  pollNow_ = now;
   if (bms_) {
     CanBus* bus = bms_->get(now);
     if (bms_->takeOpened() && bus) {
@@ -30,7 +34,18 @@ void CanService::poll(TimeNs now) {
         bus = bmsRecorded_.get();
       }
       bmsLink_ = std::make_unique<BmsCanLink>(
-          *bus, protocol_, bms_->interface(), [this](const BmsLimits& l) { h_.bms.store(l); }, report_);
+          *bus, protocol_, bms_->interface(),
+          [this](const BmsLimits& l) {
+            h_.bms.store(l);
+            if (batteryTemp_ && std::isfinite(l.tempC)) {
+              rt::BatteryTempHandoff t;
+              t.tempC = l.tempC;
+              t.stamp = pollNow_;  // posted in the poll the frames arrived in
+              t.source = BatteryTempSource::bms;
+              h_.batteryTemp.store(t);
+            }
+          },
+          report_);
     }
     if (bus && bmsLink_) bmsLink_->poll(now);
   }

@@ -34,7 +34,10 @@ class CanService {
 
   CanService(rt::Handoffs& handoffs, Report report) : h_(handoffs), report_(std::move(report)) {}
 
-  void setBmsBus(std::unique_ptr<BusSlot> slot, can::BmsProtocol protocol);
+  // `batteryTemp`: the BMS's temperature (0x356) is the battery temperature
+  // input (Handoffs::batteryTemp, source bms). Only when no battery DS18B20
+  // is configured: that hand-off has one writer.
+  void setBmsBus(std::unique_ptr<BusSlot> slot, can::BmsProtocol protocol, bool batteryTemp = false);
   // `version` goes into product information (126996).
   void setN2kBus(std::unique_ptr<BusSlot> slot, std::uint8_t preferredAddress, std::string version);
   // --can-log: every frame sent and received on every bus, from now on.
@@ -53,6 +56,8 @@ class CanService {
   can::CandumpSink* sink_ = nullptr;
   std::unique_ptr<BusSlot> bms_;
   can::BmsProtocol protocol_ = can::BmsProtocol::Victron;
+  bool batteryTemp_ = false;
+  TimeNs pollNow_ = 0;
   std::unique_ptr<can::RecordingCanBus> bmsRecorded_;
   std::unique_ptr<BmsCanLink> bmsLink_;
   std::unique_ptr<BusSlot> n2k_;

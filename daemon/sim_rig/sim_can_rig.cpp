@@ -9,7 +9,7 @@ constexpr double kEcuPeriodS = 0.1;  // 127488 is a rapid-update PGN
 }  // namespace
 
 SimCanRig::SimCanRig(const Scenario& scenario, const CanSettings& settings, rt::Handoffs& handoffs,
-                     TimeNs start, std::ostream* log, Report report)
+                     TimeNs start, std::ostream* log, Report report, bool bmsBatteryTemp)
     : bmsNode_(bmsSegment_.attach()),
       ourNode_(bmsSegment_.attach()),
       ourN2kNode_(n2kSegment_.attach()),
@@ -31,7 +31,8 @@ SimCanRig::SimCanRig(const Scenario& scenario, const CanSettings& settings, rt::
   }
   if (simBms_)
     service_.setBmsBus(std::make_unique<canlink::BusSlot>(kSimBmsInterface, ourNode_),
-                       can::parseBmsProtocol(scenario.bms.protocol).value_or(can::BmsProtocol::Victron));
+                       can::parseBmsProtocol(scenario.bms.protocol).value_or(can::BmsProtocol::Victron),
+                       bmsBatteryTemp);
   if (!settings.n2k_interface.empty())
     service_.setN2kBus(std::make_unique<canlink::BusSlot>(kSimN2kInterface, ourN2kNode_),
                        static_cast<std::uint8_t>(settings.n2k_preferred_address), "simulation");

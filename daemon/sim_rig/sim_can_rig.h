@@ -34,8 +34,10 @@ class SimCanRig {
  public:
   using Report = std::function<void(const std::string&)>;
   // `log` (may be null): --can-log, lines stamped in seconds since `start`.
+  // `bmsBatteryTemp`: the BMS's 0x356 temperature is the battery
+  // temperature input (the rig has no battery DS18B20 writing it).
   SimCanRig(const Scenario& scenario, const CanSettings& settings, rt::Handoffs& handoffs, TimeNs start,
-            std::ostream* log, Report report);
+            std::ostream* log, Report report, bool bmsBatteryTemp);
 
   // A scenario event's bms_* keys.
   void apply(const ScenarioEvent& e);

@@ -76,13 +76,15 @@ SimRig::~SimRig() {
 
 void SimRig::attach(rt::Handoffs& h) {
   handoffs_ = &h;
-  can_ = std::make_unique<SimCanRig>(scenario_, canSettings_, h, start_, canLog_,
-                                     [this](const std::string& what) {
-                                       if (canReport_)
-                                         canReport_(what);
-                                       else
-                                         std::fprintf(stderr, "%s\n", what.c_str());
-                                     });
+  can_ = std::make_unique<SimCanRig>(
+      scenario_, canSettings_, h, start_, canLog_,
+      [this](const std::string& what) {
+        if (canReport_)
+          canReport_(what);
+        else
+          std::fprintf(stderr, "%s\n", what.c_str());
+      },
+      !batteryDs18b20_);
 }
 
 rt::CycleDevices SimRig::devices() noexcept {

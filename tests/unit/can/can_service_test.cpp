@@ -125,6 +125,20 @@ TEST(CanService, PostsTheLimitsStampedWithTheCallersClock) {
   EXPECT_EQ(l.source, BmsSource::Can);
 }
 
+TEST(CanService, TheBmsTemperatureIsTheBatteryTemperatureOnlyWhenAsked) {
+  ServiceRig r;  // set up without: a battery DS18B20 writes that hand-off
+  r.bms.send(can::encode356(13.3, 20.0, 17.5));
+  r.svc.poll(fromSec(1.0));
+  EXPECT_EQ(r.h.batteryTemp.load().stamp, 0);
+  r.svc.setBmsBus(std::make_unique<BusSlot>("simcan0", r.us), can::BmsProtocol::Victron, true);
+  r.bms.send(can::encode356(13.3, 20.0, 17.5));
+  r.svc.poll(fromSec(2.0));
+  const rt::BatteryTempHandoff t = r.h.batteryTemp.load();
+  EXPECT_NEAR(t.tempC, 17.5, 1e-9);
+  EXPECT_EQ(t.stamp, fromSec(2.0));
+  EXPECT_EQ(t.source, BatteryTempSource::bms);
+}
+
 TEST(CanService, BadFramesNeverReachTheHandoff) {
   ServiceRig r;
   r.bms.send(can::encode351(14.1, 55.0, 100.0, 12.0));
