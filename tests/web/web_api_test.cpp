@@ -173,7 +173,9 @@ TEST_F(WebApiTest, Params_NameTheirSourceAndTheProfileItsChoices) {
   start();
   ASSERT_EQ(patch(R"({"BulkVoltage": 14.2})").status, 200);
   bool sawProfile = false;
-  for (const auto& p : obj(get("/api/params")).at("params").as_array()) {
+  // Held in a local: a range-for over obj(...).at(...) iterates a destroyed temporary.
+  const json::object body = obj(get("/api/params"));
+  for (const auto& p : body.at("params").as_array()) {
     const auto& e = p.as_object();
     const std::string name(e.at("name").as_string());
     const std::string src(e.at("source").as_string());
