@@ -12,6 +12,7 @@
 
 #include "app/store_service.h"
 #include "store_test_util.h"
+#include "web_api_rig.h"
 
 namespace xr::app {
 namespace {
@@ -19,24 +20,7 @@ namespace {
 using ::testing::HasSubstr;
 using xr::test::TempDir;
 
-struct Rig {
-  Params params;
-  rt::Handoffs handoffs{params};
-  std::unique_ptr<StoreService> store;
-  RecentEvents recent;
-  std::unique_ptr<WebApi> api;
-  explicit Rig(const std::string& db = {}) {
-    if (!db.empty()) store = std::make_unique<StoreService>(db, 300);
-    WebApiContext ctx;
-    ctx.handoffs = &handoffs;
-    ctx.store = store.get();
-    ctx.events = &recent;
-    api = std::make_unique<WebApi>(ctx);
-  }
-  ~Rig() {
-    if (store) store->stop(BatteryLedger{}, false);
-  }
-};
+using Rig = test::WebApiRig;
 
 web::ParamChange change(const char* name, double v) { return {findParam(name), -1, v}; }
 
