@@ -92,13 +92,24 @@ class SignalK:
         return r["token"]
 
 
+ALTERNATOR_KEYS = ["voltage", "current", "temperature", "revolutions", "fieldDrive", "chargingMode",
+                   "setpointVoltage", "setpointCurrent"]
+
+
+def has_values(d, keys):
+    return d and all(d.get(k, {}).get("value") is not None for k in keys)
+
+
 def check_values(c, sk, h):
+    # Wait for every path to hold a value: the daemon sends none it does not
+    # have (a sensor not read yet in the first second is left out, never
+    # sent as NaN), so the first deltas can carry only some of them.
     alt = wait_until("alternator values on the server",
-                     lambda: (a := sk.alternator()) and "chargingMode" in a and "fieldDrive" in a and a, 60)
-    bat = wait_until("battery values on the server", lambda: (b := sk.battery()) and "voltage" in b and b, 30)
+                     lambda: (a := sk.alternator()) and has_values(a, ALTERNATOR_KEYS) and a, 60)
+    bat = wait_until("battery values on the server",
+                     lambda: (b := sk.battery()) and has_values(b, ["voltage"]) and b, 30)
     st = h.status()
-    for key in ["voltage", "current", "temperature", "revolutions", "fieldDrive", "chargingMode",
-                "setpointVoltage", "setpointCurrent"]:
+    for key in ALTERNATOR_KEYS:
         c.check(key in alt, f"electrical.alternators.main.{key} on the server")
     units = {"voltage": "V", "current": "A", "temperature": "K", "revolutions": "Hz", "fieldDrive": "ratio",
              "setpointVoltage": "V", "setpointCurrent": "A"}
