@@ -87,7 +87,7 @@ export async function daemonChecks(t) {
   assert.equal(await param("TemperatureLimitF"), 185);
   await page.click("#setup-start");
   await page.waitForSelector("#page-live:not([hidden])");
-  await page.waitForFunction(() => document.getElementById("headline").textContent.startsWith("Charging"));
+  await page.waitForFunction(() => /^(Charging|Alternator on)/.test(document.getElementById("headline").textContent));
   assert.equal((await status()).control.sys_mode, "SYS_MODE_AUTO");
   await page.waitForSelector("#first-run", { state: "hidden" });
   console.log("ok - first-run set-up on a phone, to charging: " + (await page.textContent("#headline")));
@@ -295,7 +295,7 @@ export async function daemonChecks(t) {
   await page.goto(server.base + "/#live");
   await page.waitForSelector("#conn.on");
   await page.waitForFunction((t0) => window.xrDebug.liveFirst() < t0 - 5, loadedAt);  // backfilled from the store
-  await page.waitForFunction(() => document.getElementById("headline").textContent.startsWith("Charging"));
+  await page.waitForFunction(() => /^(Charging|Alternator on)/.test(document.getElementById("headline").textContent));
   // The docs' "while charging" shows current going into the battery: the
   // field ramps up for a few seconds, and the scenario's fault comes at 25 s.
   await page.waitForFunction(() => /into the battery/.test(document.getElementById("headline").textContent), null, { timeout: 15000 })

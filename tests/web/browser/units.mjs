@@ -24,6 +24,7 @@ const S = await mod("web/www/js/settings.js");
 const D = await mod("web/tools/reasons-doc.mjs");
 const P = await mod("web/www/js/pages.js");
 const A = await mod("web/www/js/pairing.js");
+const L = await mod("web/www/js/live.js");
 let n = 0;
 const test = async (name, fn) => { await fn(); n++; console.log("ok - " + name); };
 
@@ -205,6 +206,15 @@ await test("the Settings page names every value that differs from the file (item
   assert.match(note, /^2 values set from the dashboard differ from xregulator\.toml: FloatVoltage 13\.4 \(file: 13\.5\), UseFloat off \(file: on\)\./);
   assert.doesNotMatch(note, /BulkVoltage/);
   assert.equal(S.fileNotice([ps[2]]), "");
+});
+
+await test("the headline says Charging only while current goes into the battery", () => {
+  const base = { mode: "MODE_NORMAL_AUTO_PID", stage: "bulk", field_enable: true, alt_a: 60, battery_v: 13.2 };
+  assert.match(L.headline({ ...base, bcur_a: 42 }), /^Charging · .* · 42 A into the battery · 792 W$/);
+  // Field ramping up, loads larger than the output so far: not "Charging".
+  assert.match(L.headline({ ...base, bcur_a: -6 }), /^Alternator on · .* · 6 A still from the battery · 792 W$/);
+  assert.match(L.headline({ ...base, bcur_a: -0.4 }), /^Charging/);  // within the noise of a resting battery
+  assert.match(L.headline({ ...base, field_enable: false, alt_a: 0, bcur_a: -6 }), /^Not charging/);
 });
 
 console.log(`${n} dashboard unit tests passed`);

@@ -22,7 +22,8 @@ function setValue(id, text, unit, note) {
 }
 const on = (v) => v === true || v === 1;
 
-// "Charging · Absorption · 42 A into the battery · 580 W" or
+// "Charging · Absorption · 42 A into the battery · 580 W",
+// "Alternator on · Bulk · 6 A still from the battery · 900 W" or
 // "Not charging · Engine stopped or idling".
 export function headline(s) {
   const regulating = ["MODE_NORMAL_AUTO_PID", "MODE_NORMAL_MANUAL", "MODE_LIMP_HOME"].includes(s.mode);
@@ -34,9 +35,13 @@ export function headline(s) {
     // A shutdown ramp: the field still carries current but is on its way down.
     parts.push("Stopping", why() || plainMode(s.mode));
   } else if (charging) {
-    parts.push("Charging", plainStage(s.stage));
+    // While the field ramps up, or when the loads take more than the
+    // alternator gives, the battery is still discharging: "Charging" would
+    // be untrue, so say what is on and let the current tell the rest.
+    const stillDischarging = isNum(s.bcur_a) && s.bcur_a < -0.5;
+    parts.push(stillDischarging ? "Alternator on" : "Charging", plainStage(s.stage));
     if (isNum(s.bcur_a)) parts.push(s.bcur_a >= 0 ? `${num(s.bcur_a, 0)} A into the battery`
-                                                   : `${num(-s.bcur_a, 0)} A from the battery`);
+                                                   : `${num(-s.bcur_a, 0)} A still from the battery`);
     if (isNum(s.battery_v)) parts.push(`${num(s.alt_a * s.battery_v, 0)} W`);
   } else {
     parts.push("Not charging");
