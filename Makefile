@@ -120,6 +120,10 @@ CROSS_LIBS := libboost1.81-dev libboost-json1.81-dev libgpiod-dev libsqlite3-dev
 # pkg-config:<arch> provides <triplet>-pkg-config, which debhelper's cross
 # cmake build asks for.
 CROSS_LIBS := $(CROSS_LIBS) pkg-config
+# ctest package.cross_deps_cover_build_depends reads the list from here.
+.PHONY: print-cross-libs
+print-cross-libs:
+	@echo $(CROSS_LIBS)
 CROSS_PACKAGES := crossbuild-essential-arm64 crossbuild-essential-armhf qemu-user-static \
   $(addsuffix :arm64,$(CROSS_LIBS)) $(addsuffix :armhf,$(CROSS_LIBS))
 deps-cross: deps
