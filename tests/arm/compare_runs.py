@@ -7,7 +7,12 @@ Floating-point results may differ in the last bits between architectures
 the comparison is on what a boat owner sees: the same sequence of charging
 stages, each entered at about the same time, and the same energy.
 
+A run that never leaves its first stage would compare one stage and prove
+little about the charge algorithm on the other architecture: --min-stages N
+fails unless the reference run went through at least N stage entries.
+
 Usage: compare_runs.py REFERENCE.csv OTHER.csv [--energy-tol 0.001] [--stage-time-tol-s 60]
+                       [--min-stages N]
 Exit 0 when they agree, 1 otherwise; prints one line per figure.
 """
 import argparse
@@ -34,6 +39,7 @@ def main():
     ap.add_argument("other")
     ap.add_argument("--energy-tol", type=float, default=0.001)
     ap.add_argument("--stage-time-tol-s", type=float, default=60.0)
+    ap.add_argument("--min-stages", type=int, default=1)
     a = ap.parse_args()
     ref_st, ref_wh, ref_t = read(a.reference)
     oth_st, oth_wh, oth_t = read(a.other)
@@ -42,6 +48,10 @@ def main():
     seq_oth = [s for _, s in oth_st]
     print(f"stages reference: {' -> '.join(f'{s}@{t:.0f}s' for t, s in ref_st)}")
     print(f"stages other:     {' -> '.join(f'{s}@{t:.0f}s' for t, s in oth_st)}")
+    if len(seq_ref) < a.min_stages:
+        print(f"FAIL: the reference run has {len(seq_ref)} stage entries, fewer than {a.min_stages}:"
+              " the scenario does not exercise the stages")
+        ok = False
     if seq_ref != seq_oth:
         print("FAIL: different stage sequences")
         ok = False

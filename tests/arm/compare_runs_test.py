@@ -20,12 +20,12 @@ def csv_text(stages, wh_end):
     return "".join(rows)
 
 
-def run(ref, other):
+def run(ref, other, *extra):
     with tempfile.TemporaryDirectory() as d:
         a, b = os.path.join(d, "a.csv"), os.path.join(d, "b.csv")
         open(a, "w").write(ref)
         open(b, "w").write(other)
-        return subprocess.run([sys.executable, os.path.join(HERE, "compare_runs.py"), a, b],
+        return subprocess.run([sys.executable, os.path.join(HERE, "compare_runs.py"), a, b, *extra],
                               capture_output=True, text=True).returncode
 
 
@@ -42,7 +42,19 @@ cases = [
      csv_text([(0, "BULK"), (100, "BULK"), (200, "BULK"), (270, "ABSORPTION"), (300, "FLOAT")], 1000.0), 1),
     ("a shorter run fails", csv_text(base[:3], 1000.0 * 3 / 4), 1),
 ]
+# --min-stages: base enters BULK, ABSORPTION, FLOAT (3 entries).
+bulk_only = csv_text([(0, "BULK"), (100, "BULK"), (200, "BULK"), (300, "BULK")], 1000.0)
+min_stage_cases = [
+    ("three stage entries meet --min-stages 3", ref, ref, ["--min-stages", "3"], 0),
+    ("three stage entries fail --min-stages 4", ref, ref, ["--min-stages", "4"], 1),
+    ("identical bulk-only runs fail --min-stages 3", bulk_only, bulk_only, ["--min-stages", "3"], 1),
+    ("identical bulk-only runs agree without it", bulk_only, bulk_only, [], 0),
+]
 failed = 0
+for name, ref_text, other, extra, want in min_stage_cases:
+    got = run(ref_text, other, *extra)
+    print(f"{'ok' if got == want else 'FAIL'}: {name} (exit {got}, want {want})")
+    failed += got != want
 for name, other, want in cases:
     got = run(ref, other)
     print(f"{'ok' if got == want else 'FAIL'}: {name} (exit {got}, want {want})")

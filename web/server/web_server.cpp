@@ -71,7 +71,7 @@ void WebServer::Impl::onTick() {
     for (const auto& w : wsSessions)
       if (auto s = w.lock()) live.push_back(std::move(s));
   }
-  for (auto& s : live) asio::post(s->executor(), [s, msg] { s->deliver(msg); });
+  for (auto& s : live) asio::post(s->executor(), [s, msg, seq] { s->deliver(msg, seq); });
 }
 
 WebServer::WebServer(DaemonApi& api, WebServerOptions opts)

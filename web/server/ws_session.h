@@ -42,9 +42,15 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
     ws_.async_accept(req, beast::bind_front_handler(&WsSession::onAccept, shared_from_this()));
   }
 
-  // Called on this session's strand with the shared frame of the newest tick.
-  void deliver(std::shared_ptr<const std::string> msg) {
-    if (closed_) return;
+  // Called on this session's strand with the shared frame of the newest tick
+  // and its sequence number. A frame not newer than the last one taken is
+  // dropped: the greeting frame of onAccept and the broadcaster's frame of
+  // the same tick can both reach a client that registered while that tick
+  // was being broadcast (seen on a slow CPU: qemu-user), and an older frame
+  // posted before the greeting must not follow it.
+  void deliver(std::shared_ptr<const std::string> msg, std::uint64_t seq) {
+    if (closed_ || seq <= lastSeq_) return;
+    lastSeq_ = seq;
     if (writing_) {
       if (pending_) impl_.wsDropped.fetch_add(1);
       pending_ = std::move(msg);  // keep only the newest
@@ -61,7 +67,8 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
     counted_ = true;
     impl_.wsClients.fetch_add(1);
     impl_.registerWs(shared_from_this());
-    if (auto first = impl_.handler.statusText()) deliver(std::move(first));
+    std::uint64_t seq = 0;
+    if (auto first = impl_.handler.statusText(&seq)) deliver(std::move(first), seq);
     doRead();
   }
 
@@ -116,6 +123,7 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
   ConnGuard wsSlot_;
   asio::steady_timer writeTimer_;
   std::shared_ptr<const std::string> current_, pending_;
+  std::uint64_t lastSeq_ = 0;  // of the newest frame taken; 0 = none yet
   bool writing_ = false;
   bool closed_ = false;
   bool counted_ = false;

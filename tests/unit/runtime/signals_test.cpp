@@ -51,6 +51,16 @@ Default defaultAction(int sig) {
 
 bool usable(int sig) { return sig <= SIGSYS || sig >= SIGRTMIN; }  // 32, 33 belong to the C library
 
+// Under qemu-user (a cross build's tests, `make test-arm64`) the guest's last
+// two real-time signals have no host signal to ride on (qemu 7.2 keeps those
+// for itself): sigprocmask accepts them and leaves them unblocked. A board
+// runs the binary on its own kernel, where every signal is real.
+#ifdef XR_TEST_EMULATOR
+constexpr int kUnmappedTopSignals = 2;
+#else
+constexpr int kUnmappedTopSignals = 0;
+#endif
+
 TEST(Signals, EverySignalThatWouldEndOrPauseTheProcessIsHandled) {
   int checked = 0;
   for (int sig = 1; sig <= SIGRTMAX; ++sig) {
@@ -124,6 +134,7 @@ TEST(Signals, BlockingAndFatalHandlersAreReallyInstalled) {
         case Handling::Stop:
         case Handling::UnexpectedStop:
         case Handling::Ignore:
+          if (sig > SIGRTMAX - kUnmappedTopSignals) break;
           bad += sigismember(&mask, sig) != 1;
           break;
         case Handling::Fatal:
@@ -171,8 +182,13 @@ TEST(Signals, FatalHandlerDrivesSafeWritesOneLineAndDiesWithTheSignal) {
     EXPECT_STREQ(buf, "LOW");  // the safe-state write happened
     char line[256] = {};
     ASSERT_GT(read(err[0], line, sizeof line - 1), 0);
-    EXPECT_EQ(std::string(line), std::string("xregulatord: fatal signal ") + signals::name(sig) +
-                                     ": field enable LOW, duty 0\n");
+    std::string text(line);
+#ifdef XR_TEST_EMULATOR
+    // qemu-user reports the guest's death by a signal on the same stderr.
+    if (const auto q = text.find("qemu: uncaught target signal"); q != std::string::npos) text.erase(q);
+#endif
+    EXPECT_EQ(text, std::string("xregulatord: fatal signal ") + signals::name(sig) +
+                        ": field enable LOW, duty 0\n");
     ASSERT_TRUE(WIFSIGNALED(status));
     EXPECT_EQ(WTERMSIG(status), sig);
     close(fileFd);

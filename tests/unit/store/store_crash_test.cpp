@@ -13,6 +13,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "store/store.h"
 #include "store_test_util.h"
@@ -22,6 +23,21 @@ namespace {
 
 using test::kT0;
 using test::TempDir;
+
+// The helper's command line. A cross build's test runs under qemu-user
+// (`make test-arm64`), which cannot exec an arm binary by itself (no
+// binfmt_misc): the helper is then started through the same emulator, a host
+// program the kernel runs, and SIGKILL reaches it as before.
+std::vector<std::string> helperCommand(const std::string& db) {
+  std::vector<std::string> argv;
+#ifdef XR_TEST_EMULATOR
+  std::istringstream emulator(XR_TEST_EMULATOR);
+  for (std::string word; emulator >> word;) argv.push_back(word);
+#endif
+  argv.push_back(XR_STORE_CRASH_HELPER);
+  argv.push_back(db);
+  return argv;
+}
 
 struct ChildRun {
   double restored = -1.0;       // "R" line
@@ -36,6 +52,11 @@ struct ChildRun {
 ChildRun runAndKill(const std::string& db, int commitsFirst, std::chrono::microseconds delay) {
   int fds[2];
   ChildRun out;
+  // Built before fork: the child only execs.
+  std::vector<std::string> words = helperCommand(db);
+  std::vector<char*> argv;
+  for (auto& w : words) argv.push_back(w.data());
+  argv.push_back(nullptr);
   if (pipe(fds) != 0) {
     out.errors = "pipe failed";
     return out;
@@ -45,7 +66,7 @@ ChildRun runAndKill(const std::string& db, int commitsFirst, std::chrono::micros
     dup2(fds[1], STDOUT_FILENO);
     close(fds[0]);
     close(fds[1]);
-    execl(XR_STORE_CRASH_HELPER, XR_STORE_CRASH_HELPER, db.c_str(), static_cast<char*>(nullptr));
+    execv(argv[0], argv.data());
     _exit(127);
   }
   close(fds[1]);
