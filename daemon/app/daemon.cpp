@@ -253,6 +253,7 @@ int Daemon::run() {
     loopCfg.duration = fromSec(scenario->duration_s);
   loopCfg.wallDeadlineOf = wallDeadlineOf;
   loopCfg.wall = wall;
+  loopCfg.cpuTime = [] { return rt::threadCpuTime(); };
   rt::ControlLoop loop(cycle, *loopClock, stats, loopCfg);
 
   std::atomic<bool> controlFailed{false};

@@ -23,6 +23,9 @@ web::StatusSnapshot WebApi::toStatus(const rt::RuntimeSnapshot& s, bool sim, dou
   o.telemetry = s.telemetry;
   o.loop.ticks = s.loop.ticks;
   o.loop.overruns = s.loop.overruns;
+  o.loop.overruns_own = s.loop.overrunsOwn;
+  o.loop.tick_cpu_p99_us = s.loop.tickCpuP99Us;
+  o.loop.tick_cpu_max_us = s.loop.tickCpuMaxUs;
   o.loop.target_period_us = periodUs;
   // Absolute-deadline loop: the measured period is the target plus the
   // wake-up error, so the error quantiles are what the web shows.
