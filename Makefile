@@ -62,8 +62,11 @@ scenarios: build
 
 # The soak test (issue 26): the daemon in --sim at speed 20 through a simulated
 # day (tests/soak/day.toml) against 20 WebSocket clients, 5 API requests a
-# second and dashboard writes. Reports RSS growth after warm-up, overruns (all,
-# and the daemon's own), the store's size and errors; fails on >= 1 MB growth,
+# second, dashboard writes and the integrations (mosquitto with the Home
+# Assistant publisher, signalk-server from `make deps`, the simulated BMS and
+# NMEA 2000 buses). Reports RSS growth after warm-up (the first engine start +
+# 30 simulated minutes), overruns (all, and the daemon's own: a tick that used
+# a period of CPU time), the store's size and errors; fails on >= 1 MB growth,
 # an own overrun or an error. SOAK_S wall seconds: 4320 = 24 simulated hours.
 SOAK_S ?= 4320
 soak: build

@@ -253,6 +253,7 @@ int Daemon::run() {
     loopCfg.duration = fromSec(scenario->duration_s);
   loopCfg.wallDeadlineOf = wallDeadlineOf;
   loopCfg.wall = wall;
+  loopCfg.cpuTime = [] { return rt::threadCpuTime(); };
   rt::ControlLoop loop(cycle, *loopClock, stats, loopCfg);
 
   std::atomic<bool> controlFailed{false};
@@ -318,6 +319,7 @@ int Daemon::run() {
                    std::string(toString(s.telemetry.stage)).c_str(), s.telemetry.soc_pct,
                    s.telemetry.duty_pct, webDown ? " (web server DOWN, see the journal)" : "");
         if (store) store->housekeeping(s, handoffs->ledger.load(), s.tick > 100);
+        if (api) api->flushPatchLog(now);
         if (s.health.adsEdgeFallback && !edgeFallbackLogged) {
           edgeFallbackLogged = true;
           spdlog::error(

@@ -23,6 +23,9 @@ web::StatusSnapshot WebApi::toStatus(const rt::RuntimeSnapshot& s, bool sim, dou
   o.telemetry = s.telemetry;
   o.loop.ticks = s.loop.ticks;
   o.loop.overruns = s.loop.overruns;
+  o.loop.overruns_own = s.loop.overrunsOwn;
+  o.loop.tick_cpu_p99_us = s.loop.tickCpuP99Us;
+  o.loop.tick_cpu_max_us = s.loop.tickCpuMaxUs;
   o.loop.target_period_us = periodUs;
   // Absolute-deadline loop: the measured period is the target plus the
   // wake-up error, so the error quantiles are what the web shows.
@@ -222,18 +225,15 @@ web::EventRecord fromStored(const EventRecord& s) {
 }  // namespace
 
 void WebApi::logPatch(std::size_t values) {
-  // One line per PATCH flooded the journal (2,000 PATCHes, 2,000 lines):
-  // at most one line a minute, with the count since the last one.
+  // One line per PATCH flooded the journal (2,000 PATCHes, 2,000 lines).
   std::lock_guard lock(logMutex_);
-  ++patchesSinceLog_;
-  valuesSinceLog_ += values;
-  const auto now = std::chrono::steady_clock::now();
-  if (lastPatchLog_.time_since_epoch().count() != 0 && now - lastPatchLog_ < std::chrono::minutes(1)) return;
-  spdlog::info("parameters changed through the API: {} change{} ({} values) since the last such line",
-               patchesSinceLog_, patchesSinceLog_ == 1 ? "" : "s", valuesSinceLog_);
-  lastPatchLog_ = now;
-  patchesSinceLog_ = 0;
-  valuesSinceLog_ = 0;
+  if (auto line = patchLog_.onPatch(PatchLogLimiter::Clock::now(), values); !line.empty())
+    spdlog::info("{}", line);
+}
+
+void WebApi::flushPatchLog(PatchLogLimiter::Clock::time_point now) {
+  std::lock_guard lock(logMutex_);
+  if (auto line = patchLog_.flush(now); !line.empty()) spdlog::info("{}", line);
 }
 
 std::vector<web::EventRecord> WebApi::events(const web::EventQuery& q) {

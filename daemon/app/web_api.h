@@ -10,6 +10,7 @@
 #include <mutex>
 #include <vector>
 
+#include "app/patch_log_limiter.h"
 #include "app/status_source.h"
 #include "app/store_service.h"
 #include "config/param_sources.h"
@@ -54,6 +55,9 @@ class WebApi final : public web::DaemonApi {
   }
 
   static web::StatusSnapshot toStatus(const rt::RuntimeSnapshot& s, bool sim, double periodUs);
+  // Once a second from the supervisor: the summary line of the settings
+  // changes the journal's rate limit held back (patch_log_limiter.h).
+  void flushPatchLog(PatchLogLimiter::Clock::time_point now = PatchLogLimiter::Clock::now());
 
  private:
   void logPatch(std::size_t values);
@@ -64,8 +68,7 @@ class WebApi final : public web::DaemonApi {
   WebApiContext ctx_;
   std::mutex patchMutex_;  // read-modify-write of the whole Params
   std::mutex logMutex_;
-  std::chrono::steady_clock::time_point lastPatchLog_{};
-  std::size_t patchesSinceLog_ = 0, valuesSinceLog_ = 0;
+  PatchLogLimiter patchLog_;
 };
 
 }  // namespace xr::app

@@ -14,6 +14,7 @@
 #include "config/integration_checks.h"
 #include "config/param_values.h"
 #include "config/settings_schema.h"
+#include "config/toml_text_guard.h"
 #include "config/toml_values.h"
 #include "config/web_checks.h"
 #include "params/derived.h"
@@ -88,6 +89,10 @@ class Loader {
   explicit Loader(std::string_view file) : file_(file) {}
 
   LoadResult run(std::string_view text) {
+    if (const auto bad = tomlTextProblem(text)) {  // never handed to toml++ (toml_text_guard.h)
+      result_.errors.push_back({file_, bad->line, bad->column, "", std::string(bad->message)});
+      return std::move(result_);
+    }
     toml::table root;
     try {
       root = toml::parse(text, file_);

@@ -34,7 +34,11 @@ LoopExit ControlLoop::run() {
     clock_.sleepUntil(next);
     const TimeNs woke = paced ? cfg_.wall->now() : clock_.now();
     if (paced) stats_.onPeriodError(woke - cfg_.wallDeadlineOf(next));
+    const bool cpuMeasured = static_cast<bool>(cfg_.cpuTime);
+    const TimeNs cpuBefore = cpuMeasured ? cfg_.cpuTime() : 0;
     cycle_.tick(clock_.now());
+    const TimeNs tickCpu = cpuMeasured ? cfg_.cpuTime() - cpuBefore : 0;
+    if (cpuMeasured) stats_.onTickCpu(tickCpu);
     // Single writer (this thread): a plain load + store, not a locked
     // read-modify-write on every tick.
     heartbeat_.store(heartbeat_.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
@@ -44,24 +48,26 @@ LoopExit ControlLoop::run() {
     // on the wall clock when there is one (in a paced simulation the virtual
     // clock does not move while the tick runs). Skip the missed deadlines
     // rather than bursting to catch up.
-    // The tick's own length tells whose the overrun is (issue 26, soak:
-    // "overruns attributable to the daemon"): a tick longer than a period
-    // is ours (counted so even when the thread was preempted inside it);
-    // a short tick after a late wake-up is the machine's.
+    // Whose overrun is it (issue 26, soak: "0 overruns attributable to the
+    // daemon")? With a CPU clock: the daemon's when the tick itself used a
+    // period of CPU time; a tick preempted inside (another process, a
+    // hypervisor stall) or a late wake-up is the machine's. Without one:
+    // the tick's wall length (which counts such stalls as ours).
     TimeNs missed = 0;
-    bool own = false;
+    TimeNs tickWall = 0, period = cfg_.period;
     if (paced) {
       const TimeNs due = cfg_.wallDeadlineOf(next);
-      const TimeNs wallPeriod = cfg_.wallDeadlineOf(next + cfg_.period) - due;
+      period = cfg_.wallDeadlineOf(next + cfg_.period) - due;
       const TimeNs wallNow = cfg_.wall->now();
       const TimeNs late = wallNow - due;
-      if (wallPeriod > 0 && late >= wallPeriod) missed = late / wallPeriod;
-      own = wallNow - woke >= wallPeriod;
+      if (period > 0 && late >= period) missed = late / period;
+      tickWall = wallNow - woke;
     } else {
       const TimeNs now = clock_.now();
       if (now >= next + cfg_.period) missed = (now - next) / cfg_.period;
-      own = now - woke >= cfg_.period;
+      tickWall = now - woke;
     }
+    const bool own = (cpuMeasured ? tickCpu : tickWall) >= period;
     if (missed > 0) {
       stats_.onOverrun(static_cast<std::uint64_t>(missed), own);
       next += missed * cfg_.period;

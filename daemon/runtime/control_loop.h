@@ -18,12 +18,18 @@ namespace xr::rt {
 
 struct LoopConfig {
   TimeNs period = fromUs(2500);
-  TimeNs duration = 0;                  // loop-clock time to run (0 = until stopped)
-  TimeNs shutdownBudget = fromMs(2000); // controlled ramp budget (then forced; total < 3 s)
+  TimeNs duration = 0;                   // loop-clock time to run (0 = until stopped)
+  TimeNs shutdownBudget = fromMs(2000);  // controlled ramp budget (then forced; total < 3 s)
   // Maps a loop deadline to the wall time it is due at; empty = do not
   // measure period error (--speed max has no deadlines).
   std::function<TimeNs(TimeNs)> wallDeadlineOf;
-  const Clock* wall = nullptr;          // required when wallDeadlineOf is set
+  const Clock* wall = nullptr;  // required when wallDeadlineOf is set
+  // The control thread's own CPU time (threadCpuTime(): CLOCK_THREAD_CPUTIME_ID
+  // on the daemon; a fake in tests). It tells whose an overrun is: a tick
+  // that used a period of CPU is the daemon's; a tick that took a period of
+  // wall time while using little CPU was preempted (a loaded machine, a
+  // hypervisor stall). Empty: judged by the tick's wall length instead.
+  std::function<TimeNs()> cpuTime;
 };
 
 enum class LoopExit { Stopped, DurationReached };

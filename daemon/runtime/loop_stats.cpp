@@ -71,6 +71,8 @@ LoopStatsSummary LoopStats::summary() const noexcept {
   s.ticks = ticks_;
   s.overruns = overruns_;
   s.overrunsOwn = overrunsOwn_;
+  s.tickCpuP99Us = us(tickCpu_.quantile(0.99));
+  s.tickCpuMaxUs = us(tickCpu_.max());
   s.periodMeasured = periodMeasured_;
   s.periodErrP50Us = us(periodErr_.quantile(0.50));
   s.periodErrP99Us = us(periodErr_.quantile(0.99));

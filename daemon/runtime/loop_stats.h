@@ -44,6 +44,9 @@ struct LoopStatsSummary {
   // outlasted a period. The others were missed while the thread waited to
   // run (a late wake-up: another process had the CPU).
   std::uint64_t overrunsOwn = 0;
+  // The control thread's CPU time per tick (CLOCK_THREAD_CPUTIME_ID): what
+  // "own" is judged on; 0 when not measured.
+  double tickCpuP99Us = 0, tickCpuMaxUs = 0;
   bool periodMeasured = false;  // false under --speed max (no deadlines)
   double periodErrP50Us = 0, periodErrP99Us = 0, periodErrMaxUs = 0;
   double computeP50Us = 0, computeP99Us = 0, computeMaxUs = 0;
@@ -66,6 +69,7 @@ class LoopStats {
   void onIo(TimeNs dt) noexcept { io_.add(dt); }
   void onCompute(TimeNs dt) noexcept { compute_.add(dt); }
   void onTick() noexcept { ++ticks_; }
+  void onTickCpu(TimeNs dt) noexcept { tickCpu_.add(dt); }
   // own: the tick before the missed deadlines took longer than a period.
   void onOverrun(std::uint64_t missed, bool own = false) noexcept {
     overruns_ += missed;
@@ -97,7 +101,7 @@ class LoopStats {
   static constexpr TimeNs kRateWindow = 1'000'000'000;
   void rollWindow(TimeNs now, const std::array<std::uint32_t, 4>& adsTotals) noexcept;
 
-  LatencyHistogram periodErr_, compute_, io_, edgeIo_;
+  LatencyHistogram periodErr_, compute_, io_, edgeIo_, tickCpu_;
   std::uint64_t ticks_ = 0, overruns_ = 0, overrunsOwn_ = 0, edges_ = 0;
   bool periodMeasured_ = false;
   TimeNs windowStart_ = -1;

@@ -21,8 +21,18 @@ void MonotonicClock::sleepUntil(TimeNs t) noexcept {
   }
 }
 
+TimeNs threadCpuTime() noexcept {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<TimeNs>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
+}
+
 PacedClock::PacedClock(Clock& inner, Clock& wall, double speed)
-    : inner_(inner), wall_(wall), speed_(speed > 0 ? speed : 1.0), virtStart_(inner.now()), wallStart_(wall.now()) {}
+    : inner_(inner),
+      wall_(wall),
+      speed_(speed > 0 ? speed : 1.0),
+      virtStart_(inner.now()),
+      wallStart_(wall.now()) {}
 
 TimeNs PacedClock::wallDeadline(TimeNs t) const noexcept {
   return wallStart_ + static_cast<TimeNs>(static_cast<double>(t - virtStart_) / speed_);

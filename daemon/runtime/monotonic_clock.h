@@ -11,6 +11,10 @@ class MonotonicClock final : public Clock {
   void sleepUntil(TimeNs t) noexcept override;
 };
 
+// CPU time the calling thread has used (CLOCK_THREAD_CPUTIME_ID): the
+// control loop's measure of its own work, blind to time it spent preempted.
+TimeNs threadCpuTime() noexcept;
+
 // Virtual time paced against wall time (`--speed X`): virtual time comes
 // from `inner` (the simulator's clock, which advances the plant in
 // sleepUntil); after the inner clock reaches t, wait until the wall clock

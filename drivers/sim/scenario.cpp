@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "config/toml_text_guard.h"
 #include "drivers/sim/scenario_toml.h"
 
 namespace xr::sim {
@@ -236,6 +237,9 @@ Scenario parseTable(const Ctx& c, const toml::table& root) {
 
 Scenario parseScenario(std::string_view text, std::string_view sourceName) {
   Ctx c{std::string(sourceName)};
+  if (const auto bad = tomlTextProblem(text))  // never handed to toml++ (toml_text_guard.h)
+    throw ScenarioError(c.src + ":" + std::to_string(bad->line) + ":" + std::to_string(bad->column) + ": " +
+                        std::string(bad->message));
   toml::table root;
   try {
     root = toml::parse(text, sourceName);

@@ -63,6 +63,10 @@ class FakeDaemonApi : public DaemonApi {
     s.loop.ticks = seq_ * 40;
     s.loop.target_period_us = 2500;
     s.loop.period_p99_us = 2510;
+    s.loop.overruns = 5;
+    s.loop.overruns_own = 2;
+    s.loop.tick_cpu_p99_us = 41.5;
+    s.loop.tick_cpu_max_us = 310.0;
     s.sim = SimTruth{t.battery_v, t.alt_a, t.temp_f, t.soc_pct, true, true};
     s.extras = {{"tuning", "score", 0.8}, {"tuning", "cvScore", 0.6}};
   }

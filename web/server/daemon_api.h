@@ -27,8 +27,11 @@ namespace xr::web {
 
 // Control-loop timing measured by the runtime (DESIGN.md thread model).
 struct LoopStats {
-  std::uint64_t ticks = 0;        // ticks since start
-  std::uint64_t overruns = 0;     // ticks whose period exceeded the target by > 50 %
+  std::uint64_t ticks = 0;     // ticks since start
+  std::uint64_t overruns = 0;  // deadlines missed entirely (skipped)
+  // Of them, those the daemon caused: the tick used a whole period of CPU
+  // time. The rest are late wake-ups or preemption (a loaded machine).
+  std::uint64_t overruns_own = 0;
   double target_period_us = 0.0;  // [runtime] control_period_us
   double period_mean_us = 0.0;    // measured tick-to-tick period
   double period_p99_us = 0.0;
@@ -36,6 +39,8 @@ struct LoopStats {
   double exec_mean_us = 0.0;  // time spent inside one tick (read, step, write)
   double exec_p99_us = 0.0;
   double exec_max_us = 0.0;
+  double tick_cpu_p99_us = 0.0;  // the control thread's CPU time per tick
+  double tick_cpu_max_us = 0.0;
   std::uint64_t sensor_errors = 0;  // failed I2C reads since start
 };
 

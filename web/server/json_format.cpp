@@ -48,11 +48,13 @@ json::object loopToJson(const LoopStats& l) {
   json::object o;
   o["ticks"] = l.ticks;
   o["overruns"] = l.overruns;
+  o["overruns_own"] = l.overruns_own;
   for (auto [name, v] :
        {std::pair{"target_period_us", l.target_period_us}, std::pair{"period_mean_us", l.period_mean_us},
         std::pair{"period_p99_us", l.period_p99_us}, std::pair{"period_max_us", l.period_max_us},
         std::pair{"exec_mean_us", l.exec_mean_us}, std::pair{"exec_p99_us", l.exec_p99_us},
-        std::pair{"exec_max_us", l.exec_max_us}})
+        std::pair{"exec_max_us", l.exec_max_us}, std::pair{"tick_cpu_p99_us", l.tick_cpu_p99_us},
+        std::pair{"tick_cpu_max_us", l.tick_cpu_max_us}})
     o[name] = statusNumber(name, v);
   o["sensor_errors"] = l.sensor_errors;
   return o;
@@ -184,7 +186,9 @@ json::object paramsToJson(const Params& current, const Params& file,
     if (auto it = sources.find(std::string(spec.name)); it != sources.end())
       p["source"] = it->second;
     else
-      p["source"] = !sameValue(spec, current, file) ? "dashboard" : !sameValue(spec, file, defaults) ? "file" : "default";
+      p["source"] = !sameValue(spec, current, file)    ? "dashboard"
+                    : !sameValue(spec, file, defaults) ? "file"
+                                                       : "default";
     if (!spec.choices.empty()) {
       // A named choice (BatteryProfile): its names, and the current one.
       json::array names;
@@ -262,6 +266,11 @@ std::string metricsText(const StatusSnapshot* s, const WebServerStats& st) {
              static_cast<double>(l.ticks));
     promLine(out, "xregulator_loop_overruns_total", "counter", "Control ticks that overran their period",
              static_cast<double>(l.overruns));
+    promLine(out, "xregulator_loop_overruns_own_total", "counter",
+             "Overruns caused by the daemon (a tick used a whole period of CPU)",
+             static_cast<double>(l.overruns_own));
+    promLine(out, "xregulator_loop_tick_cpu_max_us", "gauge", "Control tick CPU time max (us)",
+             l.tick_cpu_max_us);
     promLine(out, "xregulator_loop_period_p99_us", "gauge", "Control period p99 (us)", l.period_p99_us);
     promLine(out, "xregulator_loop_period_max_us", "gauge", "Control period max (us)", l.period_max_us);
     promLine(out, "xregulator_loop_exec_p99_us", "gauge", "Control tick execution p99 (us)", l.exec_p99_us);

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "fakes.h"
+#include "loop_rig.h"
 #include "runtime/monotonic_clock.h"
 
 namespace xr::rt {
@@ -13,29 +14,8 @@ namespace {
 
 using test::FakeClock;
 
-struct LoopRig {
-  LoopRig() : handoffs(Params{}), pwm(log), enable(log, 'E') {
-    dev.sensors = &sensors;
-    dev.pwm = &pwm;
-    dev.fieldEnable = &enable;
-    dev.watchdog = &watchdog;
-    cycle = std::make_unique<ControlCycle>(core, dev, handoffs, stats, clock, CycleConfig{});
-  }
-  test::ScriptedCore core;
-  Handoffs handoffs;
-  LoopStats stats;
-  FakeClock clock;
-  test::OutputLog log;
-  test::FakeSensors sensors;
-  test::FakePwm pwm;
-  test::FakeDigitalOut enable;
-  test::FakeWatchdog watchdog;
-  CycleDevices dev;
-  std::unique_ptr<ControlCycle> cycle;
-};
-
 TEST(ControlLoop, RunsForTheDurationOnAbsoluteDeadlines) {
-  LoopRig r;
+  test::LoopRig r;
   LoopConfig cfg;
   cfg.period = fromUs(2500);
   cfg.duration = fromSec(1.0);
@@ -50,7 +30,7 @@ TEST(ControlLoop, RunsForTheDurationOnAbsoluteDeadlines) {
 }
 
 TEST(ControlLoop, LeavesTheFieldSafeAtTheEnd) {
-  LoopRig r;
+  test::LoopRig r;
   r.core.requestDuty = 60.0;
   r.core.requestEnable = true;
   LoopConfig cfg;
@@ -62,7 +42,7 @@ TEST(ControlLoop, LeavesTheFieldSafeAtTheEnd) {
 }
 
 TEST(ControlLoop, StopRunsTheControlledRampBeforeForcingOff) {
-  LoopRig r;
+  test::LoopRig r;
   r.core.requestDuty = 50.0;
   r.core.requestEnable = true;
   r.core.rampStep = 10.0;  // 5 ticks to reach 0
@@ -90,7 +70,7 @@ TEST(ControlLoop, StopRunsTheControlledRampBeforeForcingOff) {
 }
 
 TEST(ControlLoop, StopForcesTheFieldOffWhenTheRampDoesNotFinishInBudget) {
-  LoopRig r;
+  test::LoopRig r;
   r.core.requestDuty = 50.0;
   r.core.requestEnable = true;
   r.core.rampStep = 0.0;  // a core that never ramps down
@@ -109,7 +89,7 @@ TEST(ControlLoop, StopForcesTheFieldOffWhenTheRampDoesNotFinishInBudget) {
 }
 
 TEST(ControlLoop, DetectsAndSkipsOverruns) {
-  LoopRig r;
+  test::LoopRig r;
   LoopConfig cfg;
   cfg.period = fromUs(2500);
   cfg.duration = fromMs(100);  // 40 deadlines
@@ -126,7 +106,7 @@ TEST(ControlLoop, DetectsAndSkipsOverruns) {
 }
 
 TEST(ControlLoop, SmallLatenessIsNotAnOverrun) {
-  LoopRig r;
+  test::LoopRig r;
   LoopConfig cfg;
   cfg.duration = fromMs(50);
   ControlLoop loop(*r.cycle, r.clock, r.stats, cfg);
@@ -136,7 +116,7 @@ TEST(ControlLoop, SmallLatenessIsNotAnOverrun) {
 }
 
 TEST(ControlLoop, MeasuresPeriodErrorAgainstTheWallDeadline) {
-  LoopRig r;
+  test::LoopRig r;
   FakeClock wall;
   LoopConfig cfg;
   cfg.duration = fromMs(25);  // 10 ticks
@@ -153,7 +133,7 @@ TEST(ControlLoop, MeasuresPeriodErrorAgainstTheWallDeadline) {
 }
 
 TEST(ControlLoop, StopRequestedBeforeRunStillLeavesFieldSafe) {
-  LoopRig r;
+  test::LoopRig r;
   ControlLoop loop(*r.cycle, r.clock, r.stats, LoopConfig{});
   loop.requestStop();
   EXPECT_EQ(loop.run(), LoopExit::Stopped);
@@ -192,7 +172,7 @@ struct CountingHook final : TickHook {
 };
 
 TEST(ControlLoop, RunsTheTickHookFirstAndLetsItsExceptionOut) {
-  LoopRig r;
+  test::LoopRig r;
   CountingHook hook;
   hook.throwAt = 5;
   r.dev.hook = &hook;
@@ -215,7 +195,7 @@ namespace xr::rt {
 namespace {
 
 TEST(ControlLoop, PacedSimulationJudgesOverrunsOnTheWallClock) {
-  LoopRig r;
+  test::LoopRig r;
   FakeClock wall;
   LoopConfig cfg;
   cfg.duration = fromMs(100);  // 40 deadlines
@@ -251,7 +231,7 @@ class JumpingWall final : public Clock {
 };
 
 TEST(ControlLoop, ALateWakeUpIsAnOverrunButNotTheDaemons) {
-  LoopRig r;
+  test::LoopRig r;
   JumpingWall wall;
   LoopConfig cfg;
   cfg.duration = fromMs(100);  // 40 deadlines
@@ -280,7 +260,7 @@ namespace xr::rt {
 namespace {
 
 TEST(ControlLoop, AbortEndsWithoutTheRampAndLeavesTheFieldSafe) {
-  LoopRig r;
+  test::LoopRig r;
   r.core.requestDuty = 50.0;
   r.core.requestEnable = true;
   ControlLoop loop(*r.cycle, r.clock, r.stats, LoopConfig{});

@@ -93,6 +93,26 @@ TEST(Scenario, SyntaxErrorHasFileAndLine) {
   EXPECT_EQ(errorOf("name = \"x\"\nduration_s = = 3\n").rfind("t.toml:2:", 0), 0u);
 }
 
+// scenario_fuzz's first finding (tests/fuzz/regressions): a non-ASCII
+// letter after a bare key reached undefined behaviour in toml++ 3.3.0; the
+// loader refuses it before toml++ sees it (config/toml_text_guard.h).
+TEST(Scenario, NonAsciiAfterABareKeyIsRefusedAtLineAndColumn) {
+  const auto e = errorOf("name = \"x\"\n[battery]\ncapacity_\xC6\x97 = 400\n");
+  EXPECT_EQ(e.rfind("t.toml:3:10: non-ASCII character outside a string", 0), 0u) << e;
+  const std::filesystem::path kept =
+      std::filesystem::path(XR_SOURCE_DIR) / "tests/fuzz/regressions/non-ascii-after-bare-key.toml";
+  try {
+    loadScenario(kept);
+    ADD_FAILURE() << "the kept finding loaded";
+  } catch (const ScenarioError& err) {
+    EXPECT_NE(std::string(err.what()).find("non-ascii-after-bare-key.toml:4:10: non-ASCII"),
+              std::string::npos)
+        << err.what();
+  }
+  // In strings and comments: fine.
+  EXPECT_EQ(errorOf("name = \"caf\xC3\xA9 \xC6\x97\" # \xC6\x97\n").find("non-ASCII"), std::string::npos);
+}
+
 TEST(Scenario, UnknownKeyHasLine) {
   const auto e = errorOf("name = \"x\"\n[battery]\nchemistry = \"agm\"\ncapacity = 100\n");
   EXPECT_EQ(e.rfind("t.toml:4:", 0), 0u) << e;
