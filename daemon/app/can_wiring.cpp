@@ -3,7 +3,9 @@
 
 #include <spdlog/spdlog.h>
 
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <stdexcept>
 
 #include "app/store_service.h"
@@ -13,8 +15,12 @@
 namespace xr::app {
 
 std::unique_ptr<std::ofstream> openCanLog(const std::string& path) {
+  errno = 0;
   auto f = std::make_unique<std::ofstream>(path, std::ios::out | std::ios::trunc);
-  if (!*f) throw std::runtime_error("--can-log: cannot open '" + path + "' for writing");
+  // libstdc++ opens with open(2): errno says why.
+  if (!*f)
+    throw std::runtime_error("cannot create CAN log " + path + ": " +
+                             (errno ? std::strerror(errno) : "unknown error"));
   return f;
 }
 
@@ -72,16 +78,9 @@ void CanThread::run() {
 }
 
 std::unique_ptr<CanThread> startCanThread(const Settings& s, rt::Handoffs& h, Clock& clock,
-                                          const std::optional<std::string>& canLog) {
+                                          std::unique_ptr<std::ofstream> canLog) {
   if (s.can.bms_interface.empty() && s.can.n2k_interface.empty() && !canLog) return nullptr;
-  std::unique_ptr<std::ofstream> log;
-  try {
-    if (canLog) log = openCanLog(*canLog);
-  } catch (const std::exception& e) {
-    // A log is a convenience: the regulator and the BMS link run without it.
-    spdlog::error("{}: running without the CAN log", e.what());
-  }
-  return std::make_unique<CanThread>(s, h, clock, std::move(log));
+  return std::make_unique<CanThread>(s, h, clock, std::move(canLog));
 }
 
 }  // namespace xr::app

@@ -19,7 +19,9 @@
 
 namespace xr::app {
 
-// Opens --can-log for writing; throws std::runtime_error naming the file.
+// Opens --can-log for writing; throws std::runtime_error naming the file and
+// the OS error. The daemon opens it before anything runs and stops with
+// kExitConfig when it cannot, like --telemetry-csv.
 std::unique_ptr<std::ofstream> openCanLog(const std::string& path);
 
 class CanThread {
@@ -41,7 +43,8 @@ class CanThread {
 };
 
 // Null when there is nothing to do (no [can] interface and no --can-log).
+// `canLog`: --can-log, already open (null = none).
 std::unique_ptr<CanThread> startCanThread(const Settings& s, rt::Handoffs& h, Clock& clock,
-                                          const std::optional<std::string>& canLog);
+                                          std::unique_ptr<std::ofstream> canLog);
 
 }  // namespace xr::app

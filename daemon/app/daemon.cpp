@@ -108,6 +108,19 @@ int Daemon::run() {
   rt::RegulatorCore core(regulator);
   auto handoffs = std::make_unique<rt::Handoffs>(params);
 
+  // --can-log, opened before anything runs: an output file that cannot be
+  // created stops the daemon at start, like --telemetry-csv.
+  std::unique_ptr<std::ofstream> canLog;
+  if (cli_.canLog) {
+    try {
+      canLog = openCanLog(*cli_.canLog);
+    } catch (const std::exception& e) {
+      spdlog::critical("{}", e.what());
+      std::fprintf(stderr, "xregulatord: %s\n", e.what());
+      return kExitConfig;
+    }
+  }
+
   // ---- the rig ----
   std::unique_ptr<SimWiring> simRig;
   std::unique_ptr<BoardRig> boardRig;
@@ -117,7 +130,7 @@ int Daemon::run() {
   std::function<TimeNs(TimeNs)> wallDeadlineOf;
   try {
     if (cli_.sim) {
-      simRig = std::make_unique<SimWiring>(*scenario, settings, cli_);
+      simRig = std::make_unique<SimWiring>(*scenario, settings, cli_, std::move(canLog));
       simRig->attach(*handoffs);
       devices = simRig->devices();
       loopClock = &simRig->loopClock();
@@ -162,6 +175,7 @@ int Daemon::run() {
   // ---- non-RT services ----
   RecentEvents recent;
   rt::EventPump pump(handoffs->events);
+  pump.addSource(handoffs->sideEvents);  // the CAN thread's events (issue 22)
   pump.addSink([](const Event& e) { logEvent(e); });
   pump.addSink([&recent](const Event& e) { recent.add(e, wallSecondsNow(), describe(e)); });
   if (store) pump.addSink([&store](const Event& e) { store->appendEvent(e); });
@@ -184,7 +198,7 @@ int Daemon::run() {
   const auto integrations = startIntegrations(settings, *handoffs, store.get());
   // CAN (issue 22): on a board the xr-can thread; the sim rig runs its own.
   const auto canThread =
-      boardRig ? startCanThread(settings, *handoffs, boardRig->loopClock(), cli_.canLog) : nullptr;
+      boardRig ? startCanThread(settings, *handoffs, boardRig->loopClock(), std::move(canLog)) : nullptr;
 
   std::atomic<std::int64_t> lastHeartbeatWallMs{0};
   std::atomic<bool> outputsFault{false};

@@ -21,10 +21,9 @@ sim::SimRigOptions rigOptions(const CliOptions& cli, std::ostream* canLog) {
 }
 }  // namespace
 
-SimWiring::SimWiring(const sim::Scenario& scenario, const Settings& settings, const CliOptions& cli)
-    : cli_(cli),
-      canLog_(cli.canLog ? openCanLog(*cli.canLog) : nullptr),
-      rig_(scenario, settings, rigOptions(cli, canLog_.get())) {
+SimWiring::SimWiring(const sim::Scenario& scenario, const Settings& settings, const CliOptions& cli,
+                     std::unique_ptr<std::ofstream> canLog)
+    : cli_(cli), canLog_(std::move(canLog)), rig_(scenario, settings, rigOptions(cli, canLog_.get())) {
   rig_.onCanReport([](const std::string& what) { spdlog::warn("{}", what); });
   rig_.onScenarioProblem(
       [](int line, const std::string& what) { spdlog::error("scenario line {}: {}", line, what); });

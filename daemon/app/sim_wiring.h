@@ -21,7 +21,9 @@ namespace xr::app {
 class SimWiring final : public rt::TickHook {
  public:
   // Throws std::runtime_error (with a clear message) on setup errors.
-  SimWiring(const sim::Scenario& scenario, const Settings& settings, const CliOptions& cli);
+  // `canLog`: --can-log, already open (null = none).
+  SimWiring(const sim::Scenario& scenario, const Settings& settings, const CliOptions& cli,
+            std::unique_ptr<std::ofstream> canLog);
 
   // The rig's devices, outputs mirrored to --sim-outputs when given.
   rt::CycleDevices devices();

@@ -213,8 +213,9 @@ web::EventRecord fromStored(const EventRecord& s) {
   e.id = s.id;
   e.wall_time_s = static_cast<double>(s.tMs) / 1000.0;
   e.event.level = parseByName<EventLevel, 5>(s.level, EventLevel::Info);
-  e.event.code =
-      parseByName<EventCode, static_cast<int>(EventCode::AlarmCondition) + 1>(s.code, EventCode::Message);
+  // Every code, up to the last (the ones after AlarmCondition came back as
+  // Message before).
+  e.event.code = parseByName<EventCode, kEventCodeCount>(s.code, EventCode::Message);
   e.event.reason = parseReason(s.reason).value_or(Reason::NONE);
   e.event.a = s.a;
   e.event.b = s.b;

@@ -10,6 +10,7 @@
 #include <mutex>
 #include <vector>
 
+#include "app/can_status.h"
 #include "app/patch_log_limiter.h"
 #include "app/status_source.h"
 #include "app/store_service.h"
@@ -53,6 +54,8 @@ class WebApi final : public web::DaemonApi {
   std::vector<web::IntegrationState> integrations() override {
     return ctx_.integrations ? ctx_.integrations() : std::vector<web::IntegrationState>{};
   }
+
+  web::CanState can() override { return canStateOf(ctx_.handoffs->canStatus.load()); }
 
   static web::StatusSnapshot toStatus(const rt::RuntimeSnapshot& s, bool sim, double periodUs);
   // Once a second from the supervisor: the summary line of the settings

@@ -73,13 +73,26 @@ std::uint32_t decode359(std::span<const std::uint8_t> d, int base) {
 std::optional<BmsProtocol> parseBmsProtocol(std::string_view s) {
   if (s == "victron") return BmsProtocol::Victron;
   if (s == "pylontech") return BmsProtocol::Pylontech;
+  if (s == "rec") return BmsProtocol::Rec;
   return std::nullopt;
 }
 
-BmsFrameResult BmsDecoder::reject(const CanFrame& f, std::string_view why) {
+std::string_view toString(BmsProtocol p) {
+  switch (p) {
+    case BmsProtocol::Victron:
+      return "victron";
+    case BmsProtocol::Pylontech:
+      return "pylontech";
+    case BmsProtocol::Rec:
+      return "rec";
+  }
+  return "?";
+}
+
+BmsFrameResult BmsDecoder::reject(const CanFrame& f, BmsReject why) {
   ++rejected_;
   lastRejectedId_ = f.id;
-  lastRejectWhy_ = why;
+  lastReject_ = why;
   return BmsFrameResult::Rejected;
 }
 
@@ -88,13 +101,13 @@ BmsFrameResult BmsDecoder::feed(const CanFrame& f, TimeNs now) {
   const auto d = payload(f);
   switch (f.id) {
     case 0x351: {
-      if (f.dlc < 6) return reject(f, "short DLC");
+      if (f.dlc < 6) return reject(f, BmsReject::ShortDlc);
       const double cvl = getU16(d, 0) * 0.1;
       const double ccl = getS16(d, 2) * 0.1;
       const double dcl = getS16(d, 4) * 0.1;
-      if (cvl < kMinCvlV || cvl > kMaxCvlV) return reject(f, "CVL out of range");
-      if (ccl < 0.0 || ccl > kMaxCclA) return reject(f, "CCL out of range");
-      if (dcl < 0.0 || dcl > kMaxCclA) return reject(f, "DCL out of range");
+      if (cvl < kMinCvlV || cvl > kMaxCvlV) return reject(f, BmsReject::CvlRange);
+      if (ccl < 0.0 || ccl > kMaxCclA) return reject(f, BmsReject::CclRange);
+      if (dcl < 0.0 || dcl > kMaxCclA) return reject(f, BmsReject::DclRange);
       limits_.cvlV = cvl;
       limits_.cclA = ccl;
       limits_.dclA = dcl;
@@ -102,31 +115,51 @@ BmsFrameResult BmsDecoder::feed(const CanFrame& f, TimeNs now) {
       break;
     }
     case 0x355: {
-      if (f.dlc < 4) return reject(f, "short DLC");
+      if (f.dlc < 4) return reject(f, BmsReject::ShortDlc);
       const double soc = getU16(d, 0), soh = getU16(d, 2);
-      if (soc > 100.0 || soh > 100.0) return reject(f, "SoC/SoH out of range");
-      limits_.socPct = soc;
+      if (soc > 100.0 || soh > 100.0) return reject(f, BmsReject::SocRange);
+      // REC: bytes 4-5 carry the SoC at 0.01 %; the finer value is used
+      // when it agrees with the whole percent (within its rounding).
+      double fine = soc;
+      if (protocol_ == BmsProtocol::Rec && f.dlc >= 6) {
+        fine = getU16(d, 4) * 0.01;
+        if (fine > 100.0 || std::abs(fine - soc) > 1.0) return reject(f, BmsReject::SocRange);
+      }
+      limits_.socPct = fine;
       limits_.sohPct = soh;
       break;
     }
+    case 0x373: {
+      if (protocol_ != BmsProtocol::Rec) return BmsFrameResult::Ignored;
+      if (f.dlc < 8) return reject(f, BmsReject::ShortDlc);
+      const double vMin = getU16(d, 0) * 0.001, vMax = getU16(d, 2) * 0.001;
+      const double tMin = getU16(d, 4) - 273.0, tMax = getU16(d, 6) - 273.0;
+      if (vMin < kMinCellV || vMax > kMaxCellV || vMin > vMax) return reject(f, BmsReject::CellVoltageRange);
+      if (tMin < kMinTempC || tMax > kMaxTempC || tMin > tMax) return reject(f, BmsReject::TempRange);
+      limits_.cellMinV = vMin;
+      limits_.cellMaxV = vMax;
+      limits_.cellTempMinC = tMin;
+      limits_.cellTempMaxC = tMax;
+      break;
+    }
     case 0x356: {
-      if (f.dlc < 6) return reject(f, "short DLC");
+      if (f.dlc < 6) return reject(f, BmsReject::ShortDlc);
       const double v = getS16(d, 0) * 0.01, i = getS16(d, 2) * 0.1, t = getS16(d, 4) * 0.1;
-      if (v < 0.0 || v > 100.0) return reject(f, "voltage out of range");
-      if (t < kMinTempC || t > kMaxTempC) return reject(f, "temperature out of range");
+      if (v < 0.0 || v > 100.0) return reject(f, BmsReject::VoltageRange);
+      if (t < kMinTempC || t > kMaxTempC) return reject(f, BmsReject::TempRange);
       limits_.voltageV = v;
       limits_.currentA = i;
       limits_.tempC = t;
       break;
     }
     case 0x35A:
-      if (f.dlc < 8) return reject(f, "short DLC");
+      if (f.dlc < 8) return reject(f, BmsReject::ShortDlc);
       alarms35A_ = decode35A(d, 0);
       warnings35A_ = decode35A(d, 4);
       break;
     case 0x359:
       if (protocol_ != BmsProtocol::Pylontech) return BmsFrameResult::Ignored;
-      if (f.dlc < 4) return reject(f, "short DLC");
+      if (f.dlc < 4) return reject(f, BmsReject::ShortDlc);
       alarms359_ = decode359(d, 0);
       warnings359_ = decode359(d, 2);
       break;
@@ -162,6 +195,23 @@ CanFrame encode355(double socPct, double sohPct) {
   CanFrame f = frame(0x355, 4);
   putU16(f.data, 0, toU16(socPct, 1.0));
   putU16(f.data, 2, toU16(sohPct, 1.0));
+  return f;
+}
+
+CanFrame encode355Rec(double socPct, double sohPct) {
+  CanFrame f = encode355(socPct, sohPct);
+  f.dlc = 6;
+  putU16(f.data, 4, toU16(socPct, 0.01));
+  return f;
+}
+
+CanFrame encode373(double cellMinV, double cellMaxV, double tempMinC, double tempMaxC) {
+  CanFrame f = frame(0x373, 8);
+  putU16(f.data, 0, toU16(cellMinV, 0.001));
+  putU16(f.data, 2, toU16(cellMaxV, 0.001));
+  // Kelvin as whole degrees over 273 (the encoding GX devices read).
+  putU16(f.data, 4, toU16(tempMinC + 273.0, 1.0));
+  putU16(f.data, 6, toU16(tempMaxC + 273.0, 1.0));
   return f;
 }
 

@@ -18,7 +18,19 @@
 //   byte 0/2 bit 1 high voltage, bit 2 low voltage, bit 3 high temperature,
 //   bit 4 low temperature, bit 7 discharge over-current; byte 1/3 bit 0
 //   charge over-current, bit 3 system error.
-// Sources: docs/integrations.md "CAN" (plant-facts 3.10.2 for 0x351).
+// REC (REC Q / ABMS "Victron" firmware) sends the same set and adds, among
+// ids it lists (0x35F, 0x370, 0x374-0x377, 0x379, 0x380: names, ids of the
+// extreme cells, capacity, serial: ignored here):
+//   0x355 bytes 4-5: SoC u16 0.01 % (the high-resolution SoC)
+//   0x373 lowest cell u16 1 mV, highest cell u16 1 mV, lowest cell
+//         temperature u16 1 K, highest cell temperature u16 1 K
+// Sources: docs/integrations.md "CAN" (plant-facts 3.10.2 for 0x351); REC:
+// the id list of REC's "UserManual_REC_Victron_BMS" and a candump of a REC Q
+// published by its owner (github.com/natecostello/van_two_point_oh,
+// blog/2021-4-8, which also decodes 0x355 bytes 4-5 and 0x373 in
+// natecostello/REC-BMS_CAN); 0x373's units (mV, and kelvin as 273 + degC)
+// as the diyBMS controller firmware encodes them for Victron GX devices
+// (stuartpittaway/diyBMSv4ESP32, victron_canbus.cpp, victron_message_373).
 //
 // Bad frames (short DLC, values out of range, e.g. a CCL of 6 000 A) are
 // counted and dropped whole: they never reach the limits.
@@ -32,8 +44,11 @@
 
 namespace xr::can {
 
-enum class BmsProtocol { Victron, Pylontech };
+enum class BmsProtocol { Victron, Pylontech, Rec };
 std::optional<BmsProtocol> parseBmsProtocol(std::string_view s);
+std::string_view toString(BmsProtocol p);
+// The names parseBmsProtocol() accepts, for error messages.
+inline constexpr std::string_view kBmsProtocolNames = "victron, pylontech, rec";
 
 enum class BmsFrameResult { Ignored, Accepted, Rejected };
 
@@ -42,6 +57,7 @@ inline constexpr double kMaxCvlV = 70.0;  // 48 V class packs charge to ~58 V
 inline constexpr double kMinCvlV = 8.0;
 inline constexpr double kMaxCclA = 2000.0;  // MaximumAllowedBatteryAmps' own ceiling
 inline constexpr double kMinTempC = -40.0, kMaxTempC = 100.0;
+inline constexpr double kMinCellV = 1.0, kMaxCellV = 5.0;  // any lithium cell that is still measured
 
 class BmsDecoder {
  public:
@@ -57,22 +73,27 @@ class BmsDecoder {
   std::uint64_t rejected() const { return rejected_; }
   // What the last rejected frame was (for the rate-limited event).
   std::uint32_t lastRejectedId() const { return lastRejectedId_; }
-  std::string_view lastRejectWhy() const { return lastRejectWhy_; }
+  BmsReject lastReject() const { return lastReject_; }
+  std::string_view lastRejectWhy() const { return bmsRejectText(lastReject_); }
 
  private:
-  BmsFrameResult reject(const CanFrame& f, std::string_view why);
+  BmsFrameResult reject(const CanFrame& f, BmsReject why);
   BmsProtocol protocol_;
   BmsLimits limits_;
   std::uint32_t alarms35A_ = 0, warnings35A_ = 0, alarms359_ = 0, warnings359_ = 0;
   std::string name_;
   std::uint64_t accepted_ = 0, rejected_ = 0;
   std::uint32_t lastRejectedId_ = 0;
-  std::string_view lastRejectWhy_;
+  BmsReject lastReject_ = BmsReject::None;
 };
 
 // ---- encoders (what a BMS sends) ---------------------------------------
 CanFrame encode351(double cvlV, double cclA, double dclA, double dvlV);
 CanFrame encode355(double socPct, double sohPct);
+// REC's 0x355: the SoC again at 0.01 % in bytes 4-5 (DLC 6).
+CanFrame encode355Rec(double socPct, double sohPct);
+// REC's 0x373: cell voltage extremes (V) and cell temperature extremes (degC).
+CanFrame encode373(double cellMinV, double cellMaxV, double tempMinC, double tempMaxC);
 CanFrame encode356(double voltageV, double currentA, double tempC);
 CanFrame encode35A(std::uint32_t alarms, std::uint32_t warnings);      // bmswarn flags
 CanFrame encode359(std::uint32_t protection, std::uint32_t warnings);  // bmswarn flags

@@ -21,20 +21,40 @@ void BmsCanLink::poll(TimeNs now) {
   bool changed = false;
   while (auto f = bus_.receive(std::chrono::milliseconds(0))) {
     if (log_) *log_ << can::formatCandump(toSec(now), interface_, *f) << '\n';
-    changed |= decoder_.feed(*f, now) == can::BmsFrameResult::Accepted;
+    if (f->error) {
+      ++errorFrames_;
+      lastErrorClass_ = f->id;
+      continue;
+    }
+    if (decoder_.feed(*f, now) == can::BmsFrameResult::Accepted) {
+      changed = true;
+      lastAccepted_ = now;
+    }
   }
   if (changed && post_) post_(decoder_.limits());
-  const std::uint64_t rejects = decoder_.rejected();
-  if (rejects != reportedRejects_ && (lastReport_ < 0 || now - lastReport_ >= fromSec(kBadFrameReportS))) {
-    if (report_) {
+  if (const std::uint64_t n = badGate_.due(decoder_.rejected(), now)) {
+    if (postEvent_) {
+      postEvent_(makeEvent(now, EventLevel::Warning, EventCode::BmsBadFrames, Reason::NONE,
+                           static_cast<double>(n), decoder_.lastRejectedId(),
+                           static_cast<int>(decoder_.lastReject())));
+    } else if (report_) {
       char buf[160];
       std::snprintf(buf, sizeof buf, "BMS CAN: %llu bad frame(s) ignored (last: 0x%03X, %s)",
-                    static_cast<unsigned long long>(rejects - reportedRejects_), decoder_.lastRejectedId(),
+                    static_cast<unsigned long long>(n), decoder_.lastRejectedId(),
                     std::string(decoder_.lastRejectWhy()).c_str());
       report_(buf);
     }
-    reportedRejects_ = rejects;
-    lastReport_ = now;
+  }
+  if (const std::uint64_t n = errorGate_.due(errorFrames_, now)) {
+    if (postEvent_) {
+      postEvent_(makeEvent(now, EventLevel::Warning, EventCode::CanErrorFrames, Reason::NONE,
+                           static_cast<double>(n), lastErrorClass_, 0));
+    } else if (report_) {
+      char buf[120];
+      std::snprintf(buf, sizeof buf, "CAN %s: %llu error frame(s) (last error class 0x%X)",
+                    interface_.c_str(), static_cast<unsigned long long>(n), lastErrorClass_);
+      report_(buf);
+    }
   }
 }
 

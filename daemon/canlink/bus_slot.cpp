@@ -21,8 +21,14 @@ CanBus* BusSlot::get(TimeNs now) {
     owned_ = open_();
     bus_ = owned_.get();
     opened_ = bus_ != nullptr;
-    if (bus_ && failures_ > 0 && report_)
-      report_("CAN " + interface_ + ": open again after " + std::to_string(failures_) + " failed attempt(s)");
+    if (bus_ && outageFailures_ > 0) {
+      if (report_)
+        report_("CAN " + interface_ + ": open again after " + std::to_string(outageFailures_) +
+                " failed attempt(s)");
+      if (fault_) fault_(true, outageFailures_, 0.0, now);
+      outageFailures_ = 0;
+      lastFaultEvent_ = -1;
+    }
     retryS_ = kFirstRetryS;
   } catch (const std::exception& e) {
     failed(now, e.what());
@@ -39,10 +45,15 @@ void BusSlot::lost(TimeNs now, const std::string& why) {
 
 void BusSlot::failed(TimeNs now, const std::string& why) {
   ++failures_;
+  ++outageFailures_;
   if (report_) {
     char buf[64];
     std::snprintf(buf, sizeof buf, "; retry in %.0f s", retryS_);
     report_("CAN " + interface_ + ": " + why + buf);
+  }
+  if (fault_ && (lastFaultEvent_ < 0 || now - lastFaultEvent_ >= fromSec(kFaultEventS))) {
+    fault_(false, outageFailures_, retryS_, now);
+    lastFaultEvent_ = now;
   }
   nextTry_ = now + fromSec(retryS_);
   retryS_ = std::min(retryS_ * 2.0, kMaxRetryS);

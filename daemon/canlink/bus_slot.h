@@ -9,6 +9,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "core/time.h"
 #include "drivers/hal/can_bus.h"
@@ -20,7 +21,10 @@ class BusSlot {
   // Opens the bus; throws (std::exception) when it cannot.
   using Open = std::function<std::unique_ptr<CanBus>()>;
   using Report = std::function<void(const std::string&)>;
-  static constexpr double kFirstRetryS = 1.0, kMaxRetryS = 60.0;
+  // For the dashboard events: `back` false = an open failed (the first of
+  // an outage, then at most one per kFaultEventS), true = open again.
+  using Fault = std::function<void(bool back, std::uint64_t failures, double retryS, TimeNs now)>;
+  static constexpr double kFirstRetryS = 1.0, kMaxRetryS = 60.0, kFaultEventS = 30.0;
 
   BusSlot(std::string interface, Open open, Report report);
   // A bus that is always there (the simulator's segment): never reopened.
@@ -36,7 +40,9 @@ class BusSlot {
     opened_ = false;
     return o;
   }
+  void onFault(Fault f) { fault_ = std::move(f); }
   const std::string& interface() const { return interface_; }
+  bool up() const { return bus_ != nullptr; }
   std::uint64_t failures() const { return failures_; }
 
  private:
@@ -44,6 +50,9 @@ class BusSlot {
   std::string interface_;
   Open open_;
   Report report_;
+  Fault fault_;
+  TimeNs lastFaultEvent_ = -1;
+  std::uint64_t outageFailures_ = 0;  // failed attempts since the bus was last up
   std::unique_ptr<CanBus> owned_;
   CanBus* bus_ = nullptr;
   TimeNs nextTry_ = 0;

@@ -5,8 +5,21 @@
 
 namespace xr::canlink {
 
+namespace {
+constexpr int kBmsBus = 0, kN2kBus = 1;  // the CAN events' detail
+}  // namespace
+
+BusSlot::Fault CanService::faultEvents(int bus) {
+  return [this, bus](bool back, std::uint64_t failures, double retryS, TimeNs now) {
+    h_.sideEvents.post(makeEvent(now, back ? EventLevel::Info : EventLevel::Error,
+                                 back ? EventCode::CanBusBack : EventCode::CanBusDown, Reason::NONE,
+                                 static_cast<double>(failures), retryS, bus));
+  };
+}
+
 void CanService::setBmsBus(std::unique_ptr<BusSlot> slot, can::BmsProtocol protocol, bool batteryTemp) {
   bms_ = std::move(slot);
+  if (bms_) bms_->onFault(faultEvents(kBmsBus));
   protocol_ = protocol;
   batteryTemp_ = batteryTemp;
   bmsLink_.reset();
@@ -16,6 +29,7 @@ void CanService::setBmsBus(std::unique_ptr<BusSlot> slot, can::BmsProtocol proto
 void CanService::setN2kBus(std::unique_ptr<BusSlot> slot, std::uint8_t preferredAddress,
                            std::string version) {
   n2k_ = std::move(slot);
+  if (n2k_) n2k_->onFault(faultEvents(kN2kBus));
   n2kAddress_ = preferredAddress;
   version_ = std::move(version);
   n2kNode_.reset();
@@ -46,6 +60,7 @@ void CanService::poll(TimeNs now) {
             }
           },
           report_);
+      bmsLink_->setPostEvent([this](const Event& e) { h_.sideEvents.post(e); });
     }
     if (bus && bmsLink_) bmsLink_->poll(now);
   }
@@ -64,8 +79,45 @@ void CanService::poll(TimeNs now) {
         if (auto s = can::decodeEngineSpeed(m); s && s->instance == 0) h_.engineRpm.store({s->rpm, at});
       });
     }
-    if (bus && n2kNode_) n2kNode_->poll(now);
+    if (bus && n2kNode_) {
+      n2kNode_->poll(now);
+      if (const std::uint64_t n = n2kErrorGate_.due(n2kNode_->errorFrames(), now))
+        h_.sideEvents.post(makeEvent(now, EventLevel::Warning, EventCode::CanErrorFrames, Reason::NONE,
+                                     static_cast<double>(n), n2kNode_->lastErrorClass(), kN2kBus));
+    }
   }
+  publishStatus(now);
+}
+
+void CanService::publishStatus(TimeNs now) {
+  rt::CanStatusHandoff st;
+  st.now = now;
+  if (bms_) {
+    st.bmsConfigured = true;
+    st.bmsBusUp = bms_->up();
+    st.bmsProtocol = static_cast<std::uint8_t>(protocol_);
+    st.bmsOpenFailures = bms_->failures();
+    if (bmsLink_) {
+      st.bmsLastFrame = bmsLink_->lastAccepted();
+      st.bmsLimits = bmsLink_->decoder().limits();
+      st.bmsFrames = bmsLink_->decoder().accepted();
+      st.bmsBadFrames = bmsLink_->decoder().rejected();
+      st.bmsErrorFrames = bmsLink_->errorFrames();
+    }
+  }
+  if (n2k_) {
+    st.n2kConfigured = true;
+    st.n2kBusUp = n2k_->up();
+    st.n2kOpenFailures = n2k_->failures();
+    if (n2kNode_) {
+      st.n2kClaimed = n2kNode_->claimed();
+      st.n2kAddress = n2kNode_->address();
+      st.n2kTxFrames = n2kNode_->txFrames();
+      st.n2kRxFrames = n2kNode_->rxFrames();
+      st.n2kErrorFrames = n2kNode_->errorFrames();
+    }
+  }
+  h_.canStatus.store(st);
 }
 
 }  // namespace xr::canlink

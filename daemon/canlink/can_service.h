@@ -9,6 +9,9 @@
 // A bus that is missing or fails is retried with backoff (BusSlot) and
 // never stops the regulator; meanwhile the limits go stale and the control
 // law falls back to BmsFallbackCapA.
+// What goes wrong on the buses (bad BMS frames, error frames, a bus that
+// cannot be opened) becomes rate-limited events in Handoffs::sideEvents,
+// which the EventPump delivers with the control thread's events.
 //
 // Who calls poll(): on a board, the xr-can thread every 10 ms
 // (daemon/app/can_wiring); in simulation, the one sim rig at its deadlines
@@ -22,6 +25,7 @@
 #include "canlink/bms_can_link.h"
 #include "canlink/bus_slot.h"
 #include "canlink/n2k_node.h"
+#include "canlink/report_gate.h"
 #include "drivers/can/candump_recorder.h"
 #include "runtime/handoffs.h"
 
@@ -51,8 +55,11 @@ class CanService {
   const N2kNode* n2kNode() const { return n2kNode_.get(); }
 
  private:
+  BusSlot::Fault faultEvents(int bus);
+  void publishStatus(TimeNs now);  // Handoffs::canStatus, for /api/system
   rt::Handoffs& h_;
   Report report_;
+  ReportGate n2kErrorGate_;
   can::CandumpSink* sink_ = nullptr;
   std::unique_ptr<BusSlot> bms_;
   can::BmsProtocol protocol_ = can::BmsProtocol::Victron;

@@ -63,7 +63,10 @@ N2kNode::N2kNode(CanBus& bus, std::uint8_t preferredAddress, const rt::Handoffs&
 void N2kNode::send(const can::N2kMessage& m) {
   const bool fast = m.data.size() > 8;
   for (const CanFrame& f : can::toFrames(m, fastSeq_))
-    if (!bus_.send(f)) ++sendFailures_;
+    if (!bus_.send(f))
+      ++sendFailures_;
+    else
+      ++txFrames_;
   if (fast) fastSeq_ = static_cast<std::uint8_t>((fastSeq_ + 1) & 0x7);
 }
 
@@ -75,7 +78,13 @@ void N2kNode::poll(TimeNs now) {
     nextHeartbeat_ = nextStatus_ = now + fromMs(250);
   }
   while (auto f = bus_.receive(std::chrono::milliseconds(0))) {
-    if (f->error || !f->extended) continue;
+    ++rxFrames_;
+    if (f->error) {
+      ++errorFrames_;
+      lastErrorClass_ = f->id;
+      continue;
+    }
+    if (!f->extended) continue;
     auto m = assembler_.feed(*f);
     if (!m) continue;
     if (auto answer = claimer_.onMessage(*m)) send(*answer);

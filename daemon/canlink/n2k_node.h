@@ -40,6 +40,11 @@ class N2kNode {
   void poll(TimeNs now);
   std::uint8_t address() const { return claimer_.address(); }
   std::uint64_t sendFailures() const { return sendFailures_; }
+  std::uint64_t errorFrames() const { return errorFrames_; }
+  std::uint64_t txFrames() const { return txFrames_; }
+  std::uint64_t rxFrames() const { return rxFrames_; }
+  bool claimed() const { return claimer_.claimed(); }
+  std::uint32_t lastErrorClass() const { return lastErrorClass_; }
 
  private:
   void send(const can::N2kMessage& m);
@@ -53,7 +58,8 @@ class N2kNode {
   bool started_ = false;
   TimeNs nextHeartbeat_ = 0, nextStatus_ = 0;
   std::uint8_t sid_ = 0, heartbeatSeq_ = 0, fastSeq_ = 0;
-  std::uint64_t sendFailures_ = 0;
+  std::uint64_t sendFailures_ = 0, errorFrames_ = 0, txFrames_ = 0, rxFrames_ = 0;
+  std::uint32_t lastErrorClass_ = 0;
 };
 
 }  // namespace xr::canlink

@@ -126,7 +126,7 @@ struct IntegrationsSettings {
 // them. The BMS-following parameters (BmsStaleS, ...) sit in the same table.
 struct CanSettings {
   std::string bms_interface;             // SocketCAN interface of the BMS bus (500 kbit/s), empty = none
-  std::string bms_protocol = "victron";  // victron | pylontech
+  std::string bms_protocol = "victron";  // victron | pylontech | rec
   std::string n2k_interface;             // NMEA 2000 bus (250 kbit/s), empty = none
   int n2k_preferred_address = 35;        // first address claimed (60928); moves on a conflict
   std::string RpmSource = "tach";        // tach (ADS1115 CH2) | n2k (PGN 127488 engine speed)

@@ -156,9 +156,10 @@ const SettingSpec kSchema[] = {
         "SocketCAN interface of the BMS bus (500 kbit/s, 11-bit frames), e.g. can0; empty = no BMS on CAN. "
         "Also set BmsLimitsEnabled to follow its limits."),
     XR_S_STR(
-        "can", can.bms_protocol, "bms_protocol", "victron,pylontech",
+        "can", can.bms_protocol, "bms_protocol", "victron,pylontech,rec",
         "What the BMS speaks: victron (the 0x351/0x355/0x356/0x35A/0x35E set most LFP BMSs and Victron GX "
-        "devices send), pylontech (the same set with Pylontech's 0x359 protection and warning flags)."),
+        "devices send), pylontech (the same set with Pylontech's 0x359 protection and warning flags), rec "
+        "(REC BMS: the same set with the highest cell voltage in 0x373, for BmsCellHighV)."),
     XR_S_STR(
         "can", can.n2k_interface, "n2k_interface", "",
         "SocketCAN interface of the NMEA 2000 bus (250 kbit/s, 29-bit); empty = no NMEA 2000. Our node "

@@ -27,6 +27,7 @@ void BmsLimiter::reset() {
   enabledSince_ = -1;
   cap_ = cvl_ = warnCap_ = kNone;
   chargeAllowed_ = true;
+  cellHigh_ = false;
   shownCvl_ = shownCcl_ = shownSoc_ = kBmsNoValue;
 }
 
@@ -58,6 +59,7 @@ void BmsLimiter::update(const BmsLimits& b, TimeNs now, double Bcur, const Param
     cvl_ = kNone;           // the configured stage voltages apply
     chargeAllowed_ = true;  // the digital BMS input still protects
     warnCap_ = kNone;
+    cellHigh_ = false;
     shownCvl_ = shownCcl_ = shownSoc_ = kBmsNoValue;
     return;
   }
@@ -67,7 +69,15 @@ void BmsLimiter::update(const BmsLimits& b, TimeNs now, double Bcur, const Param
   cvl_ = std::isfinite(b.cvlV) && b.cvlV > 0.0 ? b.cvlV - p.BmsCvlMarginV : kNone;
   chargeAllowed_ = b.chargeAllowed;
 
-  const bool warn = ((b.warnings | b.alarms) & bmswarn::ChargeRampDown) != 0;
+  if (p.BmsCellHighV > 0.0 && std::isfinite(b.cellMaxV)) {
+    if (b.cellMaxV >= p.BmsCellHighV)
+      cellHigh_ = true;
+    else if (b.cellMaxV < p.BmsCellHighV - kCellHysteresisV)
+      cellHigh_ = false;
+  } else {
+    cellHigh_ = false;
+  }
+  const bool warn = ((b.warnings | b.alarms) & bmswarn::ChargeRampDown) != 0 || cellHigh_;
   if (warn) {
     if (warnCap_ == kNone) {
       // Start from the current flowing now, so the ramp has no step, and

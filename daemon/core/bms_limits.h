@@ -14,6 +14,7 @@
 // BmsFallbackCapA (REASON_BMS_STALE). Values a source does not send stay NaN.
 #include <cstdint>
 #include <limits>
+#include <string_view>
 
 #include "core/time.h"
 
@@ -36,6 +37,42 @@ inline constexpr std::uint32_t ChargeRampDown =
     HighVoltage | HighTemp | LowTemp | HighChargeCurrent | Internal;
 }  // namespace bmswarn
 
+// Why a decoder dropped a frame (the BmsBadFrames event's detail).
+enum class BmsReject : std::uint8_t {
+  None,
+  ShortDlc,
+  CvlRange,
+  CclRange,
+  DclRange,
+  SocRange,
+  VoltageRange,
+  TempRange,
+  CellVoltageRange,
+};
+constexpr std::string_view bmsRejectText(BmsReject r) {
+  switch (r) {
+    case BmsReject::None:
+      return "none";
+    case BmsReject::ShortDlc:
+      return "short DLC";
+    case BmsReject::CvlRange:
+      return "CVL out of range";
+    case BmsReject::CclRange:
+      return "CCL out of range";
+    case BmsReject::DclRange:
+      return "DCL out of range";
+    case BmsReject::SocRange:
+      return "SoC/SoH out of range";
+    case BmsReject::VoltageRange:
+      return "voltage out of range";
+    case BmsReject::TempRange:
+      return "temperature out of range";
+    case BmsReject::CellVoltageRange:
+      return "cell voltage out of range";
+  }
+  return "?";
+}
+
 inline constexpr double kBmsNoValue = std::numeric_limits<double>::quiet_NaN();
 
 struct BmsLimits {
@@ -46,6 +83,11 @@ struct BmsLimits {
   double sohPct = kBmsNoValue;  // state of health, %
   double tempC = kBmsNoValue;   // battery temperature, degC (feeds the battery-temperature input)
   double voltageV = kBmsNoValue, currentA = kBmsNoValue;  // as the BMS measures them (shown only)
+  // The highest and lowest cell voltage, V (REC's 0x373): a high cell ramps
+  // the charge down before the pack reaches CVL (BmsCellHighV); the rest
+  // of that frame (lowest cell, cell temperatures) is shown only.
+  double cellMaxV = kBmsNoValue, cellMinV = kBmsNoValue;
+  double cellTempMaxC = kBmsNoValue, cellTempMinC = kBmsNoValue;
   bool chargeAllowed = true;
   std::uint32_t warnings = 0;  // bmswarn flags
   std::uint32_t alarms = 0;    // bmswarn flags the BMS raised as alarms (it is about to open)

@@ -1,5 +1,6 @@
 #include "core/events.h"
 
+#include "core/bms_limits.h"
 #include "core/commands.h"
 
 #include <cstdio>
@@ -49,6 +50,10 @@ std::string_view toString(EventCode c) {
     case EventCode::AlarmCondition: return "AlarmCondition";
     case EventCode::BatteryTempMissing: return "BatteryTempMissing";
     case EventCode::BatteryTempBack: return "BatteryTempBack";
+    case EventCode::BmsBadFrames: return "BmsBadFrames";
+    case EventCode::CanBusDown: return "CanBusDown";
+    case EventCode::CanBusBack: return "CanBusBack";
+    case EventCode::CanErrorFrames: return "CanErrorFrames";
   }
   return "?";
 }
@@ -205,6 +210,23 @@ std::string describe(const Event& e) {
       return "Battery temperature missing or stale: charging without temperature compensation";
     case EventCode::BatteryTempBack:
       std::snprintf(buf, sizeof buf, "Battery temperature back: %.1f C", e.a);
+      return buf;
+    case EventCode::BmsBadFrames:
+      std::snprintf(buf, sizeof buf, "BMS CAN: %.0f bad frame(s) ignored (last: 0x%03X, %s)", e.a,
+                    static_cast<unsigned>(e.b), std::string(bmsRejectText(static_cast<BmsReject>(e.detail))).c_str());
+      return buf;
+    case EventCode::CanBusDown:
+      std::snprintf(buf, sizeof buf, "CAN %s bus cannot be opened (%.0f failed attempt(s)); retry in %.0f s%s",
+                    e.detail == 0 ? "BMS" : "NMEA 2000", e.a, e.b,
+                    e.detail == 0 ? ": the BMS limits go stale" : ": no NMEA 2000 output");
+      return buf;
+    case EventCode::CanBusBack:
+      std::snprintf(buf, sizeof buf, "CAN %s bus open again after %.0f failed attempt(s)",
+                    e.detail == 0 ? "BMS" : "NMEA 2000", e.a);
+      return buf;
+    case EventCode::CanErrorFrames:
+      std::snprintf(buf, sizeof buf, "CAN %s bus: %.0f error frame(s) (last error class 0x%X)",
+                    e.detail == 0 ? "BMS" : "NMEA 2000", e.a, static_cast<unsigned>(e.b));
       return buf;
     case EventCode::AutoZeroDone:
       std::snprintf(buf, sizeof buf, "Auto-zero done: DynamicAltCurrentZero %.3f A from %.0f samples%s", e.a, e.b,

@@ -46,7 +46,16 @@ enum class EventCode {
   BatteryTempMissing,   // battery temperature missing or stale (detail 1: current capped at C/10, a = cap A;
                         // detail 0: charging uncompensated); once per episode (issue 21)
   BatteryTempBack,      // a fresh battery temperature again (a = degC)
+  // The CAN side (issue 22), posted by the xr-can thread through SideEvents,
+  // each at most once per 30 s. detail = the bus: 0 BMS, 1 NMEA 2000.
+  BmsBadFrames,         // bad BMS frames dropped (a = how many since the last, b = last id, detail = BmsReject)
+  CanBusDown,           // a bus cannot be opened (a = failed attempts, b = retry in s)
+  CanBusBack,           // open again (a = failed attempts before)
+  CanErrorFrames,       // error frames on a bus (a = how many since the last, b = last error class bits)
 };
+// How many codes there are (keep it after the last one): parsing a stored
+// code name tries each.
+inline constexpr int kEventCodeCount = static_cast<int>(EventCode::CanErrorFrames) + 1;
 
 struct Event {
   TimeNs t = 0;

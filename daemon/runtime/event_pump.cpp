@@ -28,19 +28,29 @@ void EventPump::stop() {
   drainOnce();
 }
 
+void EventPump::deliver(const Event& e) {
+  for (auto& sink : sinks_) {
+    // A failing sink (store full, socket gone) must not stop the others.
+    try {
+      sink(e);
+    } catch (...) {
+    }
+  }
+}
+
 std::size_t EventPump::drainOnce() {
   std::lock_guard lock(drainMutex_);
   std::size_t n = 0;
   Event e;
   while (ring_.pop(e)) {
-    for (auto& sink : sinks_) {
-      // A failing sink (store full, socket gone) must not stop the others.
-      try {
-        sink(e);
-      } catch (...) {
-      }
-    }
+    deliver(e);
     ++n;
+  }
+  if (side_) {
+    std::array<Event, SideEvents::kCapacity> taken;
+    const std::size_t k = side_->take(taken);
+    for (std::size_t i = 0; i < k; ++i) deliver(taken[i]);
+    n += k;
   }
   delivered_.fetch_add(n, std::memory_order_relaxed);
   return n;

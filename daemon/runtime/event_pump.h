@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/events.h"
+#include "runtime/side_events.h"
 #include "runtime/spsc_queue.h"
 
 namespace xr::rt {
@@ -52,8 +53,10 @@ class EventPump {
   EventPump(const EventPump&) = delete;
   EventPump& operator=(const EventPump&) = delete;
 
-  // Add sinks before start().
+  // Add sinks and sources before start().
   void addSink(Sink sink);
+  // Events posted by non-RT threads (side_events.h), drained with the ring.
+  void addSource(SideEvents& side) { side_ = &side; }
   void start();
   // Drains what is left, then joins.
   void stop();
@@ -63,8 +66,10 @@ class EventPump {
 
  private:
   void run();
+  void deliver(const Event& e);
 
   EventRing& ring_;
+  SideEvents* side_ = nullptr;
   std::chrono::milliseconds pollInterval_;
   std::vector<Sink> sinks_;
   std::thread thread_;

@@ -75,6 +75,22 @@ struct EngineRpmHandoff {
   double rpm = kNoValue;
   TimeNs stamp = 0;  // when it arrived (0 = never)
 };
+// What the CAN service sees on its buses (issue 22), for /api/system: one
+// writer (the service's poll), any readers. Times on the control loop's
+// clock; 0 = never.
+struct CanStatusHandoff {
+  TimeNs now = 0;  // when this was written
+  // BMS bus
+  bool bmsConfigured = false, bmsBusUp = false;
+  std::uint8_t bmsProtocol = 0;  // can::BmsProtocol
+  TimeNs bmsLastFrame = 0;       // the last frame the decoder accepted
+  BmsLimits bmsLimits;           // the decoder's last good values (NaN = none)
+  std::uint64_t bmsFrames = 0, bmsBadFrames = 0, bmsErrorFrames = 0, bmsOpenFailures = 0;
+  // NMEA 2000 bus
+  bool n2kConfigured = false, n2kBusUp = false, n2kClaimed = false;
+  std::uint8_t n2kAddress = 0xFF;
+  std::uint64_t n2kTxFrames = 0, n2kRxFrames = 0, n2kErrorFrames = 0, n2kOpenFailures = 0;
+};
 struct VictronHandoff {
   double currentA = kNoValue, voltageV = kNoValue, solarW = kNoValue;
   TimeNs stamp = 0;
@@ -138,13 +154,15 @@ class Handoffs {
   TripleBuffer<Params> params;
   SeqLock<RuntimeSnapshot> snapshot;
   EventRing events;
+  SideEvents sideEvents;                 // events of the non-RT threads (CAN), drained by the EventPump
   SpscQueue<RuntimeSnapshot, 512> rows;  // telemetry rows at --telemetry-rate
   SeqLock<TemperatureHandoff> temperature;
   SeqLock<VictronHandoff> victron;
   SeqLock<BmsLimits> bms;  // a BMS's limits (CAN link or another source), posted on each change
   SeqLock<EngineRpmHandoff> engineRpm;
   SeqLock<BatteryTempHandoff> batteryTemp;
-  SeqLock<BatteryLedger> ledger;  // the core's ledger, copied out ~4 times a second
+  SeqLock<CanStatusHandoff> canStatus;  // written by the CAN service's poll
+  SeqLock<BatteryLedger> ledger;        // the core's ledger, copied out ~4 times a second
   CommandAcks acks;
 
  private:

@@ -23,6 +23,8 @@ SimCanRig::SimCanRig(const Scenario& scenario, const CanSettings& settings, rt::
   bms_.cclMaxA = scenario.bms.ccl_max_a;
   bms_.openAfterS = scenario.bms.open_after_s;
   bms_.pylontech = scenario.bms.protocol == "pylontech";
+  bms_.rec = scenario.bms.protocol == "rec";
+  bms_.cellSpreadV = scenario.bms.cell_spread_v;
   if (log) {
     // Virtual time since the start of the run: the same seed writes the
     // same log.

@@ -40,10 +40,11 @@ enum class BmsCanMode { Talking, Silent, ShortFrames };
 // are ignored (drivers/sim/bms/sim_bms.h).
 struct ScenarioBms {
   bool can = false;                  // can = true: the BMS talks on the bus
-  std::string protocol = "victron";  // victron | pylontech (what the daemon decodes)
+  std::string protocol = "victron";  // victron | pylontech | rec (what the daemon decodes)
   double cvl_v = 14.2;               // its charge voltage limit
   double ccl_max_a = 100.0;          // its CCL before the SoC / cold taper
   double open_after_s = 3.0;         // limits ignored this long: the contactor opens
+  double cell_spread_v = 0.0;        // rec: highest cell this far over the average (0x373)
 };
 
 struct ScenarioEvent {

@@ -25,8 +25,8 @@ void parseBms(const Ctx& c, const toml::table& t, ScenarioBms& b) {
       b.can = *v.value<bool>();
     } else if (n == "protocol") {
       const auto s = text(c, k, v);
-      if (s != "victron" && s != "pylontech")
-        c.fail(lineOf(v), "[bms] protocol must be \"victron\" or \"pylontech\"");
+      if (s != "victron" && s != "pylontech" && s != "rec")
+        c.fail(lineOf(v), "[bms] protocol must be \"victron\", \"pylontech\" or \"rec\"");
       b.protocol = s;
     } else if (n == "cvl_v") {
       b.cvl_v = number(c, k, v, 8.0, 70.0);
@@ -34,6 +34,8 @@ void parseBms(const Ctx& c, const toml::table& t, ScenarioBms& b) {
       b.ccl_max_a = number(c, k, v, 0.0, 2000.0);
     } else if (n == "open_after_s") {
       b.open_after_s = number(c, k, v, 0.1, 600.0);
+    } else if (n == "cell_spread_v") {
+      b.cell_spread_v = number(c, k, v, 0.0, 0.5);
     } else {
       unknownKey(c, k, "[bms]");
     }

@@ -179,6 +179,18 @@ case "$case_name" in
     "$bin" --sim --scenario "$tmp/ocv.toml" --speed max >"$tmp/log" 2>&1
     [ $? = 64 ] || fail "OCV table not monotone: not 64"
     grep -q "ocv.toml:4:.*monotone" "$tmp/log" || fail "OCV table not monotone: no file:line:"
+    # Output files that cannot be created stop the daemon at start (exit 78,
+    # like --telemetry-csv), naming the file and the OS error; the field is
+    # never enabled.
+    "$bin" --sim --speed max --duration 5 --can-log "$tmp/no-such-dir/can.log" --sim-outputs "$tmp/out-can" \
+      >"$tmp/log" 2>&1
+    [ $? = 78 ] || fail "--can-log in a missing directory: not 78"
+    grep -q "cannot create CAN log $tmp/no-such-dir/can.log: No such file or directory" "$tmp/log" \
+      || fail "--can-log error does not name the file and the OS error: $(cat "$tmp/log")"
+    [ "$(field_of "$tmp/out-can" 2>/dev/null)" != 1 ] || fail "--can-log failure: the field was enabled"
+    "$bin" --sim --speed max --duration 5 --telemetry-csv "$tmp/no-such-dir/t.csv" >"$tmp/log" 2>&1
+    [ $? = 78 ] || fail "--telemetry-csv in a missing directory: not 78"
+    grep -q "no-such-dir/t.csv: No such file or directory" "$tmp/log" || fail "--telemetry-csv error not named"
     ;;
   web_cannot_start)
     # issue 26, item 3: 192.0.2.1 (TEST-NET-1) is a valid address no interface

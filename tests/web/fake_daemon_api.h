@@ -137,6 +137,14 @@ class FakeDaemonApi : public DaemonApi {
             {"ADS1115 @0x48 on sim", false, "no ACK"}};
   }
   VersionMap versions() override { return {{"xregulatord", "test"}, {"mode", "fake"}}; }
+  CanState can() override {
+    std::lock_guard lock(m_);
+    return can_;
+  }
+  void setCan(const CanState& c) {
+    std::lock_guard lock(m_);
+    can_ = c;
+  }
   Health health() override {
     std::lock_guard lock(m_);
     return healthy_ ? Health{true, "control loop ticking"} : Health{false, "no tick for 5 s"};
@@ -180,6 +188,7 @@ class FakeDaemonApi : public DaemonApi {
   int patchCalls_ = 0;
   std::string lastPatchSource_;
   bool healthy_ = true;
+  CanState can_;
   bool refuseCommands_ = false;
 };
 

@@ -419,6 +419,42 @@ TEST_F(WebApiTest, System_VersionsProbesLoop) {
   EXPECT_DOUBLE_EQ(o.at("loop").at("period_p99_us").to_number<double>(), 2510);
 }
 
+TEST_F(WebApiTest, System_CanBusesOffByDefaultWithNullsNotZeros) {
+  api_.publish();
+  start();
+  auto o = obj(get("/api/system"));
+  const auto& bms = o.at("bms").as_object();
+  EXPECT_EQ(bms.at("state").as_string(), "off");
+  EXPECT_TRUE(bms.at("protocol").is_null());
+  EXPECT_TRUE(bms.at("cvl_v").is_null());
+  EXPECT_TRUE(bms.at("age_s").is_null());
+  EXPECT_EQ(o.at("n2k").at("state").as_string(), "off");
+  EXPECT_TRUE(o.at("n2k").at("address").is_null());
+  EXPECT_FALSE(o.at("n2k").at("claimed").as_bool());
+  CanState c;
+  c.bms.protocol = "rec";
+  c.bms.state = "talking";
+  c.bms.cvl_v = 14.2;
+  c.bms.ccl_a = 55.5;  // soc_pct stays unknown
+  c.bms.age_s = 0.25;
+  c.bms.bad_frames = 7;
+  c.n2k.state = "claimed";
+  c.n2k.claimed = true;
+  c.n2k.address = 35;
+  c.n2k.tx_frames = 120;
+  api_.setCan(c);
+  o = obj(get("/api/system"));
+  EXPECT_EQ(o.at("bms").at("protocol").as_string(), "rec");
+  EXPECT_EQ(o.at("bms").at("state").as_string(), "talking");
+  EXPECT_DOUBLE_EQ(o.at("bms").at("cvl_v").to_number<double>(), 14.2);
+  EXPECT_DOUBLE_EQ(o.at("bms").at("ccl_a").to_number<double>(), 55.5);
+  EXPECT_TRUE(o.at("bms").at("soc_pct").is_null());
+  EXPECT_DOUBLE_EQ(o.at("bms").at("age_s").to_number<double>(), 0.25);
+  EXPECT_EQ(o.at("bms").at("bad_frames").to_number<std::uint64_t>(), 7u);
+  EXPECT_EQ(o.at("n2k").at("address").to_number<int>(), 35);
+  EXPECT_EQ(o.at("n2k").at("tx_frames").to_number<std::uint64_t>(), 120u);
+}
+
 TEST_F(WebApiTest, Metrics_PrometheusText) {
   api_.publish();
   start();

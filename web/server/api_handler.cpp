@@ -209,6 +209,9 @@ Response ApiHandler::getSystem(const Request& req) {
   json::array integrations;
   for (const auto& i : api_.integrations()) integrations.push_back(integrationToJson(i));
   o["integrations"] = std::move(integrations);
+  const CanState can = api_.can();
+  o["bms"] = canBmsToJson(can.bms);
+  o["n2k"] = canN2kToJson(can.n2k);
   o["telemetry_rate_hz"] = opts_.telemetry_rate_hz;
   o["reads_require_token"] = opts_.reads_require_token;
   return jsonReply(req, http::status::ok, o);

@@ -12,6 +12,7 @@
 //
 // The server does all JSON formatting; the daemon hands out plain structs.
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -153,6 +154,29 @@ struct IntegrationState {
   std::map<std::string, double> values;  // what it reads (the Victron limits); NaN = none
 };
 
+// The CAN buses (issue 22) for /api/system. Unknown numbers are NaN (null
+// in JSON), never invented.
+struct CanBmsState {
+  std::string protocol;       // victron | pylontech | rec; empty when off
+  std::string state = "off";  // off | bus_error | silent | talking
+  double cvl_v = std::numeric_limits<double>::quiet_NaN();
+  double ccl_a = std::numeric_limits<double>::quiet_NaN();
+  double soc_pct = std::numeric_limits<double>::quiet_NaN();
+  double cell_max_v = std::numeric_limits<double>::quiet_NaN();  // rec only
+  double age_s = std::numeric_limits<double>::quiet_NaN();       // since the last CVL/CCL (0x351)
+  std::uint64_t frames = 0, bad_frames = 0, error_frames = 0, open_failures = 0;
+};
+struct CanN2kState {
+  std::string state = "off";  // off | bus_error | claimed | no_address
+  bool claimed = false;
+  int address = -1;  // -1 = none
+  std::uint64_t tx_frames = 0, rx_frames = 0, error_frames = 0, open_failures = 0;
+};
+struct CanState {
+  CanBmsState bms;
+  CanN2kState n2k;
+};
+
 // Health for /healthz: ok = the control loop ticks and the outputs are driven.
 struct Health {
   bool ok = false;
@@ -197,6 +221,8 @@ class DaemonApi {
   virtual Health health() = 0;
   // The integrations' state; none when the daemon runs without them.
   virtual std::vector<IntegrationState> integrations() { return {}; }
+  // The CAN buses; both "off" when the daemon has none.
+  virtual CanState can() { return {}; }
 };
 
 }  // namespace xr::web

@@ -296,6 +296,34 @@ std::string metricsText(const StatusSnapshot* s, const WebServerStats& st) {
   return out;
 }
 
+json::object canBmsToJson(const CanBmsState& b) {
+  json::object o;
+  o["state"] = b.state;
+  o["protocol"] = b.protocol.empty() ? json::value(nullptr) : json::value(b.protocol);
+  o["cvl_v"] = number(b.cvl_v);
+  o["ccl_a"] = number(b.ccl_a);
+  o["soc_pct"] = number(b.soc_pct);
+  o["cell_max_v"] = number(b.cell_max_v);
+  o["age_s"] = number(b.age_s);
+  o["frames"] = b.frames;
+  o["bad_frames"] = b.bad_frames;
+  o["error_frames"] = b.error_frames;
+  o["open_failures"] = b.open_failures;
+  return o;
+}
+
+json::object canN2kToJson(const CanN2kState& n) {
+  json::object o;
+  o["state"] = n.state;
+  o["claimed"] = n.claimed;
+  o["address"] = n.address < 0 ? json::value(nullptr) : json::value(n.address);
+  o["tx_frames"] = n.tx_frames;
+  o["rx_frames"] = n.rx_frames;
+  o["error_frames"] = n.error_frames;
+  o["open_failures"] = n.open_failures;
+  return o;
+}
+
 json::object integrationToJson(const IntegrationState& i) {
   json::object o;
   o["name"] = i.name;

@@ -35,6 +35,10 @@ std::string metricsText(const StatusSnapshot* s, const WebServerStats& stats);
 boost::json::object integrationToJson(const IntegrationState& i);
 std::string integrationMetrics(const std::vector<IntegrationState>& list);
 
+// /api/system "bms" and "n2k" (issue 22).
+boost::json::object canBmsToJson(const CanBmsState& b);
+boost::json::object canN2kToJson(const CanN2kState& n);
+
 // A finite number, or null (JSON has no NaN/Inf).
 boost::json::value number(double v);
 

@@ -37,7 +37,7 @@ double SimBms::ccl(const SimBmsTruth& t) const {
 }
 
 bool SimBms::warning(const SimBmsTruth& t) const {
-  return forcedWarning || t.batteryV > cvl() + kHighVoltageMarginV;
+  return forcedWarning || t.batteryV > cvl() + kHighVoltageMarginV || (rec && cellMaxV(t) > kCellWarnV);
 }
 
 std::vector<CanFrame> SimBms::step(TimeNs now, const SimBmsTruth& t) {
@@ -54,9 +54,10 @@ std::vector<CanFrame> SimBms::step(TimeNs now, const SimBmsTruth& t) {
   nextSend_ = now + fromSec(kPeriodS);
   out.push_back(can::encode351(cvl(), ccl(t), 200.0, 10.0));
   if (shortFrames) out.back().dlc = 4;
-  out.push_back(can::encode355(t.socPct, 100.0));
+  out.push_back(rec ? can::encode355Rec(t.socPct, 100.0) : can::encode355(t.socPct, 100.0));
   out.push_back(can::encode356(t.batteryV, t.batteryA, t.tempC));
   out.push_back(can::encode35A(0, warning(t) ? bmswarn::HighVoltage : 0u));
+  if (rec) out.push_back(can::encode373(cellMinV(t), cellMaxV(t), t.tempC, t.tempC));
   if (pylontech) out.push_back(can::encode359(0, warning(t) ? bmswarn::HighVoltage : 0u));
   return out;
 }

@@ -13,7 +13,12 @@
 // caller disconnects the plant's battery (the plant's BMS disconnect).
 // `talking = false` (bms_can = "silent") stops its frames; `shortFrames`
 // (bms_can = "short_frames") sends its limits (0x351) with DLC 4, which a
-// decoder must reject. `pylontech` adds the 0x359 flags frame.
+// decoder must reject. `pylontech` adds the 0x359 flags frame. `rec` sends
+// REC's 0x355 (with the 0.01 % SoC) and 0x373: its cells are the pack
+// voltage / `cells`, the highest `cellSpreadV` over that and the lowest as
+// far under (an unbalanced pack), at the plant's battery temperature; a
+// cell above kCellWarnV raises its high-voltage warning, as REC's own
+// per-cell limit does.
 #include <cstdint>
 #include <vector>
 
@@ -40,6 +45,9 @@ class SimBms {
   bool forcedWarning = false;
   bool shortFrames = false;
   bool pylontech = false;
+  bool rec = false;
+  int cells = 4;  // in series: a 12 V LFP bank
+  double cellSpreadV = 0.0;
 
   // One step of `dt` seconds; returns the frames to send now (every
   // kPeriodS of simulated time while talking).
@@ -48,10 +56,13 @@ class SimBms {
   double ccl(const SimBmsTruth& t) const;
   double cvl() const { return forcedCvlV > 0.0 ? forcedCvlV : cvlV; }
   bool warning(const SimBmsTruth& t) const;
+  double cellMaxV(const SimBmsTruth& t) const { return t.batteryV / cells + cellSpreadV; }
+  double cellMinV(const SimBmsTruth& t) const { return t.batteryV / cells - cellSpreadV; }
   bool contactorOpen() const { return open_; }
   void closeContactor() { open_ = false, ignoredSince_ = -1; }
 
   static constexpr double kPeriodS = 0.5;
+  static constexpr double kCellWarnV = 3.65;  // LFP's usual cell maximum
 
  private:
   bool open_ = false;

@@ -17,6 +17,11 @@ checks what the issue asks of that scenario:
               cap, limits back once it talks again
   bad-frames  a CCL of 6 000 A and short frames never reach the limits;
               counted and reported at most once per 30 s
+  rec         a REC BMS with an unbalanced pack: its highest cell (0x373,
+              read back from the --can-log here, not from the daemon)
+              reaches BmsCellHighV, the charge ramps down on it, so the cell
+              never reaches the BMS's own 3.65 V warning and the BMS never
+              opens; the charge still goes on
 
   check.py --daemon build/daemon/app/xregulatord --out DIR --scenario ccl-step
 Exit 0 when every check holds, 1 with the failures listed.
@@ -186,8 +191,45 @@ def check_bad_frames(rows, log) -> list[str]:
     return f + bms_never_opens(rows)
 
 
+def can_frames(can_log: bytes, can_id: str) -> list[tuple[float, bytes]]:
+    """(time, payload) of every logged frame with this id."""
+    out = []
+    for m in re.finditer(rf"^\((\S+)\) \S+ {can_id}#([0-9A-Fa-f]*)$", can_log.decode(), re.M):
+        out.append((float(m.group(1)), bytes.fromhex(m.group(2))))
+    return out
+
+
+def check_rec(rows, log, can_log: bytes) -> list[str]:
+    f = bms_never_opens(rows)
+    # 0x373 as REC sends it: lowest, highest cell in mV (little-endian u16).
+    cells = [(t_, int.from_bytes(d[2:4], "little") / 1000.0) for t_, d in can_frames(can_log, "373")]
+    if not cells:
+        return f + ["no 0x373 frames in the CAN log"]
+    high = [t_ for t_, v in cells if v >= 3.60]
+    if not high:
+        f.append(f"the highest cell never reached BmsCellHighV 3.60 V (max {max(v for _, v in cells):.3f} V): "
+                 "the scenario does not exercise the cell limit")
+    worst = max(v for _, v in cells)
+    if worst > 3.65:
+        f.append(f"the highest cell reached {worst:.3f} V, over the BMS's own 3.65 V warning")
+    # 0x35A warnings, byte 4 bits 2-3 = 01: the BMS's high-voltage warning.
+    warned = [t_ for t_, d in can_frames(can_log, "35A") if len(d) == 8 and (d[4] >> 2) & 3 == 1]
+    if warned:
+        f.append(f"the BMS raised its high-voltage warning at {warned[0]:.1f} s")
+    if high and not any(r["bms_state"] == "WARNING" for r in window(rows, high[0] - 1, high[0] + 5)):
+        f.append(f"no ramp-down (bms_state WARNING) when the high cell reached 3.60 V at {high[0]:.1f} s")
+    # SoC from the REC's 0x355 (0.01 % in bytes 4-5) is what the daemon shows.
+    socs = [int.from_bytes(d[4:6], "little") / 100.0 for _, d in can_frames(can_log, "355") if len(d) >= 6]
+    if not socs or abs(socs[-1] - num(rows[-1], "bms_soc_pct")) > 0.6:
+        f.append(f"bms_soc_pct {num(rows[-1], 'bms_soc_pct')} is not the REC's 0.01 % SoC {socs[-1:]}")
+    gained = num(rows[-1], "sim_soc_pct") - num(rows[0], "sim_soc_pct")
+    if gained < 3.0:
+        f.append(f"the charge stalled on the cell limit: SoC gained {gained:.1f} %")
+    return f
+
+
 CHECKS = {"ccl-step": check_ccl_step, "cvl": check_cvl, "warn": check_warn, "ignored": check_ignored,
-          "silent": check_silent, "bad-frames": check_bad_frames}
+          "silent": check_silent, "bad-frames": check_bad_frames, "rec": check_rec}
 
 
 def main() -> int:
@@ -198,7 +240,8 @@ def main() -> int:
     ap.add_argument("--twice", action="store_true", help="run again and compare CSV and CAN log bytes")
     a = ap.parse_args()
     rows, log, csv_bytes, can_bytes = run(a.daemon, a.scenario, Path(a.out))
-    failures = CHECKS[a.scenario](rows, log)
+    check = CHECKS[a.scenario]
+    failures = check(rows, log, can_bytes) if check is check_rec else check(rows, log)
     if not can_bytes.startswith(b"("):
         failures.append("--can-log wrote no candump lines")
     if a.twice:

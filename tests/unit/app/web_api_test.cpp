@@ -105,6 +105,24 @@ TEST(WebApiEvents, EventsOfAnEarlierRunAreShownAndPaged) {
   EXPECT_LT(older[0].id, page[1].id);
 }
 
+TEST(WebApiEvents, EveryCodeComesBackFromTheStoreByName) {
+  // The codes after AlarmCondition (battery temperature, CAN) read back as
+  // Message before: the name parse stopped there.
+  TempDir d;
+  Rig rig(d.file("x.db"));
+  for (EventCode c : {EventCode::BatteryTempBack, EventCode::BmsBadFrames, EventCode::CanErrorFrames}) {
+    Event e;
+    e.code = c;
+    rig.store->appendEvent(e);
+  }
+  web::EventQuery q;
+  const auto got = rig.api->events(q);
+  ASSERT_EQ(got.size(), 3u);
+  EXPECT_EQ(got[0].event.code, EventCode::CanErrorFrames);
+  EXPECT_EQ(got[1].event.code, EventCode::BmsBadFrames);
+  EXPECT_EQ(got[2].event.code, EventCode::BatteryTempBack);
+}
+
 }  // namespace
 }  // namespace xr::app
 

@@ -60,6 +60,23 @@ TEST(BmsCanLink, BadFramesAreCountedIgnoredAndReportedRateLimited) {
   EXPECT_NE(r.reports[1].find("5 bad frame"), std::string::npos);
 }
 
+TEST(BmsCanLink, WithAnEventSinkTheReportIsAnEvent) {
+  LinkRig r;
+  std::vector<Event> events;
+  r.link.setPostEvent([&](const Event& e) { events.push_back(e); });
+  CanFrame bad = can::encode351(71.0, 10, 100, 12);  // CVL out of range
+  r.bms.send(bad);
+  r.link.poll(fromSec(5));
+  EXPECT_TRUE(r.reports.empty());
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].code, EventCode::BmsBadFrames);
+  EXPECT_DOUBLE_EQ(events[0].a, 1.0);
+  EXPECT_DOUBLE_EQ(events[0].b, 0x351);
+  EXPECT_EQ(static_cast<BmsReject>(events[0].detail), BmsReject::CvlRange);
+  EXPECT_EQ(describe(events[0]), "BMS CAN: 1 bad frame(s) ignored (last: 0x351, CVL out of range)");
+  EXPECT_EQ(r.link.lastAccepted(), 0);
+}
+
 TEST(BmsCanLink, LogsEveryFrameInCandumpFormat) {
   LinkRig r;
   std::ostringstream log;

@@ -15,16 +15,24 @@ namespace {
 struct BmsPath {
   test::RegRig r;
   sim::SimBms bms;
-  can::BmsDecoder decoder{can::BmsProtocol::Victron};
+  can::BmsDecoder decoder;
   double cclChangedAt = -1.0;  // when the decoded CCL last changed (s)
+  // Over a run(): the highest cell the BMS reported, whether it warned, the
+  // lowest battery current, and whether the limiter ramped on a high cell.
+  double worstCell = 0.0, leastIbat = 1e9;
+  bool bmsWarned = false, cellRamp = false;
 
-  explicit BmsPath(bool follow) : r(params(follow)) {
+  explicit BmsPath(bool follow, can::BmsProtocol protocol = can::BmsProtocol::Victron,
+                   double cellHighV = 3.60)
+      : r(params(follow, cellHighV)), decoder(protocol) {
+    bms.rec = protocol == can::BmsProtocol::Rec;
     r.plant.house = 8.0;
     r.plant.Vocv = 12.6;  // far below CVL: current-limited
   }
-  static Params params(bool follow) {
+  static Params params(bool follow, double cellHighV) {
     Params p;
     p.BmsLimitsEnabled = follow;
+    p.BmsCellHighV = cellHighV;
     return p;
   }
   sim::SimBmsTruth truth() const { return {r.plant.V(), r.plant.Ibat(), 60.0, 20.0}; }
@@ -41,6 +49,10 @@ struct BmsPath {
       r.bms = decoder.limits();
       r.tick();
       if (i * 0.0025 >= fromS) worst = std::max(worst, r.plant.Ibat());
+      worstCell = std::max(worstCell, bms.cellMaxV(truth()));
+      bmsWarned |= bms.warning(truth());
+      leastIbat = std::min(leastIbat, r.plant.Ibat());
+      cellRamp |= r.out->telemetry.bms_state == BmsState::WARNING;
     }
     return worst;
   }
@@ -70,6 +82,54 @@ TEST(SimBms, OpensWhenIgnoredForMoreThanOpenAfterS) {
   c.step(fromSec(1), {13.3, 14.9, 50, 25});  // within the margin: never ignored
   c.step(fromSec(10), {13.3, 14.9, 50, 25});
   EXPECT_FALSE(c.contactorOpen());
+}
+
+TEST(SimBms, RecSendsItsCellsAndWarnsOnAHighCell) {
+  sim::SimBms b;
+  b.rec = true;
+  b.cellSpreadV = 0.1;
+  const auto frames = b.step(0, {14.0, 20, 87.25, 18});
+  can::BmsDecoder d(can::BmsProtocol::Rec);
+  int n373 = 0;
+  for (const CanFrame& f : frames) {
+    EXPECT_EQ(d.feed(f, 0), can::BmsFrameResult::Accepted) << std::hex << f.id;
+    n373 += f.id == 0x373;
+  }
+  EXPECT_EQ(n373, 1);
+  EXPECT_NEAR(d.limits().cellMaxV, 3.6, 1e-9);  // 14.0 / 4 + 0.1
+  EXPECT_NEAR(d.limits().cellMinV, 3.4, 1e-9);
+  EXPECT_DOUBLE_EQ(d.limits().cellTempMaxC, 18.0);
+  EXPECT_NEAR(d.limits().socPct, 87.25, 1e-9);
+  EXPECT_FALSE(b.warning({14.2, 10, 50, 25}));  // 3.65: at its limit, not over
+  EXPECT_TRUE(b.warning({14.21, 10, 50, 25}));
+}
+
+TEST(BmsPathClosedLoop, RecHighCellRampsDownBeforeTheBmsWarns) {
+  BmsPath p(true, can::BmsProtocol::Rec);
+  p.run(30);
+  const double chargingA = p.r.plant.Ibat();
+  ASSERT_GT(chargingA, 30.0);
+  ASSERT_FALSE(p.cellRamp);
+  // An unbalanced pack: its highest cell 15 mV over BmsCellHighV at this
+  // charge, the pack still far under CVL.
+  p.bms.cellSpreadV = 3.615 - p.r.plant.V() / 4;
+  p.worstCell = 0;
+  p.leastIbat = 1e9;
+  p.run(20);
+  EXPECT_TRUE(p.cellRamp);       // the limiter ramped on the cell
+  EXPECT_LT(p.leastIbat, 2.0);   // down to no charge
+  EXPECT_LE(p.worstCell, 3.65);  // the BMS's own cell limit never reached
+  EXPECT_FALSE(p.bmsWarned);
+  EXPECT_FALSE(p.bms.contactorOpen());
+  // The same pack with BmsCellHighV = 0 (off): the charge goes on until the
+  // high cell passes the BMS's own limit and it warns (the warning's ramp
+  // then stops the charge, later and with the BMS a step from opening).
+  BmsPath q(true, can::BmsProtocol::Rec, 0.0);
+  q.run(30);
+  q.bms.cellSpreadV = p.bms.cellSpreadV;
+  q.run(20);
+  EXPECT_GT(q.worstCell, 3.65);
+  EXPECT_TRUE(q.bmsWarned);
 }
 
 TEST(BmsPathClosedLoop, CclStepIsMetWithinOneSecond) {

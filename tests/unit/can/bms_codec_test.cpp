@@ -71,6 +71,83 @@ TEST(BmsCodec, PylontechProtectionBlocksChargeAndVictronIgnores359) {
   EXPECT_EQ(f.data[2], 0x02);
 }
 
+// Frames of a REC Q BMS (a 24 V pack) as its owner captured them with
+// candump (natecostello/van_two_point_oh, blog/2021-4-8): the REC decoding
+// of each, field by field.
+TEST(BmsCodec, RecDecodesACapturedRecQ) {
+  BmsDecoder d(BmsProtocol::Rec);
+  // CVL 0x011F = 28.7 V, CCL 0x02BC = 70.0 A, DCL 0x03E8 = 100.0 A.
+  EXPECT_EQ(d.feed(fromCandump("(1) can0 351#1F01BC02E803E700"), fromSec(1)), BmsFrameResult::Accepted);
+  EXPECT_NEAR(d.limits().cvlV, 28.7, 1e-9);
+  EXPECT_NEAR(d.limits().cclA, 70.0, 1e-9);
+  EXPECT_NEAR(d.limits().dclA, 100.0, 1e-9);
+  // SoC 50 %, SoH 100 %, and the SoC again as 0x1388 = 50.00 %.
+  EXPECT_EQ(d.feed(fromCandump("(1) can0 355#320064008813"), fromSec(1)), BmsFrameResult::Accepted);
+  EXPECT_DOUBLE_EQ(d.limits().socPct, 50.0);
+  EXPECT_DOUBLE_EQ(d.limits().sohPct, 100.0);
+  // 0x0A32 = 26.10 V, 0 A, 0x0127 = 29.5 degC.
+  EXPECT_EQ(d.feed(fromCandump("(1) can0 356#320A00002701"), fromSec(1)), BmsFrameResult::Accepted);
+  EXPECT_NEAR(d.limits().voltageV, 26.10, 1e-9);
+  EXPECT_NEAR(d.limits().tempC, 29.5, 1e-9);
+  // Every pair 10 (normal) or 00 (not supported): nothing raised.
+  EXPECT_EQ(d.feed(fromCandump("(1) can0 35A#A8A082000000800A"), fromSec(1)), BmsFrameResult::Accepted);
+  EXPECT_EQ(d.limits().alarms, 0u);
+  EXPECT_EQ(d.limits().warnings, 0u);
+  EXPECT_EQ(d.feed(fromCandump("(1) can0 35E#5245432D424D5300"), fromSec(1)), BmsFrameResult::Accepted);
+  EXPECT_EQ(d.name(), "REC-BMS");
+  // The ids REC adds that carry nothing the regulator uses: ignored, not bad.
+  EXPECT_EQ(d.feed(fromCandump("(1) can0 35F#0000020664000000"), fromSec(1)), BmsFrameResult::Ignored);
+  EXPECT_EQ(d.feed(fromCandump("(1) can0 380#31512D3138343500"), fromSec(1)), BmsFrameResult::Ignored);
+  EXPECT_EQ(d.rejected(), 0u);
+  EXPECT_TRUE(std::isnan(d.limits().cellMaxV));  // no 0x373 yet
+}
+
+TEST(BmsCodec, Rec373CellExtremes) {
+  BmsDecoder d(BmsProtocol::Rec);
+  // 0x0CE4 = 3300 mV, 0x0E1A = 3610 mV, 0x011D = 285 K = 12 degC, 0x0122 = 290 K = 17 degC.
+  EXPECT_EQ(d.feed(fromCandump("(1) can0 373#E40C1A0E1D012201"), 1), BmsFrameResult::Accepted);
+  EXPECT_NEAR(d.limits().cellMinV, 3.300, 1e-9);
+  EXPECT_NEAR(d.limits().cellMaxV, 3.610, 1e-9);
+  EXPECT_DOUBLE_EQ(d.limits().cellTempMinC, 12.0);
+  EXPECT_DOUBLE_EQ(d.limits().cellTempMaxC, 17.0);
+  EXPECT_EQ(d.limits().stamp, 0);  // only 0x351 moves the staleness clock
+  // Our encoder writes the same bytes.
+  const CanFrame f = encode373(3.300, 3.610, 12.0, 17.0);
+  const CanFrame g = fromCandump("(1) can0 373#E40C1A0E1D012201");
+  EXPECT_EQ(f.dlc, 8);
+  EXPECT_EQ(f.data, g.data);
+  // Victron and Pylontech do not read 0x373 (their BMSs may send it, but
+  // the protocol chosen in config says what we act on).
+  BmsDecoder v(BmsProtocol::Victron);
+  EXPECT_EQ(v.feed(f, 1), BmsFrameResult::Ignored);
+}
+
+TEST(BmsCodec, RecRoundTripsAndRejectsBadCells) {
+  BmsDecoder d(BmsProtocol::Rec);
+  EXPECT_EQ(d.feed(encode355Rec(87.37, 99), 1), BmsFrameResult::Accepted);
+  EXPECT_NEAR(d.limits().socPct, 87.37, 1e-9);  // the 0.01 % value
+  EXPECT_EQ(d.feed(encode373(3.1, 3.55, -5, 40), 1), BmsFrameResult::Accepted);
+  EXPECT_NEAR(d.limits().cellMaxV, 3.55, 1e-9);
+  EXPECT_DOUBLE_EQ(d.limits().cellTempMinC, -5.0);
+  EXPECT_DOUBLE_EQ(d.limits().cellTempMaxC, 40.0);
+  CanFrame shortDlc = encode373(3.1, 3.2, 20, 20);
+  shortDlc.dlc = 6;
+  EXPECT_EQ(d.feed(shortDlc, 2), BmsFrameResult::Rejected);
+  EXPECT_EQ(d.feed(encode373(3.1, 5.1, 20, 20), 2), BmsFrameResult::Rejected);  // over 5 V
+  EXPECT_EQ(d.feed(encode373(0.5, 3.3, 20, 20), 2), BmsFrameResult::Rejected);  // under 1 V
+  EXPECT_EQ(d.feed(encode373(3.4, 3.3, 20, 20), 2), BmsFrameResult::Rejected);  // min above max
+  EXPECT_EQ(d.feed(encode373(3.1, 3.3, 20, 130), 2), BmsFrameResult::Rejected);
+  EXPECT_EQ(d.lastRejectWhy(), "temperature out of range");
+  CanFrame disagree = encode355Rec(40.0, 99);
+  disagree.data[0] = 60;  // whole percent 60, fine value 40.00
+  EXPECT_EQ(d.feed(disagree, 2), BmsFrameResult::Rejected);
+  EXPECT_EQ(d.rejected(), 6u);
+  EXPECT_NEAR(d.limits().cellMaxV, 3.55, 1e-9);  // the good values stand
+  EXPECT_NEAR(d.limits().socPct, 87.37, 1e-9);
+  EXPECT_EQ(parseBmsProtocol("rec"), BmsProtocol::Rec);
+  EXPECT_FALSE(parseBmsProtocol("jk").has_value());
+}
+
 TEST(BmsCodec, EncoderRoundTripsEveryFrame) {
   BmsDecoder d(BmsProtocol::Victron);
   EXPECT_EQ(d.feed(encode351(28.4, 120.5, 200, 24.0), 7), BmsFrameResult::Accepted);

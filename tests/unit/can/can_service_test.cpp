@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -139,7 +141,13 @@ TEST(CanService, TheBmsTemperatureIsTheBatteryTemperatureOnlyWhenAsked) {
   EXPECT_EQ(t.source, BatteryTempSource::bms);
 }
 
-TEST(CanService, BadFramesNeverReachTheHandoff) {
+std::vector<Event> takeSideEvents(rt::Handoffs& h) {
+  std::array<Event, rt::SideEvents::kCapacity> out;
+  const std::size_t n = h.sideEvents.take(out);
+  return {out.begin(), out.begin() + static_cast<std::ptrdiff_t>(n)};
+}
+
+TEST(CanService, BadFramesNeverReachTheHandoffAndAreOneRateLimitedEvent) {
   ServiceRig r;
   r.bms.send(can::encode351(14.1, 55.0, 100.0, 12.0));
   r.svc.poll(fromSec(1.0));
@@ -152,10 +160,118 @@ TEST(CanService, BadFramesNeverReachTheHandoff) {
   const BmsLimits l = r.h.bms.load();
   EXPECT_NEAR(l.cclA, 55.0, 1e-9);
   EXPECT_EQ(l.stamp, fromSec(1.0));  // the good limits stand with their time: they go stale
-  ASSERT_EQ(r.reports.size(), 1u);
-  EXPECT_NE(r.reports[0].find("2 bad frame(s) ignored"), std::string::npos) << r.reports[0];
   ASSERT_NE(r.svc.bmsLink(), nullptr);
   EXPECT_EQ(r.svc.bmsLink()->decoder().rejected(), 2u);
+  // An event for the dashboard (not a journal line of its own: the event
+  // pump journals it).
+  EXPECT_TRUE(r.reports.empty());
+  auto ev = takeSideEvents(r.h);
+  ASSERT_EQ(ev.size(), 1u);
+  EXPECT_EQ(ev[0].code, EventCode::BmsBadFrames);
+  EXPECT_EQ(ev[0].level, EventLevel::Warning);
+  EXPECT_EQ(ev[0].t, fromSec(2.0));
+  EXPECT_EQ(describe(ev[0]), "BMS CAN: 2 bad frame(s) ignored (last: 0x351, short DLC)");
+  // More within 30 s: counted, no event; 30 s on, one event with the count.
+  for (int i = 0; i < 10; ++i) {
+    r.bms.send(shortOne);
+    r.svc.poll(fromSec(3.0 + i));
+  }
+  EXPECT_TRUE(takeSideEvents(r.h).empty());
+  r.svc.poll(fromSec(32.0));
+  ev = takeSideEvents(r.h);
+  ASSERT_EQ(ev.size(), 1u);
+  EXPECT_DOUBLE_EQ(ev[0].a, 10.0);
+  EXPECT_EQ(r.h.canStatus.load().bmsBadFrames, 12u);
+}
+
+TEST(CanService, ErrorFramesAreCountedAndOneEvent) {
+  ServiceRig r;
+  CanFrame err;
+  err.error = true;
+  err.extended = true;
+  err.id = 0x40;  // CAN_ERR_BUSOFF
+  r.bms.send(err);
+  r.bms.send(err);
+  r.svc.poll(fromSec(1.0));
+  auto ev = takeSideEvents(r.h);
+  ASSERT_EQ(ev.size(), 1u);
+  EXPECT_EQ(ev[0].code, EventCode::CanErrorFrames);
+  EXPECT_EQ(describe(ev[0]), "CAN BMS bus: 2 error frame(s) (last error class 0x40)");
+  EXPECT_EQ(r.svc.bmsLink()->decoder().rejected(), 0u);  // not bad BMS frames
+  EXPECT_EQ(r.h.canStatus.load().bmsErrorFrames, 2u);
+}
+
+TEST(CanService, ABusThatCannotOpenIsOneEventPerOutageAndOneWhenBack) {
+  can::SimCanSegment seg;
+  can::SimCanNode& node = seg.attach();
+  rt::Handoffs h{Params{}};
+  int attempts = 0;
+  struct Borrowed final : CanBus {
+    CanBus& b;
+    explicit Borrowed(CanBus& x) : b(x) {}
+    bool send(const CanFrame& f) noexcept override { return b.send(f); }
+    std::optional<CanFrame> receive(std::chrono::milliseconds t) noexcept override { return b.receive(t); }
+    CanBusStats stats() const noexcept override { return b.stats(); }
+  };
+  CanService svc(h, [](const std::string&) {});
+  svc.setN2kBus(std::make_unique<BusSlot>(
+                    "can1",
+                    [&]() -> std::unique_ptr<CanBus> {
+                      if (++attempts <= 7) throw std::runtime_error("no such device");
+                      return std::make_unique<Borrowed>(node);
+                    },
+                    nullptr),
+                35, "test");
+  // Attempts at 0, 1, 3, 7, 15, 31, 63 s fail; 123 s (the 60 s ceiling) opens.
+  std::vector<Event> ev;
+  for (double t = 0.0; t <= 130.0; t += 0.5) {
+    svc.poll(fromSec(t));
+    for (const Event& e : takeSideEvents(h)) ev.push_back(e);
+    if (t == 10.0) {
+      const auto st = h.canStatus.load();
+      EXPECT_TRUE(st.n2kConfigured);
+      EXPECT_FALSE(st.n2kBusUp);
+      EXPECT_FALSE(st.bmsConfigured);
+    }
+  }
+  EXPECT_EQ(attempts, 8);
+  // Down at 0 s (1st attempt), then at most one per 30 s: 31 s, 63 s.
+  ASSERT_EQ(ev.size(), 4u);
+  EXPECT_EQ(ev[0].code, EventCode::CanBusDown);
+  EXPECT_EQ(ev[0].t, 0);
+  EXPECT_EQ(ev[0].detail, 1);  // NMEA 2000
+  EXPECT_EQ(describe(ev[0]),
+            "CAN NMEA 2000 bus cannot be opened (1 failed attempt(s)); retry in 1 s: no NMEA 2000 output");
+  EXPECT_EQ(ev[1].t, fromSec(31.0));
+  EXPECT_DOUBLE_EQ(ev[1].a, 6.0);
+  EXPECT_EQ(ev[2].t, fromSec(63.0));
+  EXPECT_EQ(ev[3].code, EventCode::CanBusBack);
+  EXPECT_EQ(ev[3].t, fromSec(123.0));  // 63 s + the 60 s ceiling
+  EXPECT_EQ(describe(ev[3]), "CAN NMEA 2000 bus open again after 7 failed attempt(s)");
+  const auto st = h.canStatus.load();
+  EXPECT_TRUE(st.n2kBusUp);
+  EXPECT_TRUE(st.n2kClaimed);
+  EXPECT_EQ(st.n2kAddress, 35);
+  EXPECT_GE(st.n2kTxFrames, 1u);  // the address claim at least
+  EXPECT_EQ(st.n2kOpenFailures, 7u);
+}
+
+TEST(CanService, PublishesTheBmsStatus) {
+  ServiceRig r;
+  r.svc.poll(fromSec(1.0));
+  auto st = r.h.canStatus.load();
+  EXPECT_TRUE(st.bmsConfigured);
+  EXPECT_TRUE(st.bmsBusUp);
+  EXPECT_EQ(st.bmsLastFrame, 0);
+  EXPECT_TRUE(std::isnan(st.bmsLimits.cclA));
+  r.bms.send(can::encode351(14.1, 55.0, 100.0, 12.0));
+  r.svc.poll(fromSec(2.0));
+  st = r.h.canStatus.load();
+  EXPECT_EQ(st.now, fromSec(2.0));
+  EXPECT_EQ(st.bmsLastFrame, fromSec(2.0));
+  EXPECT_NEAR(st.bmsLimits.cclA, 55.0, 1e-9);
+  EXPECT_EQ(st.bmsFrames, 1u);
+  EXPECT_FALSE(st.n2kConfigured);
 }
 
 TEST(CanService, EveryReceivedFrameIsInTheCandumpLog) {

@@ -55,7 +55,18 @@ TEST(CanSettings, TheTwoBusesAreNotOneInterface) {
 }
 
 TEST(CanSettings, AnUnknownProtocolOrRpmSourceIsRefused) {
-  EXPECT_EQ(messages("[can]\nbms_protocol = \"rec\"\n").size(), 1u);
+  EXPECT_TRUE(messages("[can]\nbms_protocol = \"rec\"\n").empty());
+  const auto m = messages("[can]\nbms_protocol = \"jk\"\n");
+  ASSERT_EQ(m.size(), 1u);
+  EXPECT_THAT(m[0], HasSubstr("test.toml:2"));
+  // The message lists what is valid.
+  EXPECT_THAT(m[0], HasSubstr("victron"));
+  EXPECT_THAT(m[0], HasSubstr("pylontech"));
+  EXPECT_THAT(m[0], HasSubstr("rec"));
+  xr::testing::TempFile f("[can]\nbms_protocol = \"jk\"\n");
+  std::ostringstream out, err;
+  EXPECT_EQ(checkConfigMain(f.path(), out, err), 78);
+  EXPECT_THAT(err.str(), HasSubstr("bms_protocol"));
   EXPECT_EQ(messages("[can]\nRpmSource = \"w-terminal\"\n").size(), 1u);
 }
 

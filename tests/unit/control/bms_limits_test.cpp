@@ -131,6 +131,48 @@ TEST(BmsLimiter, WarningRampsFromPresentCurrentToZeroAndBack) {
   EXPECT_DOUBLE_EQ(l.batteryCapA(), 80.0);  // back at CCL: the ramp is over
 }
 
+TEST(BmsLimiter, HighCellRampsAtBmsCellHighVWithHysteresis) {
+  BmsLimiter l;
+  EventBatch ev;
+  const Params p = bmsParams();  // BmsCellHighV = 3.60, BmsWarnRampS = 1
+  ASSERT_DOUBLE_EQ(p.BmsCellHighV, 3.60);
+  BmsLimits b = limits(fromSec(1), 14.2, 50);
+  b.cellMaxV = 3.599;  // just below: no ramp
+  l.update(b, fromSec(1), 40, p, ev);
+  EXPECT_EQ(l.state(), BmsState::OK);
+  EXPECT_FALSE(l.cellHigh());
+  EXPECT_DOUBLE_EQ(l.batteryCapA(), 50.0);
+  b.cellMaxV = 3.600;  // at the threshold: the warning ramp from 40 A
+  l.update(b, fromSec(1) + fromMs(100), 40, p, ev);
+  EXPECT_TRUE(l.cellHigh());
+  EXPECT_EQ(l.state(), BmsState::WARNING);
+  EXPECT_LE(l.batteryCapA(), 40.0);
+  b.cellMaxV = 3.56;  // relaxing, but inside the 0.05 V band: still ramping down
+  l.update(b, fromSec(1) + fromMs(600), 20, p, ev);
+  EXPECT_TRUE(l.cellHigh());
+  l.update(b, fromSec(2) + fromMs(200), 0, p, ev);
+  EXPECT_DOUBLE_EQ(l.batteryCapA(), 0.0);
+  b.cellMaxV = 3.549;  // under the band: the ramp goes back up
+  l.update(b, fromSec(2) + fromMs(300), 0, p, ev);
+  EXPECT_FALSE(l.cellHigh());
+  EXPECT_EQ(l.state(), BmsState::OK);
+  EXPECT_GT(l.batteryCapA(), 0.0);
+  EXPECT_LT(l.batteryCapA(), 50.0);
+  // Off (0), or a BMS that sends no cell voltages: nothing happens.
+  Params off = p;
+  off.BmsCellHighV = 0.0;
+  BmsLimiter l2;
+  b.cellMaxV = 4.0;
+  l2.update(b, fromSec(3), 40, off, ev);
+  EXPECT_FALSE(l2.cellHigh());
+  EXPECT_DOUBLE_EQ(l2.batteryCapA(), 50.0);
+  BmsLimiter l3;
+  b.cellMaxV = kBmsNoValue;
+  l3.update(b, fromSec(3), 40, p, ev);
+  EXPECT_FALSE(l3.cellHigh());
+  EXPECT_EQ(l3.state(), BmsState::OK);
+}
+
 TEST(BmsLimiter, ChargeDisableFlagIsPassedOn) {
   BmsLimiter l;
   EventBatch ev;

@@ -55,15 +55,25 @@ bms_warn = "none"
   EXPECT_TRUE(s.events[2].touchesSimCan());
 }
 
+TEST(ScenarioBms, RecWithACellSpread) {
+  const Scenario s =
+      parseScenario("name = \"x\"\n[bms]\ncan = true\nprotocol = \"rec\"\ncell_spread_v = 0.08\n", "b.toml");
+  EXPECT_EQ(s.bms.protocol, "rec");
+  EXPECT_DOUBLE_EQ(s.bms.cell_spread_v, 0.08);
+}
+
 TEST(ScenarioBms, NoBmsByDefault) {
   const Scenario s = parseScenario("name = \"x\"\n", "b.toml");
   EXPECT_FALSE(s.bms.can);
 }
 
 TEST(ScenarioBms, BadValuesHaveFileAndLine) {
-  auto e = errorOf("[bms]\ncan = true\nprotocol = \"rec\"\n");
+  auto e = errorOf("[bms]\ncan = true\nprotocol = \"jk\"\n");
   EXPECT_EQ(e.rfind("b.toml:3:", 0), 0u) << e;
   EXPECT_NE(e.find("protocol"), std::string::npos) << e;
+  EXPECT_NE(e.find("\"rec\""), std::string::npos) << e;  // lists the valid ones
+  e = errorOf("[bms]\ncan = true\ncell_spread_v = 0.6\n");
+  EXPECT_EQ(e.rfind("b.toml:3:", 0), 0u) << e;
   e = errorOf("[bms]\ncan = \"yes\"\n");
   EXPECT_EQ(e.rfind("b.toml:2:", 0), 0u) << e;
   e = errorOf("[bms]\ncan = true\ncolour = 1\n");

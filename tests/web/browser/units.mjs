@@ -217,4 +217,25 @@ await test("the headline says Charging only while current goes into the battery"
   assert.match(L.headline({ ...base, field_enable: false, alt_a: 0, bcur_a: -6 }), /^Not charging/);
 });
 
+await test("the System page's CAN rows say the BMS and NMEA 2000 state in words, never invent a value", () => {
+  const off = P.canRows({ state: "off", protocol: null }, { state: "off", claimed: false, address: null });
+  assert.deepEqual(off.map((r) => r[1]), ["not set up", "not set up"]);
+  const rows = P.canRows(
+    { state: "talking", protocol: "rec", cvl_v: 14.2, ccl_a: 50, soc_pct: null, cell_max_v: 3.412, age_s: 0.4,
+      bad_frames: 3 },
+    { state: "claimed", claimed: true, address: 35, tx_frames: 120, rx_frames: 40 });
+  const m = Object.fromEntries(rows.map((r) => [r[0], r[1]]));
+  assert.equal(m["Battery BMS"], "talking (rec)");
+  assert.equal(m["BMS limits"], "charge voltage 14.20 V, charge current 50.0 A, SoC —");
+  assert.equal(m["Highest cell"], "3.412 V");
+  assert.equal(m["Limits received"], "0 s ago");
+  assert.equal(m["Bad BMS frames ignored"], 3);
+  assert.equal(m["NMEA 2000"], "on the network, address 35");
+  const silent = Object.fromEntries(P.canRows({ state: "silent", protocol: "victron", age_s: null }, null)
+    .map((r) => [r[0], r.slice(1)]));
+  assert.deepEqual(silent["Battery BMS"], ["connected, but the BMS sends nothing (victron)", "bad"]);
+  assert.equal(silent["Limits received"][0], "never");
+  assert.equal(silent["Highest cell"], undefined);  // a BMS that does not send it: no row
+});
+
 console.log(`${n} dashboard unit tests passed`);

@@ -1,7 +1,7 @@
 // The detail pages fed by the status frames (Protections, Battery, Tuning),
 // the event list and the System page. Plain names, rounded numbers, clock times.
 import { getJson } from "./api.js";
-import { clock, hmin, hminFromSeconds, plain } from "./format.js";
+import { ago, clock, hmin, hminFromSeconds, num, plain } from "./format.js";
 import { REASONS, plainCommand, plainMode, reasonInfo } from "./names.js";
 
 const $ = (id) => document.getElementById(id);
@@ -123,11 +123,43 @@ export async function loadEvents(mode = "first") {
   $("events-more").disabled = body.events.length < 50;
 }
 
+// /api/system "bms" and "n2k" (issue 22) in plain words; a value the daemon
+// does not know is shown as a dash, never made up.
+const BMS_WORDS = {
+  off: ["not set up", ""],
+  bus_error: ["CAN interface not open (retrying)", "bad"],
+  silent: ["connected, but the BMS sends nothing", "bad"],
+  talking: ["talking", "good"],
+};
+const N2K_WORDS = {
+  off: ["not set up", ""],
+  bus_error: ["CAN interface not open (retrying)", "bad"],
+  no_address: ["no free address on the network", "bad"],
+  claimed: ["on the network", "good"],
+};
+export function canRows(bms, n2k) {
+  const v = (x, unit, digits = 1) => (num(x, digits) === "—" ? "—" : `${num(x, digits)} ${unit}`);
+  const rows = [];
+  const [bw, bc] = BMS_WORDS[bms?.state] || [bms?.state || "unknown", ""];
+  rows.push(["Battery BMS", bms?.protocol ? `${bw} (${bms.protocol})` : bw, bc]);
+  if (bms && bms.state !== "off") {
+    rows.push(["BMS limits", `charge voltage ${v(bms.cvl_v, "V", 2)}, charge current ${v(bms.ccl_a, "A")}, SoC ${v(bms.soc_pct, "%")}`]);
+    if (bms.cell_max_v !== null && bms.cell_max_v !== undefined) rows.push(["Highest cell", v(bms.cell_max_v, "V", 3)]);
+    rows.push(["Limits received", ago(bms.age_s)]);
+    rows.push(["Bad BMS frames ignored", bms.bad_frames, bms.bad_frames ? "bad" : ""]);
+  }
+  const [nw, nc] = N2K_WORDS[n2k?.state] || [n2k?.state || "unknown", ""];
+  rows.push(["NMEA 2000", n2k?.claimed ? `${nw}, address ${n2k.address}` : nw, nc]);
+  if (n2k && n2k.state !== "off") rows.push(["NMEA 2000 frames", `sent ${n2k.tx_frames}, received ${n2k.rx_frames}`]);
+  return rows;
+}
+
 export async function loadSystem() {
   const s = await getJson("/api/system");
   const obj = (o) => Object.entries(o || {}).filter(([, v]) => typeof v !== "object" || v === null);
   kvTable("sys-versions", obj(s.versions));
   kvTable("sys-loop", obj(s.loop).map(([k, v]) => [k.replace(/_/g, " "), v, k === "overruns" ? (v ? "bad" : "good") : ""]));
   kvTable("sys-probes", (s.probes || []).map((p) => [p.device, `${p.ok ? "OK" : "FAIL"} ${p.detail || ""}`, p.ok ? "good" : "bad"]));
+  kvTable("sys-can", canRows(s.bms, s.n2k));
   kvTable("sys-web", obj(s.web).map(([k, v]) => [k.replace(/_/g, " "), v]).concat([["telemetry rate (Hz)", s.telemetry_rate_hz]]));
 }
