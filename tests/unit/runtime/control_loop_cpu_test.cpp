@@ -80,26 +80,9 @@ TEST(ControlLoopCpu, NoMissedDeadlineNoOverrunWhateverTheCpu) {
   EXPECT_DOUBLE_EQ(s.tickCpuMaxUs, 2400.0);
 }
 
-// A wall clock that jumps forward at a chosen read: the wake-up after tick
-// 10 comes late although every tick was short.
-class LateWall final : public Clock {
- public:
-  TimeNs now() const noexcept override {
-    if (jumpInReads == 0) t += jump;
-    if (jumpInReads >= 0) --jumpInReads;
-    return t;
-  }
-  void sleepUntil(TimeNs until) noexcept override {
-    if (until > t) t = until;
-  }
-  mutable TimeNs t = 5'000'000'000;
-  mutable int jumpInReads = -1;
-  TimeNs jump = 0;
-};
-
 TEST(ControlLoopCpu, ALateWakeUpIsNotTheDaemons) {
   test::LoopRig r;
-  LateWall wall;
+  test::JumpingWall wall;
   LoopConfig cfg;
   cfg.duration = fromMs(100);
   cfg.wall = &wall;

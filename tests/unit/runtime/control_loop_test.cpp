@@ -213,26 +213,9 @@ TEST(ControlLoop, PacedSimulationJudgesOverrunsOnTheWallClock) {
   EXPECT_EQ(r.core.steps, 38);
 }
 
-// A wall clock that jumps at a chosen read: the thread woke late (another
-// process had the CPU), not because of its own tick.
-class JumpingWall final : public Clock {
- public:
-  TimeNs now() const noexcept override {
-    if (jumpInReads == 0) t += jump;
-    if (jumpInReads >= 0) --jumpInReads;
-    return t;
-  }
-  void sleepUntil(TimeNs until) noexcept override {
-    if (until > t) t = until;
-  }
-  mutable TimeNs t = 5'000'000'000;
-  mutable int jumpInReads = -1;
-  TimeNs jump = 0;
-};
-
 TEST(ControlLoop, ALateWakeUpIsAnOverrunButNotTheDaemons) {
   test::LoopRig r;
-  JumpingWall wall;
+  test::JumpingWall wall;
   LoopConfig cfg;
   cfg.duration = fromMs(100);  // 40 deadlines
   cfg.wall = &wall;

@@ -30,4 +30,22 @@ struct LoopRig {
   std::unique_ptr<ControlCycle> cycle;
 };
 
+// A wall clock that jumps forward at a chosen read: the thread woke late
+// (another process or the hypervisor had the CPU), not because of its own
+// tick.
+class JumpingWall final : public Clock {
+ public:
+  TimeNs now() const noexcept override {
+    if (jumpInReads == 0) t += jump;
+    if (jumpInReads >= 0) --jumpInReads;
+    return t;
+  }
+  void sleepUntil(TimeNs until) noexcept override {
+    if (until > t) t = until;
+  }
+  mutable TimeNs t = 5'000'000'000;
+  mutable int jumpInReads = -1;
+  TimeNs jump = 0;
+};
+
 }  // namespace xr::rt::test
