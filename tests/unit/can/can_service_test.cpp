@@ -19,19 +19,21 @@
 namespace xr::canlink {
 namespace {
 
+// A bus the slot may own and drop while the test keeps the real node.
+struct Borrowed final : CanBus {
+  CanBus& b;
+  explicit Borrowed(CanBus& x) : b(x) {}
+  bool send(const CanFrame& f) noexcept override { return b.send(f); }
+  std::optional<CanFrame> receive(std::chrono::milliseconds t) noexcept override { return b.receive(t); }
+  CanBusStats stats() const noexcept override { return b.stats(); }
+};
+
 TEST(BusSlot, AMissingBusIsRetriedWithBackoffAndReported) {
   can::SimCanSegment seg;
   can::SimCanNode& node = seg.attach();
   int attempts = 0;
   int failFor = 4;
   std::vector<std::string> reports;
-  struct Borrowed final : CanBus {
-    CanBus& b;
-    explicit Borrowed(CanBus& x) : b(x) {}
-    bool send(const CanFrame& f) noexcept override { return b.send(f); }
-    std::optional<CanFrame> receive(std::chrono::milliseconds t) noexcept override { return b.receive(t); }
-    CanBusStats stats() const noexcept override { return b.stats(); }
-  };
   BusSlot slot(
       "can9",
       [&]() -> std::unique_ptr<CanBus> {
@@ -206,13 +208,6 @@ TEST(CanService, ABusThatCannotOpenIsOneEventPerOutageAndOneWhenBack) {
   can::SimCanNode& node = seg.attach();
   rt::Handoffs h{Params{}};
   int attempts = 0;
-  struct Borrowed final : CanBus {
-    CanBus& b;
-    explicit Borrowed(CanBus& x) : b(x) {}
-    bool send(const CanFrame& f) noexcept override { return b.send(f); }
-    std::optional<CanFrame> receive(std::chrono::milliseconds t) noexcept override { return b.receive(t); }
-    CanBusStats stats() const noexcept override { return b.stats(); }
-  };
   CanService svc(h, [](const std::string&) {});
   svc.setN2kBus(std::make_unique<BusSlot>(
                     "can1",
