@@ -18,18 +18,19 @@ struct Change {
   double value = 0.0;
 };
 
-// A ring of the newest `capacity` changes, allocated once at the first
-// change: a long run that changes the duty every tick costs two stores and
-// a wrap per change (no deque node push and pop, no vector growth).
+// A ring of the newest `capacity` changes, allocated when the log is made:
+// a long run that changes the duty every tick costs two stores and a wrap
+// per change (no deque node push and pop, no vector growth). Never at the
+// first change: that is the control thread's tick, under mlockall, and
+// faulting in a 1 MiB ring there cost milliseconds of its CPU at the first
+// engine start (issue 26, the soak's RSS step and its worst tick).
 class ChangeLog {
  public:
-  explicit ChangeLog(std::size_t capacity = 1u << 16) : cap_(capacity) {}
-  void record(TimeNs t, double v) {
+  explicit ChangeLog(std::size_t capacity = 1u << 16)
+      : cap_(capacity), ring_(capacity > 0 ? std::make_unique<Change[]>(capacity) : nullptr) {}
+  void record(TimeNs t, double v) noexcept {
     ++count_;
-    if (!ring_) {
-      if (cap_ == 0) return;
-      ring_ = std::make_unique<Change[]>(cap_);
-    }
+    if (cap_ == 0) return;
     ring_[head_] = {t, v};
     head_ = head_ + 1 == cap_ ? 0 : head_ + 1;
   }
