@@ -100,7 +100,7 @@ double ControlLaw::computeUTarget(const ControlSensors& s, const Params& p) {
   } else if (tuning_.running()) {
     tuning_.reset();  // nothing to clear unless a run is in progress (score/commit need one)
   }
-  if (p.MaintainMode) u = 0.0;  // ceiling enforcer: Icv -> 0 (clamp [0, 0])
+  if (holdsZeroBatteryCurrent(p)) u = 0.0;  // ceiling enforcer: Icv -> 0 (clamp [0, 0])
   uTargetRaw_ = u;
   return uTargetRaw_;
 }
@@ -234,7 +234,7 @@ double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const Fa
   // MaintainMode chases Bcur = 0 (seed), and ours: never with more
   // alternator current than the RPM cap and the thermal derate allow
   // (I_cmd): a max-selector hands the loop to whichever is over its limit.
-  currentPID_.input = p.MaintainMode ? std::max(s.Bcur, pidSig_ - I_cmd_) : pidSig_;
+  currentPID_.input = holdsZeroBatteryCurrent(p) ? std::max(s.Bcur, pidSig_ - I_cmd_) : pidSig_;
   currentPID_.setpoint = setpointLimited_;
   if (++pidSampleCounter_ >= std::max(1, p.PidSampleDivisor)) {
     pidSampleCounter_ = 0;
@@ -269,7 +269,7 @@ double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const Fa
   double c = std::min({p.MaxTableValue, p.MaximumAllowedBatteryAmps, s.batteryChargeCapA});
   if (warmupActive_) c = std::min(c, p.WarmupCeilingAmps);
   c = std::min(c, bmsAltCap_);
-  if (p.MaintainMode) c = 0.0;
+  if (holdsZeroBatteryCurrent(p)) c = 0.0;
   c = std::min(c, fa.fastOvCurrentCap);
   if (voltageControlActive_) c = std::min(c, Icv);
   // Ours: an alternator at full field makes all it can; a penalty that
