@@ -7,10 +7,11 @@
 
 namespace xr::app {
 
-web::CanState canStateOf(const rt::CanStatusHandoff& st) {
+web::CanState canStateOf(const rt::CanStatusHandoff& st, bool followBms) {
   web::CanState c;
   if (st.bmsConfigured) {
     auto& b = c.bms;
+    b.follow = followBms;
     b.protocol = std::string(can::toString(static_cast<can::BmsProtocol>(st.bmsProtocol)));
     if (!st.bmsBusUp)
       b.state = "bus_error";

@@ -14,6 +14,7 @@ namespace xr::app {
 // The BMS sends every 0.5-1 s; 5 s without one is BmsStaleS's default.
 inline constexpr double kBmsSilentS = 5.0;
 
-web::CanState canStateOf(const rt::CanStatusHandoff& st);
+// followBms: BmsLimitsEnabled in force (false = monitor only).
+web::CanState canStateOf(const rt::CanStatusHandoff& st, bool followBms);
 
 }  // namespace xr::app

@@ -50,6 +50,13 @@ CanThread::CanThread(const Settings& s, rt::Handoffs& h, Clock& clock, std::uniq
         can::parseBmsProtocol(s.can.bms_protocol).value_or(can::BmsProtocol::Victron),
         s.hardware.battery_temp_sensor
             .empty());  // the BMS's 0x356 temperature, unless a DS18B20 is on the bank
+    if (h.acceptedParams().BmsLimitsEnabled)
+      spdlog::info("bms: following the {} BMS on {} (its limits are stale after BmsStaleS without a frame)",
+                   s.can.bms_protocol, iface);
+    else
+      spdlog::warn(
+          "bms: monitor only (BmsLimitsEnabled = 0): the {} BMS on {} is read and shown, not followed",
+          s.can.bms_protocol, iface);
   }
   if (!s.can.n2k_interface.empty()) {
     const std::string iface = s.can.n2k_interface;

@@ -27,8 +27,15 @@ std::unique_ptr<integrations::IntegrationsService> startIntegrations(const Setti
   if (s.integrations.victron.enabled) {
     auto hop = std::make_shared<integrations::VictronBmsHop>(handoffs);
     bmsLimits = [hop](const integrations::VictronLimits& l) { (*hop)(l); };
-    if (!handoffs.acceptedParams().BmsLimitsEnabled)
-      spdlog::warn("victron: BmsLimitsEnabled is off: the GX's battery limits are shown, not followed");
+    // Configured, not heard yet: followed from now on, stale if silent.
+    BmsLimits configured;
+    configured.source = BmsSource::VictronGx;
+    handoffs.bms.store(configured);
+    if (handoffs.acceptedParams().BmsLimitsEnabled)
+      spdlog::info("victron: following the GX's battery limits (stale after BmsStaleS without them)");
+    else
+      spdlog::warn(
+          "victron: monitor only (BmsLimitsEnabled = 0): the GX's battery limits are shown, not followed");
   }
   try {
     auto service = std::make_unique<integrations::IntegrationsService>(s.integrations, handoffs, sink, tokens,

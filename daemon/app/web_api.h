@@ -55,7 +55,9 @@ class WebApi final : public web::DaemonApi {
     return ctx_.integrations ? ctx_.integrations() : std::vector<web::IntegrationState>{};
   }
 
-  web::CanState can() override { return canStateOf(ctx_.handoffs->canStatus.load()); }
+  web::CanState can() override {
+    return canStateOf(ctx_.handoffs->canStatus.load(), ctx_.handoffs->acceptedParams().BmsLimitsEnabled);
+  }
 
   static web::StatusSnapshot toStatus(const rt::RuntimeSnapshot& s, bool sim, double periodUs);
   // Once a second from the supervisor: the summary line of the settings

@@ -151,6 +151,11 @@ class BatteryMonitor {
   // (StageInputs::socValid) while this is false.
   bool socKnown() const { return socKnown_; }
   bool fullChargeDetected() const { return FullChargeDetected_; }
+  // The charging stage ended absorption on its tail current: the bank is
+  // full, a detected full charge like the monitor's own (its voltage and
+  // tail thresholds may differ from the stage's, and a bank that rests
+  // after absorption never meets them again; docs/batteries.md).
+  void chargeCompletedOnTail(TimeNs now, EventBatch& ev);
   double chargedEnergyLifetimeWh() const;
   double alternatorChargedEnergyLifetimeWh() const;
   // Last applySocGainCorrection outcome (tests, diagnostics).
@@ -169,6 +174,7 @@ class BatteryMonitor {
   };
   void runSocBody(TimeNs now, double elapsed_s, EventBatch& ev);
   void applySocGainCorrection(TimeNs now, EventBatch& ev);
+  void declareFullCharge(TimeNs now, EventBatch& ev);
   void calculateChargeTimes(const Inputs& in);
   void commitEnergy(Energy& e, double& lifetimeWhole, double delta_Wh);
   double temperatureF(const Inputs& in) const;

@@ -174,22 +174,7 @@ void BatteryMonitor::runSocBody(TimeNs now, double elapsed_s, EventBatch& ev) {
   if (socInputsValid_ && std::fabs(batteryCurrentForSoC_) <= tail_A &&
       currentBatteryVoltage_ >= p_.ChargedVoltage) {
     FullChargeTimer_s_ += elapsed_s;
-    if (FullChargeTimer_s_ >= p_.ChargedDetectionTime) {
-      if (!FullChargeDetected_)
-        ev.push(
-            makeEvent(now, EventLevel::Info, EventCode::FullChargeDetected, ledger_.CoulombCount_Ah, cap));
-      // Gain correction compares the count at "full" before it is reset.
-      if (p_.AutoShuntGainCorrection)
-        applySocGainCorrection(now, ev);
-      else
-        lastGainGuard_ = GainGuard::FeatureOff;
-      ledger_.CoulombCount_Ah = cap;
-      ledger_.coulombAccumulator_Ah = 0.0;
-      FullChargeDetected_ = true;
-      socKnown_ = true;
-      gainReferenceValid_ = true;
-      unclampedCount_Ah_ = cap;
-    }
+    if (FullChargeTimer_s_ >= p_.ChargedDetectionTime) declareFullCharge(now, ev);
   } else {
     FullChargeTimer_s_ = 0.0;
     FullChargeDetected_ = false;
@@ -197,6 +182,29 @@ void BatteryMonitor::runSocBody(TimeNs now, double elapsed_s, EventBatch& ev) {
 
   intAh_ = intChargeWh_ = intDischargeWh_ = intAltWh_ = intSolarWh_ = 0.0;
   intAltOn_s_ = intSoc_s_ = intV_s_ = intVtime_s_ = 0.0;
+}
+
+void BatteryMonitor::declareFullCharge(TimeNs now, EventBatch& ev) {
+  const double cap = p_.BatteryCapacity_Ah;
+  if (!FullChargeDetected_)
+    ev.push(makeEvent(now, EventLevel::Info, EventCode::FullChargeDetected, ledger_.CoulombCount_Ah, cap));
+  // Gain correction compares the count at "full" before it is reset.
+  if (p_.AutoShuntGainCorrection)
+    applySocGainCorrection(now, ev);
+  else
+    lastGainGuard_ = GainGuard::FeatureOff;
+  ledger_.CoulombCount_Ah = cap;
+  ledger_.coulombAccumulator_Ah = 0.0;
+  FullChargeDetected_ = true;
+  socKnown_ = true;
+  gainReferenceValid_ = true;
+  unclampedCount_Ah_ = cap;
+  telemetryStale_ = true;
+}
+
+void BatteryMonitor::chargeCompletedOnTail(TimeNs now, EventBatch& ev) {
+  // Only on live samples, as the detector above: the tail was measured.
+  if (socInputsValid_) declareFullCharge(now, ev);
 }
 
 void BatteryMonitor::applySocGainCorrection(TimeNs now, EventBatch& ev) {

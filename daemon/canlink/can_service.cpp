@@ -23,6 +23,13 @@ void CanService::setBmsBus(std::unique_ptr<BusSlot> slot, can::BmsProtocol proto
   protocol_ = protocol;
   batteryTemp_ = batteryTemp;
   bmsLink_.reset();
+  // Configured, not heard yet: the control law follows this source from now
+  // on, so its silence goes stale after BmsStaleS (docs/integrations.md).
+  if (bms_) {
+    BmsLimits configured;
+    configured.source = BmsSource::Can;
+    h_.bms.store(configured);
+  }
   bmsRecorded_.reset();
 }
 

@@ -20,29 +20,32 @@ constexpr ProfileTable kTables[] = {
     // compensation (VIC-LFP, BB, TAR); no charge below 0 degC (TAR 8, LISHEN,
     // SUNL, §3.7.2), full current from 5 degC (VIC-LFP "better not to charge
     // below 5 degC"), none above 45 degC (SUNL, LBS; BB IEC 62133 3-45 degC);
-    // at most 0.5 C (SUNL, 15-45 degC).
+    // at most 0.5 C (SUNL, 15-45 degC). After absorption the bank rests
+    // with the battery current held at 0 A while the alternator carries the
+    // house loads, and re-bulks once 10 % of it was taken out (TAR profile 8:
+    // "battery amps regulated to 0", revert -50 Ah of 500 Ah, §4.1.4).
     {BatteryProfileId::lifepo4, 4, 14.2, 14.2, 13.5, 12.9, false, 0.03, 1.0, 0.5, 0.0, -10.0, 50.0, 0.0, 5.0,
-     45.0, true},
+     45.0, true, true, 10.0},
     // AGM: 14.4 V (LL 14.2-14.4, VIC-CHG "Normal", E82 14.4-14.7, §3.8);
     // float 13.3 V (LL 13.2-13.3); full at 0.5 % C tail (MS, CONC, §3.6.1);
     // about 3 h absorption (MV, §3.8); revert 12.8 V (TAR, §4.1.4);
     // -4 mV/degC/cell (TAR AGM 0.024 V/degC per 12 V, §3.7.1); 0.4 C
     // (MS tests charged Lifeline AGM at 0.4 C, §3.6.1).
     {BatteryProfileId::agm, 6, 14.4, 14.4, 13.3, 12.8, true, 0.005, 3.0, 0.4, -4.0, -10.0, 50.0, -45.0, -45.0,
-     50.0, false},
+     50.0, false, false, 0.0},
     // Flooded: 14.7 V = 2.45 V/cell (VIC-CHG "High", TROJ 2.45-2.58 V/cell,
     // TAR standard FLA 14.8 V); float 13.5 V (TAR FLA); end amps 2 % C20
     // (ROLLS, §3.6.1); about 4 h absorption (MV); -5 mV/degC/cell (TAR FLA,
     // TROJ, §3.7.1), compensation limited below -9 degC (TAR; -10 here);
     // at most C/5 (HP, ROLLS max 20 % of C20).
     {BatteryProfileId::flooded, 6, 14.7, 14.7, 13.5, 12.8, true, 0.02, 4.0, 0.2, -5.0, -10.0, 50.0, -45.0,
-     -45.0, 50.0, false},
+     -45.0, 50.0, false, false, 0.0},
     // Gel: 14.4 V = 2.40 V/cell and float 13.5 V = 2.25 V/cell (TROJ gel,
     // AMPLE, §3.8); exit 5 A of 500 Ah = 1 % C (TAR gel, §4.1.4); about 3 h
     // (MV); -5 mV/degC/cell (TROJ gel "always temperature-compensate",
     // §3.7.1); C/5 (HP, lead-acid).
     {BatteryProfileId::gel, 6, 14.4, 14.4, 13.5, 12.8, true, 0.01, 3.0, 0.2, -5.0, -10.0, 50.0, -45.0, -45.0,
-     50.0, false},
+     50.0, false, false, 0.0},
 };
 
 // Scaled with the bank (x cells / cellsPer12V), from the catalogue's 12 V
@@ -55,12 +58,14 @@ constexpr double kVoltageAlarmLow12 = 11.0;
 
 constexpr double kTargetVoltageSetpoint12 = 13.6;
 
-constexpr std::array<std::string_view, 22> kOwned{"BatteryCells",
+constexpr std::array<std::string_view, 24> kOwned{"BatteryCells",
                                                   "BulkVoltage",
                                                   "AbsorptionVoltage",
                                                   "FloatVoltage",
                                                   "RebulkVoltage",
                                                   "UseFloat",
+                                                  "IdleZeroCurrent",
+                                                  "RebulkDischarge_percent",
                                                   "TailCurrent_A",
                                                   "AbsorptionTimeoutMs",
                                                   "MaximumAllowedBatteryAmps",
@@ -147,6 +152,8 @@ ProfileApplied applyBatteryProfile(const Params& in, const NameSet& pinned) {
   put("FloatVoltage", t->floatV12 * scale);
   put("RebulkVoltage", t->rebulkV12 * scale);
   put("UseFloat", t->useFloat ? 1.0 : 0.0);
+  put("IdleZeroCurrent", t->idleZeroCurrent ? 1.0 : 0.0);
+  put("RebulkDischarge_percent", t->rebulkDischargePct);
   put("TailCurrent_A", t->tailFractionC * cap);
   put("AbsorptionTimeoutMs", t->absorptionHours * 3600.0 * 1000.0);
   put("MaximumAllowedBatteryAmps", t->maxChargeRateC * cap);

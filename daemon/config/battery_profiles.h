@@ -39,7 +39,9 @@ struct ProfileTable {
   double tempCompMvPerCell;  // TempCompMvPerCellC
   double tempCompMinC, tempCompMaxC;
   double chargeMinC, chargeFullCurrentC, chargeMaxC;
-  bool tempRequired;  // BatteryTempRequired
+  bool tempRequired;          // BatteryTempRequired
+  bool idleZeroCurrent;       // IdleZeroCurrent (rest at zero battery current after absorption)
+  double rebulkDischargePct;  // RebulkDischarge_percent (0 = the current rule)
 };
 
 // The table of a profile; nullptr for custom.

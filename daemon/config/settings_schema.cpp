@@ -154,7 +154,8 @@ const SettingSpec kSchema[] = {
     XR_S_STR(
         "can", can.bms_interface, "bms_interface", "",
         "SocketCAN interface of the BMS bus (500 kbit/s, 11-bit frames), e.g. can0; empty = no BMS on CAN. "
-        "Also set BmsLimitsEnabled to follow its limits."),
+        "A BMS set here is obeyed (its CVL, CCL, charge-disable and warnings; stale after BmsStaleS of "
+        "silence); BmsLimitsEnabled = 0 makes it monitor only."),
     XR_S_STR(
         "can", can.bms_protocol, "bms_protocol", "victron,pylontech,rec",
         "What the BMS speaks: victron (the 0x351/0x355/0x356/0x35A/0x35E set most LFP BMSs and Victron GX "

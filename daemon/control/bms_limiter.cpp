@@ -28,13 +28,17 @@ void BmsLimiter::reset() {
   cap_ = cvl_ = warnCap_ = kNone;
   chargeAllowed_ = true;
   cellHigh_ = false;
+  cellCeiling_ = kNone;
   shownCvl_ = shownCcl_ = shownSoc_ = kBmsNoValue;
 }
 
-void BmsLimiter::update(const BmsLimits& b, TimeNs now, double Bcur, const Params& p, EventBatch& ev) {
+void BmsLimiter::update(const BmsLimits& b, TimeNs now, double Bcur, double packV, const Params& p,
+                        EventBatch& ev) {
   const double dt = lastNow_ < 0 ? 0.0 : std::max(0.0, toSec(now - lastNow_));
   lastNow_ = now;
-  if (!p.BmsLimitsEnabled) {
+  // No source configured (source None): nothing to follow. A configured one
+  // is followed unless the owner chose monitor only (BmsLimitsEnabled = 0).
+  if (!p.BmsLimitsEnabled || b.source == BmsSource::None) {
     if (state_ == BmsState::STALE)
       ev.push(makeEvent(now, EventLevel::Info, EventCode::ProtectionClear, Reason::REASON_BMS_STALE));
     reset();
@@ -60,6 +64,7 @@ void BmsLimiter::update(const BmsLimits& b, TimeNs now, double Bcur, const Param
     chargeAllowed_ = true;  // the digital BMS input still protects
     warnCap_ = kNone;
     cellHigh_ = false;
+    cellCeiling_ = kNone;
     shownCvl_ = shownCcl_ = shownSoc_ = kBmsNoValue;
     return;
   }
@@ -69,15 +74,8 @@ void BmsLimiter::update(const BmsLimits& b, TimeNs now, double Bcur, const Param
   cvl_ = std::isfinite(b.cvlV) && b.cvlV > 0.0 ? b.cvlV - p.BmsCvlMarginV : kNone;
   chargeAllowed_ = b.chargeAllowed;
 
-  if (p.BmsCellHighV > 0.0 && std::isfinite(b.cellMaxV)) {
-    if (b.cellMaxV >= p.BmsCellHighV)
-      cellHigh_ = true;
-    else if (b.cellMaxV < p.BmsCellHighV - kCellHysteresisV)
-      cellHigh_ = false;
-  } else {
-    cellHigh_ = false;
-  }
-  const bool warn = ((b.warnings | b.alarms) & bmswarn::ChargeRampDown) != 0 || cellHigh_;
+  updateCellCeiling(b, packV, dt, p);
+  const bool warn = ((b.warnings | b.alarms) & bmswarn::ChargeRampDown) != 0;
   if (warn) {
     if (warnCap_ == kNone) {
       // Start from the current flowing now, so the ramp has no step, and
@@ -92,11 +90,45 @@ void BmsLimiter::update(const BmsLimits& b, TimeNs now, double Bcur, const Param
     if (warnCap_ >= std::min(cap, p.MaximumAllowedBatteryAmps)) warnCap_ = kNone;
   }
   cap_ = std::min(cap, warnCap_);
+  cvl_ = std::min(cvl_, cellCeiling_);
 
   state_ = !chargeAllowed_ ? BmsState::CHARGE_DISABLED : (warn ? BmsState::WARNING : BmsState::OK);
   shownCvl_ = b.cvlV;
   shownCcl_ = b.cclA;
   shownSoc_ = b.socPct;
+}
+
+// Cells in series: the configured count, else the pack over its mean cell
+// (a custom profile leaves BatteryCells at 0).
+double BmsLimiter::cellsInSeries(const BmsLimits& b, double packV, const Params& p) {
+  if (p.BatteryCells > 0) return p.BatteryCells;
+  const double meanCell =
+      std::isfinite(b.cellMinV) && b.cellMinV > 0.0 ? (b.cellMaxV + b.cellMinV) / 2.0 : b.cellMaxV;
+  return std::clamp(std::round(packV / meanCell), 1.0, 32.0);
+}
+
+// A constant voltage on the highest cell: the pack voltage that holds that
+// cell at BmsCellHighV is not known (the full cell rises faster than the
+// others), so the ceiling is trimmed by the cell's error, an integrator of
+// time constant kCellTrimTauS in cell terms. It starts at the pack voltage
+// of the moment the cell first reaches the limit (no step) and ends once
+// the ceiling has risen kCellReleaseV above the pack: nothing holds it then
+// (docs/integrations.md "Cell voltages").
+void BmsLimiter::updateCellCeiling(const BmsLimits& b, double packV, double dt, const Params& p) {
+  if (p.BmsCellHighV <= 0.0 || !std::isfinite(b.cellMaxV) || b.cellMaxV <= 0.0 || !std::isfinite(packV)) {
+    cellCeiling_ = kNone;
+    cellHigh_ = false;
+    return;
+  }
+  const double err = p.BmsCellHighV - b.cellMaxV;  // > 0: the cell is under its limit
+  if (cellCeiling_ == kNone) {
+    if (err > 0.0) return;
+    cellCeiling_ = packV;
+  }
+  cellCeiling_ += cellsInSeries(b, packV, p) * err * dt / kCellTrimTauS;
+  cellCeiling_ = std::max(cellCeiling_, packV - kCellMaxStepV);  // never far under the pack: no field cut
+  if (cellCeiling_ > packV + kCellReleaseV) cellCeiling_ = kNone;
+  cellHigh_ = cellCeiling_ != kNone;
 }
 
 }  // namespace xr

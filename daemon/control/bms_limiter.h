@@ -8,11 +8,13 @@
 //   a warning    : the battery-current cap ramps from the present battery
 //                  current to 0 over BmsWarnRampS (and back up once cleared),
 //                  so the charge stops smoothly before the BMS opens
-//   a high cell  : a highest cell voltage (REC's 0x373) at BmsCellHighV or
-//                  above acts as a warning (the same ramp) until that cell
-//                  is kCellHysteresisV under it: the charge eases off on
-//                  the first full cell, before the BMS's own cell limit
-//   stale        : no limits for BmsStaleS (or none since BmsLimitsEnabled):
+//   a high cell  : a highest cell voltage (REC's 0x373) at BmsCellHighV
+//                  puts a ceiling on the voltage target that holds that cell
+//                  at the limit (a constant voltage on the highest cell, no
+//                  on/off), before the BMS's own cell limit
+//   no source    : BmsLimits::source None (nothing configured): OFF
+//   stale        : no limits for BmsStaleS (or none since the source was
+//                  configured):
 //                  the cap is BmsFallbackCapA, CVL is dropped, REASON_BMS_STALE
 //                  with an event on each edge (the alarm row reads stale())
 #include <cstdint>
@@ -32,14 +34,17 @@ std::string_view toString(BmsState s);
 class BmsLimiter {
  public:
   static constexpr double kNone = std::numeric_limits<double>::infinity();
-  // How far under BmsCellHighV the high cell must fall before the charge
-  // ramps back up: an LFP cell relaxes by tens of mV when its current
-  // stops, so a smaller band would restart the ramp at once.
-  static constexpr double kCellHysteresisV = 0.05;
+  // The highest cell's constant voltage (updateCellCeiling): the trim's
+  // time constant in cell terms, how far under the pack the ceiling may go
+  // (it trims, it never cuts the field), and how far above the pack it ends.
+  static constexpr double kCellTrimTauS = 20.0;
+  static constexpr double kCellMaxStepV = 0.3;
+  static constexpr double kCellReleaseV = 0.2;
 
   // Once per tick, before the charging stage. Bcur = the corrected INA228
-  // battery current (NaN when unknown): where a warning ramp starts.
-  void update(const BmsLimits& b, TimeNs now, double Bcur, const Params& p, EventBatch& ev);
+  // battery current (NaN when unknown): where a warning ramp starts; packV =
+  // IBV (NaN when unknown): where the highest cell's ceiling starts.
+  void update(const BmsLimits& b, TimeNs now, double Bcur, double packV, const Params& p, EventBatch& ev);
 
   double batteryCapA() const { return cap_; }  // kNone when nothing caps
   double cvlCeilingV() const { return cvl_; }  // kNone when nothing caps
@@ -54,6 +59,8 @@ class BmsLimiter {
 
  private:
   void reset();
+  void updateCellCeiling(const BmsLimits& b, double packV, double dt, const Params& p);
+  static double cellsInSeries(const BmsLimits& b, double packV, const Params& p);
 
   BmsState state_ = BmsState::OFF;
   TimeNs enabledSince_ = -1;
@@ -63,6 +70,7 @@ class BmsLimiter {
   double warnRate_ = 0.0;   // A/s of that ramp
   bool chargeAllowed_ = true;
   bool cellHigh_ = false;
+  double cellCeiling_ = kNone;  // the highest cell's pack ceiling (kNone = not holding)
   double shownCvl_ = kBmsNoValue, shownCcl_ = kBmsNoValue, shownSoc_ = kBmsNoValue;
 };
 

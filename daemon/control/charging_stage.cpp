@@ -1,5 +1,8 @@
 #include "control/charging_stage.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "params/constants.h"
 
 namespace xr {
@@ -10,6 +13,8 @@ void ChargingStageMachine::enter(ChargeStage s, TimeNs now) {
   stageStart_ = now;
   bulkHoldArmed_ = tailArmed_ = rebulkArmed_ = false;
   tailThermalSuppressed_ = false;
+  completedOnTail_ = false;
+  restOutAh_ = 0.0;
   if (s == ChargeStage::ABSORPTION) absorptionStartTime_ = now;
 }
 
@@ -18,11 +23,15 @@ void ChargingStageMachine::resetToBulk(TimeNs now) {
   stage_ = ChargeStage::BULK;
   stageStart_ = now;
   bulkHoldArmed_ = tailArmed_ = rebulkArmed_ = false;
-  tailThermalSuppressed_ = rebulkBlockedBySoc_ = false;
+  tailThermalSuppressed_ = rebulkBlockedBySoc_ = completedOnTail_ = false;
+  restOutAh_ = 0.0;
 }
 
 bool ChargingStageMachine::resumeOrBulk(TimeNs now, TimeNs away, const Params& p) {
-  const bool resumable = stage_ == ChargeStage::ABSORPTION || stage_ == ChargeStage::FLOAT;
+  // IDLE resumes too: a bank resting after its charge (IdleZeroCurrent) is
+  // still full after an engine restart, and its counted discharge goes on.
+  const bool resumable =
+      stage_ == ChargeStage::ABSORPTION || stage_ == ChargeStage::FLOAT || stage_ == ChargeStage::IDLE;
   if (resumable && p.StageResumeMaxSec > 0.0 && away >= 0 && away <= fromSec(p.StageResumeMaxSec)) {
     // Timers keep running from their stage start (an absorption's timeout
     // counts the pause); the debounces restart.
@@ -33,10 +42,25 @@ bool ChargingStageMachine::resumeOrBulk(TimeNs now, TimeNs away, const Params& p
   return false;
 }
 
-// FLOAT / IDLE re-bulk: after MinFloatTime, voltage sag OR significant
-// discharge, confirmed continuously for rebulkDebounceTime, with SOC gating.
+// Net amp-hours taken out of the bank since float/idle began (charge counts
+// back, never below zero): what RebulkDischarge_percent compares.
+void ChargingStageMachine::countRestDischarge(const StageInputs& in) {
+  const double dtS = lastNow_ < 0 ? 0.0 : toSec(in.now - lastNow_);
+  if (dtS > 0.0 && dtS < kMaxCountGapS && std::isfinite(in.Bcur))
+    restOutAh_ = std::max(0.0, restOutAh_ - in.Bcur * dtS / 3600.0);
+}
+
+// FLOAT / IDLE re-bulk: after MinFloatTime, voltage sag OR a real discharge,
+// confirmed continuously for rebulkDebounceTime, with SOC gating. A real
+// discharge is a discharge current over RebulkCurrent_A (the seed) or, with
+// RebulkDischarge_percent set, that share of the bank counted out: a house
+// load the alternator carries, or a short one it cannot, is not a discharge
+// (docs/batteries.md "After absorption").
 bool ChargingStageMachine::rebulkDue(const StageInputs& in, const Params& p) {
-  bool cond = (in.v < p.RebulkVoltage) || (in.Bcur < -p.RebulkCurrent_A);
+  const bool discharged = p.RebulkDischarge_percent > 0.0
+                              ? restOutAh_ >= p.RebulkDischarge_percent * p.BatteryCapacity_Ah / 100.0
+                              : in.Bcur < -p.RebulkCurrent_A;
+  bool cond = (in.v < p.RebulkVoltage) || discharged;
   rebulkBlockedBySoc_ = false;
   if (in.socValid) {
     if (in.SOC_percent >= p.SOC_BlockRebulk_percent) {
@@ -62,11 +86,14 @@ bool ChargingStageMachine::rebulkDue(const StageInputs& in, const Params& p) {
 }
 
 bool ChargingStageMachine::updateChargingStage(const StageInputs& in, const Params& p) {
+  completedOnTail_ = false;
   if (in.suppressed) {
     bulkHoldArmed_ = tailArmed_ = rebulkArmed_ = false;
     return false;
   }
   const ChargeStage before = stage_;
+  if (stage_ == ChargeStage::FLOAT || stage_ == ChargeStage::IDLE) countRestDischarge(in);
+  lastNow_ = in.now;
   switch (stage_) {
     case ChargeStage::BULK: {
       // Two-sided band: arm at Bulk - 0.05 V, clear below Bulk - 0.10 V.
@@ -97,7 +124,10 @@ bool ChargingStageMachine::updateChargingStage(const StageInputs& in, const Para
       }
       const bool tailDone = tailArmed_ && in.now - tailStart_ >= fromMs(p.absorptionCompleteTime);
       const bool timeout = in.now - absorptionStartTime_ >= fromMs(p.AbsorptionTimeoutMs);
-      if (tailDone || timeout) enter(p.UseFloat ? ChargeStage::FLOAT : ChargeStage::IDLE, in.now);
+      if (tailDone || timeout) {
+        enter(p.UseFloat ? ChargeStage::FLOAT : ChargeStage::IDLE, in.now);
+        completedOnTail_ = tailDone;
+      }
       break;
     }
     case ChargeStage::FLOAT: {

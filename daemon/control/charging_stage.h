@@ -1,6 +1,7 @@
 #pragma once
-// updateChargingStage(): BULK / ABSORPTION / FLOAT / IDLE exactly as
-// field-control.md "Charging-Stage State Machine". Drives inBulkStage,
+// updateChargingStage(): BULK / ABSORPTION / FLOAT / IDLE as the seeds'
+// charging-stage state machine, with the re-bulk and resume rules of
+// docs/deviations.md and docs/batteries.md. Drives inBulkStage,
 // inAbsorptionStage, inIdleStage, voltageControlActive and
 // ChargingVoltageTarget.
 #include "core/modes.h"
@@ -60,10 +61,20 @@ class ChargingStageMachine {
     }
   }
   bool tailSuppressedByThermal() const { return tailThermalSuppressed_; }
+  // True on the call where absorption ended on its tail current: the bank is
+  // full (the battery monitor takes it as a detected full charge).
+  bool completedOnTail() const { return completedOnTail_; }
+  // Net Ah out of the bank since float/idle began (RebulkDischarge_percent).
+  double restDischargedAh() const { return restOutAh_; }
   bool rebulkBlockedBySoc() const { return rebulkBlockedBySoc_; }
 
  private:
+  // A gap longer than this between calls (the machine was suppressed) is
+  // not counted: the battery current then is not known to have flowed.
+  static constexpr double kMaxCountGapS = 1.0;
+
   void enter(ChargeStage s, TimeNs now);
+  void countRestDischarge(const StageInputs& in);
   bool rebulkDue(const StageInputs& in, const Params& p);
 
   ChargeStage stage_ = ChargeStage::BULK;
@@ -78,6 +89,9 @@ class ChargingStageMachine {
   bool rebulkArmed_ = false;
   TimeNs rebulkStart_ = 0;
   bool rebulkBlockedBySoc_ = false;
+  bool completedOnTail_ = false;
+  TimeNs lastNow_ = -1;
+  double restOutAh_ = 0.0;
 };
 
 }  // namespace xr

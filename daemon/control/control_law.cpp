@@ -75,18 +75,19 @@ double ControlLaw::computeUTarget(const ControlSensors& s, const Params& p) {
 
   double I_cmd = std::clamp(I_cap_ - penalty, 0.0, p.MaxTableValue);
   I_cmd = std::min(I_cmd, p.MaximumAllowedBatteryAmps);
-  I_cmd = std::min(I_cmd, s.batteryChargeCapA);  // battery temperature (issue 21)
   // Warm-up ceiling (ours, off by default): for WarmupCeilingSec after the
   // field turns on, the command is held under WarmupCeilingAmps so a cold
   // alternator and belt are not loaded at full current at once.
   warmupActive_ =
       p.WarmupCeilingAmps > 0.0 && fieldOnAt_ >= 0 && s.now - fieldOnAt_ < fromSec(p.WarmupCeilingSec);
   if (warmupActive_) I_cmd = std::min(I_cmd, p.WarmupCeilingAmps);
-  // The BMS's CCL caps BATTERY current, so house loads are still served: the
-  // alternator may give the load it carries now (alternator less battery
-  // current) plus the CCL. Without a battery current the cap is the CCL alone.
+  // The BMS's CCL and the battery-temperature cap limit BATTERY current, so
+  // house loads are still served: the alternator may give the load it
+  // carries now (alternator less battery current) plus the cap. Without a
+  // battery current the cap is on the alternator alone (docs/batteries.md
+  // "Temperature rules").
   bmsAltCap_ = kNoCeiling;
-  if (const double bcap = bms_.batteryCapA(); std::isfinite(bcap)) {
+  if (const double bcap = std::min(bms_.batteryCapA(), s.batteryChargeCapA); bcap < kNoCeiling) {
     const double load = finite(s.Bcur) ? std::max(0.0, pidSig_ - s.Bcur) : 0.0;
     bmsAltCap_ = std::max(0.0, load + bcap);
   }
@@ -100,7 +101,7 @@ double ControlLaw::computeUTarget(const ControlSensors& s, const Params& p) {
   } else if (tuning_.running()) {
     tuning_.reset();  // nothing to clear unless a run is in progress (score/commit need one)
   }
-  if (p.MaintainMode) u = 0.0;  // ceiling enforcer: Icv -> 0 (clamp [0, 0])
+  if (holdsZeroBatteryCurrent(p)) u = 0.0;  // ceiling enforcer: Icv -> 0 (clamp [0, 0])
   uTargetRaw_ = u;
   return uTargetRaw_;
 }
@@ -234,7 +235,7 @@ double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const Fa
   // MaintainMode chases Bcur = 0 (seed), and ours: never with more
   // alternator current than the RPM cap and the thermal derate allow
   // (I_cmd): a max-selector hands the loop to whichever is over its limit.
-  currentPID_.input = p.MaintainMode ? std::max(s.Bcur, pidSig_ - I_cmd_) : pidSig_;
+  currentPID_.input = holdsZeroBatteryCurrent(p) ? std::max(s.Bcur, pidSig_ - I_cmd_) : pidSig_;
   currentPID_.setpoint = setpointLimited_;
   if (++pidSampleCounter_ >= std::max(1, p.PidSampleDivisor)) {
     pidSampleCounter_ = 0;
@@ -266,10 +267,10 @@ double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const Fa
   if (p.CVTuningMode && finite(s.IBV)) cvTuning_.score(s.IBV, dt, p);
 
   // Non-thermal ceiling for T0's implied-penalty anti-windup (next tick).
-  double c = std::min({p.MaxTableValue, p.MaximumAllowedBatteryAmps, s.batteryChargeCapA});
+  double c = std::min(p.MaxTableValue, p.MaximumAllowedBatteryAmps);
   if (warmupActive_) c = std::min(c, p.WarmupCeilingAmps);
   c = std::min(c, bmsAltCap_);
-  if (p.MaintainMode) c = 0.0;
+  if (holdsZeroBatteryCurrent(p)) c = 0.0;
   c = std::min(c, fa.fastOvCurrentCap);
   if (voltageControlActive_) c = std::min(c, Icv);
   // Ours: an alternator at full field makes all it can; a penalty that

@@ -66,8 +66,8 @@ class ControlLaw {
   // Every tick, first: filters on fresh CH1 / IBV, control dt bookkeeping.
   void updateFilters(const ControlSensors& s, const Params& p);
   // Before the charging stage: the BMS's limits of this tick (bms_limiter.h).
-  void updateBms(const BmsLimits& b, TimeNs now, double Bcur, const Params& p, EventBatch& ev) {
-    bms_.update(b, now, Bcur, p, ev);
+  void updateBms(const BmsLimits& b, TimeNs now, double Bcur, double packV, const Params& p, EventBatch& ev) {
+    bms_.update(b, now, Bcur, packV, p, ev);
   }
   // Step 3 (before mode selection): stage machine and override targets.
   // Returns true when the stage changed (event pushed).
@@ -116,6 +116,15 @@ class ControlLaw {
   // Full bank at the RPM duty floor: the field rests (enable LOW) in AUTO
   // (docs/deviations.md "Full bank at light load").
   bool fieldResting() const { return fieldResting_; }
+  // IDLE with IdleZeroCurrent: the bank rests while the alternator carries
+  // the house loads (docs/batteries.md "After absorption"). Not an override:
+  // the stage machine keeps its re-bulk watch.
+  bool idleZeroCurrentHold(const Params& p) const {
+    return p.IdleZeroCurrent && stages_.inIdleStage() && !p.MaintainMode && !p.TargetVoltageMode &&
+           !p.CVTuningMode;
+  }
+  // MaintainMode or the idle hold: the current loop chases Bcur = 0.
+  bool holdsZeroBatteryCurrent(const Params& p) const { return p.MaintainMode || idleZeroCurrentHold(p); }
   double thermalPenaltyAmps() const { return thermal_.thermalPenaltyAmps(); }
   double MeasuredAmps_filtered() const { return emaInput_.value(); }
   double g_pidI_filtered() const { return emaPid_.value(); }

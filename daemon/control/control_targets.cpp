@@ -77,6 +77,10 @@ void ControlLaw::updateChargingStage(const ControlSensors& s, const Params& p, b
     // CV runs at the bulk target so Groups 1/2 stay armed; the ceiling is 0.
     ChargingVoltageTarget_ = p.BulkVoltage;
     voltageControlActive_ = true;
+  } else if (idleZeroCurrentHold(p)) {
+    // The resting bank: zero battery current under a FloatVoltage ceiling.
+    ChargingVoltageTarget_ = p.FloatVoltage;
+    voltageControlActive_ = true;
   }
   // The BMS's CVL is a ceiling on every target, overrides included, and the
   // voltage loop runs under it from the start (it sits at its current ceiling

@@ -21,8 +21,8 @@
 #include "battery/battery_monitor.h"
 #include "control/control_law.h"
 #include "control/temp_compensation.h"
-#include "protection/battery_temperature.h"
 #include "params/derived.h"
+#include "protection/battery_temperature.h"
 #include "protection/mode_selection.h"
 #include "protection/protection_supervisor.h"
 
@@ -194,7 +194,7 @@ const Outputs& Regulator::step(const Inputs& in) {
   }
 
   // 4. The BMS's limits, then the charging stage (suppressed in override modes and manual).
-  s.law.updateBms(in.bms, in.now, Bcur, p, ev);
+  s.law.updateBms(in.bms, in.now, Bcur, in.IBV.value, p, ev);
   const bool manualMode = p.ManualMode || s.opManual;
   s.law.updateChargingStage(cs, *stageParams, manualMode, ev);
 
@@ -209,7 +209,9 @@ const Outputs& Regulator::step(const Inputs& in) {
   snap.OnOff = p.OnOff;
   snap.bmsChargeEnabled = in.bmsChargeEnabled && s.law.bms().chargeAllowed();
   snap.weatherModeActive = p.weatherModeEnabled && s.currentWeatherMode;
-  snap.idleStage = s.law.stages().inIdleStage();
+  // IDLE rests the field, unless the alternator carries the house loads
+  // while the bank rests (IdleZeroCurrent).
+  snap.idleStage = s.law.stages().inIdleStage() && !s.law.idleZeroCurrentHold(p);
   snap.batteryCold = bt.cold;
   snap.batteryHot = bt.hot;
   snap.autoZeroActive = autoZeroActive;
@@ -316,6 +318,7 @@ const Outputs& Regulator::step(const Inputs& in) {
 
   // 8. SoC and energy.
   s.bat.UpdateBatterySOC(in, MeasuredAmps, ev);
+  if (s.law.stages().completedOnTail()) s.bat.chargeCompletedOnTail(in.now, ev);
 
   // 9. Alarms (250 ms cadence inside).
   s.prot.setBmsStale(s.law.bms().stale());

@@ -51,15 +51,19 @@ TEST(BatteryTempClosedLoop, ColdLifepoGetsNoChargeUntilPastZeroThenRamps) {
   // One trip, no buzzer: no alarm storm.
   EXPECT_EQ(countEvents(r, EventCode::ProtectionTrip, Reason::REASON_BATTERY_COLD), 1);
   EXPECT_TRUE(all(r, [](const SimRow& x) { return !x.telemetry.alarm; }));
-  // 1 degC: charging again, the command capped at 20 % of the 0.5 C profile
-  // maximum (100 A for 200 Ah); 6 degC and up: the cap is gone.
+  // 1 degC: charging again, the battery current capped at 20 % of the 0.5 C
+  // profile maximum (100 A for 200 Ah), the 5 A house load served on top
+  // (docs/batteries.md "Temperature rules"); 6 degC and up: the cap is gone.
   const double resumed = firstTime(
       r, [](const SimRow& x) { return x.plant.alt_a > 2.0; }, 900.0);
   ASSERT_GT(resumed, 900.0) << trace(r, 60);
   EXPECT_LT(resumed, 1000.0);
   EXPECT_LE(maxOf(
+                r, [](const SimRow& x) { return x.plant.battery_a; }, 910.0, 1199.0),
+            20.0 + 1.0);
+  EXPECT_LE(maxOf(
                 r, [](const SimRow& x) { return x.telemetry.target_a; }, 905.0, 1199.0),
-            20.0 + 1e-6);
+            20.0 + 5.0 + 1.0);
   EXPECT_LE(maxOf(
                 r, [](const SimRow& x) { return x.telemetry.target_a; }, 1205.0, 1499.0),
             50.0 + 1e-6);

@@ -159,6 +159,7 @@ struct IntegrationState {
 struct CanBmsState {
   std::string protocol;       // victron | pylontech | rec; empty when off
   std::string state = "off";  // off | bus_error | silent | talking
+  bool follow = true;  // false: monitor only (BmsLimitsEnabled = 0), the limits are shown, not followed
   double cvl_v = std::numeric_limits<double>::quiet_NaN();
   double ccl_a = std::numeric_limits<double>::quiet_NaN();
   double soc_pct = std::numeric_limits<double>::quiet_NaN();

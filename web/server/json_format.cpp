@@ -300,6 +300,7 @@ json::object canBmsToJson(const CanBmsState& b) {
   json::object o;
   o["state"] = b.state;
   o["protocol"] = b.protocol.empty() ? json::value(nullptr) : json::value(b.protocol);
+  o["follow"] = b.follow;
   o["cvl_v"] = number(b.cvl_v);
   o["ccl_a"] = number(b.ccl_a);
   o["soc_pct"] = number(b.soc_pct);

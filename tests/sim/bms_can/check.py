@@ -19,7 +19,7 @@ checks what the issue asks of that scenario:
               counted and reported at most once per 30 s
   rec         a REC BMS with an unbalanced pack: its highest cell (0x373,
               read back from the --can-log here, not from the daemon)
-              reaches BmsCellHighV, the charge ramps down on it, so the cell
+              reaches BmsCellHighV, the charge is held on it (constant voltage), so the cell
               never reaches the BMS's own 3.65 V warning and the BMS never
               opens; the charge still goes on
 
@@ -216,8 +216,11 @@ def check_rec(rows, log, can_log: bytes) -> list[str]:
     warned = [t_ for t_, d in can_frames(can_log, "35A") if len(d) == 8 and (d[4] >> 2) & 3 == 1]
     if warned:
         f.append(f"the BMS raised its high-voltage warning at {warned[0]:.1f} s")
-    if high and not any(r["bms_state"] == "WARNING" for r in window(rows, high[0] - 1, high[0] + 5)):
-        f.append(f"no ramp-down (bms_state WARNING) when the high cell reached 3.60 V at {high[0]:.1f} s")
+    # Held at the limit (a constant voltage on that cell): a minute after it
+    # first reached 3.60 V it stays within 20 mV of it.
+    held = [v for t_, v in cells if high and t_ >= high[0] + 60.0]
+    if held and max(held) > 3.62:
+        f.append(f"the high cell was not held at 3.60 V: {max(held):.3f} V a minute after it reached it")
     # SoC from the REC's 0x355 (0.01 % in bytes 4-5) is what the daemon shows.
     socs = [int.from_bytes(d[4:6], "little") / 100.0 for _, d in can_frames(can_log, "355") if len(d) >= 6]
     if not socs or abs(socs[-1] - num(rows[-1], "bms_soc_pct")) > 0.6:

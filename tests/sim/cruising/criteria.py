@@ -36,6 +36,10 @@ class Run:
     setpoint_a: list[float] = field(default_factory=list)
     target_a: list[float] = field(default_factory=list)
     soc: list[float] = field(default_factory=list)
+    rpm: list[float] = field(default_factory=list)
+    bms_state: list[str] = field(default_factory=list)
+    bms_ccl: list[float] = field(default_factory=list)
+    bms_connected: list[int] = field(default_factory=list)
 
 
 def _num(s: str) -> float:
@@ -60,6 +64,10 @@ def load_csv(path: str) -> Run:
             r.setpoint_a.append(_num(row["setpoint_a"]))
             r.target_a.append(_num(row["target_a"]))
             r.soc.append(_num(row["sim_soc_pct"]))
+            r.rpm.append(_num(row["rpm"]))
+            r.bms_state.append(row.get("bms_state", ""))
+            r.bms_ccl.append(_num(row.get("bms_ccl_a", "")))
+            r.bms_connected.append(int(row.get("sim_bms_connected") or 1))
     if not r.t:
         raise ValueError(f"{path}: no telemetry rows")
     return r

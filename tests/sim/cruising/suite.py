@@ -22,6 +22,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import criteria as C  # noqa: E402
+import passage  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[2]
@@ -136,6 +137,7 @@ def judge(run: C.Run, crit: dict, params: dict, scenario: dict) -> C.Verdict:
         if back is None or back > crit["resume_within_s"]:
             v.failures.append(f"charging not resumed within {crit['resume_within_s']} s of {crit['resumes_after_s']} s")
 
+    passage.judge_passage(run, crit, v)
     v.figures["end"] = f"{run.stage[-1]} {run.soc[-1]:.0f}%"
     if crit.get("known_failure"):
         v.failures.append("known failure: " + crit["known_failure"])
@@ -160,7 +162,7 @@ def run_one(daemon: str, toml_path: Path, out: Path, table: dict, plot: bool) ->
 
 def print_table(results: list[tuple[str, C.Verdict, str]]) -> None:
     keys = ["trips", "alt max F", "thermal util", "reg mV", "float creep mV", "abs exits", "dump peak mV", "dump back s",
-            "field off s", "end"]
+            "field off s", "absorptions", "min SoC", "stale s", "cell offs/swings", "end"]
     print(f"{'scenario':<28} {'result':<6} " + " ".join(f"{k:>14}" for k in keys))
     for name, v, _ in results:
         cells = " ".join(f"{v.figures.get(k, ''):>14}" for k in keys)

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "control/bms_limiter.h"
 #include "reg_rig.h"
@@ -28,17 +29,63 @@ BmsLimits limits(TimeNs stamp, double cvl, double ccl) {
   return b;
 }
 
+// What the CAN service posts when a BMS bus is configured: never heard.
+BmsLimits canConfigured() {
+  BmsLimits b;
+  b.source = BmsSource::Can;
+  return b;
+}
+
 int countReason(const EventBatch& ev, EventCode code, Reason r) {
   int n = 0;
   for (std::size_t i = 0; i < ev.count; ++i) n += ev.items[i].code == code && ev.items[i].reason == r;
   return n;
 }
 
-TEST(BmsLimiter, DisabledCapsNothingEvenWithLimits) {
+constexpr double kNoPackV = std::numeric_limits<double>::quiet_NaN();
+
+TEST(BmsLimiter, ConfiguredSourceIsFollowedByDefault) {
+  const Params p;  // nothing set: the catalogue's defaults
+  ASSERT_TRUE(p.BmsLimitsEnabled);
   BmsLimiter l;
   EventBatch ev;
-  Params p;  // BmsLimitsEnabled = 0
-  l.update(limits(fromSec(1), 14.0, 20), fromSec(1), 30, p, ev);
+  l.update(limits(fromSec(1), 14.0, 20), fromSec(1), 30, kNoPackV, p, ev);
+  EXPECT_EQ(l.state(), BmsState::OK);
+  EXPECT_DOUBLE_EQ(l.batteryCapA(), 20.0);
+}
+
+TEST(BmsLimiter, NoSourceConfiguredIsOffAndNeverStale) {
+  const Params p;
+  BmsLimiter l;
+  EventBatch ev;
+  const BmsLimits none;  // source None: no BMS on CAN, no Victron GX
+  l.update(none, fromSec(1), 30, kNoPackV, p, ev);
+  l.update(none, fromSec(600), 30, kNoPackV, p, ev);
+  EXPECT_EQ(l.state(), BmsState::OFF);
+  EXPECT_TRUE(std::isinf(l.batteryCapA()));
+  EXPECT_EQ(ev.count, 0u);
+}
+
+TEST(BmsLimiter, SilentConfiguredSourceIsStaleWithDefaultParams) {
+  const Params p;  // BmsStaleS = 5 s
+  BmsLimiter l;
+  EventBatch ev;
+  BmsLimits configured;  // what the CAN service posts when the bus is set: never heard
+  configured.source = BmsSource::Can;
+  l.update(configured, fromSec(10), 30, kNoPackV, p, ev);
+  l.update(configured, fromSec(15), 30, kNoPackV, p, ev);
+  EXPECT_FALSE(l.stale());  // exactly BmsStaleS: not yet
+  l.update(configured, fromSec(15) + 1, 30, kNoPackV, p, ev);
+  EXPECT_TRUE(l.stale());
+  EXPECT_DOUBLE_EQ(l.batteryCapA(), p.BmsFallbackCapA);
+}
+
+TEST(BmsLimiter, MonitorOnlyCapsNothingEvenWithLimits) {
+  BmsLimiter l;
+  EventBatch ev;
+  Params p;
+  p.BmsLimitsEnabled = false;  // monitor only, the owner's explicit choice
+  l.update(limits(fromSec(1), 14.0, 20), fromSec(1), 30, kNoPackV, p, ev);
   EXPECT_EQ(l.state(), BmsState::OFF);
   EXPECT_TRUE(std::isinf(l.batteryCapA()));
   EXPECT_TRUE(std::isinf(l.cvlCeilingV()));
@@ -50,7 +97,7 @@ TEST(BmsLimiter, FreshLimitsCapBatteryCurrentAndVoltage) {
   EventBatch ev;
   Params p = bmsParams();
   p.BmsCvlMarginV = 0.05;
-  l.update(limits(fromSec(1), 14.0, 20), fromSec(1), 30, p, ev);
+  l.update(limits(fromSec(1), 14.0, 20), fromSec(1), 30, kNoPackV, p, ev);
   EXPECT_EQ(l.state(), BmsState::OK);
   EXPECT_DOUBLE_EQ(l.batteryCapA(), 20.0);
   EXPECT_NEAR(l.cvlCeilingV(), 13.95, 1e-12);
@@ -63,12 +110,12 @@ TEST(BmsLimiter, StaleAtBmsStaleSNotJustBelow) {
   EventBatch ev;
   const Params p = bmsParams();  // BmsStaleS = 5
   const BmsLimits b = limits(fromSec(10), 14.0, 40);
-  l.update(b, fromSec(10), 0, p, ev);
+  l.update(b, fromSec(10), 0, kNoPackV, p, ev);
   ev.clear();
-  l.update(b, fromSec(15), 0, p, ev);  // exactly 5 s: not yet
+  l.update(b, fromSec(15), 0, kNoPackV, p, ev);  // exactly 5 s: not yet
   EXPECT_FALSE(l.stale());
   EXPECT_EQ(countReason(ev, EventCode::ProtectionTrip, Reason::REASON_BMS_STALE), 0);
-  l.update(b, fromSec(15) + fromMs(1), 0, p, ev);
+  l.update(b, fromSec(15) + fromMs(1), 0, kNoPackV, p, ev);
   EXPECT_TRUE(l.stale());
   EXPECT_EQ(l.state(), BmsState::STALE);
   EXPECT_DOUBLE_EQ(l.batteryCapA(), p.BmsFallbackCapA);
@@ -76,9 +123,9 @@ TEST(BmsLimiter, StaleAtBmsStaleSNotJustBelow) {
   EXPECT_TRUE(std::isnan(l.shownCclA()));
   EXPECT_EQ(countReason(ev, EventCode::ProtectionTrip, Reason::REASON_BMS_STALE), 1);
   ev.clear();
-  l.update(b, fromSec(16), 0, p, ev);  // one event per edge
+  l.update(b, fromSec(16), 0, kNoPackV, p, ev);  // one event per edge
   EXPECT_EQ(countReason(ev, EventCode::ProtectionTrip, Reason::REASON_BMS_STALE), 0);
-  l.update(limits(fromSec(17), 14.0, 40), fromSec(17), 0, p, ev);
+  l.update(limits(fromSec(17), 14.0, 40), fromSec(17), 0, kNoPackV, p, ev);
   EXPECT_FALSE(l.stale());
   EXPECT_DOUBLE_EQ(l.batteryCapA(), 40.0);
   EXPECT_EQ(countReason(ev, EventCode::ProtectionClear, Reason::REASON_BMS_STALE), 1);
@@ -88,11 +135,11 @@ TEST(BmsLimiter, NeverHeardIsStaleAfterBmsStaleS) {
   BmsLimiter l;
   EventBatch ev;
   const Params p = bmsParams();
-  l.update(BmsLimits{}, fromSec(2), 0, p, ev);
+  l.update(canConfigured(), fromSec(2), 0, kNoPackV, p, ev);
   EXPECT_FALSE(l.stale());
-  l.update(BmsLimits{}, fromSec(7), 0, p, ev);
+  l.update(canConfigured(), fromSec(7), 0, kNoPackV, p, ev);
   EXPECT_FALSE(l.stale());
-  l.update(BmsLimits{}, fromSec(7) + fromMs(10), 0, p, ev);
+  l.update(canConfigured(), fromSec(7) + fromMs(10), 0, kNoPackV, p, ev);
   EXPECT_TRUE(l.stale());
 }
 
@@ -103,74 +150,101 @@ TEST(BmsLimiter, WarningRampsFromPresentCurrentToZeroAndBack) {
   p.BmsWarnRampS = 2.0;
   TimeNs t = fromSec(1);
   BmsLimits b = limits(t, 14.2, 80);
-  l.update(b, t, 40, p, ev);
+  l.update(b, t, 40, kNoPackV, p, ev);
   EXPECT_DOUBLE_EQ(l.batteryCapA(), 80.0);
   b.warnings = bmswarn::HighVoltage;
   t += fromMs(100);
   b.stamp = t;
-  l.update(b, t, 40, p, ev);  // from the 40 A flowing now, at 40 A / 2 s: less 0.1 s x 20 A/s
+  l.update(b, t, 40, kNoPackV, p, ev);  // from the 40 A flowing now, at 40 A / 2 s: less 0.1 s x 20 A/s
   EXPECT_EQ(l.state(), BmsState::WARNING);
   EXPECT_NEAR(l.batteryCapA(), 38.0, 1e-9);
   t += fromSec(1);
   b.stamp = t;
-  l.update(b, t, 38, p, ev);
+  l.update(b, t, 38, kNoPackV, p, ev);
   EXPECT_NEAR(l.batteryCapA(), 18.0, 1e-9);
   t += fromSec(1);
   b.stamp = t;
-  l.update(b, t, 20, p, ev);
+  l.update(b, t, 20, kNoPackV, p, ev);
   EXPECT_DOUBLE_EQ(l.batteryCapA(), 0.0);  // 0 within BmsWarnRampS of the warning
   b.warnings = bmswarn::CellImbalance;     // shown only: the ramp goes back up
   t += fromSec(1);
   b.stamp = t;
-  l.update(b, t, 0, p, ev);
+  l.update(b, t, 0, kNoPackV, p, ev);
   EXPECT_NEAR(l.batteryCapA(), 20.0, 1e-9);
   EXPECT_EQ(l.state(), BmsState::OK);
   t += fromSec(4);
   b.stamp = t;
-  l.update(b, t, 20, p, ev);
+  l.update(b, t, 20, kNoPackV, p, ev);
   EXPECT_DOUBLE_EQ(l.batteryCapA(), 80.0);  // back at CCL: the ramp is over
 }
 
-TEST(BmsLimiter, HighCellRampsAtBmsCellHighVWithHysteresis) {
+TEST(BmsLimiter, HighCellHoldsAPackCeilingFromBmsCellHighV) {
   BmsLimiter l;
   EventBatch ev;
-  const Params p = bmsParams();  // BmsCellHighV = 3.60, BmsWarnRampS = 1
+  Params p = bmsParams();  // BmsCellHighV = 3.60
+  p.BatteryCells = 4;
   ASSERT_DOUBLE_EQ(p.BmsCellHighV, 3.60);
   BmsLimits b = limits(fromSec(1), 14.2, 50);
-  b.cellMaxV = 3.599;  // just below: no ramp
-  l.update(b, fromSec(1), 40, p, ev);
-  EXPECT_EQ(l.state(), BmsState::OK);
+  b.cellMaxV = 3.599;  // just below: nothing holds the pack
+  l.update(b, fromSec(1), 40, 13.9, p, ev);
   EXPECT_FALSE(l.cellHigh());
-  EXPECT_DOUBLE_EQ(l.batteryCapA(), 50.0);
-  b.cellMaxV = 3.600;  // at the threshold: the warning ramp from 40 A
-  l.update(b, fromSec(1) + fromMs(100), 40, p, ev);
+  EXPECT_DOUBLE_EQ(l.cvlCeilingV(), 14.2);
+  b.cellMaxV = 3.600;  // at the limit: the ceiling starts at the pack voltage, no step
+  l.update(b, fromSec(1) + fromMs(100), 40, 13.9, p, ev);
   EXPECT_TRUE(l.cellHigh());
-  EXPECT_EQ(l.state(), BmsState::WARNING);
-  EXPECT_LE(l.batteryCapA(), 40.0);
-  b.cellMaxV = 3.56;  // relaxing, but inside the 0.05 V band: still ramping down
-  l.update(b, fromSec(1) + fromMs(600), 20, p, ev);
-  EXPECT_TRUE(l.cellHigh());
-  l.update(b, fromSec(2) + fromMs(200), 0, p, ev);
-  EXPECT_DOUBLE_EQ(l.batteryCapA(), 0.0);
-  b.cellMaxV = 3.549;  // under the band: the ramp goes back up
-  l.update(b, fromSec(2) + fromMs(300), 0, p, ev);
+  EXPECT_NEAR(l.cvlCeilingV(), 13.9, 1e-9);
+  EXPECT_EQ(l.state(), BmsState::OK);       // not a warning: no ramp to zero
+  EXPECT_DOUBLE_EQ(l.batteryCapA(), 50.0);  // the current is not cut
+  b.cellMaxV = 3.620;  // 20 mV over: the ceiling falls at 4 cells x 20 mV / 20 s = 4 mV/s
+  l.update(b, fromSec(2) + fromMs(100), 40, 13.9, p, ev);
+  EXPECT_NEAR(l.cvlCeilingV(), 13.9 - 0.004, 1e-9);
+  b.cellMaxV = 3.590;  // under: it rises again, 2 mV/s
+  l.update(b, fromSec(3) + fromMs(100), 40, 13.9, p, ev);
+  EXPECT_NEAR(l.cvlCeilingV(), 13.9 - 0.004 + 0.002, 1e-9);
+  // Far over for long: the ceiling never goes more than 0.3 V under the pack.
+  b.cellMaxV = 3.9;
+  b.stamp = fromSec(60);  // the BMS keeps talking
+  l.update(b, fromSec(60), 40, 13.8, p, ev);
+  EXPECT_NEAR(l.cvlCeilingV(), 13.5, 1e-9);
+  // Once the ceiling is 0.2 V over the pack nothing holds it: released.
+  b.cellMaxV = 3.3;
+  b.stamp = fromSec(200);
+  l.update(b, fromSec(200), 0, 13.3, p, ev);
   EXPECT_FALSE(l.cellHigh());
-  EXPECT_EQ(l.state(), BmsState::OK);
-  EXPECT_GT(l.batteryCapA(), 0.0);
-  EXPECT_LT(l.batteryCapA(), 50.0);
-  // Off (0), or a BMS that sends no cell voltages: nothing happens.
-  Params off = p;
+  EXPECT_DOUBLE_EQ(l.cvlCeilingV(), 14.2);
+}
+
+TEST(BmsLimiter, HighCellCeilingOffWithoutCellVoltagesOrAtZero) {
+  EventBatch ev;
+  BmsLimits b = limits(fromSec(1), 14.2, 50);
+  Params off = bmsParams();
   off.BmsCellHighV = 0.0;
   BmsLimiter l2;
   b.cellMaxV = 4.0;
-  l2.update(b, fromSec(3), 40, off, ev);
+  l2.update(b, fromSec(3), 40, 14.0, off, ev);
   EXPECT_FALSE(l2.cellHigh());
-  EXPECT_DOUBLE_EQ(l2.batteryCapA(), 50.0);
+  EXPECT_DOUBLE_EQ(l2.cvlCeilingV(), 14.2);
   BmsLimiter l3;
   b.cellMaxV = kBmsNoValue;
-  l3.update(b, fromSec(3), 40, p, ev);
+  l3.update(b, fromSec(3), 40, 14.0, bmsParams(), ev);
   EXPECT_FALSE(l3.cellHigh());
   EXPECT_EQ(l3.state(), BmsState::OK);
+}
+
+TEST(BmsLimiter, CellsInSeriesFromThePackWhenNotConfigured) {
+  // A custom profile leaves BatteryCells at 0: 27.2 V over a 3.4 V mean cell
+  // is 8 cells, so 20 mV over the limit lowers the ceiling 8 mV/s.
+  BmsLimiter l;
+  EventBatch ev;
+  Params p = bmsParams();
+  ASSERT_EQ(p.BatteryCells, 0);
+  BmsLimits b = limits(fromSec(1), 28.4, 50);
+  b.cellMaxV = 3.60;
+  b.cellMinV = 3.20;
+  l.update(b, fromSec(1), 40, 27.2, p, ev);
+  b.cellMaxV = 3.62;
+  l.update(b, fromSec(2), 40, 27.2, p, ev);
+  EXPECT_NEAR(l.cvlCeilingV(), 27.2 - 0.008, 1e-9);
 }
 
 TEST(BmsLimiter, ChargeDisableFlagIsPassedOn) {
@@ -178,7 +252,7 @@ TEST(BmsLimiter, ChargeDisableFlagIsPassedOn) {
   EventBatch ev;
   BmsLimits b = limits(fromSec(1), 14.0, 40);
   b.chargeAllowed = false;
-  l.update(b, fromSec(1), 0, bmsParams(), ev);
+  l.update(b, fromSec(1), 0, kNoPackV, bmsParams(), ev);
   EXPECT_FALSE(l.chargeAllowed());
   EXPECT_EQ(l.state(), BmsState::CHARGE_DISABLED);
 }
@@ -284,6 +358,7 @@ TEST(BmsClosedLoop, StaleRaisesTheAlarmWhenAlarmsAreOn) {
   Params p = bmsParams();
   p.AlarmActivate = true;
   test::RegRig r(p);
+  r.bms = canConfigured();  // a BMS on CAN is configured and never speaks
   r.plant.Vocv = 12.6;
   r.run(2);
   EXPECT_FALSE(r.out->buzzer);

@@ -142,6 +142,8 @@ export function canRows(bms, n2k) {
   const rows = [];
   const [bw, bc] = BMS_WORDS[bms?.state] || [bms?.state || "unknown", ""];
   rows.push(["Battery BMS", bms?.protocol ? `${bw} (${bms.protocol})` : bw, bc]);
+  if (bms && bms.state !== "off")
+    rows.push(["BMS limits are", bms.follow === false ? "shown only (monitor only: not followed)" : "followed", bms.follow === false ? "warn" : ""]);
   if (bms && bms.state !== "off") {
     rows.push(["BMS limits", `charge voltage ${v(bms.cvl_v, "V", 2)}, charge current ${v(bms.ccl_a, "A")}, SoC ${v(bms.soc_pct, "%")}`]);
     if (bms.cell_max_v !== null && bms.cell_max_v !== undefined) rows.push(["Highest cell", v(bms.cell_max_v, "V", 3)]);
