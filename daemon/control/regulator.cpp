@@ -21,8 +21,8 @@
 #include "battery/battery_monitor.h"
 #include "control/control_law.h"
 #include "control/temp_compensation.h"
-#include "protection/battery_temperature.h"
 #include "params/derived.h"
+#include "protection/battery_temperature.h"
 #include "protection/mode_selection.h"
 #include "protection/protection_supervisor.h"
 
@@ -208,7 +208,10 @@ const Outputs& Regulator::step(const Inputs& in) {
   snap.ignitionOn = in.ignitionOn;
   snap.OnOff = p.OnOff;
   snap.bmsChargeEnabled = in.bmsChargeEnabled && s.law.bms().chargeAllowed();
-  snap.weatherModeActive = p.weatherModeEnabled && s.currentWeatherMode;
+  // A floor the forecast does not get to argue with (docs/deviations.md
+  // "Weather mode's SoC floor"): below it, or with the SoC unknown, charge.
+  snap.weatherModeActive =
+      p.weatherModeEnabled && s.currentWeatherMode && cs.socKnown && cs.SOC_percent >= p.WeatherModeMinSoC;
   snap.idleStage = s.law.stages().inIdleStage();
   snap.batteryCold = bt.cold;
   snap.batteryHot = bt.hot;
