@@ -85,6 +85,9 @@ asio::awaitable<void> WeatherClient::run() {
       health_.received();
       health_.connected();
       backoff_.reset();
+    } catch (const boost::system::system_error& e) {
+      error = e.code().message();  // what() carries Beast's source location: not for the user
+      next = backoff_.next();
     } catch (const std::exception& e) {
       error = e.what();
       next = backoff_.next();

@@ -172,7 +172,7 @@ def main():
     sunny_then_cloudy(c, srv, daemon)
     soc_floor(c, srv, daemon)
     for answer, why in [("500", "HTTP 500"), ("badjson", "not JSON"), ("shape", "no daily object"),
-                        ("huge", "body limit"), ("timeout", "timed out")]:
+                        ("huge", "body limit"), ("timeout", "timeout")]:
         broken(c, srv, daemon, answer, why)
     srv.httpd.shutdown()
     return c.done()
