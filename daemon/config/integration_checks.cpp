@@ -71,6 +71,13 @@ std::vector<std::pair<std::string, std::string>> checkIntegrations(const Integra
     bad("integrations.victron.enabled",
         "a BMS on CAN ([can] bms_interface = \"" + can.bms_interface +
             "\") already gives the battery limits: use one source (the GX relays the same BMS)");
+
+  // https:// is not supported yet (docs/integrations.md "Weather"): a boat
+  // reaches the public service through a local proxy or cache.
+  const auto& w = s.weather;
+  if (!w.url.starts_with("http://") || w.url.size() <= 7 || w.url[7] == '/' || w.url[7] == ':')
+    bad("integrations.weather.url",
+        "'" + w.url + "' must be http://host[:port]/path (https:// is not supported yet)");
   return out;
 }
 

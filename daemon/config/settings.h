@@ -116,10 +116,21 @@ struct VictronSettings {
   // Staleness is the BmsStaleS parameter, shared with a BMS on CAN.
 };
 
+// [integrations.weather] (docs/integrations.md "Weather"): an Open-Meteo
+// daily forecast that turns weather mode on and off.
+struct WeatherSettings {
+  bool enabled = false;
+  std::string url = "http://api.open-meteo.com/v1/forecast";  // http:// only
+  double latitude = 0.0;                                      // degrees, north positive
+  double longitude = 0.0;                                     // degrees, east positive
+  int refresh_min = 60;
+};
+
 struct IntegrationsSettings {
   SignalKSettings signalk;
   MqttSettings mqtt;
   VictronSettings victron;
+  WeatherSettings weather;
 };
 
 // [can] (docs/integrations.md "CAN"): the two buses and what is spoken on

@@ -216,6 +216,17 @@ const SettingSpec kSchema[] = {
              "VRM portal id of the GX (Settings > VRM online portal)."),
     XR_S_INT("integrations.victron", integrations.victron.battery_instance, "battery_instance", "", 0, 65535,
              false, "Device instance of the battery service (512 for most BMS on CAN)."),
+    // [integrations.weather]
+    XR_S_BOOL("integrations.weather", integrations.weather.enabled, "enabled",
+              "Read a daily solar forecast (Open-Meteo format) that turns weather mode on and off."),
+    XR_S_STR("integrations.weather", integrations.weather.url, "url", "",
+             "Open-Meteo-compatible daily forecast endpoint (http://host[:port]/path)."),
+    XR_S_FLT("integrations.weather", integrations.weather.latitude, "latitude", "deg", -90.0, 90.0,
+             "Where the boat is, for the forecast (north positive)."),
+    XR_S_FLT("integrations.weather", integrations.weather.longitude, "longitude", "deg", -180.0, 180.0,
+             "Where the boat is, for the forecast (east positive)."),
+    XR_S_INT("integrations.weather", integrations.weather.refresh_min, "refresh_min", "min", 1, 1440, false,
+             "Minutes between forecasts."),
 };
 
 #undef XR_S_STR
@@ -223,9 +234,16 @@ const SettingSpec kSchema[] = {
 #undef XR_S_FLT
 #undef XR_S_BOOL
 
-constexpr std::array<std::string_view, 9> kTables{
-    "hardware",          "hardware.frontend",   "runtime", "web", "store", "log", "integrations.signalk",
-    "integrations.mqtt", "integrations.victron"};
+constexpr std::array<std::string_view, 10> kTables{"hardware",
+                                                   "hardware.frontend",
+                                                   "runtime",
+                                                   "web",
+                                                   "store",
+                                                   "log",
+                                                   "integrations.signalk",
+                                                   "integrations.mqtt",
+                                                   "integrations.victron",
+                                                   "integrations.weather"};
 
 std::string rangeText(const SettingSpec& spec) {
   std::string r = "allowed " + formatNumber(spec.min) + " to " + formatNumber(spec.max);

@@ -208,7 +208,10 @@ const Outputs& Regulator::step(const Inputs& in) {
   snap.ignitionOn = in.ignitionOn;
   snap.OnOff = p.OnOff;
   snap.bmsChargeEnabled = in.bmsChargeEnabled && s.law.bms().chargeAllowed();
-  snap.weatherModeActive = p.weatherModeEnabled && s.currentWeatherMode;
+  // A floor the forecast does not get to argue with (docs/deviations.md
+  // "Weather mode's SoC floor"): below it, or with the SoC unknown, charge.
+  snap.weatherModeActive =
+      p.weatherModeEnabled && s.currentWeatherMode && cs.socKnown && cs.SOC_percent >= p.WeatherModeMinSoC;
   // IDLE rests the field, unless the alternator carries the house loads
   // while the bank rests (IdleZeroCurrent).
   snap.idleStage = s.law.stages().inIdleStage() && !s.law.idleZeroCurrentHold(p);

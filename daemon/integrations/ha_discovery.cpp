@@ -41,6 +41,8 @@ struct BinaryDef {
 constexpr BinaryDef kBinary[] = {
     {"field", "Field enabled", "power"},
     {"alarm", "Alarm", "problem"},
+    // The regulator resting the alternator for the sun (docs/integrations.md "Weather").
+    {"weather_mode", "Weather mode", ""},
 };
 
 json::object deviceBlock(const HaTopics& t, const std::string& version) {
@@ -92,7 +94,7 @@ std::vector<MqttMessage> discoveryConfigs(const HaTopics& t, bool withCommands, 
     o["value_template"] = std::string("{{ value_json.") + b.object + " }}";
     o["payload_on"] = "ON";
     o["payload_off"] = "OFF";
-    o["device_class"] = b.deviceClass;
+    if (*b.deviceClass) o["device_class"] = b.deviceClass;
     out.push_back({t.config("binary_sensor", b.object), json::serialize(o)});
   }
   if (withCommands) {
@@ -129,6 +131,7 @@ std::string stateJson(const IntegrationSample& s) {
   o["charged_energy"] = number(s.charged_kwh, 3);
   o["field"] = s.field_on ? "ON" : "OFF";
   o["alarm"] = s.alarm ? "ON" : "OFF";
+  o["weather_mode"] = s.reason == "REASON_WEATHER_MODE" ? "ON" : "OFF";
   o["regulator_mode"] = regulatorModeOption(s);
   return json::serialize(o);
 }

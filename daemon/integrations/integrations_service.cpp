@@ -21,6 +21,7 @@ IntegrationsService::IntegrationsService(const IntegrationsSettings& s, rt::Hand
     victron_ = std::make_unique<VictronGxBridge>(io_, s.victron, std::move(bmsLimits),
                                                  [&handoffs] { return handoffs.acceptedParams().BmsStaleS; });
   }
+  if (s.weather.enabled) weather_ = std::make_unique<WeatherClient>(io_, s.weather, handoffs, commands);
 }
 
 IntegrationsService::~IntegrationsService() { stop(); }
@@ -43,6 +44,11 @@ void IntegrationsService::start() {
     spdlog::info("signalk: deltas to {} at {} Hz", settings_.signalk.url, settings_.signalk.rate_hz);
     boost::asio::post(io_, [this] { signalk_->start(); });
   }
+  if (weather_) {
+    spdlog::info("weather: forecast from {} every {} min", settings_.weather.url,
+                 settings_.weather.refresh_min);
+    boost::asio::post(io_, [this] { weather_->start(); });
+  }
   thread_ = std::thread([this] {
     pthread_setname_np(pthread_self(), "xr-integrations");
     auto guard = boost::asio::make_work_guard(io_);
@@ -63,6 +69,7 @@ void IntegrationsService::stop() {
     if (ha_) ha_->stop();
     if (signalk_) signalk_->stop();
     if (victron_) victron_->stop();
+    if (weather_) weather_->stop();
     done.set_value();
   });
   if (!io_.stopped()) done.get_future().wait_for(std::chrono::seconds(3));
@@ -80,6 +87,7 @@ std::vector<IntegrationStatus> IntegrationsService::statuses() const {
   out.push_back(signalk_ ? signalk_->status() : disabled("signalk"));
   out.push_back(ha_ ? ha_->status() : disabled("mqtt"));
   out.push_back(victron_ ? victron_->status() : disabled("victron"));
+  out.push_back(weather_ ? weather_->status() : disabled("weather"));
   return out;
 }
 

@@ -13,6 +13,7 @@
 #include "integrations/integration_health.h"
 #include "integrations/signalk_client.h"
 #include "integrations/victron_gx.h"
+#include "integrations/weather_client.h"
 #include "runtime/handoffs.h"
 
 namespace xr::integrations {
@@ -25,7 +26,7 @@ class IntegrationsService {
   IntegrationsService(const IntegrationsService&) = delete;
   IntegrationsService& operator=(const IntegrationsService&) = delete;
 
-  bool anyEnabled() const { return ha_ || signalk_ || victron_; }
+  bool anyEnabled() const { return ha_ || signalk_ || victron_ || weather_; }
   void start();
   void stop();  // idempotent; says "offline" to the brokers it is connected to
 
@@ -38,6 +39,7 @@ class IntegrationsService {
   std::unique_ptr<HomeAssistantBridge> ha_;
   std::unique_ptr<SignalKClient> signalk_;
   std::unique_ptr<VictronGxBridge> victron_;
+  std::unique_ptr<WeatherClient> weather_;
   std::thread thread_;
   bool running_ = false;
 };

@@ -28,6 +28,7 @@ constexpr PathDef kAlternator[] = {
     {"chargingMode", "", "Charging mode", "bulk, acceptance, float or other"},
     {"setpointVoltage", "V", "Voltage target", "Charging voltage target"},
     {"setpointCurrent", "A", "Current target", "Alternator current target"},
+    {"weatherMode", "", "Weather mode", "1 while weather mode rests the alternator for the sun, else 0"},
 };
 constexpr PathDef kBattery[] = {
     {"voltage", "V", "Battery voltage", "Battery voltage"},
@@ -55,6 +56,7 @@ std::vector<SignalKValue> signalKValues(const IntegrationSample& s, const std::s
   v.push_back({alt + "chargingMode", 0.0, std::string(signalKChargingMode(s.stageValue, s.field_on)), true});
   num(alt + "setpointVoltage", s.setpoint_v);
   num(alt + "setpointCurrent", s.setpoint_a);
+  num(alt + "weatherMode", s.reason == "REASON_WEATHER_MODE" ? 1.0 : 0.0);
   num(bat + "voltage", s.battery_v);
   num(bat + "current", s.battery_a);
   if (std::isfinite(s.battery_temp_c)) num(bat + "temperature", s.battery_temp_c + kZeroCelsiusK);

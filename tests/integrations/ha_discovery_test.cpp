@@ -25,8 +25,8 @@ TEST(HaDiscovery, SensorsAndBinarySensorsWithoutCommands) {
   const auto all = discoveryConfigs(topics(), false, "1.2.3");
   std::set<std::string> names;
   for (const auto& m : all) names.insert(m.topic);
-  EXPECT_EQ(all.size(), 12u);
-  EXPECT_EQ(names.size(), 12u);
+  EXPECT_EQ(all.size(), 13u);
+  EXPECT_EQ(names.size(), 13u);
   EXPECT_TRUE(names.count("homeassistant/sensor/xregulator_boat1/battery_voltage/config"));
   EXPECT_TRUE(names.count("homeassistant/binary_sensor/xregulator_boat1/alarm/config"));
   EXPECT_FALSE(names.count("homeassistant/select/xregulator_boat1/regulator_mode/config"));
@@ -35,7 +35,7 @@ TEST(HaDiscovery, SensorsAndBinarySensorsWithoutCommands) {
 
 TEST(HaDiscovery, CommandsAddSelectAndButton) {
   const auto all = discoveryConfigs(topics(), true, "1.2.3");
-  EXPECT_EQ(all.size(), 14u);
+  EXPECT_EQ(all.size(), 15u);
   auto sel = find(all, "homeassistant/select/xregulator_boat1/regulator_mode/config");
   EXPECT_EQ(sel.at("command_topic").as_string(), "xregulator/boat1/set/mode");
   EXPECT_EQ(json::serialize(sel.at("options")), R"(["off","auto"])");

@@ -22,7 +22,7 @@ NODE = "boat1"
 SENSORS = {"battery_voltage": "V", "battery_current": "A", "alternator_current": "A",
            "alternator_temperature": "°C", "soc": "%", "field_duty": "%", "power": "W", "stage": None,
            "mode": None, "charged_energy": "kWh"}
-BINARY = ["field", "alarm"]
+BINARY = ["field", "alarm", "weather_mode"]
 
 
 def config_topic(component, obj):

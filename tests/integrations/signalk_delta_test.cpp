@@ -53,6 +53,7 @@ TEST(SignalKDelta, PathsInSiUnits) {
   EXPECT_EQ(m.at("electrical.alternators.main.chargingMode").as_string(), "acceptance");
   EXPECT_DOUBLE_EQ(m.at("electrical.alternators.main.setpointVoltage").as_double(), 14.4);
   EXPECT_DOUBLE_EQ(m.at("electrical.alternators.main.setpointCurrent").as_double(), 90.0);
+  EXPECT_DOUBLE_EQ(m.at("electrical.alternators.main.weatherMode").as_double(), 0.0);
   EXPECT_DOUBLE_EQ(m.at("electrical.batteries.house.voltage").as_double(), 14.2);
   EXPECT_DOUBLE_EQ(m.at("electrical.batteries.house.current").as_double(), 30.0);
   EXPECT_DOUBLE_EQ(m.at("electrical.batteries.house.capacity.stateOfCharge").as_double(), 0.72);
@@ -77,7 +78,7 @@ TEST(SignalKDelta, MetaHasUnitsAndNamesForEveryPath) {
   std::map<std::string, json::object> meta;
   for (const auto& m : d.at("updates").as_array()[0].as_object().at("meta").as_array())
     meta[std::string(m.as_object().at("path").as_string())] = m.as_object().at("value").as_object();
-  EXPECT_EQ(meta.size(), 13u);
+  EXPECT_EQ(meta.size(), 14u);
   EXPECT_EQ(meta.at("electrical.alternators.main.temperature").at("units").as_string(), "K");
   EXPECT_EQ(meta.at("electrical.alternators.main.revolutions").at("units").as_string(), "Hz");
   EXPECT_EQ(meta.at("electrical.alternators.main.fieldDrive").at("units").as_string(), "ratio");
@@ -131,4 +132,11 @@ TEST(IntegrationChecks, CommandsWithCredentialsAreAllowed) {
 }
 
 }  // namespace
+TEST(SignalKDelta, WeatherModeIsOneWhileItRestsTheAlternator) {
+  auto s = sample();
+  s.reason = "REASON_WEATHER_MODE";
+  auto m = valuesOf(signalKDelta(signalKValues(s, "main", "house"), "2026-12-03T14:00:00.000Z"));
+  EXPECT_DOUBLE_EQ(m.at("electrical.alternators.main.weatherMode").as_double(), 1.0);
+}
+
 }  // namespace xr::integrations

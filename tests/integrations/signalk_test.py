@@ -93,7 +93,7 @@ class SignalK:
 
 
 ALTERNATOR_KEYS = ["voltage", "current", "temperature", "revolutions", "fieldDrive", "chargingMode",
-                   "setpointVoltage", "setpointCurrent"]
+                   "setpointVoltage", "setpointCurrent", "weatherMode"]
 
 
 def has_values(d, keys):

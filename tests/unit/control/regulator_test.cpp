@@ -187,10 +187,45 @@ TEST(Regulator, WeatherModeDisablesChargingOnlyWhenEnabled) {
   p.weatherModeEnabled = 1;
   test::RegRig r(p);
   r.run(0.5);
+  r.reg.command({CommandType::SetSoc, 80.0, false});
   r.reg.command({CommandType::WeatherMode, 0.0, true});
   r.tick();
   EXPECT_EQ(r.out->telemetry.mode, FieldControlMode::MODE_DISABLED_RAMP);
   EXPECT_EQ(r.out->telemetry.reason, Reason::REASON_WEATHER_MODE);
+}
+
+// The SoC floor (docs/deviations.md "Weather mode's SoC floor"): at
+// WeatherModeMinSoC the sun may charge, just below it the alternator does.
+TEST(Regulator, WeatherModeRestsTheAlternatorAtWeatherModeMinSoC) {
+  Params p;
+  p.weatherModeEnabled = 1;
+  p.WeatherModeMinSoC = 50.0;
+  test::RegRig r(p);
+  r.run(0.5);
+  r.reg.command({CommandType::SetSoc, 50.0, false});
+  r.reg.command({CommandType::WeatherMode, 0.0, true});
+  r.tick();
+  EXPECT_EQ(r.out->telemetry.reason, Reason::REASON_WEATHER_MODE);
+}
+
+TEST(Regulator, WeatherModeChargesJustBelowWeatherModeMinSoCAndWhenTheSocDrops) {
+  Params p;
+  p.weatherModeEnabled = 1;
+  p.WeatherModeMinSoC = 50.0;
+  test::RegRig r(p);
+  r.run(0.5);
+  r.reg.command({CommandType::SetSoc, 49.9, false});
+  r.reg.command({CommandType::WeatherMode, 0.0, true});
+  r.run(0.5);
+  EXPECT_NE(r.out->telemetry.reason, Reason::REASON_WEATHER_MODE);
+  EXPECT_NE(r.out->telemetry.mode, FieldControlMode::MODE_DISABLED_RAMP);
+  r.reg.command({CommandType::SetSoc, 70.0, false});
+  r.tick();
+  EXPECT_EQ(r.out->telemetry.reason, Reason::REASON_WEATHER_MODE);
+  r.reg.command({CommandType::SetSoc, 30.0, false});  // the battery ran down under a sunny forecast
+  r.run(0.5);
+  EXPECT_NE(r.out->telemetry.reason, Reason::REASON_WEATHER_MODE);
+  EXPECT_NE(r.out->telemetry.mode, FieldControlMode::MODE_DISABLED_RAMP);
 }
 
 TEST(Regulator, TelemetryHasEveryDesignColumn) {

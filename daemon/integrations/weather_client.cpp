@@ -1,0 +1,187 @@
+#include "integrations/weather_client.h"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <boost/asio/co_spawn.hpp>
+#include <boost/asio/detached.hpp>
+#include <boost/asio/redirect_error.hpp>
+#include <boost/asio/steady_timer.hpp>
+#include <boost/asio/use_awaitable.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+#include <cmath>
+#include <stdexcept>
+
+namespace xr::integrations {
+namespace asio = boost::asio;
+namespace beast = boost::beast;
+namespace http = beast::http;
+using asio::use_awaitable;
+using tcp = asio::ip::tcp;
+using namespace std::chrono_literals;
+
+namespace {
+constexpr auto kIoTimeout = 10s;  // the whole request: connect, write, read
+constexpr const char* kSource = "weather forecast";
+}  // namespace
+
+std::optional<HttpUrl> parseHttpUrl(const std::string& url) {
+  if (!url.starts_with("http://")) return std::nullopt;
+  const std::string rest = url.substr(7);
+  const auto slash = rest.find('/');
+  const std::string hostPort = rest.substr(0, slash);
+  HttpUrl u;
+  u.target = slash == std::string::npos ? "/" : rest.substr(slash);
+  const auto colon = hostPort.rfind(':');
+  u.host = colon == std::string::npos ? hostPort : hostPort.substr(0, colon);
+  u.port = colon == std::string::npos ? "80" : hostPort.substr(colon + 1);
+  if (u.host.empty() || u.port.empty() || u.port.find_first_not_of("0123456789") != std::string::npos ||
+      u.target.find('?') != std::string::npos)
+    return std::nullopt;
+  return u;
+}
+
+std::string forecastTarget(const std::string& path, double latitude, double longitude) {
+  return fmt::format(
+      "{}?latitude={:.4f}&longitude={:.4f}&daily=uv_index_max,shortwave_radiation_sum&forecast_days=3"
+      "&timezone=auto",
+      path, latitude, longitude);
+}
+
+WeatherClient::WeatherClient(asio::io_context& io, const WeatherSettings& s, const rt::Handoffs& handoffs,
+                             CommandSink commands)
+    : io_(io),
+      settings_(s),
+      handoffs_(handoffs),
+      commands_(std::move(commands)),
+      health_("weather"),
+      backoff_(std::chrono::milliseconds(30s), std::chrono::minutes(s.refresh_min)) {
+  auto u = parseHttpUrl(s.url);
+  if (!u) throw std::runtime_error("weather: url '" + s.url + "' is not http://host[:port]/path");
+  url_ = *u;
+}
+
+void WeatherClient::start() { asio::co_spawn(io_, run(), asio::detached); }
+
+void WeatherClient::stop() { stopping_ = true; }
+
+asio::awaitable<void> WeatherClient::run() {
+  asio::steady_timer wait(co_await asio::this_coro::executor);
+  // (0, 0) is the unset default, not a position: a forecast for the Gulf
+  // of Guinea would rest the alternator of a boat in the Baltic.
+  const bool havePosition = settings_.latitude != 0.0 || settings_.longitude != 0.0;
+  while (!stopping_) {
+    health_.attempt();
+    std::chrono::steady_clock::duration next = std::chrono::minutes(settings_.refresh_min);
+    std::string error;
+    try {
+      if (!havePosition) throw std::runtime_error("no position (set latitude and longitude)");
+      const std::string body = co_await fetch();
+      auto parsed = parseOpenMeteoDaily(body);
+      if (!parsed.forecast) throw std::runtime_error("answer refused: " + parsed.error);
+      forecast_ = parsed.forecast;
+      forecastAt_ = std::chrono::steady_clock::now();
+      health_.received();
+      health_.connected();
+      backoff_.reset();
+    } catch (const boost::system::system_error& e) {
+      error = e.code().message();  // what() carries Beast's source location: not for the user
+      next = backoff_.next();
+    } catch (const std::exception& e) {
+      error = e.what();
+      next = backoff_.next();
+    }
+    if (stopping_) break;
+    decide(std::chrono::steady_clock::now());
+    if (!error.empty()) {
+      const auto s = std::chrono::duration_cast<std::chrono::seconds>(next).count();
+      health_.failed(fmt::format("{}: {}; next try in {} s", error,
+                                 sent_.value_or(false) ? "weather mode holds on the last forecast"
+                                                       : "weather mode off, charging as usual",
+                                 s));
+    }
+    wait.expires_after(next);
+    beast::error_code ec;
+    co_await wait.async_wait(asio::redirect_error(use_awaitable, ec));
+  }
+}
+
+asio::awaitable<std::string> WeatherClient::fetch() {
+  auto ex = co_await asio::this_coro::executor;
+  tcp::resolver resolver(ex);
+  const auto hosts = co_await resolver.async_resolve(url_.host, url_.port, use_awaitable);
+  beast::tcp_stream stream(ex);
+  stream.expires_after(kIoTimeout);  // one deadline for connect, write and read
+  co_await stream.async_connect(hosts, use_awaitable);
+  http::request<http::empty_body> req{
+      http::verb::get, forecastTarget(url_.target, settings_.latitude, settings_.longitude), 11};
+  req.set(http::field::host, url_.host + ":" + url_.port);
+  req.set(http::field::user_agent, "xregulatord");
+  req.set(http::field::accept, "application/json");
+  co_await http::async_write(stream, req, use_awaitable);
+  beast::flat_buffer buf;
+  http::response_parser<http::string_body> parser;
+  parser.body_limit(kForecastBodyLimit);  // a 10 MB answer is refused, not read
+  co_await http::async_read(stream, buf, parser, use_awaitable);
+  beast::error_code ec;
+  stream.socket().shutdown(tcp::socket::shutdown_both, ec);
+  const auto& res = parser.get();
+  if (res.result() != http::status::ok)
+    throw std::runtime_error("server answered HTTP " + std::to_string(res.result_int()));
+  co_return res.body();
+}
+
+void WeatherClient::decide(std::chrono::steady_clock::time_point now) {
+  const double ageS =
+      forecast_ ? std::chrono::duration<double>(now - forecastAt_).count() : kForecastMaxAgeS + 1.0;
+  const double threshold = handoffs_.acceptedParams().UVThresholdHigh;
+  WeatherDecision d;
+  if (forecast_)
+    d = decideWeatherMode(*forecast_, threshold, ageS);
+  else
+    d.why = "no forecast yet: charging as usual";
+  publish(d, ageS);
+  send(d.active, d.why);
+}
+
+void WeatherClient::send(bool active, const std::string& why) {
+  if (sent_ == active) return;
+  // The regulator starts with weather mode off: the first "off" need not go.
+  if (sent_ || active) {
+    Command c;
+    c.type = CommandType::WeatherMode;
+    c.flag = active;
+    commands_(c, kSource);
+    health_.sent();
+  }
+  spdlog::info("weather: {}", why);
+  sent_ = active;
+}
+
+void WeatherClient::publish(const WeatherDecision& d, double ageS) {
+  std::map<std::string, double> v;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const bool have = forecast_ && static_cast<int>(i) < forecast_->dayCount;
+    const ForecastDay day = have ? forecast_->days[i] : ForecastDay{};
+    v["uv_day" + std::to_string(i + 1)] = day.uvIndexMax.value_or(std::nan(""));
+    v["radiation_day" + std::to_string(i + 1)] = day.radiationMJm2.value_or(std::nan(""));
+  }
+  v["active"] = d.active ? 1.0 : 0.0;
+  v["sunny_days"] = d.sunnyDays;
+  v["uv_threshold"] = handoffs_.acceptedParams().UVThresholdHigh;
+  v["age_s"] = forecast_ ? ageS : std::nan("");
+  v["latitude"] = settings_.latitude;
+  v["longitude"] = settings_.longitude;
+  std::lock_guard lock(m_);
+  values_ = std::move(v);
+}
+
+IntegrationStatus WeatherClient::status() const {
+  IntegrationStatus s = health_.status();
+  std::lock_guard lock(m_);
+  s.values = values_;
+  return s;
+}
+
+}  // namespace xr::integrations

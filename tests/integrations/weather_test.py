@@ -1,0 +1,186 @@
+#!/usr/bin/env python3
+"""Weather mode from a forecast (docs/integrations.md "Weather"): the daemon
+in --sim reads recorded Open-Meteo answers from a local HTTP server.
+
+  weather_test.py XREGULATORD
+
+  - a sunny forecast puts the regulator in MODE_DISABLED_RAMP with
+    REASON_WEATHER_MODE; a cloudy one, served at the next refresh (1 min),
+    brings charging back; a mixed one (1 sunny day of 3) charges;
+  - below WeatherModeMinSoC it charges in sunshine, and rests just above it;
+  - a broken server (500, no answer for 15 s, bad JSON, a wrong shape, a 10 MB
+    body) leaves charging untouched, says why once with the next try, and the
+    daemon keeps running."""
+import http.server
+import json
+import os
+import sys
+import threading
+import time
+import urllib.request
+
+from harness import Checks, Harness, wait_until
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+TOKEN = "weather-test-token-0123456789abcdef"
+WEATHER = "REASON_WEATHER_MODE"
+
+
+def recorded(name):
+    with open(os.path.join(HERE, "weather", name + ".json"), "rb") as f:
+        return f.read()
+
+
+class Server:
+    """Serves what `self.answer` says: a recorded forecast or a failure."""
+
+    def __init__(self):
+        self.answer = "sunny"
+        self.requests = []
+        outer = self
+
+        class Handler(http.server.BaseHTTPRequestHandler):
+            def do_GET(self):
+                outer.requests.append(self.path)
+                a = outer.answer
+                if a == "500":
+                    return self._send(500, b"oops")
+                if a == "timeout":
+                    time.sleep(15)
+                    return self._send(200, recorded("sunny"))
+                if a == "badjson":
+                    return self._send(200, b'{"daily": {"time": [')
+                if a == "shape":
+                    return self._send(200, b'{"hourly": {"uv_index": [9, 9, 9]}}')
+                if a == "huge":
+                    return self._send(200, b'{"pad":"' + b"x" * (10 * 1024 * 1024) + b'"}')
+                return self._send(200, recorded(a))
+
+            def _send(self, code, body):
+                try:
+                    self.send_response(code)
+                    self.send_header("Content-Type", "application/json")
+                    self.send_header("Content-Length", str(len(body)))
+                    self.end_headers()
+                    self.wfile.write(body)
+                except OSError:
+                    pass  # the client gave up (the 10 MB body): expected
+
+            def log_message(self, *args):
+                pass
+
+        self.httpd = http.server.ThreadingHTTPServer(("127.0.0.1", 0), Handler)
+        self.port = self.httpd.server_address[1]
+        threading.Thread(target=self.httpd.serve_forever, daemon=True).start()
+
+
+def config(port, min_soc=50):
+    return f"""[web]
+token = "{TOKEN}"
+
+[modes]
+weatherModeEnabled = true
+UVThresholdHigh = 6.0
+WeatherModeMinSoC = {min_soc}
+
+[integrations.weather]
+enabled = true
+url = "http://127.0.0.1:{port}/v1/forecast"
+latitude = 43.3
+longitude = 5.4
+refresh_min = 1
+"""
+
+
+def command(h, body):
+    req = urllib.request.Request(f"http://127.0.0.1:{h.http_port}/api/commands", data=json.dumps(body).encode(),
+                                 headers={"Authorization": "Bearer " + TOKEN, "Content-Type": "application/json"})
+    with urllib.request.urlopen(req, timeout=5) as r:
+        return r.status
+
+
+def reason(h):
+    return h.status()["reason"]
+
+
+def sunny_then_cloudy(c, srv, daemon):
+    h = Harness(daemon)
+    try:
+        srv.answer = "sunny"
+        h.start_daemon(config(srv.port))
+        command(h, {"command": "set_soc", "soc_pct": 80})
+        wait_until("weather mode from the sunny forecast", lambda: reason(h) == WEATHER, 20)
+        st = h.status()
+        c.check(st["mode"] == "MODE_DISABLED_RAMP", f"sunny: mode {st['mode']}")
+        c.check("daily=uv_index_max,shortwave_radiation_sum" in srv.requests[-1] and "forecast_days=3" in
+                srv.requests[-1] and "latitude=43.3" in srv.requests[-1], f"request {srv.requests[-1]}")
+        w = h.integration("weather")
+        c.check(w["values"]["active"] == 1 and w["values"]["sunny_days"] == 3, f"sunny: values {w['values']}")
+        c.check(abs(w["values"]["uv_day2"] - 8.9) < 1e-9, "the dashboard sees day 2's UV index")
+        srv.answer = "cloudy"
+        wait_until("the cloudy forecast read (one refresh)",
+                   lambda: h.integration("weather")["values"]["sunny_days"] == 0, 75)
+        wait_until("charging again after the cloudy forecast", lambda: reason(h) != WEATHER, 5)
+        srv.answer = "mixed"
+        n = len(srv.requests)
+        wait_until("the mixed forecast", lambda: len(srv.requests) > n, 75)
+        time.sleep(1)
+        c.check(reason(h) != WEATHER, "mixed (1 sunny day of 3, one null): charging")
+        c.check(h.integration("weather")["values"]["sunny_days"] == 1, "mixed: one sunny day")
+    finally:
+        h.stop()
+
+
+def soc_floor(c, srv, daemon):
+    h = Harness(daemon)
+    try:
+        srv.answer = "sunny"
+        h.start_daemon(config(srv.port, min_soc=50))
+        command(h, {"command": "set_soc", "soc_pct": 49.5})
+        wait_until("the forecast read", lambda: h.integration("weather")["values"].get("active") == 1, 20)
+        time.sleep(2)
+        c.check(reason(h) != WEATHER, f"SoC 49.5 % < 50 %: charging in sunshine ({reason(h)})")
+        # Just above the floor: the house load discharges the sim's battery
+        # from the moment the SoC is set (the exact threshold is
+        # Regulator.WeatherModeRestsTheAlternatorAtWeatherModeMinSoC).
+        command(h, {"command": "set_soc", "soc_pct": 52})
+        wait_until("weather mode above the floor", lambda: reason(h) == WEATHER, 10)
+        command(h, {"command": "set_soc", "soc_pct": 30})
+        wait_until("charging again below the floor", lambda: reason(h) != WEATHER, 10)
+        c.check(h.status()["mode"] != "MODE_DISABLED_RAMP", "below the floor: not ramped off")
+    finally:
+        h.stop()
+
+
+def broken(c, srv, daemon, answer, why):
+    h = Harness(daemon)
+    try:
+        srv.answer = answer
+        h.start_daemon(config(srv.port))
+        command(h, {"command": "set_soc", "soc_pct": 80})
+        wait_until(f"{answer}: the failure reported",
+                   lambda: why in (h.integration("weather")["last_error"] or ""), 30)
+        time.sleep(1)
+        c.check(reason(h) != WEATHER, f"{answer}: charging untouched ({reason(h)})")
+        c.check(h.daemon.poll() is None, f"{answer}: the daemon runs")
+        lines = [l for l in h.log_text().splitlines() if "weather:" in l and "next try in" in l]
+        c.check(len(lines) == 1, f"{answer}: one log line says why with the next try, got {len(lines)}")
+    finally:
+        h.stop()
+
+
+def main():
+    daemon = sys.argv[1]
+    c = Checks()
+    srv = Server()
+    sunny_then_cloudy(c, srv, daemon)
+    soc_floor(c, srv, daemon)
+    for answer, why in [("500", "HTTP 500"), ("badjson", "not JSON"), ("shape", "no daily object"),
+                        ("huge", "body limit"), ("timeout", "timeout")]:
+        broken(c, srv, daemon, answer, why)
+    srv.httpd.shutdown()
+    return c.done()
+
+
+if __name__ == "__main__":
+    sys.exit(main())
