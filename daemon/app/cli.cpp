@@ -5,6 +5,9 @@
 #include <functional>
 #include <map>
 
+#include "config/config.h"
+#include "config/web_checks.h"
+
 namespace xr::app {
 
 namespace {
@@ -101,6 +104,12 @@ CliResult parseCommandLine(const std::vector<std::string>& args) {
       {"--http",
        [&](const std::string& v) {
          o.http = v;
+         // Checked here, before any device opens, by the check [web] listen
+         // gets: a bad value exits 78, it never runs without the dashboard.
+         if (auto why = checkHttpListenText(v); !why.empty()) {
+           r.exitCode = kExitConfig;
+           return "--http: " + why;
+         }
          return std::string();
        }},
       {"--state-db",

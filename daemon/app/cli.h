@@ -51,7 +51,10 @@ struct CliOptions {
 
 struct CliResult {
   CliOptions options;
-  std::string error;  // non-empty: usage error (exit 64)
+  std::string error;  // non-empty: refused, exit with exitCode
+  // 64 (EX_USAGE) for a usage error; 78 (EX_CONFIG) for a value the config
+  // file would refuse too (--http), so both exit alike.
+  int exitCode = kExitUsage;  // or kExitConfig (config/config.h)
   bool ok() const { return error.empty(); }
 };
 

@@ -242,6 +242,13 @@ int Daemon::run() {
       server->start();
       logPairingCode(server->newPairingCode());
       spdlog::info("dashboard at http://{}:{}/ (www root '{}')", opts.listen, server->port(), opts.www_root);
+      // Said plainly: "--http :8104" or "0.0.0.0" opens the API to every
+      // network the boat is on (docs/security.md).
+      if (isEveryInterface(opts.listen))
+        spdlog::warn(
+            "the web server listens on EVERY network interface ({}:{}): reads are open to the boat's "
+            "network, writes need a paired phone or the token",
+            opts.listen, server->port());
       logTokenHint(settings.web.token.empty(), store != nullptr, opts.token,
                    cli_.stateDb.value_or(settings.store.path));
       if (cli_.config)

@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
   const CliResult cli = parseCommandLine(std::vector<std::string>(argv + 1, argv + argc));
   if (!cli.ok()) {
     std::fprintf(stderr, "xregulatord: %s\n(run xregulatord --help for usage)\n", cli.error.c_str());
-    return kExitUsage;
+    return cli.exitCode;
   }
   const CliOptions& o = cli.options;
   if (o.help) {

@@ -3,6 +3,7 @@
 #include <arpa/inet.h>
 #include <sys/stat.h>
 
+#include <charconv>
 #include <cstdint>
 #include <cstdio>
 
@@ -13,6 +14,28 @@ bool isNumericListenAddress(std::string_view text) {
   const std::string s(text);
   unsigned char buf[sizeof(in6_addr)];
   return inet_pton(AF_INET, s.c_str(), buf) == 1 || inet_pton(AF_INET6, s.c_str(), buf) == 1;
+}
+
+std::string checkHttpListenText(std::string_view text) {
+  const auto colon = text.rfind(':');
+  if (colon == std::string_view::npos) return "expected ADDR:PORT, got '" + std::string(text) + "'";
+  std::string_view host = text.substr(0, colon);
+  const std::string_view port = text.substr(colon + 1);
+  unsigned value = 0;
+  const auto [end, ec] = std::from_chars(port.data(), port.data() + port.size(), value);
+  if (port.empty() || ec != std::errc{} || end != port.data() + port.size() || value > 65535)
+    return "'" + std::string(port) + "' is not a port (0..65535) in '" + std::string(text) + "'";
+  if (host.size() >= 2 && host.front() == '[' && host.back() == ']') host = host.substr(1, host.size() - 2);
+  if (host.empty()) return {};  // every interface, as "0.0.0.0" (the daemon logs it)
+  if (!isNumericListenAddress(host))
+    return "'" + std::string(host) +
+           "' is not an IP address: write an IPv4 or IPv6 address such as 127.0.0.1:8104 (this machine "
+           "only), 0.0.0.0:8104 (every interface) or [::1]:8104";
+  return {};
+}
+
+bool isEveryInterface(std::string_view listen) {
+  return listen.empty() || listen == "0.0.0.0" || listen == "::";
 }
 
 std::string checkTokenText(std::string_view token) {

@@ -16,6 +16,14 @@ inline constexpr std::size_t kMinTokenLength = 16;
 // Host names are not resolved: the server binds the address it is given.
 bool isNumericListenAddress(std::string_view text);
 
+// Empty when text is a usable --http ADDR:PORT: ADDR an address literal
+// (the check [web] listen gets: isNumericListenAddress), "[v6]" for IPv6,
+// or empty for every interface; PORT 0..65535. Otherwise the reason.
+std::string checkHttpListenText(std::string_view text);
+
+// True for the wildcard addresses that listen on every interface.
+bool isEveryInterface(std::string_view listen);
+
 // Empty when token is acceptable in [web] token: empty (generated at first
 // start) or at least kMinTokenLength printable ASCII characters without
 // spaces (it travels in an HTTP header). Otherwise the reason.

@@ -16,9 +16,29 @@ TEST(Cli, EmptyCommandLineRunsTheBoardWithDefaults) {
 }
 
 TEST(Cli, ParsesEveryDesignOption) {
-  const auto r = parse({"--config", "a.toml", "--sim", "--scenario", "s.toml", "--speed", "max", "--duration", "90",
-                        "--telemetry-csv", "t.csv", "--telemetry-rate", "20", "--http", "127.0.0.1:9000",
-                        "--state-db", "x.db", "--seed", "7", "--log-level", "debug", "--sim-outputs", "o.txt"});
+  const auto r = parse({"--config",
+                        "a.toml",
+                        "--sim",
+                        "--scenario",
+                        "s.toml",
+                        "--speed",
+                        "max",
+                        "--duration",
+                        "90",
+                        "--telemetry-csv",
+                        "t.csv",
+                        "--telemetry-rate",
+                        "20",
+                        "--http",
+                        "127.0.0.1:9000",
+                        "--state-db",
+                        "x.db",
+                        "--seed",
+                        "7",
+                        "--log-level",
+                        "debug",
+                        "--sim-outputs",
+                        "o.txt"});
   ASSERT_TRUE(r.ok()) << r.error;
   const auto& o = r.options;
   EXPECT_EQ(*o.config, "a.toml");
@@ -76,6 +96,30 @@ TEST(Cli, RejectsBadValuesNamingTheOption) {
   }
 }
 
+// The address gets the check [web] listen gets, before any device opens:
+// a value the config file refuses with 78 is refused here with 78 too,
+// never "running without the dashboard".
+TEST(Cli, HttpAddressThatIsNotAnIpAddressExitsAsABadConfigValue) {
+  for (const char* bad : {"256.0.0.1:8104", "localhost:8104", "boat.local:80", "127.0.0.1", "127.0.0.1:65536",
+                          "127.0.0.1:80x", "[::1:80", "127.0.0.1:"}) {
+    const auto r = parse({"--sim", "--http", bad});
+    EXPECT_FALSE(r.ok()) << bad;
+    EXPECT_EQ(r.exitCode, 78) << bad;
+    EXPECT_NE(r.error.find("--http"), std::string::npos) << r.error;
+  }
+  EXPECT_NE(parse({"--http", "localhost:8104"}).error.find("is not an IP address"), std::string::npos);
+}
+
+TEST(Cli, HttpAcceptsAddressLiteralsAndAnEmptyHostForEveryInterface) {
+  for (const char* good :
+       {"127.0.0.1:8104", "0.0.0.0:8104", "[::1]:8104", "[::]:0", ":8104", "127.0.0.1:65535"}) {
+    const auto r = parse({"--sim", "--http", good});
+    EXPECT_TRUE(r.ok()) << good << ": " << r.error;
+  }
+}
+
+TEST(Cli, AUsageErrorStillExits64) { EXPECT_EQ(parse({"--bogus"}).exitCode, 64); }
+
 TEST(Cli, SimulationOnlyOptionsNeedSim) {
   EXPECT_FALSE(parse({"--scenario", "s.toml"}).ok());
   EXPECT_FALSE(parse({"--speed", "2"}).ok());
@@ -93,9 +137,10 @@ TEST(Cli, CheckConfigNeedsAFile) {
 
 TEST(Cli, UsageListsTheDesignOptions) {
   const std::string u = usageText();
-  for (const char* o : {"--config", "--sim", "--scenario", "--speed", "--duration", "--telemetry-csv",
-                        "--telemetry-rate", "--http", "--state-db", "--check-config", "--print-default-config",
-                        "--probe", "--version", "--seed", "--log-level", "--sim-outputs"})
+  for (const char* o :
+       {"--config", "--sim", "--scenario", "--speed", "--duration", "--telemetry-csv", "--telemetry-rate",
+        "--http", "--state-db", "--check-config", "--print-default-config", "--probe", "--version", "--seed",
+        "--log-level", "--sim-outputs"})
     EXPECT_NE(u.find(o), std::string::npos) << o;
   EXPECT_EQ(u.find("--test-fault"), std::string::npos);  // hidden
 }
