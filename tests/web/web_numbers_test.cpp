@@ -1,6 +1,6 @@
 // The API's numbers as an owner reads them: plain decimals (13.01), never the
 // exponent form Boost.JSON writes by default (1.301E1), on every GET route
-// and in the WebSocket frames (docs/api.md, "Numbers").
+// and in the WebSocket frames (docs/dashboard.md, "Numbers").
 #include <gtest/gtest.h>
 
 #include <boost/json.hpp>

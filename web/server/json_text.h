@@ -1,9 +1,9 @@
 #pragma once
 // The one JSON writer of the web API. Boost.JSON writes every double in
 // exponent form ("1.301E1"); an owner reading /api/status in a browser, a
-// shell script with jq or a spreadsheet import wants "13.01". Every route,
-// the WebSocket frames and /metrics' neighbours go through jsonText, so no
-// route can forget (docs/api.md, "Numbers").
+// shell script with jq or a spreadsheet import wants "13.01". Every JSON
+// route (api_reply.cpp) and the WebSocket frames (serializeStatus) go through
+// jsonText, so no route can forget (docs/dashboard.md, "Numbers").
 #include <boost/json.hpp>
 #include <string>
 
