@@ -258,4 +258,14 @@ await test("the SoC tile: the BMS's SoC first, unknown is a word not a number, a
   assert.match(counted.note, /^counted, full in/);
 });
 
+await test("the event filter shows a level at or above the chosen one", () => {
+  assert.ok(P.levelShown("Info", "debug"));
+  assert.ok(!P.levelShown("Info", "warning"));
+  assert.ok(P.levelShown("Warning", "warning"));
+  assert.ok(P.levelShown("Critical", "error"));
+  assert.ok(!P.levelShown("Warning", "error"));
+  assert.ok(!P.levelShown("Debug", "info"));
+  assert.ok(P.levelShown("Something new", "error"));  // an unknown level is never hidden
+});
+
 console.log(`${n} dashboard unit tests passed`);
