@@ -4,6 +4,8 @@
 #include <charconv>
 #include <cmath>
 
+#include "web/server/json_text.h"
+
 namespace xr::web::api {
 
 Response reply(const Request& req, http::status status, std::string body, std::string_view contentType) {
@@ -19,7 +21,7 @@ Response reply(const Request& req, http::status status, std::string body, std::s
 }
 
 Response jsonReply(const Request& req, http::status status, const json::value& v) {
-  return reply(req, status, json::serialize(v));
+  return reply(req, status, jsonText(v));
 }
 
 Response error(const Request& req, http::status status, std::string_view message) {

@@ -7,6 +7,7 @@
 
 #include "core/modes.h"
 #include "web/server/json_status.h"
+#include "web/server/json_text.h"
 
 namespace xr::web {
 namespace json = boost::json;
@@ -163,7 +164,7 @@ json::object statusToJson(const StatusSnapshot& s) {
   return o;
 }
 
-std::string serializeStatus(const StatusSnapshot& s) { return json::serialize(statusToJson(s)); }
+std::string serializeStatus(const StatusSnapshot& s) { return jsonText(statusToJson(s)); }
 
 json::object paramsToJson(const Params& current, const Params& file,
                           const std::map<std::string, std::string>& sources) {

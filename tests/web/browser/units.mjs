@@ -238,4 +238,34 @@ await test("the System page's CAN rows say the BMS and NMEA 2000 state in words,
   assert.equal(silent["Highest cell"], undefined);  // a BMS that does not send it: no row
 });
 
+await test("the SoC tile: the BMS's SoC first, unknown is a word not a number, a guess is marked", () => {
+  const bms = L.socDisplay({ soc_pct: 40, bms_soc_pct: 81.6, soc_source: "bms" }, { soc_known: true });
+  assert.deepEqual([bms.text, bms.unit, bms.note], ["82", "%", "from the BMS"]);
+  for (const s of [{ soc_pct: null }, { soc_pct: 50, soc_source: "unknown" }, {}]) {
+    const u = L.socDisplay(s, {});
+    assert.equal(u.text, "unknown");
+    assert.equal(u.unit, "");
+    assert.ok(u.guess);
+  }
+  const guess = L.socDisplay({ soc_pct: 63.2 }, { soc_known: false });
+  assert.equal(guess.text, "≈ 63");
+  assert.ok(guess.guess);
+  const ocv = L.socDisplay({ soc_pct: 70, soc_source: "ocv_estimate" }, { soc_known: true });
+  assert.equal(ocv.text, "≈ 70");
+  assert.match(ocv.note, /estimate from voltage/);
+  const counted = L.socDisplay({ soc_pct: 91.4, soc_source: "counted" }, { soc_known: true, time_to_full_charge_min: 30 });
+  assert.deepEqual([counted.text, counted.guess], ["91", false]);
+  assert.match(counted.note, /^counted, full in/);
+});
+
+await test("the event filter shows a level at or above the chosen one", () => {
+  assert.ok(P.levelShown("Info", "debug"));
+  assert.ok(!P.levelShown("Info", "warning"));
+  assert.ok(P.levelShown("Warning", "warning"));
+  assert.ok(P.levelShown("Critical", "error"));
+  assert.ok(!P.levelShown("Warning", "error"));
+  assert.ok(!P.levelShown("Debug", "info"));
+  assert.ok(P.levelShown("Something new", "error"));  // an unknown level is never hidden
+});
+
 console.log(`${n} dashboard unit tests passed`);

@@ -5,7 +5,7 @@ import { CONFIRM_TEXT, confirmAction } from "./confirm.js";
 import { parseDecimal } from "./format.js";
 import { latestStatus, renderLive, tick } from "./live.js";
 import { commandAnswer, plainCommand } from "./names.js";
-import { loadEvents, loadSystem, renderBattery, renderProtections, renderTuning } from "./pages.js";
+import { applyEventFilter, loadEvents, loadSystem, renderBattery, renderProtections, renderTuning } from "./pages.js";
 import { initPairing, loadDevices } from "./pairing.js";
 import { initSettings, loadSettings, setParam } from "./settings.js";
 import { initSetup } from "./setup.js";
@@ -130,6 +130,7 @@ function init() {
     setParam(el.dataset.param, el.checked).then(() => toast(`${el.dataset.param} ${el.checked ? "on" : "off"}`))
       .catch((e) => { el.checked = !el.checked; toast(e.message, true); })));
   $("events-more").addEventListener("click", () => loadEvents("more").catch((e) => toast(e.message, true)));
+  $("events-level").addEventListener("change", applyEventFilter);
   $("hist-range").addEventListener("change", loadHistory);
   initPairing();
   initSettings();

@@ -77,6 +77,22 @@ function renderBanners(s) {
   root.querySelectorAll(".countdown").forEach((c) => { c.textContent = countdown; });
 }
 
+// The SoC tile (docs/dashboard.md, "State of charge"): a BMS that reports a
+// SoC is THE SoC; a SoC the regulator does not know (soc_pct null or
+// soc_source "unknown") is the word "unknown", never a number; a start-up
+// guess is marked "≈" until it was set, restored or a full charge was seen.
+export function socDisplay(s, b = {}) {
+  const sourceNote = { bms: "from the BMS", counted: "counted", ocv_estimate: "estimate from voltage" };
+  if (isNum(s.bms_soc_pct)) return { text: num(s.bms_soc_pct, 0), unit: "%", note: "from the BMS", guess: false };
+  if (!isNum(s.soc_pct) || s.soc_source === "unknown")
+    return { text: "unknown", unit: "", note: "set it on the Battery page", guess: true };
+  const known = b.soc_known !== false && s.soc_source !== "ocv_estimate";
+  const full = isNum(b.time_to_full_charge_min) && b.time_to_full_charge_min > 0 ? `full in ${hmin(b.time_to_full_charge_min)}` : "";
+  const note = known ? [sourceNote[s.soc_source], full].filter(Boolean).join(", ")
+                     : (sourceNote[s.soc_source] || "estimate") + " — set it on the Battery page";
+  return { text: (known ? "" : "≈ ") + num(s.soc_pct, 0), unit: "%", note, guess: !known };
+}
+
 export function renderLive(s) {
   lastStatus = s;
   lastFrameAt = Date.now();
@@ -98,12 +114,9 @@ export function renderLive(s) {
   const hot = isNum(s.temp_f) && (on(p.temp_warning) || on(p.temp_critical) || on(p.temp_sustained));
   $("v-temp").classList.toggle("hot", hot);
   setValue("v-rpm", isNum(s.rpm) && s.rpm > 0 ? num(s.rpm, 0) : "stopped", isNum(s.rpm) && s.rpm > 0 ? "rpm" : "");
-  // The SoC is a guess until it was set, restored or a full charge was seen.
-  const known = b.soc_known !== false;
-  setValue("v-soc_pct", (known ? "" : "≈ ") + num(s.soc_pct, 0), "%",
-    known ? (isNum(b.time_to_full_charge_min) && b.time_to_full_charge_min > 0 ? `full in ${hmin(b.time_to_full_charge_min)}` : "")
-          : "estimate — set it on the Battery page");
-  $("v-soc_pct").classList.toggle("guess", !known);
+  const soc = socDisplay(s, b);
+  setValue("v-soc_pct", soc.text, soc.unit, soc.note);
+  $("v-soc_pct").classList.toggle("guess", soc.guess);
   setValue("v-field", on(s.field_enable) ? "On" : "Off", "", on(s.field_enable) ? `${num(s.duty_pct, 0)} %` : "");
   // The target only means something while Auto regulates with the field on.
   const regulating = s.mode === "MODE_NORMAL_AUTO_PID" && on(s.field_enable);

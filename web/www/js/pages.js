@@ -94,10 +94,24 @@ export function eventText(e) {
   return text;
 }
 
+// The filter by level (docs/dashboard.md, Events): a row shows when its level
+// is at least the chosen one, so "warning" hides the routine stage changes.
+const LEVELS = ["debug", "info", "warning", "error", "critical"];
+export function levelShown(level, min = "debug") {
+  const at = LEVELS.indexOf(String(level).toLowerCase());
+  return at < 0 || at >= Math.max(0, LEVELS.indexOf(String(min).toLowerCase()));
+}
+const minLevel = () => (typeof document !== "undefined" && $("events-level") ? $("events-level").value : "debug");
+export function applyEventFilter() {
+  for (const tr of $("events-body").rows) tr.hidden = !levelShown(tr.dataset.level, minLevel());
+}
+
 let oldestEvent = null, newestEvent = null;
 function eventRow(e) {
   const tr = document.createElement("tr");
   tr.className = "level-" + String(e.level).toLowerCase();
+  tr.dataset.level = String(e.level).toLowerCase();
+  tr.hidden = !levelShown(e.level, minLevel());
   tr.dataset.id = e.id;
   tr.insertCell().textContent = e.wall_time_s ? clock(e.wall_time_s) : `${plain(e.t_s, 0)} s after start`;
   tr.insertCell().textContent = String(e.level).toLowerCase();
