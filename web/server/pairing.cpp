@@ -158,21 +158,55 @@ std::vector<PairedDevice> Pairing::devices() const {
   return devices_;
 }
 
-bool Pairing::revoke(const std::string& id) {
-  std::lock_guard lock(m_);
-  const auto it = std::find_if(devices_.begin(), devices_.end(), [&](const auto& d) { return d.id == id; });
-  if (it == devices_.end()) return false;
-  store_->removeDevice(id);
-  devices_.erase(it);
-  return true;
+std::string Pairing::ownerIdLocked() const {
+  const PairedDevice* owner = nullptr;
+  for (const auto& d : devices_)
+    if (!owner || d.createdMs < owner->createdMs || (d.createdMs == owner->createdMs && d.id < owner->id))
+      owner = &d;
+  return owner ? owner->id : std::string{};
 }
 
-std::size_t Pairing::revokeAll() {
+std::string Pairing::ownerId() const {
   std::lock_guard lock(m_);
-  for (const auto& d : devices_) store_->removeDevice(d.id);
-  const std::size_t n = devices_.size();
-  devices_.clear();
-  return n;
+  return ownerIdLocked();
+}
+
+bool Pairing::isOwner(const Caller& c) const {
+  if (c.installer) return true;
+  std::lock_guard lock(m_);
+  return !c.deviceId.empty() && c.deviceId == ownerIdLocked();
+}
+
+Pairing::Revoke Pairing::revoke(const std::string& id, const Caller& by) {
+  std::lock_guard lock(m_);
+  const auto it = std::find_if(devices_.begin(), devices_.end(), [&](const auto& d) { return d.id == id; });
+  if (it == devices_.end()) return Revoke::NoSuchDevice;
+  const bool owner = by.installer || (!by.deviceId.empty() && by.deviceId == ownerIdLocked());
+  if (!owner && by.deviceId != id) return Revoke::NotAllowed;
+  // Forget it only once the store has: a revocation that a restart undoes
+  // would give the phone back its write access.
+  if (!store_->removeDevice(id)) return Revoke::NotSaved;
+  devices_.erase(it);
+  return Revoke::Revoked;
+}
+
+Pairing::RevokeAll Pairing::revokeAll(const Caller& by) {
+  std::lock_guard lock(m_);
+  RevokeAll r;
+  if (!by.installer && (by.deviceId.empty() || by.deviceId != ownerIdLocked())) {
+    r.result = Revoke::NotAllowed;
+    return r;
+  }
+  // Each device stays in memory until its row is gone, so memory and disk agree.
+  std::erase_if(devices_, [&](const PairedDevice& d) {
+    if (!store_->removeDevice(d.id)) {
+      r.result = Revoke::NotSaved;
+      return false;
+    }
+    ++r.revoked;
+    return true;
+  });
+  return r;
 }
 
 }  // namespace xr::web

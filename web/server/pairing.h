@@ -12,6 +12,11 @@
 // kLockout: a guesser on the marina Wi-Fi gets 5 tries in 1,000,000 per code
 // the owner makes.
 //
+// The owner (docs/security.md "Owner and devices"): the installer token and
+// the first device paired (the oldest still paired) may revoke any device;
+// any other device may revoke only itself. A revocation is durable or it is
+// refused: the in-memory list changes only after the store has saved it.
+//
 // Device tokens are 256 random bits; only their SHA-256 is kept (AuthStore,
 // the state database in the daemon), so a copy of the database does not give
 // write access, and revoking a device forgets its hash.
@@ -93,11 +98,26 @@ class Pairing {
   // The paired device that token belongs to (events name who changed what).
   std::optional<PairedDevice> deviceFor(std::string_view token) const;
   std::vector<PairedDevice> devices() const;
-  bool revoke(const std::string& id);
-  std::size_t revokeAll();
+  // Who asks for a revocation: the installer token, or a paired device.
+  struct Caller {
+    bool installer = false;
+    std::string deviceId;
+  };
+  enum class Revoke { Revoked, NoSuchDevice, NotAllowed, NotSaved };
+  Revoke revoke(const std::string& id, const Caller& by);
+  struct RevokeAll {
+    Revoke result = Revoke::Revoked;
+    std::size_t revoked = 0;  // saved and forgotten (also on NotSaved: the part that was)
+  };
+  // Owner only; every device, the owner's too (a lost phone: start again).
+  RevokeAll revokeAll(const Caller& by);
+  // The owner device's id: the oldest paired device; empty when none.
+  std::string ownerId() const;
+  bool isOwner(const Caller& c) const;
 
  private:
   std::int64_t now() const;
+  std::string ownerIdLocked() const;
 
   std::shared_ptr<AuthStore> store_;
   Clock clock_;

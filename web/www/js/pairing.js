@@ -116,7 +116,9 @@ export async function loadDevices() {
     return;
   }
   if (!r.ok) throw new Error(r.body.error || `paired devices: ${r.status}`);
-  const { devices } = r.body;
+  // The owner (the first paired device, or the installer's token) revokes
+  // anyone; another device only itself (docs/security.md "Owner and devices").
+  const { devices, you_are_owner: owner } = r.body;
   const me = getDevice();
   list.textContent = "";
   if (!devices.length) { const li = document.createElement("li"); li.textContent = "No paired devices."; list.appendChild(li); }
@@ -124,14 +126,18 @@ export async function loadDevices() {
     const li = document.createElement("li");
     li.dataset.id = d.id;
     const t = document.createElement("span");
-    t.textContent = `${d.name}${me && me.id === d.id ? " (this device)" : ""} · paired ${clock(d.created)}`;
-    const b = document.createElement("button");
-    b.textContent = "Revoke";
-    b.addEventListener("click", () => revoke(d).catch((e) => toast(e.message, true)));
-    li.append(t, b);
+    const mine = d.this_device || (me && me.id === d.id);
+    t.textContent = `${d.name}${d.owner ? " (owner)" : ""}${mine ? " (this device)" : ""} · paired ${clock(d.created)}`;
+    li.append(t);
+    if (owner || mine) {
+      const b = document.createElement("button");
+      b.textContent = "Revoke";
+      b.addEventListener("click", () => revoke(d).catch((e) => toast(e.message, true)));
+      li.append(b);
+    }
     list.appendChild(li);
   }
-  $("pair-revoke-all").disabled = !devices.length;
+  $("pair-revoke-all").disabled = !devices.length || !owner;
 }
 
 async function revoke(d) {
