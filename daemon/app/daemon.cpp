@@ -40,6 +40,7 @@
 #include "runtime/regulator_core.h"
 #include "runtime/rt_setup.h"
 #include "runtime/signals.h"
+#include "store/state_lock.h"
 #include "web/server/web_server.h"
 
 namespace xr::app {
@@ -84,7 +85,16 @@ int Daemon::run() {
   std::string dbPath = cli_.stateDb.value_or(cli_.sim ? std::string() : settings.store.path);
   Params params = fileParams;
   std::optional<BatteryLedger> restored;
+  std::unique_ptr<StateLock> stateLock;  // held until exit (store/state_lock.h)
   if (!dbPath.empty()) {
+    stateLock = std::make_unique<StateLock>(dbPath);
+    if (stateLock->result() == StateLock::Result::HeldByOther) {
+      // Before any output is driven: the field was never enabled by us.
+      spdlog::critical("store: {}", stateLock->message());
+      std::fprintf(stderr, "xregulatord: %s\n", stateLock->message().c_str());
+      return kExitTempFail;
+    }
+    if (stateLock->result() == StateLock::Result::NoLockFile) spdlog::warn("store: {}", stateLock->message());
     store = std::make_unique<StoreService>(dbPath, settings.store.checkpoint_interval_s);
     const OpenResult& o = store->openResult();
     if (const char* code = StoreService::alarmCode(o))
