@@ -65,9 +65,18 @@ bool MemoryAuthStore::removeDevice(const std::string& id) {
   return std::erase_if(devices_, [&](const PairedDevice& d) { return d.id == id; }) > 0;
 }
 
-Pairing::Pairing(std::shared_ptr<AuthStore> store, Clock now)
-    : store_(store ? std::move(store) : std::make_shared<MemoryAuthStore>()), clock_(std::move(now)) {
+Pairing::Pairing(std::shared_ptr<AuthStore> store, Clock wall, Clock elapsed)
+    : store_(store ? std::move(store) : std::make_shared<MemoryAuthStore>()),
+      clock_(std::move(wall)),
+      elapsedClock_(elapsed ? std::move(elapsed) : clock_) {
   devices_ = store_->loadDevices();
+}
+
+std::int64_t Pairing::elapsed() const {
+  if (elapsedClock_) return elapsedClock_();
+  return std::chrono::duration_cast<std::chrono::milliseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
 }
 
 std::int64_t Pairing::now() const {
@@ -79,9 +88,10 @@ std::int64_t Pairing::now() const {
 
 Pairing::Code Pairing::newCode() {
   Code c{randomDigits(6), now() + kCodeLifetimeMs};
+  const std::int64_t t = elapsed();
   std::lock_guard lock(m_);
   codeHash_ = sha256Hex(c.code);
-  codeExpiresMs_ = c.expiresMs;
+  codeExpiresMs_ = t + kCodeLifetimeMs;
   wrongTries_ = 0;
   lockedUntilMs_ = 0;
   return c;
@@ -89,7 +99,8 @@ Pairing::Code Pairing::newCode() {
 
 Pairing::Outcome Pairing::pair(std::string_view code, std::string_view name) {
   Outcome out;
-  const std::int64_t t = now();
+  const std::int64_t t = elapsed();
+  const std::int64_t wallNow = now();
   std::lock_guard lock(m_);
   if (t < lockedUntilMs_) {
     out.kind = Outcome::LockedOut;
@@ -121,7 +132,11 @@ Pairing::Outcome Pairing::pair(std::string_view code, std::string_view name) {
   d.hash = sha256Hex(token);
   d.id = d.hash.substr(0, 8);
   d.name = cleanDeviceName(name);
-  d.createdMs = t;
+  // Later than every device already paired even when the wall clock went
+  // back: the order of pairing decides who the owner is.
+  std::int64_t newest = 0;
+  for (const auto& p : devices_) newest = std::max(newest, p.createdMs);
+  d.createdMs = std::max(wallNow, newest + 1);
   if (!store_->saveDevice(d)) {
     out.kind = Outcome::NotSaved;  // the code stays valid: the owner may retry
     return out;

@@ -74,8 +74,12 @@ class MemoryAuthStore final : public AuthStore {
 
 class Pairing {
  public:
-  using Clock = std::function<std::int64_t()>;  // Unix ms; injectable for tests
-  explicit Pairing(std::shared_ptr<AuthStore> store, Clock now = {});
+  using Clock = std::function<std::int64_t()>;  // ms; injectable for tests
+  // wall: Unix ms, only for the dates shown (a device's "paired at").
+  // elapsed: a monotonic ms count for the rules about elapsed time (a code's
+  // lifetime, the lock-out), which a wall clock set by GPS or NTP must not
+  // stretch or cut (docs/security.md "The clock"). One clock given: both.
+  explicit Pairing(std::shared_ptr<AuthStore> store, Clock wall = {}, Clock elapsed = {});
 
   struct Code {
     std::string code;
@@ -116,14 +120,15 @@ class Pairing {
   bool isOwner(const Caller& c) const;
 
  private:
-  std::int64_t now() const;
+  std::int64_t now() const;      // wall
+  std::int64_t elapsed() const;  // monotonic
   std::string ownerIdLocked() const;
 
   std::shared_ptr<AuthStore> store_;
-  Clock clock_;
+  Clock clock_, elapsedClock_;
   mutable std::mutex m_;
-  std::string codeHash_;  // empty: no code in force
-  std::int64_t codeExpiresMs_ = 0;
+  std::string codeHash_;            // empty: no code in force
+  std::int64_t codeExpiresMs_ = 0;  // on the elapsed clock, like lockedUntilMs_
   int wrongTries_ = 0;
   std::int64_t lockedUntilMs_ = 0;
   std::vector<PairedDevice> devices_;
