@@ -20,6 +20,7 @@
 #include "app/daemon_notices.h"
 #include "app/effective_params.h"
 #include "app/integrations_wiring.h"
+#include "app/pair_cli.h"
 #include "app/sim_wiring.h"
 #include "app/status_source.h"
 #include "app/stop_signal.h"
@@ -250,7 +251,7 @@ int Daemon::run() {
       if (store) opts.auth_store = std::make_shared<StoreAuthStore>(*store);
       server = std::make_unique<web::WebServer>(*api, opts);
       server->start();
-      logPairingCode(server->newPairingCode());
+      startPairing(*server, store.get());
       spdlog::info("dashboard at http://{}:{}/ (www root '{}')", opts.listen, server->port(), opts.www_root);
       logTokenHint(settings.web.token.empty(), store != nullptr, opts.token,
                    cli_.stateDb.value_or(settings.store.path));

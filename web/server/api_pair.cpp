@@ -49,16 +49,25 @@ Response ApiHandler::postPair(const Request& req) {
   if (!body) return error(req, http::status::bad_request, err);
   const auto* o = body->if_object();
   const auto* code = o ? o->if_contains("code") : nullptr;
-  if (!code || !code->is_string() || code->get_string().size() > 16)
+  // No code at all: the first device of a new regulator, in its first-start
+  // window (pairing.h); a code that is there must be a string.
+  const bool windowed = o && (!code || code->is_null());
+  if (!o || (!windowed && (!code->is_string() || code->get_string().size() > 16)))
     return error(req, http::status::bad_request, "expected {\"code\": \"123456\", \"name\": \"...\"}");
   std::string name;
   if (const auto* n = o->if_contains("name"); n && n->is_string()) name = std::string(n->get_string());
-  const auto r = pairing_.pair(std::string_view(code->get_string()), name);
+  const auto r =
+      windowed ? pairing_.pairInWindow(name) : pairing_.pair(std::string_view(code->get_string()), name);
   json::object out;
   switch (r.kind) {
+    case Pairing::Outcome::NoWindow:
+      return error(
+          req, http::status::forbidden,
+          "a pairing code is needed: the first-start window is closed or a device is paired already");
     case Pairing::Outcome::Paired:
       api_.securityEvent("Paired " + deviceText(r.device) +
-                         (pairing_.ownerId() == r.device.id ? " as the owner" : ""));
+                         (pairing_.ownerId() == r.device.id ? " as the owner" : "") +
+                         (windowed ? " without a code, in the first-start window" : ""));
       out["token"] = r.token;
       out["id"] = r.device.id;
       out["name"] = r.device.name;
@@ -95,6 +104,15 @@ Response ApiHandler::pairRoutes(const Request& req, std::string_view path) {
       return r;
     }
     return postPair(req);
+  }
+  if (path == "/api/pair/window") {  // open: a new phone asks whether it needs a code
+    if (method != http::verb::get && method != http::verb::head)
+      return error(req, http::status::method_not_allowed, "method not allowed");
+    const auto w = pairing_.window();
+    json::object out;
+    out["open"] = w.open;
+    out["closes_in_s"] = (w.closesInMs + 999) / 1000;
+    return jsonReply(req, http::status::ok, out);
   }
   if (auto code = checkWrite(req[http::field::authorization])) return authError(req, code);
   if (path == "/api/pair/code") {

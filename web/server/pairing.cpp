@@ -123,9 +123,18 @@ Pairing::Outcome Pairing::pair(std::string_view code, std::string_view name) {
     out.triesLeft = kMaxWrongTries - wrongTries_;
     return out;
   }
+  addDeviceLocked(name, wallNow, out);
+  if (out.kind == Outcome::Paired) {
+    codeHash_.clear();  // single use
+    wrongTries_ = 0;
+  }
+  return out;
+}
+
+void Pairing::addDeviceLocked(std::string_view name, std::int64_t wallNow, Outcome& out) {
   if (devices_.size() >= kMaxPairedDevices) {
     out.kind = Outcome::Full;
-    return out;
+    return;
   }
   const std::string token = generateToken();
   PairedDevice d;
@@ -138,15 +147,41 @@ Pairing::Outcome Pairing::pair(std::string_view code, std::string_view name) {
   for (const auto& p : devices_) newest = std::max(newest, p.createdMs);
   d.createdMs = std::max(wallNow, newest + 1);
   if (!store_->saveDevice(d)) {
-    out.kind = Outcome::NotSaved;  // the code stays valid: the owner may retry
-    return out;
+    out.kind = Outcome::NotSaved;  // the code (or the window) stays: the owner may retry
+    return;
   }
-  codeHash_.clear();  // single use
-  wrongTries_ = 0;
   devices_.push_back(d);
   out.kind = Outcome::Paired;
   out.token = token;
   out.device = d;
+}
+
+void Pairing::openFirstStartWindow(std::int64_t durationMs) {
+  const std::int64_t t = elapsed();
+  std::lock_guard lock(m_);
+  if (devices_.empty()) windowUntilMs_ = t + durationMs;
+}
+
+Pairing::Window Pairing::window() const {
+  const std::int64_t t = elapsed();
+  std::lock_guard lock(m_);
+  Window w;
+  w.open = windowOpenLocked(t);
+  if (w.open) w.closesInMs = windowUntilMs_ - t;
+  return w;
+}
+
+Pairing::Outcome Pairing::pairInWindow(std::string_view name) {
+  Outcome out;
+  const std::int64_t t = elapsed();
+  const std::int64_t wallNow = now();
+  std::lock_guard lock(m_);
+  if (!windowOpenLocked(t)) {
+    out.kind = Outcome::NoWindow;
+    return out;
+  }
+  addDeviceLocked(name, wallNow, out);
+  if (out.kind == Outcome::Paired) windowUntilMs_ = 0;  // one device: the owner
   return out;
 }
 

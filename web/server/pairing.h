@@ -89,13 +89,25 @@ class Pairing {
   Code newCode();
 
   struct Outcome {
-    enum Kind { Paired, WrongCode, LockedOut, NotSaved, Full } kind = WrongCode;
+    enum Kind { Paired, WrongCode, LockedOut, NotSaved, Full, NoWindow } kind = WrongCode;
     std::string token;              // Paired: the device's write token (shown once)
     PairedDevice device;            // Paired
     int triesLeft = 0;              // WrongCode
     std::int64_t retryAfterMs = 0;  // LockedOut
   };
   Outcome pair(std::string_view code, std::string_view name);
+
+  // Pairing without a terminal (docs/security.md "Pairing without a
+  // terminal"): on a regulator that is new and has nothing paired, the first
+  // device pairs without a code for durationMs of elapsed time. The window
+  // closes at the first pairing and never opens while a device is paired.
+  void openFirstStartWindow(std::int64_t durationMs);
+  struct Window {
+    bool open = false;
+    std::int64_t closesInMs = 0;
+  };
+  Window window() const;
+  Outcome pairInWindow(std::string_view name);
 
   // True when token is one of the paired devices' tokens.
   bool isDeviceToken(std::string_view token) const;
@@ -123,6 +135,8 @@ class Pairing {
   std::int64_t now() const;      // wall
   std::int64_t elapsed() const;  // monotonic
   std::string ownerIdLocked() const;
+  bool windowOpenLocked(std::int64_t t) const { return t < windowUntilMs_ && devices_.empty(); }
+  void addDeviceLocked(std::string_view name, std::int64_t wallNow, Outcome& out);
 
   std::shared_ptr<AuthStore> store_;
   Clock clock_, elapsedClock_;
@@ -131,6 +145,7 @@ class Pairing {
   std::int64_t codeExpiresMs_ = 0;  // on the elapsed clock, like lockedUntilMs_
   int wrongTries_ = 0;
   std::int64_t lockedUntilMs_ = 0;
+  std::int64_t windowUntilMs_ = 0;  // elapsed clock; 0: never opened
   std::vector<PairedDevice> devices_;
 };
 
