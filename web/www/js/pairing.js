@@ -22,6 +22,8 @@ export function guessDeviceName(ua = navigator.userAgent) {
 
 // The server's refusal in words the owner can act on.
 export function pairingError(status, body = {}) {
+  if (status === 403 && typeof body.tries_left !== "number")
+    return "The first 15 minutes for pairing without a code are over: enter a pairing code.";
   if (status === 403) {
     const n = body.tries_left;
     return "Wrong or expired code" + (typeof n === "number" ? ` — ${n} ${n === 1 ? "try" : "tries"} left for this code.` : ".") +
@@ -49,6 +51,17 @@ export function askPairing(why = "") {
   $("token-input").value = "";
   $("pair-name").value = (getDevice() && getDevice().name) || guessDeviceName();
   msg.textContent = "";
+  // A new regulator with nothing paired: no code needed for its first
+  // 15 minutes (docs/security.md "Pairing without a terminal").
+  let windowOpen = false;
+  $("pair-code").placeholder = "6 digits";
+  quietRequest("GET", "/api/pair/window").then((r) => {
+    if (!r.ok || !r.body.open) return;
+    windowOpen = true;
+    msg.className = "msg";
+    msg.textContent = `No code needed: this regulator is new and nothing is paired yet. Press Pair within ${Math.max(1, Math.floor(r.body.closes_in_s / 60))} min — this device becomes its owner.`;
+    $("pair-code").placeholder = "not needed now";
+  }).catch(() => {});
   return new Promise((resolve) => {
     let done = false;
     const finish = (token) => { if (done) return; done = true; form.removeEventListener("submit", onSubmit); resolve(token); };
@@ -71,6 +84,15 @@ export function askPairing(why = "") {
           return;
         }
         const code = $("pair-code").value.replace(/\D/g, "");
+        if (!code && windowOpen) {
+          msg.textContent = "Pairing…";
+          const r = await pair(null, $("pair-name").value.trim());
+          saveCredential(r.token, { id: r.id, name: r.name });
+          finish(r.token);
+          dlg.close("ok");
+          toast(`Paired as “${r.name}”, the owner`);
+          return;
+        }
         if (code.length !== 6) { msg.className = "msg bad"; msg.textContent = "Enter the 6 digits of the pairing code."; return; }
         msg.textContent = "Pairing…";
         const r = await pair(code, $("pair-name").value.trim());
