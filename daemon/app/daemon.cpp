@@ -318,12 +318,14 @@ int Daemon::run() {
   auto lastHousekeeping = lastStatsLog;
   bool stopRequested = false;
   bool edgeFallbackLogged = false;
+  PresencePairing presence;  // the ignition turned off-on-off-on opens pairing (docs/security.md)
   try {
     while (!loop.finished() && !controlFailed) {
       timespec ts{0, 100'000'000};
       const int sig = sigtimedwait(&waited, nullptr, &ts);
       if (sig > 0) handleSignal(sig, loop, stopRequested, exitCode);
       const auto now = std::chrono::steady_clock::now();
+      presence.poll(*handoffs, server.get(), api.get());
       const std::uint64_t beat = loop.heartbeat();
       if (beat != lastBeat) {
         lastBeat = beat;

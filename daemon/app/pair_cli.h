@@ -9,6 +9,8 @@
 #include <optional>
 #include <string>
 
+#include "app/presence_pairing.h"  // started beside the code, polled by the supervisor
+
 namespace xr::web {
 class WebServer;
 }

@@ -21,8 +21,8 @@
 #include "battery/battery_monitor.h"
 #include "control/control_law.h"
 #include "control/temp_compensation.h"
-#include "protection/battery_temperature.h"
 #include "params/derived.h"
+#include "protection/battery_temperature.h"
 #include "protection/mode_selection.h"
 #include "protection/protection_supervisor.h"
 
@@ -337,6 +337,7 @@ const Outputs& Regulator::step(const Inputs& in) {
   t.battery_temp_c = in.batteryTempC.value;
   t.duty_pct = out.dutyPct;
   t.field_enable = out.fieldEnable;
+  t.ignition_on = in.ignitionOn;
   t.fast_ov_active = fastOvActive;
   t.alarm = out.buzzer;
   s.tickGovMode = govMode;

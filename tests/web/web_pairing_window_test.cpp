@@ -93,7 +93,7 @@ TEST(PairingWindowServer, ANewPhonePairsWithoutACodeOnlyInTheWindow) {
   const auto ev = api.securityEvents();
   ASSERT_EQ(ev.size(), 1u);
   EXPECT_NE(ev[0].find("Paired device \"Skipper phone\""), std::string::npos) << ev[0];
-  EXPECT_NE(ev[0].find("as the owner without a code, in the first-start window"), std::string::npos) << ev[0];
+  EXPECT_NE(ev[0].find("as the owner without a code, in a pairing window"), std::string::npos) << ev[0];
 }
 
 }  // namespace

@@ -61,13 +61,11 @@ Response ApiHandler::postPair(const Request& req) {
   json::object out;
   switch (r.kind) {
     case Pairing::Outcome::NoWindow:
-      return error(
-          req, http::status::forbidden,
-          "a pairing code is needed: the first-start window is closed or a device is paired already");
+      return error(req, http::status::forbidden, "a pairing code is needed: no pairing window is open");
     case Pairing::Outcome::Paired:
       api_.securityEvent("Paired " + deviceText(r.device) +
                          (pairing_.ownerId() == r.device.id ? " as the owner" : "") +
-                         (windowed ? " without a code, in the first-start window" : ""));
+                         (windowed ? " without a code, in a pairing window" : ""));
       out["token"] = r.token;
       out["id"] = r.device.id;
       out["name"] = r.device.name;

@@ -159,7 +159,16 @@ void Pairing::addDeviceLocked(std::string_view name, std::int64_t wallNow, Outco
 void Pairing::openFirstStartWindow(std::int64_t durationMs) {
   const std::int64_t t = elapsed();
   std::lock_guard lock(m_);
-  if (devices_.empty()) windowUntilMs_ = t + durationMs;
+  if (!devices_.empty()) return;
+  windowUntilMs_ = t + durationMs;
+  windowNeedsNoDevice_ = true;
+}
+
+void Pairing::openPresenceWindow(std::int64_t durationMs) {
+  const std::int64_t t = elapsed();
+  std::lock_guard lock(m_);
+  windowUntilMs_ = t + durationMs;
+  windowNeedsNoDevice_ = false;
 }
 
 Pairing::Window Pairing::window() const {

@@ -102,6 +102,9 @@ class Pairing {
   // device pairs without a code for durationMs of elapsed time. The window
   // closes at the first pairing and never opens while a device is paired.
   void openFirstStartWindow(std::int64_t durationMs);
+  // A person on board proved presence (the ignition turned off-on-off-on):
+  // one device, paired or not before, may pair without a code for durationMs.
+  void openPresenceWindow(std::int64_t durationMs);
   struct Window {
     bool open = false;
     std::int64_t closesInMs = 0;
@@ -135,7 +138,9 @@ class Pairing {
   std::int64_t now() const;      // wall
   std::int64_t elapsed() const;  // monotonic
   std::string ownerIdLocked() const;
-  bool windowOpenLocked(std::int64_t t) const { return t < windowUntilMs_ && devices_.empty(); }
+  bool windowOpenLocked(std::int64_t t) const {
+    return t < windowUntilMs_ && (!windowNeedsNoDevice_ || devices_.empty());
+  }
   void addDeviceLocked(std::string_view name, std::int64_t wallNow, Outcome& out);
 
   std::shared_ptr<AuthStore> store_;
@@ -145,7 +150,8 @@ class Pairing {
   std::int64_t codeExpiresMs_ = 0;  // on the elapsed clock, like lockedUntilMs_
   int wrongTries_ = 0;
   std::int64_t lockedUntilMs_ = 0;
-  std::int64_t windowUntilMs_ = 0;  // elapsed clock; 0: never opened
+  std::int64_t windowUntilMs_ = 0;   // elapsed clock; 0: never opened
+  bool windowNeedsNoDevice_ = true;  // the first-start window: only while nothing is paired
   std::vector<PairedDevice> devices_;
 };
 

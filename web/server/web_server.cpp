@@ -149,6 +149,9 @@ Pairing::Code WebServer::newPairingCode() { return impl_->handler.pairing().newC
 void WebServer::openFirstStartPairingWindow(std::int64_t durationMs) {
   impl_->handler.pairing().openFirstStartWindow(durationMs);
 }
+void WebServer::openPresencePairingWindow(std::int64_t durationMs) {
+  impl_->handler.pairing().openPresenceWindow(durationMs);
+}
 bool WebServer::pairingWindowOpen() { return impl_->handler.pairing().window().open; }
 
 }  // namespace xr::web

@@ -100,6 +100,7 @@ class WebServer {
   // A new regulator with nothing paired: the first device pairs without a
   // code for this long (pairing.h).
   void openFirstStartPairingWindow(std::int64_t durationMs);
+  void openPresencePairingWindow(std::int64_t durationMs);
   bool pairingWindowOpen();
 
   struct Impl;
