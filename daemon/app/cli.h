@@ -16,6 +16,7 @@ namespace xr::app {
 inline constexpr int kExitUsage = 64;        // EX_USAGE
 inline constexpr int kExitSoftware = 70;     // EX_SOFTWARE: internal error (exception)
 inline constexpr int kExitUnavailable = 69;  // EX_UNAVAILABLE: hardware missing
+inline constexpr int kExitTempFail = 75;     // EX_TEMPFAIL: another daemon holds the state database
 
 // Test-only faults (hidden, accepted only with --sim): end the daemon by a
 // given path at a given simulated time so tests/e2e can prove each exit path

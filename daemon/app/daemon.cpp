@@ -20,6 +20,7 @@
 #include "app/daemon_notices.h"
 #include "app/effective_params.h"
 #include "app/integrations_wiring.h"
+#include "app/pair_cli.h"
 #include "app/sim_wiring.h"
 #include "app/status_source.h"
 #include "app/stop_signal.h"
@@ -40,6 +41,7 @@
 #include "runtime/regulator_core.h"
 #include "runtime/rt_setup.h"
 #include "runtime/signals.h"
+#include "store/state_lock.h"
 #include "web/server/web_server.h"
 
 namespace xr::app {
@@ -84,7 +86,16 @@ int Daemon::run() {
   std::string dbPath = cli_.stateDb.value_or(cli_.sim ? std::string() : settings.store.path);
   Params params = fileParams;
   std::optional<BatteryLedger> restored;
+  std::unique_ptr<StateLock> stateLock;  // held until exit (store/state_lock.h)
   if (!dbPath.empty()) {
+    stateLock = std::make_unique<StateLock>(dbPath);
+    if (stateLock->result() == StateLock::Result::HeldByOther) {
+      // Before any output is driven: the field was never enabled by us.
+      spdlog::critical("store: {}", stateLock->message());
+      std::fprintf(stderr, "xregulatord: %s\n", stateLock->message().c_str());
+      return kExitTempFail;
+    }
+    if (stateLock->result() == StateLock::Result::NoLockFile) spdlog::warn("store: {}", stateLock->message());
     store = std::make_unique<StoreService>(dbPath, settings.store.checkpoint_interval_s);
     const OpenResult& o = store->openResult();
     if (const char* code = StoreService::alarmCode(o))
@@ -240,7 +251,7 @@ int Daemon::run() {
       if (store) opts.auth_store = std::make_shared<StoreAuthStore>(*store);
       server = std::make_unique<web::WebServer>(*api, opts);
       server->start();
-      logPairingCode(server->newPairingCode());
+      startPairing(*server, store.get());
       spdlog::info("dashboard at http://{}:{}/ (www root '{}')", opts.listen, server->port(), opts.www_root);
       // Said plainly: "--http :8104" or "0.0.0.0" opens the API to every
       // network the boat is on (docs/security.md).
@@ -319,12 +330,14 @@ int Daemon::run() {
   auto lastHousekeeping = lastStatsLog;
   bool stopRequested = false;
   bool edgeFallbackLogged = false;
+  PresencePairing presence;  // the ignition turned off-on-off-on opens pairing (docs/security.md)
   try {
     while (!loop.finished() && !controlFailed) {
       timespec ts{0, 100'000'000};
       const int sig = sigtimedwait(&waited, nullptr, &ts);
       if (sig > 0) handleSignal(sig, loop, stopRequested, exitCode);
       const auto now = std::chrono::steady_clock::now();
+      presence.poll(*handoffs, server.get(), api.get());
       const std::uint64_t beat = loop.heartbeat();
       if (beat != lastBeat) {
         lastBeat = beat;

@@ -1,12 +1,16 @@
 // `xregulatord --pair` (pair_cli.h).
 #include "app/pair_cli.h"
 
+#include <spdlog/spdlog.h>
+
 #include <boost/asio.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
 #include <boost/json.hpp>
 #include <ostream>
 
+#include "app/daemon_notices.h"
+#include "app/store_service.h"
 #include "app/stored_overrides.h"
 #include "config/config.h"
 #include "web/server/web_server.h"
@@ -82,6 +86,25 @@ int pairMain(const std::optional<std::string>& configPath, const std::optional<s
         << e.what() << "\n";
     return 1;
   }
+}
+
+}  // namespace xr::app
+
+namespace xr::app {
+
+void startPairing(web::WebServer& server, const StoreService* store) {
+  logPairingCode(server.newPairingCode());
+  if (!store) return;  // no database: no way to tell a first start
+  const OpenResult& o = store->openResult();
+  // Created at this start, not restored or reset after damage: a damaged
+  // card must not hand the regulator to whoever pairs first.
+  if (!o.ok || o.alarm() || o.fromVersion != 0) return;
+  server.openFirstStartPairingWindow(kFirstStartWindowMs);
+  if (server.pairingWindowOpen())
+    spdlog::warn(
+        "pairing: a new regulator with nothing paired: for {} min the first device to pair needs no code "
+        "and becomes the owner (docs/security.md)",
+        kFirstStartWindowMs / 60000);
 }
 
 }  // namespace xr::app

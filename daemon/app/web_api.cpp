@@ -168,6 +168,13 @@ void WebApi::recordEvent(const std::string& code, const std::string& text) {
   }
 }
 
+// Pairing and revocations (docs/security.md): in the event list and in the
+// journal, where an owner reading `journalctl` looks for who got access.
+void WebApi::securityEvent(const std::string& text) {
+  spdlog::warn("security: {}", text);
+  recordEvent("Security", text);
+}
+
 web::CommandResult WebApi::command(const Command& cmd) {
   web::CommandResult r;
   const std::string name(toString(cmd.type));

@@ -46,6 +46,7 @@ class WebApi final : public web::DaemonApi {
   web::PatchResult patchParams(const std::vector<web::ParamChange>& changes,
                                const std::string& source) override;
   web::CommandResult command(const Command& cmd) override;
+  void securityEvent(const std::string& text) override;
   std::vector<web::EventRecord> events(const web::EventQuery& q) override;
   web::HistoryResult history(const web::HistoryQuery& q) override;
   std::vector<web::ProbeResult> probeResults() override;

@@ -343,6 +343,7 @@ const Outputs& Regulator::step(const Inputs& in) {
   t.battery_temp_c = in.batteryTempC.value;
   t.duty_pct = out.dutyPct;
   t.field_enable = out.fieldEnable;
+  t.ignition_on = in.ignitionOn;
   t.fast_ov_active = fastOvActive;
   t.alarm = out.buzzer;
   s.tickGovMode = govMode;

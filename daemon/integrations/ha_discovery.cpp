@@ -103,11 +103,13 @@ std::vector<MqttMessage> discoveryConfigs(const HaTopics& t, bool withCommands, 
     sel["state_topic"] = t.state();
     sel["value_template"] = "{{ value_json.regulator_mode }}";
     sel["options"] = json::array{"off", "auto"};
+    sel["retain"] = false;  // a command is an action, never a state (docs/security.md)
     sel["icon"] = "mdi:power";
     out.push_back({t.config("select", "regulator_mode"), json::serialize(sel)});
     json::object btn = common(t, "limp_home", "Limp home", version);
     btn["command_topic"] = t.limpHomeCommand();
     btn["payload_press"] = "PRESS";
+    btn["retain"] = false;
     btn["icon"] = "mdi:car-emergency";
     out.push_back({t.config("button", "limp_home"), json::serialize(btn)});
   }

@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <boost/asio/post.hpp>
 #include <chrono>
 
 namespace xr::integrations {
@@ -36,27 +37,66 @@ HomeAssistantBridge::HomeAssistantBridge(boost::asio::io_context& io, const Mqtt
       // The loader refuses commands without credentials; this is the second lock.
       withCommands_(s.commands_enabled && !s.username.empty() && !s.password.empty()),
       health_("mqtt"),
+      probeHealth_("mqtt anonymous check"),
       timer_(io) {
   link_ = std::make_unique<MqttLink>(io_, optionsFor(s, topics_), health_);
 }
 
 void HomeAssistantBridge::start() {
-  link_->start([this] { announce(); }, [this](const std::string& t, std::string_view p) { onMessage(t, p); });
+  link_->start([this] { announce(); }, [this](const std::string& t, std::string_view p,
+                                              bool retained) { onMessage(t, p, retained); });
+  if (withCommands_) checkAnonymousAccess();
   tick();
+}
+
+// The broker does not say who published a message, so a command is only as
+// trusted as the least trusted client that may publish on its topic. A
+// broker that lets anyone in without a password lets anyone send commands
+// (unless its ACLs forbid it, which we cannot see): commands stay off until
+// a client with no credentials has been refused (docs/security.md).
+void HomeAssistantBridge::checkAnonymousAccess() {
+  MqttOptions o = optionsFor(settings_, topics_);
+  o.clientId = "xregulator_" + settings_.node_id + "_anonymous_check";
+  o.username.clear();
+  o.password.clear();
+  o.willTopic.clear();
+  anonymousProbe_ = std::make_unique<MqttLink>(io_, o, probeHealth_);
+  anonymousProbe_->start([this] { boost::asio::post(io_, [this] { anonymousAccepted(); }); }, {},
+                         [this](int) { boost::asio::post(io_, [this] { anonymousRefused(); }); });
+}
+
+void HomeAssistantBridge::anonymousRefused() {
+  if (!anonymousProbe_ || commandsLive_) return;
+  anonymousProbe_->stop();
+  commandsLive_ = true;
+  spdlog::info("mqtt: the broker refuses clients without credentials; commands from Home Assistant are on");
+  if (link_->connected()) announce();
+}
+
+void HomeAssistantBridge::anonymousAccepted() {
+  if (!anonymousProbe_) return;
+  anonymousProbe_->stop();
+  health_.refused("the broker accepts clients without credentials");
+  spdlog::error(
+      "mqtt: the broker at {}:{} accepts clients without a user name, so anyone on its network could "
+      "send commands; MQTT commands stay OFF. Set allow_anonymous false and ACLs on the broker "
+      "(docs/security.md \"MQTT commands\")",
+      settings_.host, settings_.port);
 }
 
 void HomeAssistantBridge::stop() {
   timer_.cancel();
+  if (anonymousProbe_) anonymousProbe_->stop();
   link_->stop(topics_.availability(), "offline");
 }
 
 void HomeAssistantBridge::announce() {
   ++announcements_;
-  for (const auto& m : discoveryConfigs(topics_, withCommands_, version_))
+  for (const auto& m : discoveryConfigs(topics_, commandsLive_, version_))
     link_->publish(m.topic, m.payload, true, 1);
   link_->publish(topics_.availability(), "online", true, 1);
   link_->subscribe(topics_.birth());
-  if (withCommands_) {
+  if (commandsLive_) {
     link_->subscribe(topics_.modeCommand());
     link_->subscribe(topics_.limpHomeCommand());
   }
@@ -78,16 +118,33 @@ void HomeAssistantBridge::tick() {
   });
 }
 
-void HomeAssistantBridge::onMessage(const std::string& topic, std::string_view payload) {
+void HomeAssistantBridge::onMessage(const std::string& topic, std::string_view payload, bool retained) {
   if (topic == topics_.birth()) {
     // Home Assistant restarted and lost the non-retained state: announce again.
     if (payload == "online") announce();
     return;
   }
-  if (!withCommands_) return;  // never subscribed; a stray message changes nothing
+  if (!commandsLive_) return;  // never subscribed; a stray message changes nothing
+  if (topic != topics_.modeCommand() && topic != topics_.limpHomeCommand()) return;
+  if (payload.empty()) return;  // the clearing of a retained command, ours or another's
+  if (retained) {
+    // Stored by the broker some time ago, maybe before this start: replaying
+    // it would turn an old button press into a state (limp home at every
+    // start). Ignore it and delete it from the broker.
+    health_.refused("retained command on " + topic + " ignored and cleared (a command is never retained)");
+    link_->publish(topic, "", true, 1);
+    return;
+  }
+  onCommand(topic, payload);
+  // A retained copy published while we listened arrives live, without the
+  // flag: act on it once, then delete any copy the broker kept.
+  link_->publish(topic, "", true, 1);
+}
+
+void HomeAssistantBridge::onCommand(const std::string& topic, std::string_view payload) {
   const std::string source = "Home Assistant (MQTT " + settings_.host + ")";
+  Command c;
   if (topic == topics_.modeCommand()) {
-    Command c;
     if (payload == "off") {
       c.type = CommandType::Off;
     } else if (payload == "auto") {
@@ -96,16 +153,14 @@ void HomeAssistantBridge::onMessage(const std::string& topic, std::string_view p
       health_.refused("mode command '" + std::string(payload.substr(0, 32)) + "' is not off or auto");
       return;
     }
-    commands_(c, source);
-  } else if (topic == topics_.limpHomeCommand()) {
+  } else {
     if (payload != "PRESS") {
       health_.refused("limp home command payload is not PRESS");
       return;
     }
-    Command c;
     c.type = CommandType::LimpHome;
-    commands_(c, source);
   }
+  commands_(c, source);
 }
 
 }  // namespace xr::integrations

@@ -4,6 +4,11 @@
 // availability through the broker's last will, re-announces when Home
 // Assistant says "online" on <prefix>/status, and takes off/auto and limp
 // home only when commands are enabled and the broker needs credentials.
+//
+// Commands are actions, never states (docs/security.md "MQTT commands"): a
+// retained command is ignored and cleared, and commands stay off until an
+// anonymous test connection has been refused by the broker, because the
+// broker cannot tell us who published a message.
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/steady_timer.hpp>
 #include <functional>
@@ -35,7 +40,11 @@ class HomeAssistantBridge {
  private:
   void announce();
   void publishState();
-  void onMessage(const std::string& topic, std::string_view payload);
+  void onMessage(const std::string& topic, std::string_view payload, bool retained);
+  void onCommand(const std::string& topic, std::string_view payload);
+  void checkAnonymousAccess();
+  void anonymousRefused();
+  void anonymousAccepted();
   void tick();
 
   boost::asio::io_context& io_;
@@ -44,9 +53,12 @@ class HomeAssistantBridge {
   CommandSink commands_;
   std::string version_;
   HaTopics topics_;
-  bool withCommands_;
+  bool withCommands_;          // the configuration asks for commands, with credentials
+  bool commandsLive_ = false;  // ...and the broker has refused an anonymous client
   IntegrationHealth health_;
+  IntegrationHealth probeHealth_;
   std::unique_ptr<MqttLink> link_;
+  std::unique_ptr<MqttLink> anonymousProbe_;
   boost::asio::steady_timer timer_;
   std::uint64_t announcements_ = 0;
 };

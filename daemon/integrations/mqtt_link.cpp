@@ -60,9 +60,10 @@ MqttLink::~MqttLink() {
   if (mosq_) mosquitto_destroy(mosq_);
 }
 
-void MqttLink::start(OnConnected onConnected, OnMessage onMessage) {
+void MqttLink::start(OnConnected onConnected, OnMessage onMessage, OnRefused onRefused) {
   onConnected_ = std::move(onConnected);
   onMessage_ = std::move(onMessage);
+  onRefused_ = std::move(onRefused);
   started_ = true;
   connectNow();
   poll();
@@ -151,7 +152,8 @@ void MqttLink::onConnectCb(mosquitto*, void* self, int rc) {
   auto* l = static_cast<MqttLink*>(self);
   if (rc != 0) {
     // The broker answered and refused (bad credentials, not authorised).
-    l->lost("broker refused the connection: " + std::string(mosquitto_connack_string(rc)));
+    if (l->onRefused_) l->onRefused_(rc);  // may stop the link: a refusal can be the answer wanted
+    if (!l->stopping_) l->lost("broker refused the connection: " + std::string(mosquitto_connack_string(rc)));
     return;
   }
   l->connecting_ = false;
@@ -171,8 +173,10 @@ void MqttLink::onMessageCb(mosquitto*, void* self, const mosquitto_message* m) {
   auto* l = static_cast<MqttLink*>(self);
   l->health_.received();
   if (l->onMessage_ && m && m->topic)
-    l->onMessage_(m->topic, std::string_view(static_cast<const char*>(m->payload),
-                                             m->payload ? static_cast<std::size_t>(m->payloadlen) : 0));
+    l->onMessage_(m->topic,
+                  std::string_view(static_cast<const char*>(m->payload),
+                                   m->payload ? static_cast<std::size_t>(m->payloadlen) : 0),
+                  m->retain);
 }
 
 void MqttLink::onPublishCb(mosquitto*, void* self, int) {

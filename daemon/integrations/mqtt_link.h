@@ -40,7 +40,11 @@ class MqttLink {
  public:
   static constexpr int kMaxInFlight = 64;
   using OnConnected = std::function<void()>;
-  using OnMessage = std::function<void(const std::string& topic, std::string_view payload)>;
+  // `retained`: the broker stored this message and replays it to every new
+  // subscriber; it was published some time before, maybe before our start.
+  using OnMessage = std::function<void(const std::string& topic, std::string_view payload, bool retained)>;
+  // The broker answered the CONNECT and refused it (bad or missing credentials).
+  using OnRefused = std::function<void(int connackCode)>;
 
   MqttLink(boost::asio::io_context& io, MqttOptions opts, IntegrationHealth& health);
   ~MqttLink();
@@ -48,7 +52,7 @@ class MqttLink {
   MqttLink& operator=(const MqttLink&) = delete;
 
   // Both on the io_context's thread.
-  void start(OnConnected onConnected, OnMessage onMessage);
+  void start(OnConnected onConnected, OnMessage onMessage, OnRefused onRefused = {});
   // Publishes finalTopic/finalPayload (retained) first when given: a clean
   // stop says "offline" itself instead of leaving it to the broker's will.
   void stop(const std::string& finalTopic = {}, const std::string& finalPayload = {});
@@ -76,6 +80,7 @@ class MqttLink {
   Backoff backoff_;
   OnConnected onConnected_;
   OnMessage onMessage_;
+  OnRefused onRefused_;
   bool started_ = false, connecting_ = false, connected_ = false, stopping_ = false;
   std::chrono::steady_clock::time_point connectStarted_{};
   int inFlight_ = 0;

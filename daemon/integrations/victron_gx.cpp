@@ -35,7 +35,7 @@ VictronGxBridge::VictronGxBridge(boost::asio::io_context& io, const VictronSetti
 
 void VictronGxBridge::start() {
   link_->start([this] { onConnected(); },
-               [this](const std::string& t, std::string_view p) { onMessage(t, p); });
+               [this](const std::string& t, std::string_view p, bool) { onMessage(t, p); });
   tick();
 }
 

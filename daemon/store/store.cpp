@@ -7,7 +7,6 @@
 #include <sqlite3.h>
 #include <sys/stat.h>
 
-
 #include "store/backup.h"
 #include "store/schema.h"
 
@@ -129,9 +128,14 @@ StoreStatus Store::backup(std::int64_t nowUnixMs) {
 StoreStatus Store::backupIfDue(std::int64_t nowUnixMs) {
   const std::lock_guard<std::recursive_mutex> lock(mu_);
   const std::int64_t since = nowUnixMs - lastBackupMs_;
-  const bool due =
-      since >= opt_.backupIntervalS * 1000 || (settingsChanged_ && since >= opt_.settingsBackupS * 1000);
-  if (!backupsAllowed_ || inMemory_ || !db_.isOpen() || !due || nowUnixMs < retryBackupAtMs_) return {};
+  // A wall clock set back (a GPS fix after a boot on a stale time) would make
+  // `since` negative for as long as it jumped: a copy now restarts the count
+  // (docs/security.md "The clock").
+  const bool due = since < 0 || since >= opt_.backupIntervalS * 1000 ||
+                   (settingsChanged_ && since >= opt_.settingsBackupS * 1000);
+  // The retry waits an hour, unless the clock went back by more than that.
+  const bool waiting = nowUnixMs < retryBackupAtMs_ && retryBackupAtMs_ - nowUnixMs <= 3'600'000;
+  if (!backupsAllowed_ || inMemory_ || !db_.isOpen() || !due || waiting) return {};
   StoreStatus s = backup(nowUnixMs);
   // A failed backup (a full disk) is tried again an hour later, not every second.
   if (!s) retryBackupAtMs_ = nowUnixMs + 3'600'000;

@@ -58,10 +58,13 @@ struct StoreOptions {
   // Tests: PRAGMA max_page_count, to simulate a full disk (0 = unlimited).
   std::int64_t maxPageCount = 0;
   // A verified backup this often (of the wall clock), besides the one at open,
-  // and sooner, but at most this often, after the settings changed
-  // (overrides, the token, paired devices): they are rare and precious.
+  // and soon after the settings changed (overrides, the token, paired
+  // devices): they are rare and precious, and an owner who changes a setting
+  // or pairs a phone expects it to survive a damaged card a minute later. The
+  // short delay only merges a burst of changes into one copy
+  // (docs/operations.md "The daemon's own backup").
   std::int64_t backupIntervalS = 24 * 3600;
-  std::int64_t settingsBackupS = 600;
+  std::int64_t settingsBackupS = 10;
 };
 
 struct OpenResult {

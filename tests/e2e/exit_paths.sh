@@ -267,6 +267,25 @@ case "$case_name" in
       ls "$db".corrupt-* >/dev/null 2>&1 && fail "the newer database was moved aside"
     fi
     ;;
+  store_locked)
+    # One daemon per state database (docs/operations.md "State database"):
+    # a second daemon on the same file exits 75 with the holder's pid before
+    # it drives any output; kill -9 of the holder frees the lock.
+    db="$tmp/s.db"
+    "$bin" --sim --speed 50 --state-db "$db" --sim-outputs "$tmp/out1" >"$tmp/log1" 2>&1 &
+    first=$!
+    wait_field_on "$tmp/out1" "$first" || { kill -9 $first 2>/dev/null; fail "first daemon never enabled the field"; }
+    "$bin" --sim --speed max --duration 5 --state-db "$db" --sim-outputs "$tmp/out2" >"$tmp/log" 2>&1
+    rc=$?
+    kill -0 "$first" 2>/dev/null || fail "the first daemon died"
+    [ "$rc" = 75 ] || { kill -9 $first; fail "second daemon: exit $rc, expected 75"; }
+    grep -q "another xregulatord (pid $first) uses the state database $db" "$tmp/log" ||
+      { kill -9 $first; fail "no clear message naming the holder"; }
+    if [ -s "$tmp/out2" ]; then [ "$(field_of "$tmp/out2")" = 0 ] || { kill -9 $first; fail "second daemon enabled the field"; }; fi
+    kill -9 "$first"
+    wait "$first" 2>/dev/null
+    "$bin" --sim --speed max --duration 2 --state-db "$db" >"$tmp/log" 2>&1 || fail "after kill -9 of the holder: exit $?"
+    ;;
   *) fail "unknown case" ;;
 esac
 echo "PASS [$case_name]"

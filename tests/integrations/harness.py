@@ -43,9 +43,9 @@ class Harness:
         self.broker_port = None
 
     # ---- mosquitto ----
-    def start_broker(self, port=None, users=None):
+    def start_broker(self, port=None, users=None, anonymous=False):
         """Debian's mosquitto on 127.0.0.1:port; users = {name: password}
-        makes it refuse anonymous clients."""
+        makes it refuse anonymous clients unless anonymous=True."""
         self.broker_port = port or self.broker_port or free_port()
         conf = os.path.join(self.dir, "mosquitto.conf")
         lines = [f"listener {self.broker_port} 127.0.0.1", "persistence false", "log_dest stderr",
@@ -59,7 +59,7 @@ class Harness:
             open(pw, "w").close()
             for u, p in users.items():
                 subprocess.run(["mosquitto_passwd", "-b", pw, u, p], check=True)
-            lines += ["allow_anonymous false", f"password_file {pw}"]
+            lines += [f"allow_anonymous {'true' if anonymous else 'false'}", f"password_file {pw}"]
         else:
             lines += ["allow_anonymous true"]
         with open(conf, "w") as f:

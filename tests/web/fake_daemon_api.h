@@ -99,6 +99,14 @@ class FakeDaemonApi : public DaemonApi {
     if (r.errors.empty()) current_ = next;
     return r;
   }
+  void securityEvent(const std::string& text) override {
+    std::lock_guard lock(m_);
+    securityEvents_.push_back(text);
+  }
+  std::vector<std::string> securityEvents() {
+    std::lock_guard lock(m_);
+    return securityEvents_;
+  }
   CommandResult command(const Command& cmd) override {
     std::lock_guard lock(m_);
     commands_.push_back(cmd);
@@ -187,6 +195,7 @@ class FakeDaemonApi : public DaemonApi {
   HistoryQuery lastHistory_;
   int patchCalls_ = 0;
   std::string lastPatchSource_;
+  std::vector<std::string> securityEvents_;
   bool healthy_ = true;
   CanState can_;
   bool refuseCommands_ = false;

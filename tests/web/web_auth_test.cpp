@@ -101,12 +101,13 @@ TEST_F(PairingFixture, RevokeOneAndAll) {
   const auto b = pairing.pair(pairing.newCode().code, "b");
   const auto c = pairing.pair(pairing.newCode().code, "c");
   ASSERT_EQ(pairing.devices().size(), 3u);
-  EXPECT_TRUE(pairing.revoke(a.device.id));
-  EXPECT_FALSE(pairing.revoke(a.device.id));
+  const Pairing::Caller installer{true, ""};
+  EXPECT_EQ(pairing.revoke(a.device.id, installer), Pairing::Revoke::Revoked);
+  EXPECT_EQ(pairing.revoke(a.device.id, installer), Pairing::Revoke::NoSuchDevice);
   EXPECT_FALSE(pairing.isDeviceToken(a.token));
   EXPECT_TRUE(pairing.isDeviceToken(b.token));
   EXPECT_EQ(store->loadDevices().size(), 2u);
-  EXPECT_EQ(pairing.revokeAll(), 2u);
+  EXPECT_EQ(pairing.revokeAll(installer).revoked, 2u);
   EXPECT_FALSE(pairing.isDeviceToken(c.token));
   EXPECT_TRUE(store->loadDevices().empty());
 }

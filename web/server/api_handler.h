@@ -57,7 +57,11 @@ class ApiHandler {
   // Who an authorised write comes from, for the event it makes: the paired
   // device's name, or the static token.
   std::string writerName(std::string_view authorization) const;
+  Pairing::Caller callerOf(std::string_view authorization) const;
   Response postPair(const Request& req);
+  Response listDevices(const Request& req);
+  Response revokeDevice(const Request& req, const std::string& id);
+  Response revokeAllDevices(const Request& req);
 
   DaemonApi& api_;
   const WebServerOptions& opts_;

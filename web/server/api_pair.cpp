@@ -2,6 +2,7 @@
 // that may write already: POST /api/pair/code, GET /api/pair/devices,
 // DELETE /api/pair/devices[/<id>].
 #include <boost/json.hpp>
+#include <optional>
 #include <string>
 
 #include "web/server/api_handler.h"
@@ -30,20 +31,41 @@ std::string ApiHandler::writerName(std::string_view authorization) const {
   return "the installer token";
 }
 
+Pairing::Caller ApiHandler::callerOf(std::string_view authorization) const {
+  Pairing::Caller c;
+  c.installer = checkBearer(authorization, "", opts_.token) == AuthResult::Ok;
+  if (!c.installer)
+    if (auto d = pairing_.deviceFor(bearerToken(authorization))) c.deviceId = d->id;
+  return c;
+}
+
+namespace {
+std::string deviceText(const PairedDevice& d) { return "device \"" + d.name + "\" (" + d.id + ")"; }
+}  // namespace
+
 Response ApiHandler::postPair(const Request& req) {
   std::string err;
   auto body = parseBody(req, err);
   if (!body) return error(req, http::status::bad_request, err);
   const auto* o = body->if_object();
   const auto* code = o ? o->if_contains("code") : nullptr;
-  if (!code || !code->is_string() || code->get_string().size() > 16)
+  // No code at all: the first device of a new regulator, in its first-start
+  // window (pairing.h); a code that is there must be a string.
+  const bool windowed = o && (!code || code->is_null());
+  if (!o || (!windowed && (!code->is_string() || code->get_string().size() > 16)))
     return error(req, http::status::bad_request, "expected {\"code\": \"123456\", \"name\": \"...\"}");
   std::string name;
   if (const auto* n = o->if_contains("name"); n && n->is_string()) name = std::string(n->get_string());
-  const auto r = pairing_.pair(std::string_view(code->get_string()), name);
+  const auto r =
+      windowed ? pairing_.pairInWindow(name) : pairing_.pair(std::string_view(code->get_string()), name);
   json::object out;
   switch (r.kind) {
+    case Pairing::Outcome::NoWindow:
+      return error(req, http::status::forbidden, "a pairing code is needed: no pairing window is open");
     case Pairing::Outcome::Paired:
+      api_.securityEvent("Paired " + deviceText(r.device) +
+                         (pairing_.ownerId() == r.device.id ? " as the owner" : "") +
+                         (windowed ? " without a code, in a pairing window" : ""));
       out["token"] = r.token;
       out["id"] = r.device.id;
       out["name"] = r.device.name;
@@ -53,6 +75,9 @@ Response ApiHandler::postPair(const Request& req) {
       out["tries_left"] = r.triesLeft;
       return jsonReply(req, http::status::forbidden, out);
     case Pairing::Outcome::LockedOut: {
+      if (r.retryAfterMs == kLockoutMs)  // this request locked it: one event per lock-out
+        api_.securityEvent("Pairing locked for " + std::to_string(kLockoutMs / 60000) + " min after " +
+                           std::to_string(kMaxWrongTries) + " wrong codes");
       out["error"] = "too many wrong codes: pairing is locked and the code is void; make a new code";
       const auto s = (r.retryAfterMs + 999) / 1000;
       out["retry_after_s"] = s;
@@ -78,6 +103,15 @@ Response ApiHandler::pairRoutes(const Request& req, std::string_view path) {
     }
     return postPair(req);
   }
+  if (path == "/api/pair/window") {  // open: a new phone asks whether it needs a code
+    if (method != http::verb::get && method != http::verb::head)
+      return error(req, http::status::method_not_allowed, "method not allowed");
+    const auto w = pairing_.window();
+    json::object out;
+    out["open"] = w.open;
+    out["closes_in_s"] = (w.closesInMs + 999) / 1000;
+    return jsonReply(req, http::status::ok, out);
+  }
   if (auto code = checkWrite(req[http::field::authorization])) return authError(req, code);
   if (path == "/api/pair/code") {
     if (method != http::verb::post) return error(req, http::status::method_not_allowed, "method not allowed");
@@ -88,35 +122,75 @@ Response ApiHandler::pairRoutes(const Request& req, std::string_view path) {
     return jsonReply(req, http::status::ok, out);
   }
   if (path == "/api/pair/devices") {
-    if (method == http::verb::get || method == http::verb::head) {
-      json::array list;
-      for (const auto& d : pairing_.devices()) {
-        json::object j;
-        j["id"] = d.id;
-        j["name"] = d.name;
-        j["created"] = static_cast<double>(d.createdMs) / 1000.0;
-        list.push_back(std::move(j));
-      }
-      json::object out;
-      out["devices"] = std::move(list);
-      return jsonReply(req, http::status::ok, out);
-    }
-    if (method == http::verb::delete_) {
-      json::object out;
-      out["revoked"] = pairing_.revokeAll();
-      return jsonReply(req, http::status::ok, out);
-    }
+    if (method == http::verb::get || method == http::verb::head) return listDevices(req);
+    if (method == http::verb::delete_) return revokeAllDevices(req);
     return error(req, http::status::method_not_allowed, "method not allowed");
   }
   constexpr std::string_view kDevice = "/api/pair/devices/";
-  if (path.starts_with(kDevice) && method == http::verb::delete_) {
-    if (!pairing_.revoke(std::string(path.substr(kDevice.size()))))
-      return error(req, http::status::not_found, "no such device");
-    json::object out;
-    out["revoked"] = 1;
-    return jsonReply(req, http::status::ok, out);
-  }
+  if (path.starts_with(kDevice) && method == http::verb::delete_)
+    return revokeDevice(req, std::string(path.substr(kDevice.size())));
   return error(req, http::status::not_found, "no such endpoint");
+}
+
+Response ApiHandler::listDevices(const Request& req) {
+  const auto caller = callerOf(req[http::field::authorization]);
+  const std::string owner = pairing_.ownerId();
+  json::array list;
+  for (const auto& d : pairing_.devices()) {
+    json::object j;
+    j["id"] = d.id;
+    j["name"] = d.name;
+    j["created"] = static_cast<double>(d.createdMs) / 1000.0;
+    j["owner"] = d.id == owner;
+    j["this_device"] = d.id == caller.deviceId;
+    list.push_back(std::move(j));
+  }
+  json::object out;
+  out["devices"] = std::move(list);
+  out["you_are_owner"] = pairing_.isOwner(caller);
+  return jsonReply(req, http::status::ok, out);
+}
+
+Response ApiHandler::revokeDevice(const Request& req, const std::string& id) {
+  const auto auth = req[http::field::authorization];
+  std::optional<PairedDevice> target;
+  for (const auto& d : pairing_.devices())
+    if (d.id == id) target = d;
+  switch (pairing_.revoke(id, callerOf(auth))) {
+    case Pairing::Revoke::NoSuchDevice:
+      return error(req, http::status::not_found, "no such device");
+    case Pairing::Revoke::NotAllowed:
+      return error(req, http::status::forbidden, "only the owner may revoke another device");
+    case Pairing::Revoke::NotSaved:
+      return error(req, http::status::service_unavailable,
+                   "the revocation cannot be saved (state database not writable, see /api/system); "
+                   "the device keeps its access");
+    case Pairing::Revoke::Revoked:
+      break;
+  }
+  api_.securityEvent("Revoked " + (target ? deviceText(*target) : "device " + id) + " by " +
+                     writerName(auth));
+  json::object out;
+  out["revoked"] = 1;
+  return jsonReply(req, http::status::ok, out);
+}
+
+Response ApiHandler::revokeAllDevices(const Request& req) {
+  const auto auth = req[http::field::authorization];
+  const std::string by = writerName(auth);  // before: the owner's own token goes too
+  const auto r = pairing_.revokeAll(callerOf(auth));
+  if (r.result == Pairing::Revoke::NotAllowed)
+    return error(req, http::status::forbidden, "only the owner may revoke every device");
+  if (r.revoked > 0)
+    api_.securityEvent("Revoked " + std::to_string(r.revoked) + " device(s) at once by " + by);
+  if (r.result == Pairing::Revoke::NotSaved)
+    return error(req, http::status::service_unavailable,
+                 "only " + std::to_string(r.revoked) +
+                     " revocation(s) could be saved (state database not writable, see /api/system); "
+                     "the other devices keep their access");
+  json::object out;
+  out["revoked"] = r.revoked;
+  return jsonReply(req, http::status::ok, out);
 }
 
 }  // namespace xr::web

@@ -211,6 +211,10 @@ class DaemonApi {
   // new value and the source (issue 25, item 11).
   virtual PatchResult patchParams(const std::vector<ParamChange>& changes, const std::string& source) = 0;
 
+  // A security action (pairing, revocation, a pairing lock-out): an event in
+  // the list and a journal line, naming the device (docs/security.md).
+  virtual void securityEvent(const std::string& text) { (void)text; }
+
   // Queue an operator command for the control thread (core/commands.h).
   virtual CommandResult command(const Command& cmd) = 0;
 

@@ -65,9 +65,18 @@ bool MemoryAuthStore::removeDevice(const std::string& id) {
   return std::erase_if(devices_, [&](const PairedDevice& d) { return d.id == id; }) > 0;
 }
 
-Pairing::Pairing(std::shared_ptr<AuthStore> store, Clock now)
-    : store_(store ? std::move(store) : std::make_shared<MemoryAuthStore>()), clock_(std::move(now)) {
+Pairing::Pairing(std::shared_ptr<AuthStore> store, Clock wall, Clock elapsed)
+    : store_(store ? std::move(store) : std::make_shared<MemoryAuthStore>()),
+      clock_(std::move(wall)),
+      elapsedClock_(elapsed ? std::move(elapsed) : clock_) {
   devices_ = store_->loadDevices();
+}
+
+std::int64_t Pairing::elapsed() const {
+  if (elapsedClock_) return elapsedClock_();
+  return std::chrono::duration_cast<std::chrono::milliseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
 }
 
 std::int64_t Pairing::now() const {
@@ -79,9 +88,10 @@ std::int64_t Pairing::now() const {
 
 Pairing::Code Pairing::newCode() {
   Code c{randomDigits(6), now() + kCodeLifetimeMs};
+  const std::int64_t t = elapsed();
   std::lock_guard lock(m_);
   codeHash_ = sha256Hex(c.code);
-  codeExpiresMs_ = c.expiresMs;
+  codeExpiresMs_ = t + kCodeLifetimeMs;
   wrongTries_ = 0;
   lockedUntilMs_ = 0;
   return c;
@@ -89,7 +99,8 @@ Pairing::Code Pairing::newCode() {
 
 Pairing::Outcome Pairing::pair(std::string_view code, std::string_view name) {
   Outcome out;
-  const std::int64_t t = now();
+  const std::int64_t t = elapsed();
+  const std::int64_t wallNow = now();
   std::lock_guard lock(m_);
   if (t < lockedUntilMs_) {
     out.kind = Outcome::LockedOut;
@@ -112,26 +123,74 @@ Pairing::Outcome Pairing::pair(std::string_view code, std::string_view name) {
     out.triesLeft = kMaxWrongTries - wrongTries_;
     return out;
   }
+  addDeviceLocked(name, wallNow, out);
+  if (out.kind == Outcome::Paired) {
+    codeHash_.clear();  // single use
+    wrongTries_ = 0;
+  }
+  return out;
+}
+
+void Pairing::addDeviceLocked(std::string_view name, std::int64_t wallNow, Outcome& out) {
   if (devices_.size() >= kMaxPairedDevices) {
     out.kind = Outcome::Full;
-    return out;
+    return;
   }
   const std::string token = generateToken();
   PairedDevice d;
   d.hash = sha256Hex(token);
   d.id = d.hash.substr(0, 8);
   d.name = cleanDeviceName(name);
-  d.createdMs = t;
+  // Later than every device already paired even when the wall clock went
+  // back: the order of pairing decides who the owner is.
+  std::int64_t newest = 0;
+  for (const auto& p : devices_) newest = std::max(newest, p.createdMs);
+  d.createdMs = std::max(wallNow, newest + 1);
   if (!store_->saveDevice(d)) {
-    out.kind = Outcome::NotSaved;  // the code stays valid: the owner may retry
-    return out;
+    out.kind = Outcome::NotSaved;  // the code (or the window) stays: the owner may retry
+    return;
   }
-  codeHash_.clear();  // single use
-  wrongTries_ = 0;
   devices_.push_back(d);
   out.kind = Outcome::Paired;
   out.token = token;
   out.device = d;
+}
+
+void Pairing::openFirstStartWindow(std::int64_t durationMs) {
+  const std::int64_t t = elapsed();
+  std::lock_guard lock(m_);
+  if (!devices_.empty()) return;
+  windowUntilMs_ = t + durationMs;
+  windowNeedsNoDevice_ = true;
+}
+
+void Pairing::openPresenceWindow(std::int64_t durationMs) {
+  const std::int64_t t = elapsed();
+  std::lock_guard lock(m_);
+  windowUntilMs_ = t + durationMs;
+  windowNeedsNoDevice_ = false;
+}
+
+Pairing::Window Pairing::window() const {
+  const std::int64_t t = elapsed();
+  std::lock_guard lock(m_);
+  Window w;
+  w.open = windowOpenLocked(t);
+  if (w.open) w.closesInMs = windowUntilMs_ - t;
+  return w;
+}
+
+Pairing::Outcome Pairing::pairInWindow(std::string_view name) {
+  Outcome out;
+  const std::int64_t t = elapsed();
+  const std::int64_t wallNow = now();
+  std::lock_guard lock(m_);
+  if (!windowOpenLocked(t)) {
+    out.kind = Outcome::NoWindow;
+    return out;
+  }
+  addDeviceLocked(name, wallNow, out);
+  if (out.kind == Outcome::Paired) windowUntilMs_ = 0;  // one device: the owner
   return out;
 }
 
@@ -158,21 +217,55 @@ std::vector<PairedDevice> Pairing::devices() const {
   return devices_;
 }
 
-bool Pairing::revoke(const std::string& id) {
-  std::lock_guard lock(m_);
-  const auto it = std::find_if(devices_.begin(), devices_.end(), [&](const auto& d) { return d.id == id; });
-  if (it == devices_.end()) return false;
-  store_->removeDevice(id);
-  devices_.erase(it);
-  return true;
+std::string Pairing::ownerIdLocked() const {
+  const PairedDevice* owner = nullptr;
+  for (const auto& d : devices_)
+    if (!owner || d.createdMs < owner->createdMs || (d.createdMs == owner->createdMs && d.id < owner->id))
+      owner = &d;
+  return owner ? owner->id : std::string{};
 }
 
-std::size_t Pairing::revokeAll() {
+std::string Pairing::ownerId() const {
   std::lock_guard lock(m_);
-  for (const auto& d : devices_) store_->removeDevice(d.id);
-  const std::size_t n = devices_.size();
-  devices_.clear();
-  return n;
+  return ownerIdLocked();
+}
+
+bool Pairing::isOwner(const Caller& c) const {
+  if (c.installer) return true;
+  std::lock_guard lock(m_);
+  return !c.deviceId.empty() && c.deviceId == ownerIdLocked();
+}
+
+Pairing::Revoke Pairing::revoke(const std::string& id, const Caller& by) {
+  std::lock_guard lock(m_);
+  const auto it = std::find_if(devices_.begin(), devices_.end(), [&](const auto& d) { return d.id == id; });
+  if (it == devices_.end()) return Revoke::NoSuchDevice;
+  const bool owner = by.installer || (!by.deviceId.empty() && by.deviceId == ownerIdLocked());
+  if (!owner && by.deviceId != id) return Revoke::NotAllowed;
+  // Forget it only once the store has: a revocation that a restart undoes
+  // would give the phone back its write access.
+  if (!store_->removeDevice(id)) return Revoke::NotSaved;
+  devices_.erase(it);
+  return Revoke::Revoked;
+}
+
+Pairing::RevokeAll Pairing::revokeAll(const Caller& by) {
+  std::lock_guard lock(m_);
+  RevokeAll r;
+  if (!by.installer && (by.deviceId.empty() || by.deviceId != ownerIdLocked())) {
+    r.result = Revoke::NotAllowed;
+    return r;
+  }
+  // Each device stays in memory until its row is gone, so memory and disk agree.
+  std::erase_if(devices_, [&](const PairedDevice& d) {
+    if (!store_->removeDevice(d.id)) {
+      r.result = Revoke::NotSaved;
+      return false;
+    }
+    ++r.revoked;
+    return true;
+  });
+  return r;
 }
 
 }  // namespace xr::web

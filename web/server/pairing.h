@@ -12,6 +12,11 @@
 // kLockout: a guesser on the marina Wi-Fi gets 5 tries in 1,000,000 per code
 // the owner makes.
 //
+// The owner (docs/security.md "Owner and devices"): the installer token and
+// the first device paired (the oldest still paired) may revoke any device;
+// any other device may revoke only itself. A revocation is durable or it is
+// refused: the in-memory list changes only after the store has saved it.
+//
 // Device tokens are 256 random bits; only their SHA-256 is kept (AuthStore,
 // the state database in the daemon), so a copy of the database does not give
 // write access, and revoking a device forgets its hash.
@@ -69,8 +74,12 @@ class MemoryAuthStore final : public AuthStore {
 
 class Pairing {
  public:
-  using Clock = std::function<std::int64_t()>;  // Unix ms; injectable for tests
-  explicit Pairing(std::shared_ptr<AuthStore> store, Clock now = {});
+  using Clock = std::function<std::int64_t()>;  // ms; injectable for tests
+  // wall: Unix ms, only for the dates shown (a device's "paired at").
+  // elapsed: a monotonic ms count for the rules about elapsed time (a code's
+  // lifetime, the lock-out), which a wall clock set by GPS or NTP must not
+  // stretch or cut (docs/security.md "The clock"). One clock given: both.
+  explicit Pairing(std::shared_ptr<AuthStore> store, Clock wall = {}, Clock elapsed = {});
 
   struct Code {
     std::string code;
@@ -80,7 +89,7 @@ class Pairing {
   Code newCode();
 
   struct Outcome {
-    enum Kind { Paired, WrongCode, LockedOut, NotSaved, Full } kind = WrongCode;
+    enum Kind { Paired, WrongCode, LockedOut, NotSaved, Full, NoWindow } kind = WrongCode;
     std::string token;              // Paired: the device's write token (shown once)
     PairedDevice device;            // Paired
     int triesLeft = 0;              // WrongCode
@@ -88,24 +97,61 @@ class Pairing {
   };
   Outcome pair(std::string_view code, std::string_view name);
 
+  // Pairing without a terminal (docs/security.md "Pairing without a
+  // terminal"): on a regulator that is new and has nothing paired, the first
+  // device pairs without a code for durationMs of elapsed time. The window
+  // closes at the first pairing and never opens while a device is paired.
+  void openFirstStartWindow(std::int64_t durationMs);
+  // A person on board proved presence (the ignition turned off-on-off-on):
+  // one device, paired or not before, may pair without a code for durationMs.
+  void openPresenceWindow(std::int64_t durationMs);
+  struct Window {
+    bool open = false;
+    std::int64_t closesInMs = 0;
+  };
+  Window window() const;
+  Outcome pairInWindow(std::string_view name);
+
   // True when token is one of the paired devices' tokens.
   bool isDeviceToken(std::string_view token) const;
   // The paired device that token belongs to (events name who changed what).
   std::optional<PairedDevice> deviceFor(std::string_view token) const;
   std::vector<PairedDevice> devices() const;
-  bool revoke(const std::string& id);
-  std::size_t revokeAll();
+  // Who asks for a revocation: the installer token, or a paired device.
+  struct Caller {
+    bool installer = false;
+    std::string deviceId;
+  };
+  enum class Revoke { Revoked, NoSuchDevice, NotAllowed, NotSaved };
+  Revoke revoke(const std::string& id, const Caller& by);
+  struct RevokeAll {
+    Revoke result = Revoke::Revoked;
+    std::size_t revoked = 0;  // saved and forgotten (also on NotSaved: the part that was)
+  };
+  // Owner only; every device, the owner's too (a lost phone: start again).
+  RevokeAll revokeAll(const Caller& by);
+  // The owner device's id: the oldest paired device; empty when none.
+  std::string ownerId() const;
+  bool isOwner(const Caller& c) const;
 
  private:
-  std::int64_t now() const;
+  std::int64_t now() const;      // wall
+  std::int64_t elapsed() const;  // monotonic
+  std::string ownerIdLocked() const;
+  bool windowOpenLocked(std::int64_t t) const {
+    return t < windowUntilMs_ && (!windowNeedsNoDevice_ || devices_.empty());
+  }
+  void addDeviceLocked(std::string_view name, std::int64_t wallNow, Outcome& out);
 
   std::shared_ptr<AuthStore> store_;
-  Clock clock_;
+  Clock clock_, elapsedClock_;
   mutable std::mutex m_;
-  std::string codeHash_;  // empty: no code in force
-  std::int64_t codeExpiresMs_ = 0;
+  std::string codeHash_;            // empty: no code in force
+  std::int64_t codeExpiresMs_ = 0;  // on the elapsed clock, like lockedUntilMs_
   int wrongTries_ = 0;
   std::int64_t lockedUntilMs_ = 0;
+  std::int64_t windowUntilMs_ = 0;   // elapsed clock; 0: never opened
+  bool windowNeedsNoDevice_ = true;  // the first-start window: only while nothing is paired
   std::vector<PairedDevice> devices_;
 };
 

@@ -146,5 +146,12 @@ std::uint16_t WebServer::port() const { return impl_->boundPort; }
 WebServerStats WebServer::stats() const { return impl_->snapshotStats(); }
 
 Pairing::Code WebServer::newPairingCode() { return impl_->handler.pairing().newCode(); }
+void WebServer::openFirstStartPairingWindow(std::int64_t durationMs) {
+  impl_->handler.pairing().openFirstStartWindow(durationMs);
+}
+void WebServer::openPresencePairingWindow(std::int64_t durationMs) {
+  impl_->handler.pairing().openPresenceWindow(durationMs);
+}
+bool WebServer::pairingWindowOpen() { return impl_->handler.pairing().window().open; }
 
 }  // namespace xr::web

@@ -97,6 +97,11 @@ class WebServer {
   WebServerStats stats() const;
   // A new single-use pairing code (pairing.h), e.g. for the journal at start.
   Pairing::Code newPairingCode();
+  // A new regulator with nothing paired: the first device pairs without a
+  // code for this long (pairing.h).
+  void openFirstStartPairingWindow(std::int64_t durationMs);
+  void openPresencePairingWindow(std::int64_t durationMs);
+  bool pairingWindowOpen();
 
   struct Impl;
 

@@ -22,6 +22,8 @@ export function guessDeviceName(ua = navigator.userAgent) {
 
 // The server's refusal in words the owner can act on.
 export function pairingError(status, body = {}) {
+  if (status === 403 && typeof body.tries_left !== "number")
+    return "The first 15 minutes for pairing without a code are over: enter a pairing code.";
   if (status === 403) {
     const n = body.tries_left;
     return "Wrong or expired code" + (typeof n === "number" ? ` — ${n} ${n === 1 ? "try" : "tries"} left for this code.` : ".") +
@@ -49,6 +51,17 @@ export function askPairing(why = "") {
   $("token-input").value = "";
   $("pair-name").value = (getDevice() && getDevice().name) || guessDeviceName();
   msg.textContent = "";
+  // A new regulator with nothing paired: no code needed for its first
+  // 15 minutes (docs/security.md "Pairing without a terminal").
+  let windowOpen = false;
+  $("pair-code").placeholder = "6 digits";
+  quietRequest("GET", "/api/pair/window").then((r) => {
+    if (!r.ok || !r.body.open) return;
+    windowOpen = true;
+    msg.className = "msg";
+    msg.textContent = `No code needed: this regulator is new and nothing is paired yet. Press Pair within ${Math.max(1, Math.floor(r.body.closes_in_s / 60))} min — this device becomes its owner.`;
+    $("pair-code").placeholder = "not needed now";
+  }).catch(() => {});
   return new Promise((resolve) => {
     let done = false;
     const finish = (token) => { if (done) return; done = true; form.removeEventListener("submit", onSubmit); resolve(token); };
@@ -71,6 +84,15 @@ export function askPairing(why = "") {
           return;
         }
         const code = $("pair-code").value.replace(/\D/g, "");
+        if (!code && windowOpen) {
+          msg.textContent = "Pairing…";
+          const r = await pair(null, $("pair-name").value.trim());
+          saveCredential(r.token, { id: r.id, name: r.name });
+          finish(r.token);
+          dlg.close("ok");
+          toast(`Paired as “${r.name}”, the owner`);
+          return;
+        }
         if (code.length !== 6) { msg.className = "msg bad"; msg.textContent = "Enter the 6 digits of the pairing code."; return; }
         msg.textContent = "Pairing…";
         const r = await pair(code, $("pair-name").value.trim());
@@ -116,7 +138,9 @@ export async function loadDevices() {
     return;
   }
   if (!r.ok) throw new Error(r.body.error || `paired devices: ${r.status}`);
-  const { devices } = r.body;
+  // The owner (the first paired device, or the installer's token) revokes
+  // anyone; another device only itself (docs/security.md "Owner and devices").
+  const { devices, you_are_owner: owner } = r.body;
   const me = getDevice();
   list.textContent = "";
   if (!devices.length) { const li = document.createElement("li"); li.textContent = "No paired devices."; list.appendChild(li); }
@@ -124,14 +148,18 @@ export async function loadDevices() {
     const li = document.createElement("li");
     li.dataset.id = d.id;
     const t = document.createElement("span");
-    t.textContent = `${d.name}${me && me.id === d.id ? " (this device)" : ""} · paired ${clock(d.created)}`;
-    const b = document.createElement("button");
-    b.textContent = "Revoke";
-    b.addEventListener("click", () => revoke(d).catch((e) => toast(e.message, true)));
-    li.append(t, b);
+    const mine = d.this_device || (me && me.id === d.id);
+    t.textContent = `${d.name}${d.owner ? " (owner)" : ""}${mine ? " (this device)" : ""} · paired ${clock(d.created)}`;
+    li.append(t);
+    if (owner || mine) {
+      const b = document.createElement("button");
+      b.textContent = "Revoke";
+      b.addEventListener("click", () => revoke(d).catch((e) => toast(e.message, true)));
+      li.append(b);
+    }
     list.appendChild(li);
   }
-  $("pair-revoke-all").disabled = !devices.length;
+  $("pair-revoke-all").disabled = !devices.length || !owner;
 }
 
 async function revoke(d) {
