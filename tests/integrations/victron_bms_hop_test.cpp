@@ -113,18 +113,18 @@ TEST_F(HopTest, TheLimiterFollowsThenFallsBackAtBmsStaleS) {
   EventBatch ev;
   controlClockAt(100.0);
   hop(fresh(40, 1));
-  lim.update(h.bms.load(), fromSec(100.0), 60.0, p, ev);
+  lim.update(h.bms.load(), fromSec(100.0), 60.0, kNoValue, p, ev);
   EXPECT_DOUBLE_EQ(lim.batteryCapA(), 40.0);
   EXPECT_FALSE(lim.stale());
-  lim.update(h.bms.load(), fromSec(105.0), 40.0, p, ev);  // at the threshold: still fresh
+  lim.update(h.bms.load(), fromSec(105.0), 40.0, kNoValue, p, ev);  // at the threshold: still fresh
   EXPECT_FALSE(lim.stale());
   EXPECT_DOUBLE_EQ(lim.batteryCapA(), 40.0);
-  lim.update(h.bms.load(), fromSec(105.01), 40.0, p, ev);  // just past it
+  lim.update(h.bms.load(), fromSec(105.01), 40.0, kNoValue, p, ev);  // just past it
   EXPECT_TRUE(lim.stale());
   EXPECT_DOUBLE_EQ(lim.batteryCapA(), 10.0);
   controlClockAt(106.0);
   hop(fresh(40, 2));  // the GX answers again
-  lim.update(h.bms.load(), fromSec(106.0), 10.0, p, ev);
+  lim.update(h.bms.load(), fromSec(106.0), 10.0, kNoValue, p, ev);
   EXPECT_FALSE(lim.stale());
   EXPECT_DOUBLE_EQ(lim.batteryCapA(), 40.0);
 }
