@@ -9,41 +9,24 @@
 
 #include "control/charging_stage.h"
 #include "reg_rig.h"
+#include "stage_rig.h"
 
 namespace xr {
 namespace {
 
 // A LiFePO4-like bank of 200 Ah that has just finished its absorption.
-struct RestRig {
-  Params p;
-  ChargingStageMachine m;
-  StageInputs in;
+struct RestRig : test::StageRig {
   RestRig() {
     p.BulkVoltage = p.AbsorptionVoltage = 14.2;
-    p.FloatVoltage = 13.5;
-    p.RebulkVoltage = 12.9;
     p.UseFloat = 0;
     p.IdleZeroCurrent = 1;
     p.RebulkDischarge_percent = 10.0;  // 20 Ah of 200 Ah
     p.BatteryCapacity_Ah = 200.0;
-    in.now = fromSec(1000.0);
     in.v = 14.2;
-    in.Bcur = 40.0;
-    in.uTargetAmps = 50.0;
-    m.resetToBulk(in.now);
     run(p.bulkVoltageHoldMs / 1000.0 + 0.2);
     in.Bcur = 1.0;  // the tail
     run(p.absorptionCompleteTime / 1000.0 + 0.2);
     in.v = 13.35;
-  }
-  bool run(double seconds) {
-    bool changed = false;
-    const long n = std::lround(seconds / 0.1);
-    for (long i = 0; i < n; ++i) {
-      in.now += fromMs(100);
-      changed |= m.updateChargingStage(in, p);
-    }
-    return changed;
   }
 };
 
