@@ -37,7 +37,8 @@ export async function pairAtFirstChange({ page, server, args, stateDir, token, d
 // which pairs with it; revoking it (asks first) ends its access.
 export async function pairedDevices({ page, server, send, shot }) {
   await page.goto(server.base + "/#system");
-  await page.waitForSelector('#pair-list li:has-text("Skipper\'s phone (this device)")');
+  // The first device paired is the owner (docs/security.md "Owner and devices").
+  await page.waitForSelector('#pair-list li:has-text("Skipper\'s phone (owner) (this device)")');
   assert.match(await page.textContent("#pair-this"), /paired as “Skipper's phone”/);
   assert.equal(await page.isVisible("#pair-start"), false);  // no "Pair this device" once paired
   await page.click("#pair-code-new");
