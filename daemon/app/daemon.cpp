@@ -88,14 +88,8 @@ int Daemon::run() {
   std::optional<BatteryLedger> restored;
   std::unique_ptr<StateLock> stateLock;  // held until exit (store/state_lock.h)
   if (!dbPath.empty()) {
-    stateLock = std::make_unique<StateLock>(dbPath);
-    if (stateLock->result() == StateLock::Result::HeldByOther) {
-      // Before any output is driven: the field was never enabled by us.
-      spdlog::critical("store: {}", stateLock->message());
-      std::fprintf(stderr, "xregulatord: %s\n", stateLock->message().c_str());
-      return kExitTempFail;
-    }
-    if (stateLock->result() == StateLock::Result::NoLockFile) spdlog::warn("store: {}", stateLock->message());
+    stateLock = lockStateDatabase(dbPath);
+    if (!stateLock) return kExitTempFail;  // before any output is driven: the field was never enabled by us
     store = std::make_unique<StoreService>(dbPath, settings.store.checkpoint_interval_s);
     const OpenResult& o = store->openResult();
     if (const char* code = StoreService::alarmCode(o))
@@ -253,13 +247,7 @@ int Daemon::run() {
       server->start();
       startPairing(*server, store.get());
       spdlog::info("dashboard at http://{}:{}/ (www root '{}')", opts.listen, server->port(), opts.www_root);
-      // Said plainly: "--http :8104" or "0.0.0.0" opens the API to every
-      // network the boat is on (docs/security.md).
-      if (isEveryInterface(opts.listen))
-        spdlog::warn(
-            "the web server listens on EVERY network interface ({}:{}): reads are open to the boat's "
-            "network, writes need a paired phone or the token",
-            opts.listen, server->port());
+      logEveryInterface(opts.listen, server->port());
       logTokenHint(settings.web.token.empty(), store != nullptr, opts.token,
                    cli_.stateDb.value_or(settings.store.path));
       if (cli_.config)
@@ -285,11 +273,8 @@ int Daemon::run() {
     loopCfg.duration = fromSec(scenario->duration_s);
   loopCfg.wallDeadlineOf = wallDeadlineOf;
   loopCfg.wall = wall;
-  // The thread's CPU clock is a system call on every read (no vDSO), two per
-  // tick. Where deadlines are real (the board, a paced simulation) it tells
-  // whose an overrun is and costs nothing that matters at 400 Hz; at
-  // --speed max there are no deadlines to miss, and reading it was 40 % of
-  // the simulator's time (docs/performance.md "Simulator speed").
+  // Real deadlines only: its reads are system calls, no overrun can happen at
+  // --speed max (docs/performance.md "Simulator speed").
   if (!cli_.sim || cli_.speed > 0.0) loopCfg.cpuTime = [] { return rt::threadCpuTime(); };
   rt::ControlLoop loop(cycle, *loopClock, stats, loopCfg);
 

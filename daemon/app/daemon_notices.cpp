@@ -23,6 +23,26 @@ void logLoopStats(const rt::LoopStatsSummary& s, const rt::RuntimeHealth& h) {
       s.inaSampleRateHz, h.sensorReadErrors, h.outputWriteErrors, h.eventsDropped);
 }
 
+void logEveryInterface(const std::string& listen, unsigned port) {
+  if (!isEveryInterface(listen)) return;
+  spdlog::warn(
+      "the web server listens on EVERY network interface ({}:{}): reads are open to the boat's network, "
+      "writes "
+      "need a paired phone or the token",
+      listen, port);
+}
+
+std::unique_ptr<StateLock> lockStateDatabase(const std::string& dbPath) {
+  auto lock = std::make_unique<StateLock>(dbPath);
+  if (lock->result() == StateLock::Result::HeldByOther) {
+    spdlog::critical("store: {}", lock->message());
+    std::fprintf(stderr, "xregulatord: %s\n", lock->message().c_str());
+    return nullptr;
+  }
+  if (lock->result() == StateLock::Result::NoLockFile) spdlog::warn("store: {}", lock->message());
+  return lock;
+}
+
 void logPairingCode(const web::Pairing::Code& code) {
   spdlog::info(
       "pairing code {} (single use, valid {} min): enter it on the dashboard to let a phone change "

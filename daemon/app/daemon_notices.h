@@ -1,15 +1,23 @@
 #pragma once
 // What the daemon tells the journal at start and stop, apart from its main
 // sequence in daemon.cpp: the control loop's figures and the API token hint.
+#include <memory>
 #include <string>
 
 #include "runtime/handoffs.h"
 #include "runtime/loop_stats.h"
+#include "store/state_lock.h"
 #include "web/server/pairing.h"
 
 namespace xr::app {
 
 void logLoopStats(const rt::LoopStatsSummary& s, const rt::RuntimeHealth& h);
+// Said plainly: "--http :8104" or "0.0.0.0" opens the API to every network
+// the boat is on (docs/security.md). Nothing for a single address.
+void logEveryInterface(const std::string& listen, unsigned port);
+// One daemon per state database (store/state_lock.h): the lock, or nullptr
+// with the reason in the journal and on stderr when another daemon holds it.
+std::unique_ptr<StateLock> lockStateDatabase(const std::string& dbPath);
 // The start-up pairing code: the journal is where the owner (root, adm or
 // systemd-journal) finds it; it is short-lived and single use (pairing.h).
 void logPairingCode(const web::Pairing::Code& code);
