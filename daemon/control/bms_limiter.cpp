@@ -115,11 +115,12 @@ double BmsLimiter::cellsInSeries(const BmsLimits& b, double packV, const Params&
 // the ceiling has risen kCellReleaseV above the pack: nothing holds it then
 // (docs/integrations.md "Cell voltages").
 void BmsLimiter::updateCellCeiling(const BmsLimits& b, double packV, double dt, const Params& p) {
-  if (p.BmsCellHighV <= 0.0 || !std::isfinite(b.cellMaxV) || b.cellMaxV <= 0.0 || !std::isfinite(packV)) {
+  if (p.BmsCellHighV <= 0.0 || !std::isfinite(b.cellMaxV) || b.cellMaxV <= 0.0) {
     cellCeiling_ = kNone;
     cellHigh_ = false;
     return;
   }
+  if (!std::isfinite(packV)) return;               // a tick without IBV: the ceiling holds where it was
   const double err = p.BmsCellHighV - b.cellMaxV;  // > 0: the cell is under its limit
   if (cellCeiling_ == kNone) {
     if (err > 0.0) return;

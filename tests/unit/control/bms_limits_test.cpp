@@ -201,6 +201,11 @@ TEST(BmsLimiter, HighCellHoldsAPackCeilingFromBmsCellHighV) {
   b.cellMaxV = 3.590;  // under: it rises again, 2 mV/s
   l.update(b, fromSec(3) + fromMs(100), 40, 13.9, p, ev);
   EXPECT_NEAR(l.cvlCeilingV(), 13.9 - 0.004 + 0.002, 1e-9);
+  // A tick without a pack voltage: the ceiling holds, it is not dropped.
+  const double held = l.cvlCeilingV();
+  l.update(b, fromSec(3) + fromMs(200), 40, kNoPackV, p, ev);
+  EXPECT_TRUE(l.cellHigh());
+  EXPECT_DOUBLE_EQ(l.cvlCeilingV(), held);
   // Far over for long: the ceiling never goes more than 0.3 V under the pack.
   b.cellMaxV = 3.9;
   b.stamp = fromSec(60);  // the BMS keeps talking
