@@ -78,6 +78,8 @@ soak: build
 dashboard-screenshots: build
 	node tests/web/browser/dashboard.mjs --mode daemon --web-dir web --server $(BUILD)/daemon/app/xregulatord \
 	  --www $(BUILD)/web/www --artifacts $(BUILD)/test-artifacts/web --docs-dir docs/img
+	node tests/web/browser/weather_panel.mjs --web-dir web --server $(BUILD)/daemon/app/xregulatord \
+	  --www $(BUILD)/web/www --root . --docs-dir docs/img
 
 # make bench measures its own optimised tree (Release, LTO, profile-guided,
 # for this machine's CPU: tests/bench/build-pgo.sh) so the figures are what the

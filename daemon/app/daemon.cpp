@@ -53,7 +53,7 @@ double wallSecondsNow() { return static_cast<double>(unixMsNow()) / 1000.0; }
 }  // namespace
 
 int Daemon::run() {
-  const Settings& settings = config_.settings;
+  Settings settings = config_.settings;  // a scenario's [weather] may add to it
   const auto kernel = rt::detectPreemptRt();
   spdlog::info("xregulatord {} starting ({}), kernel {}: PREEMPT_RT {} ({})", XR_VERSION_STRING,
                cli_.sim ? "simulation" : "board", kernel.release, kernel.preemptRt ? "yes" : "no",
@@ -70,6 +70,7 @@ int Daemon::run() {
       scenario = cli_.scenario ? sim::loadScenario(*cli_.scenario) : sim::defaultScenario();
       sim::applyOverrides(fileParams, scenario->config, scenario->source);
       for (const auto& c : scenario->config) origins.file.insert(c.name);
+      applyScenarioWeather(*scenario, settings.integrations.weather);
     } catch (const std::exception& e) {
       // A bad scenario is bad input on the command line (issue 20: exit 64,
       // EX_USAGE), not a bad configuration file (78).

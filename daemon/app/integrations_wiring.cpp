@@ -68,6 +68,7 @@ std::function<std::vector<web::IntegrationState>()> integrationsView(
       w.values_refused = s.values_refused;
       w.outages = s.outages;
       w.values = s.values;
+      w.texts = s.texts;
       out.push_back(std::move(w));
     }
     return out;

@@ -21,6 +21,16 @@ sim::SimRigOptions rigOptions(const CliOptions& cli, std::ostream* canLog) {
 }
 }  // namespace
 
+void applyScenarioWeather(const sim::Scenario& scenario, WeatherSettings& weather) {
+  if (!scenario.weather) return;
+  const sim::ScenarioWeather& w = *scenario.weather;
+  weather.enabled = true;
+  weather.url = w.url;
+  if (w.latitude) weather.latitude = *w.latitude;
+  if (w.longitude) weather.longitude = *w.longitude;
+  if (w.refresh_min) weather.refresh_min = *w.refresh_min;
+}
+
 SimWiring::SimWiring(const sim::Scenario& scenario, const Settings& settings, const CliOptions& cli,
                      std::unique_ptr<std::ofstream> canLog)
     : cli_(cli), canLog_(std::move(canLog)), rig_(scenario, settings, rigOptions(cli, canLog_.get())) {

@@ -18,6 +18,10 @@
 
 namespace xr::app {
 
+// A scenario's [weather] turns the forecast client on in --sim, with its
+// url and, when given, its position and refresh (docs/simulator.md).
+void applyScenarioWeather(const sim::Scenario& scenario, WeatherSettings& weather);
+
 class SimWiring final : public rt::TickHook {
  public:
   // Throws std::runtime_error (with a clear message) on setup errors.

@@ -28,4 +28,20 @@ inline void putU32(std::span<std::uint8_t> d, std::size_t at, std::uint32_t v) {
   putU16(d, at + 2, static_cast<std::uint16_t>(v >> 16));
 }
 
+inline std::int32_t getS32(std::span<const std::uint8_t> d, std::size_t at) {
+  return static_cast<std::int32_t>(getU32(d, at));
+}
+inline void putS32(std::span<std::uint8_t> d, std::size_t at, std::int32_t v) {
+  putU32(d, at, static_cast<std::uint32_t>(v));
+}
+inline std::int64_t getS64(std::span<const std::uint8_t> d, std::size_t at) {
+  return static_cast<std::int64_t>(static_cast<std::uint64_t>(getU32(d, at)) |
+                                   (static_cast<std::uint64_t>(getU32(d, at + 4)) << 32));
+}
+inline void putS64(std::span<std::uint8_t> d, std::size_t at, std::int64_t v) {
+  const auto u = static_cast<std::uint64_t>(v);
+  putU32(d, at, static_cast<std::uint32_t>(u & 0xFFFFFFFFu));
+  putU32(d, at + 4, static_cast<std::uint32_t>(u >> 32));
+}
+
 }  // namespace xr::can

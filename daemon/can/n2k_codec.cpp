@@ -14,15 +14,6 @@ constexpr std::uint16_t kNa16 = 0xFFFF;
 
 bool isPdu1(std::uint32_t pgn) { return ((pgn >> 8) & 0xFF) < 240; }
 
-N2kMessage message(std::uint32_t pgn, std::uint8_t priority, std::uint8_t source, std::size_t len) {
-  N2kMessage m;
-  m.id.pgn = pgn;
-  m.id.priority = priority;
-  m.id.source = source;
-  m.data.assign(len, kNa8);
-  return m;
-}
-
 std::uint16_t u16Of(double v, double scale) {
   if (!std::isfinite(v)) return kNa16;
   return static_cast<std::uint16_t>(std::clamp(std::lround(v / scale), 0L, 0xFFFDL));
@@ -36,6 +27,15 @@ void putText(std::vector<std::uint8_t>& d, std::size_t at, std::size_t width, st
 }
 
 }  // namespace
+
+N2kMessage blankMessage(std::uint32_t pgn, std::uint8_t priority, std::uint8_t source, std::size_t len) {
+  N2kMessage m;
+  m.id.pgn = pgn;
+  m.id.priority = priority;
+  m.id.source = source;
+  m.data.assign(len, kNa8);
+  return m;
+}
 
 std::uint32_t encodeN2kId(const N2kId& id) {
   std::uint32_t pgn = id.pgn & 0x3FFFF;
@@ -147,14 +147,14 @@ N2kName decodeName(std::uint64_t v) {
 }
 
 N2kMessage addressClaim(std::uint8_t source, const N2kName& name) {
-  N2kMessage m = message(60928, 6, source, 8);
+  N2kMessage m = blankMessage(60928, 6, source, 8);
   const std::uint64_t v = encodeName(name);
   for (int i = 0; i < 8; ++i) m.data[i] = static_cast<std::uint8_t>(v >> (8 * i));
   return m;
 }
 
 N2kMessage heartbeat(std::uint8_t source, double intervalS, std::uint8_t sequence) {
-  N2kMessage m = message(126993, 7, source, 8);
+  N2kMessage m = blankMessage(126993, 7, source, 8);
   putU16(m.data, 0, u16Of(intervalS, 0.01));
   m.data[2] = sequence;
   m.data[3] = 0xF0;  // controller 1/2 states 0 (error active), equipment status 0 (operational)
@@ -163,7 +163,7 @@ N2kMessage heartbeat(std::uint8_t source, double intervalS, std::uint8_t sequenc
 
 N2kMessage productInformation(std::uint8_t source, std::uint16_t productCode, std::string_view model,
                               std::string_view software, std::string_view version, std::string_view serial) {
-  N2kMessage m = message(126996, 6, source, 134);
+  N2kMessage m = blankMessage(126996, 6, source, 134);
   putU16(m.data, 0, 2100);  // NMEA 2000 database version 2.100
   putU16(m.data, 2, productCode);
   putText(m.data, 4, 32, model);
@@ -177,7 +177,7 @@ N2kMessage productInformation(std::uint8_t source, std::uint16_t productCode, st
 
 N2kMessage dcDetailedStatus(std::uint8_t source, std::uint8_t sid, std::uint8_t instance, N2kDcType type,
                             double socPct, double sohPct) {
-  N2kMessage m = message(127506, 6, source, 11);
+  N2kMessage m = blankMessage(127506, 6, source, 11);
   m.data[0] = sid;
   m.data[1] = instance;
   m.data[2] = static_cast<std::uint8_t>(type);
@@ -191,7 +191,7 @@ N2kMessage dcDetailedStatus(std::uint8_t source, std::uint8_t sid, std::uint8_t 
 
 N2kMessage batteryStatus(std::uint8_t source, std::uint8_t instance, double voltageV, double currentA,
                          double tempC, std::uint8_t sid) {
-  N2kMessage m = message(127508, 6, source, 8);
+  N2kMessage m = blankMessage(127508, 6, source, 8);
   m.data[0] = instance;
   putS16(m.data, 1, s16Of(voltageV, 0.01));
   putS16(m.data, 3, s16Of(currentA, 0.1));
@@ -202,7 +202,7 @@ N2kMessage batteryStatus(std::uint8_t source, std::uint8_t instance, double volt
 
 N2kMessage converterStatus(std::uint8_t source, std::uint8_t sid, std::uint8_t connection,
                            N2kConverterState s) {
-  N2kMessage m = message(127750, 6, source, 8);
+  N2kMessage m = blankMessage(127750, 6, source, 8);
   m.data[0] = sid;
   m.data[1] = connection;
   m.data[2] = static_cast<std::uint8_t>(s);
@@ -212,7 +212,7 @@ N2kMessage converterStatus(std::uint8_t source, std::uint8_t sid, std::uint8_t c
 
 N2kMessage dcVoltageCurrent(std::uint8_t source, std::uint8_t sid, std::uint8_t connection, double voltageV,
                             double currentA) {
-  N2kMessage m = message(127751, 6, source, 8);
+  N2kMessage m = blankMessage(127751, 6, source, 8);
   m.data[0] = sid;
   m.data[1] = connection;
   putU16(m.data, 2, u16Of(voltageV, 0.1));
@@ -241,7 +241,7 @@ std::optional<EngineSpeed> decodeEngineSpeed(const N2kMessage& m) {
 }
 
 N2kMessage engineRapid(std::uint8_t source, std::uint8_t instance, double rpm) {
-  N2kMessage m = message(127488, 2, source, 8);
+  N2kMessage m = blankMessage(127488, 2, source, 8);
   m.data[0] = instance;
   putU16(m.data, 1, u16Of(rpm, 0.25));
   return m;

@@ -44,6 +44,9 @@ struct N2kMessage {
   std::vector<std::uint8_t> data;
 };
 
+// A message of `len` bytes, every one 0xFF ("not available"), to fill in.
+N2kMessage blankMessage(std::uint32_t pgn, std::uint8_t priority, std::uint8_t source, std::size_t len);
+
 // Frames of one message: a single frame up to 8 bytes, else fast packet
 // (frame 0: sequence/counter, total length, 6 bytes; then 7 a frame).
 // `sequence` (0..7) tells consecutive fast-packet messages of one PGN apart.

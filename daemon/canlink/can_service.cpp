@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include "can/n2k_position.h"
+
 namespace xr::canlink {
 
 namespace {
@@ -84,6 +86,8 @@ void CanService::poll(TimeNs now) {
       // instance 0 (the single or port engine).
       n2kNode_->onMessage([this](const can::N2kMessage& m, TimeNs at) {
         if (auto s = can::decodeEngineSpeed(m); s && s->instance == 0) h_.engineRpm.store({s->rpm, at});
+        // The position, for the weather forecast; any GNSS on the bus.
+        if (auto p = can::decodePosition(m)) h_.n2kPosition.store({p->latitudeDeg, p->longitudeDeg, at});
       });
     }
     if (bus && n2kNode_) {

@@ -8,7 +8,7 @@ namespace {
 
 // Fast-packet PGNs we reassemble on receipt (none we act on today beyond
 // single frames, but a claim or request may follow one on the bus).
-constexpr std::uint32_t kFastPgns[] = {126996, 127506};
+constexpr std::uint32_t kFastPgns[] = {126996, 127506, 129029};
 
 // Our NAME: marine industry group, device class 35 "Electrical Generation",
 // function 141 "DC Generator/Alternator" (canboat's DEVICE_CLASS and

@@ -26,7 +26,8 @@ struct IntegrationStatus {
   std::uint64_t values_refused = 0;    // bad input from the server (string, NaN, absurd)
   std::uint64_t outages = 0;           // connections lost or never made
   std::uint64_t connect_attempts = 0;
-  std::map<std::string, double> values;  // what the integration reads (Victron limits); NaN = none
+  std::map<std::string, double> values;      // what the integration reads (Victron limits); NaN = none
+  std::map<std::string, std::string> texts;  // what it reads that is a word (the forecast's position source)
 };
 
 class IntegrationHealth {

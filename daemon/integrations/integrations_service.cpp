@@ -15,13 +15,16 @@ IntegrationsService::IntegrationsService(const IntegrationsSettings& s, rt::Hand
     : settings_(s) {
   if (s.mqtt.enabled) ha_ = std::make_unique<HomeAssistantBridge>(io_, s.mqtt, handoffs, commands, version);
   if (s.signalk.enabled)
-    signalk_ = std::make_unique<SignalKClient>(io_, s.signalk, handoffs, std::move(tokens));
+    signalk_ = std::make_unique<SignalKClient>(io_, s.signalk, handoffs, std::move(tokens),
+                                               s.weather.enabled ? &signalkPosition_ : nullptr);
   if (s.victron.enabled) {
     // One staleness limit for every BMS source: the BmsStaleS parameter.
     victron_ = std::make_unique<VictronGxBridge>(io_, s.victron, std::move(bmsLimits),
                                                  [&handoffs] { return handoffs.acceptedParams().BmsStaleS; });
   }
-  if (s.weather.enabled) weather_ = std::make_unique<WeatherClient>(io_, s.weather, handoffs, commands);
+  if (s.weather.enabled)
+    weather_ = std::make_unique<WeatherClient>(io_, s.weather, handoffs, commands,
+                                               signalk_ ? &signalkPosition_ : nullptr);
 }
 
 IntegrationsService::~IntegrationsService() { stop(); }

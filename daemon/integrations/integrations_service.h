@@ -36,6 +36,7 @@ class IntegrationsService {
  private:
   IntegrationsSettings settings_;
   boost::asio::io_context io_;
+  SignalKPosition signalkPosition_;  // navigation.position, for the forecast
   std::unique_ptr<HomeAssistantBridge> ha_;
   std::unique_ptr<SignalKClient> signalk_;
   std::unique_ptr<VictronGxBridge> victron_;

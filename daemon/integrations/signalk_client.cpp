@@ -39,6 +39,12 @@ constexpr auto kAccessPollPeriod = 2s;    // while an access request waits for a
 constexpr auto kAccessWaitLimit = 10min;  // then a new request
 const std::string kTokenKey = "signalk_token";
 const std::string kClientIdKey = "signalk_client_id";
+// The boat's own position, at most once a minute: the forecast needs no more
+// (Signal K subscription protocol: "instant" with minPeriod in ms sends the
+// current value at once, then a change at most once a period).
+constexpr const char* kPositionSubscription =
+    R"({"context":"vessels.self","subscribe":[{"path":"navigation.position","policy":"instant",)"
+    R"("minPeriod":60000}]})";
 
 // The server refused us for want of a token (upgrade refused, or a delta
 // answered with 401/403).
@@ -122,8 +128,13 @@ std::optional<WsUrl> parseWsUrl(const std::string& url) {
 }
 
 SignalKClient::SignalKClient(asio::io_context& io, const SignalKSettings& s, const rt::Handoffs& handoffs,
-                             TokenStore tokens)
-    : io_(io), settings_(s), handoffs_(handoffs), tokens_(std::move(tokens)), health_("signalk") {
+                             TokenStore tokens, SignalKPosition* position)
+    : io_(io),
+      settings_(s),
+      handoffs_(handoffs),
+      tokens_(std::move(tokens)),
+      position_(position),
+      health_("signalk") {
   auto u = parseWsUrl(s.url);
   if (!u) throw std::runtime_error("signalk: url '" + s.url + "' is not ws://host:port/path");
   url_ = *u;
@@ -159,7 +170,8 @@ asio::awaitable<void> SignalKClient::run() {
       } catch (const std::exception& e) {
         accessError = e.what();
       }
-      if (!again) health_.failed(needsToken + (accessError.empty() ? "" : "; access request: " + accessError));
+      if (!again)
+        health_.failed(needsToken + (accessError.empty() ? "" : "; access request: " + accessError));
     }
     if (stopping_) break;
     if (again) continue;
@@ -218,6 +230,10 @@ asio::awaitable<void> SignalKClient::session() {
       asio::buffer(signalKMetaDelta(signalKMeta(settings_.alternator_id, settings_.battery_id))),
       use_awaitable);
   health_.sent();
+  if (position_) {
+    co_await ws.async_write(asio::buffer(std::string_view(kPositionSubscription)), use_awaitable);
+    health_.sent();
+  }
 
   auto reader = [&]() -> asio::awaitable<void> {
     for (;;) {
@@ -232,6 +248,9 @@ asio::awaitable<void> SignalKClient::session() {
         if (code.is_int64() && (code.as_int64() == 401 || code.as_int64() == 403))
           throw NeedsToken("server refused a delta: HTTP " + std::to_string(code.as_int64()));
       }
+      if (!pec && position_)
+        if (auto p = positionFromSignalKDelta(v))
+          position_->post(p->latitudeDeg, p->longitudeDeg, std::chrono::steady_clock::now());
     }
   };
   auto writer = [&]() -> asio::awaitable<void> {

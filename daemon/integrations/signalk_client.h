@@ -4,7 +4,8 @@
 // /signalk/v1/stream?subscribe=none.
 //
 //   - meta (units, display names) once per connection, then values at
-//     rate_hz; a change of charging mode, stage or regulator mode goes at once;
+//     rate_hz; it subscribes to navigation.position (once a minute) for the
+//     weather forecast; a change of charging mode, stage or regulator mode goes at once;
 //   - newest wins: one delta is written at a time, built from the newest
 //     snapshot when the socket is free; nothing queues behind a slow server;
 //   - reconnect with exponential backoff, one log line per outage;
@@ -19,6 +20,7 @@
 
 #include "config/settings.h"
 #include "integrations/backoff.h"
+#include "integrations/boat_position.h"
 #include "integrations/integration_health.h"
 #include "runtime/handoffs.h"
 
@@ -38,8 +40,10 @@ std::optional<WsUrl> parseWsUrl(const std::string& url);
 
 class SignalKClient {
  public:
+  // `position`, when given, receives navigation.position from the server
+  // (the weather forecast's position; docs/integrations.md "Weather").
   SignalKClient(boost::asio::io_context& io, const SignalKSettings& s, const rt::Handoffs& handoffs,
-                TokenStore tokens);
+                TokenStore tokens, SignalKPosition* position = nullptr);
   void start();
   void stop();
   IntegrationStatus status() const { return health_.status(); }
@@ -53,6 +57,7 @@ class SignalKClient {
   SignalKSettings settings_;
   const rt::Handoffs& handoffs_;
   TokenStore tokens_;
+  SignalKPosition* position_;
   WsUrl url_;
   IntegrationHealth health_;
   Backoff backoff_;

@@ -22,7 +22,8 @@ using tcp = asio::ip::tcp;
 using namespace std::chrono_literals;
 
 namespace {
-constexpr auto kIoTimeout = 10s;  // the whole request: connect, write, read
+constexpr auto kIoTimeout = 10s;      // the whole request: connect, write, read
+constexpr auto kPositionCheck = 10s;  // between refreshes: did a position appear, did the boat move?
 constexpr const char* kSource = "weather forecast";
 }  // namespace
 
@@ -50,11 +51,12 @@ std::string forecastTarget(const std::string& path, double latitude, double long
 }
 
 WeatherClient::WeatherClient(asio::io_context& io, const WeatherSettings& s, const rt::Handoffs& handoffs,
-                             CommandSink commands)
+                             CommandSink commands, const SignalKPosition* signalk)
     : io_(io),
       settings_(s),
       handoffs_(handoffs),
       commands_(std::move(commands)),
+      signalk_(signalk),
       health_("weather"),
       backoff_(std::chrono::milliseconds(30s), std::chrono::minutes(s.refresh_min)) {
   auto u = parseHttpUrl(s.url);
@@ -67,17 +69,19 @@ void WeatherClient::start() { asio::co_spawn(io_, run(), asio::detached); }
 void WeatherClient::stop() { stopping_ = true; }
 
 asio::awaitable<void> WeatherClient::run() {
-  asio::steady_timer wait(co_await asio::this_coro::executor);
-  // (0, 0) is the unset default, not a position: a forecast for the Gulf
-  // of Guinea would rest the alternator of a boat in the Baltic.
-  const bool havePosition = settings_.latitude != 0.0 || settings_.longitude != 0.0;
+  // With no position in the file, give the boat's GPS a moment to be heard
+  // before saying there is none (it speaks every second or faster).
+  if (!currentPosition()) co_await waitForNextRefresh(kPositionCheck);
   while (!stopping_) {
     health_.attempt();
     std::chrono::steady_clock::duration next = std::chrono::minutes(settings_.refresh_min);
     std::string error;
+    asked_ = currentPosition();
     try {
-      if (!havePosition) throw std::runtime_error("no position (set latitude and longitude)");
-      const std::string body = co_await fetch();
+      if (!asked_)
+        throw std::runtime_error(
+            "no position (set latitude and longitude, or a GPS on NMEA 2000 or Signal K)");
+      const std::string body = co_await fetch(*asked_);
       auto parsed = parseOpenMeteoDaily(body);
       if (!parsed.forecast) throw std::runtime_error("answer refused: " + parsed.error);
       forecast_ = parsed.forecast;
@@ -101,21 +105,47 @@ asio::awaitable<void> WeatherClient::run() {
                                                        : "weather mode off, charging as usual",
                                  s));
     }
-    wait.expires_after(next);
-    beast::error_code ec;
-    co_await wait.async_wait(asio::redirect_error(use_awaitable, ec));
+    co_await waitForNextRefresh(next);
   }
 }
 
-asio::awaitable<std::string> WeatherClient::fetch() {
+// Until the next refresh, or sooner when a position appears or the boat
+// moved out of the forecast's cell (boat_position.h needsNewForecast).
+asio::awaitable<void> WeatherClient::waitForNextRefresh(std::chrono::steady_clock::duration next) {
+  asio::steady_timer wait(co_await asio::this_coro::executor);
+  const auto due = std::chrono::steady_clock::now() + next;
+  while (!stopping_) {
+    const auto left = due - std::chrono::steady_clock::now();
+    if (left <= std::chrono::steady_clock::duration::zero()) break;
+    wait.expires_after(std::min<std::chrono::steady_clock::duration>(left, kPositionCheck));
+    beast::error_code ec;
+    co_await wait.async_wait(asio::redirect_error(use_awaitable, ec));
+    if (needsNewForecast(asked_, currentPosition())) break;
+  }
+}
+
+std::optional<ChosenPosition> WeatherClient::currentPosition() const {
+  std::vector<PositionReport> boat;
+  const rt::PositionHandoff n2k = handoffs_.n2kPosition.load();
+  if (n2k.stamp != 0) {
+    // Stamped on the CAN service's clock: its age is on the same clock.
+    const TimeNs canNow = handoffs_.canStatus.load().now;
+    boat.push_back({"nmea2000", n2k.latitudeDeg, n2k.longitudeDeg, toSec(canNow - n2k.stamp)});
+  }
+  if (signalk_)
+    if (auto r = signalk_->report(std::chrono::steady_clock::now())) boat.push_back(*r);
+  return choosePosition(boat, settings_.latitude, settings_.longitude);
+}
+
+asio::awaitable<std::string> WeatherClient::fetch(const ChosenPosition& at) {
   auto ex = co_await asio::this_coro::executor;
   tcp::resolver resolver(ex);
   const auto hosts = co_await resolver.async_resolve(url_.host, url_.port, use_awaitable);
   beast::tcp_stream stream(ex);
   stream.expires_after(kIoTimeout);  // one deadline for connect, write and read
   co_await stream.async_connect(hosts, use_awaitable);
-  http::request<http::empty_body> req{
-      http::verb::get, forecastTarget(url_.target, settings_.latitude, settings_.longitude), 11};
+  http::request<http::empty_body> req{http::verb::get,
+                                      forecastTarget(url_.target, at.latitudeDeg, at.longitudeDeg), 11};
   req.set(http::field::host, url_.host + ":" + url_.port);
   req.set(http::field::user_agent, "xregulatord");
   req.set(http::field::accept, "application/json");
@@ -171,16 +201,18 @@ void WeatherClient::publish(const WeatherDecision& d, double ageS) {
   v["sunny_days"] = d.sunnyDays;
   v["uv_threshold"] = handoffs_.acceptedParams().UVThresholdHigh;
   v["age_s"] = forecast_ ? ageS : std::nan("");
-  v["latitude"] = settings_.latitude;
-  v["longitude"] = settings_.longitude;
+  v["latitude"] = asked_ ? asked_->latitudeDeg : std::nan("");
+  v["longitude"] = asked_ ? asked_->longitudeDeg : std::nan("");
   std::lock_guard lock(m_);
   values_ = std::move(v);
+  texts_["position_source"] = asked_ ? asked_->source : "none";
 }
 
 IntegrationStatus WeatherClient::status() const {
   IntegrationStatus s = health_.status();
   std::lock_guard lock(m_);
   s.values = values_;
+  s.texts = texts_;
   return s;
 }
 

@@ -5,9 +5,12 @@
 // decides with decideWeatherMode, and hands the decision to the regulator as
 // a weather_mode command: the same path, reason and ramp as one sent by hand.
 //
-// When it cannot know (no position, a server that fails, a forecast older
-// than 24 h) weather mode is off and the regulator charges as usual. A
-// failure is logged once per outage with the next try; retries are counted.
+// The position is the boat's own when it has one (NMEA 2000 or Signal K, the
+// freshest; boat_position.h), else the file's; a move of more than
+// kForecastMoveDeg asks again at once. When it cannot know (no position, a
+// server that fails, a forecast older than 24 h) weather mode is off and the
+// regulator charges as usual. A failure is logged once per outage with the
+// next try; retries are counted.
 #include <boost/asio/awaitable.hpp>
 #include <boost/asio/io_context.hpp>
 #include <chrono>
@@ -18,6 +21,7 @@
 
 #include "config/settings.h"
 #include "integrations/backoff.h"
+#include "integrations/boat_position.h"
 #include "integrations/home_assistant.h"
 #include "integrations/integration_health.h"
 #include "integrations/weather_decision.h"
@@ -39,17 +43,22 @@ inline constexpr std::size_t kForecastBodyLimit = 64 * 1024;
 
 class WeatherClient {
  public:
+  // `signalk`: the Signal K client's navigation.position, or null.
   WeatherClient(boost::asio::io_context& io, const WeatherSettings& s, const rt::Handoffs& handoffs,
-                CommandSink commands);
+                CommandSink commands, const SignalKPosition* signalk = nullptr);
   void start();
   void stop();
   // The forecast, the decision and why, in values (uv_day1.., radiation_day1..,
-  // active, sunny_days, age_s, latitude, longitude); last_error says why not.
+  // active, sunny_days, age_s, latitude, longitude), the position's source
+  // in texts (position_source: nmea2000, signalk, file, none); last_error
+  // says why not.
   IntegrationStatus status() const;
 
  private:
   boost::asio::awaitable<void> run();
-  boost::asio::awaitable<std::string> fetch();
+  boost::asio::awaitable<std::string> fetch(const ChosenPosition& at);
+  boost::asio::awaitable<void> waitForNextRefresh(std::chrono::steady_clock::duration next);
+  std::optional<ChosenPosition> currentPosition() const;
   void decide(std::chrono::steady_clock::time_point now);
   void send(bool active, const std::string& why);
   void publish(const WeatherDecision& d, double ageS);
@@ -58,15 +67,18 @@ class WeatherClient {
   WeatherSettings settings_;
   const rt::Handoffs& handoffs_;
   CommandSink commands_;
+  const SignalKPosition* signalk_;
   HttpUrl url_;
   IntegrationHealth health_;
   Backoff backoff_;
   bool stopping_ = false;
   std::optional<Forecast> forecast_;
+  std::optional<ChosenPosition> asked_;  // the position of the last request, answered or not
   std::chrono::steady_clock::time_point forecastAt_{};
   std::optional<bool> sent_;  // the last state handed to the regulator
   mutable std::mutex m_;      // values_ are read by the web threads
   std::map<std::string, double> values_;
+  std::map<std::string, std::string> texts_;
 };
 
 }  // namespace xr::integrations

@@ -91,6 +91,13 @@ struct CanStatusHandoff {
   std::uint8_t n2kAddress = 0xFF;
   std::uint64_t n2kTxFrames = 0, n2kRxFrames = 0, n2kErrorFrames = 0, n2kOpenFailures = 0;
 };
+// The boat's position from NMEA 2000 (129025 / 129029), for the weather
+// forecast (docs/integrations.md "Weather"): posted by the CAN service,
+// stamped on its clock, so its age is CanStatusHandoff::now - stamp.
+struct PositionHandoff {
+  double latitudeDeg = kNoValue, longitudeDeg = kNoValue;
+  TimeNs stamp = 0;  // when it arrived (0 = never)
+};
 struct VictronHandoff {
   double currentA = kNoValue, voltageV = kNoValue, solarW = kNoValue;
   TimeNs stamp = 0;
@@ -161,8 +168,9 @@ class Handoffs {
   SeqLock<BmsLimits> bms;  // a BMS's limits (CAN link or another source), posted on each change
   SeqLock<EngineRpmHandoff> engineRpm;
   SeqLock<BatteryTempHandoff> batteryTemp;
-  SeqLock<CanStatusHandoff> canStatus;  // written by the CAN service's poll
-  SeqLock<BatteryLedger> ledger;        // the core's ledger, copied out ~4 times a second
+  SeqLock<CanStatusHandoff> canStatus;   // written by the CAN service's poll
+  SeqLock<PositionHandoff> n2kPosition;  // the newest position heard on NMEA 2000
+  SeqLock<BatteryLedger> ledger;         // the core's ledger, copied out ~4 times a second
   CommandAcks acks;
 
  private:

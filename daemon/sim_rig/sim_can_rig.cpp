@@ -3,9 +3,13 @@
 
 #include <utility>
 
+#include "can/n2k_position.h"
+
 namespace xr::sim {
 namespace {
 constexpr double kEcuPeriodS = 0.1;  // 127488 is a rapid-update PGN
+constexpr double kGpsPeriodS = 1.0;  // 129029's default interval in the canboat database
+constexpr std::uint8_t kGpsSource = 1;
 }  // namespace
 
 SimCanRig::SimCanRig(const Scenario& scenario, const CanSettings& settings, rt::Handoffs& handoffs,
@@ -14,7 +18,9 @@ SimCanRig::SimCanRig(const Scenario& scenario, const CanSettings& settings, rt::
       ourNode_(bmsSegment_.attach()),
       ourN2kNode_(n2kSegment_.attach()),
       ecuNode_(n2kSegment_.attach()),
+      gpsNode_(n2kSegment_.attach()),
       ecu_(scenario.engine_ecu),
+      gps_(scenario.gps),
       simBms_(scenario.bms.can),
       service_(handoffs, std::move(report)),
       nextStep_(start),
@@ -70,6 +76,13 @@ void SimCanRig::step(TimeNs now, Plant& plant) {
   if (ecu_ && ecuTalking_ && now >= nextEcu_) {
     nextEcu_ = now + fromSec(kEcuPeriodS);
     for (const CanFrame& f : can::toFrames(can::engineRapid(0, 0, plant.rpm()), 0)) ecuNode_.send(f);
+  }
+  if (gps_.enabled && now >= nextGps_) {
+    nextGps_ = now + fromSec(kGpsPeriodS);
+    const can::N2kMessage m = gps_.pgn == 129025
+                                  ? can::positionRapid(kGpsSource, gps_.latitude, gps_.longitude)
+                                  : can::gnssPosition(kGpsSource, gpsSid_++, gps_.latitude, gps_.longitude);
+    for (const CanFrame& f : can::toFrames(m, gpsSid_ & 0x7)) gpsNode_.send(f);
   }
   service_.poll(now);
 }

@@ -4,7 +4,9 @@
 // is set: --sim puts it on this bus instead), and the daemon's CanService
 // on the other end of both. With [engine] ecu = true a simulated engine ECU
 // on the N2K bus sends 127488 from the plant's rpm every 0.1 s (rapid
-// update), at source address 0; ecu = "silent" stops it. The
+// update), at source address 0; ecu = "silent" stops it. With [gps] a
+// simulated GNSS receiver at source address 1 sends the position every
+// second (129029 or 129025). The
 // SimBms is driven by the plant's truth and tied to the plant's BMS
 // disconnect: when it opens its contactor (its limits ignored for
 // open_after_s) the plant's battery leaves the bus; a scenario's
@@ -55,8 +57,12 @@ class SimCanRig {
   can::SimCanSegment n2kSegment_;
   can::SimCanNode& ourN2kNode_;
   can::SimCanNode& ecuNode_;  // the simulated engine ECU ([engine] ecu = true)
+  can::SimCanNode& gpsNode_;  // the simulated GNSS receiver ([gps])
   bool ecu_ = false, ecuTalking_ = true;
   TimeNs nextEcu_ = 0;
+  ScenarioGps gps_;
+  TimeNs nextGps_ = 0;
+  std::uint8_t gpsSid_ = 0;
   SimBms bms_;
   bool simBms_ = false;
   std::unique_ptr<can::CandumpSink> sink_;

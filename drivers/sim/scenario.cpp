@@ -207,6 +207,10 @@ Scenario parseTable(const Ctx& c, const toml::table& root) {
       }
     } else if (n == "bms") {
       parseBms(c, tableOf(c, k, v), s.bms);
+    } else if (n == "gps") {
+      parseGps(c, tableOf(c, k, v), s.gps);
+    } else if (n == "weather") {
+      parseWeather(c, tableOf(c, k, v), s.weather.emplace());
     } else if (n == "noise") {
       parseNoise(c, tableOf(c, k, v), s.noise);
     } else if (n == "events") {

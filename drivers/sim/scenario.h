@@ -68,6 +68,22 @@ struct ScenarioEvent {
   double value = 0.0;
 };
 
+// [gps]: a simulated GNSS receiver on the simulated NMEA 2000 bus (with
+// [can] n2k_interface set) sends the boat's position every second: 129029
+// (GNSS Position Data, fast packet) or 129025 (Position, Rapid Update).
+struct ScenarioGps {
+  bool enabled = false;
+  double latitude = 0.0, longitude = 0.0;  // degrees, north and east positive
+  std::uint32_t pgn = 129029;
+};
+// [weather]: the forecast client in --sim ([integrations.weather] with
+// enabled = true and these keys; docs/integrations.md "Weather").
+struct ScenarioWeather {
+  std::string url;
+  std::optional<double> latitude, longitude;
+  std::optional<int> refresh_min;
+};
+
 struct Scenario {
   std::string name;
   std::string source;  // file name used in messages
@@ -80,6 +96,8 @@ struct Scenario {
   // [engine] ecu = true: a simulated engine ECU on the simulated NMEA 2000
   // bus sends 127488 (engine speed, every 0.1 s) from the plant's rpm.
   bool engine_ecu = false;
+  ScenarioGps gps;
+  std::optional<ScenarioWeather> weather;
   std::vector<ScenarioEvent> events;  // sorted by at_s (the file must be)
 };
 

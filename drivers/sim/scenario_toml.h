@@ -35,6 +35,9 @@ void parseNoise(const Ctx& c, const toml::table& t, NoiseConfig& n);
 // returns false when `k` is not one of its keys.
 void parseBms(const Ctx& c, const toml::table& t, ScenarioBms& b);
 bool parseBmsEventKey(const Ctx& c, const toml::key& k, const toml::node& v, ScenarioEvent& e);
+// [gps] and [weather] (scenario_position.cpp).
+void parseGps(const Ctx& c, const toml::table& t, ScenarioGps& g);
+void parseWeather(const Ctx& c, const toml::table& t, ScenarioWeather& w);
 // An event that changes the simulated BMS or engine ECU in a scenario
 // without one.
 void checkBmsEvents(const Ctx& c, const Scenario& s);

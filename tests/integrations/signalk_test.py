@@ -11,7 +11,10 @@ the daemon's /api/status in their SI units, with the meta units.
 secured: the server needs a token; the daemon makes an access request, the
 test approves it as the admin, the daemon connects with the token and keeps
 it in the state database. Both: the server killed mid-run, no control
-overrun, reconnect when it is back."""
+overrun, reconnect when it is back.
+plain: a navigation.position published to the server by another client
+reaches the daemon's subscription, and the weather forecast is asked for it
+(docs/integrations.md "Where the forecast is asked for")."""
 import json
 import os
 import signal
@@ -21,6 +24,7 @@ import time
 import urllib.request
 
 from harness import Checks, Harness, free_port, wait_until
+from weather_test import Server as ForecastServer
 
 ADMIN = ("admin", "admin-pass-1234")
 
@@ -87,6 +91,18 @@ class SignalK:
     def battery(self):
         return self.http("GET", "/signalk/v1/api/vessels/self/electrical/batteries/house")
 
+    def publish_position(self, latitude, longitude):
+        """A delta from another client (a GPS plugin would do the same)."""
+        modules = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(self.bin))))
+        delta = {"context": "vessels.self", "updates": [{"values": [
+            {"path": "navigation.position", "value": {"latitude": latitude, "longitude": longitude}}]}]}
+        script = (f"const W = require({json.dumps(os.path.join(modules, 'ws'))});"
+                  f"const w = new W('ws://127.0.0.1:{self.port}/signalk/v1/stream?subscribe=none');"
+                  f"w.on('open', () => {{ w.send({json.dumps(json.dumps(delta))});"
+                  f" setTimeout(() => process.exit(0), 500); }});"
+                  f"w.on('error', (e) => {{ console.error(e.message); process.exit(1); }});")
+        return subprocess.run([self.node, "-e", script], timeout=20).returncode == 0
+
     def admin_token(self):
         r = self.http("POST", "/signalk/v1/auth/login", {"username": ADMIN[0], "password": ADMIN[1]})
         return r["token"]
@@ -131,15 +147,36 @@ def check_values(c, sk, h):
     c.check(abs(v(bat, "voltage") - st["battery_v"]) < 0.5, "battery voltage")
 
 
+def position_from_signalk(c, sk, h, forecast):
+    n = len(forecast.requests)
+    c.check(sk.publish_position(60.15, 24.95), "a navigation.position published to the server")
+    wait_until("a forecast asked for the Signal K position",
+               lambda: any("latitude=60.1500&longitude=24.9500" in r for r in forecast.requests[n:]), 40)
+    w = h.integration("weather")
+    c.check(w.get("texts", {}).get("position_source") == "signalk", f"the source shown is Signal K ({w.get('texts')})")
+    c.check(abs(w["values"]["latitude"] - 60.15) < 1e-9, f"the position shown is Signal K's ({w['values']})")
+
+
 def main():
     daemon, node, server_bin, variant = sys.argv[1:5]
     secured = variant == "secured"
     c = Checks()
     h = Harness(daemon)
+    forecast = ForecastServer()
+    # plain: the weather forecast is on, with a position in the file that
+    # the boat's (from Signal K) must replace.
+    weather = "" if secured else f"""
+[integrations.weather]
+enabled = true
+url = "http://127.0.0.1:{forecast.port}/v1/forecast"
+latitude = 43.3
+longitude = 5.4
+refresh_min = 60
+"""
     try:
         sk = SignalK(h, node, server_bin, secured)
         sk.start()
-        h.start_daemon(f"""[integrations.signalk]
+        h.start_daemon(weather + f"""[integrations.signalk]
 enabled = true
 url = "ws://127.0.0.1:{sk.port}/signalk/v1/stream?subscribe=none"
 rate_hz = 2.0
@@ -161,6 +198,8 @@ battery_id = "house"
             c.check(r is not None, "approval accepted by the server")
         wait_until("signalk connected", lambda: h.integration("signalk")["connected"], 90)
         check_values(c, sk, h)
+        if not secured:
+            position_from_signalk(c, sk, h, forecast)
         if secured:
             c.check("token kept in the state database" in h.log_text(), "token stored")
             out = subprocess.run(["sqlite3", os.path.join(h.dir, "state.db"),
@@ -187,6 +226,7 @@ battery_id = "house"
             c.check(h.log_text().count("access requested") == 1, "the stored token is reused, no second request")
     finally:
         h.stop()
+        forecast.httpd.shutdown()
     return c.done()
 
 

@@ -2,7 +2,7 @@
 """Weather mode from a forecast (docs/integrations.md "Weather"): the daemon
 in --sim reads recorded Open-Meteo answers from a local HTTP server.
 
-  weather_test.py XREGULATORD
+  weather_test.py XREGULATORD [refresh|floor|broken ...]   (all by default)
 
   - a sunny forecast puts the regulator in MODE_DISABLED_RAMP with
     REASON_WEATHER_MODE; a cloudy one, served at the next refresh (1 min),
@@ -10,7 +10,10 @@ in --sim reads recorded Open-Meteo answers from a local HTTP server.
   - below WeatherModeMinSoC it charges in sunshine, and rests just above it;
   - a broken server (500, no answer for 15 s, bad JSON, a wrong shape, a 10 MB
     body) leaves charging untouched, says why once with the next try, and the
-    daemon keeps running."""
+    daemon keeps running;
+  - scenarios/weather-gps.toml: with no position in the file, the forecast is
+    asked for the position a simulated GNSS sends on NMEA 2000 (129029),
+    decoded by the daemon, and the dashboard's source says so."""
 import http.server
 import json
 import os
@@ -22,6 +25,7 @@ import urllib.request
 from harness import Checks, Harness, wait_until
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
 TOKEN = "weather-test-token-0123456789abcdef"
 WEATHER = "REASON_WEATHER_MODE"
 
@@ -169,15 +173,59 @@ def broken(c, srv, daemon, answer, why):
         h.stop()
 
 
+def position_from_nmea2000(c, srv, daemon):
+    h = Harness(daemon)
+    try:
+        srv.answer = "sunny"
+        with open(os.path.join(ROOT, "scenarios", "weather-gps.toml")) as f:
+            text = f.read().replace("127.0.0.1:8099", f"127.0.0.1:{srv.port}")
+        scenario = os.path.join(h.dir, "weather-gps.toml")
+        with open(scenario, "w") as f:
+            f.write(text)
+        n = len(srv.requests)
+        h.start_daemon(f"""[web]
+token = "{TOKEN}"
+
+[modes]
+weatherModeEnabled = true
+UVThresholdHigh = 6.0
+
+[can]
+n2k_interface = "can1"
+""", extra_args=["--scenario", scenario])
+        command(h, {"command": "set_soc", "soc_pct": 80})
+        wait_until("a forecast asked for the GPS's position",
+                   lambda: any("latitude=-33.8568&longitude=151.2153" in r for r in srv.requests[n:]), 30)
+        c.check(not any("latitude=0.0000" in r for r in srv.requests[n:]), "never asked for (0, 0)")
+        w = h.integration("weather")
+        c.check(w.get("texts", {}).get("position_source") == "nmea2000",
+                f"the source shown is NMEA 2000 ({w.get('texts')})")
+        c.check(abs(w["values"]["latitude"] + 33.8568) < 1e-6 and abs(w["values"]["longitude"] - 151.2153) < 1e-6,
+                f"the position shown is the GPS's ({w['values']['latitude']}, {w['values']['longitude']})")
+        wait_until("weather mode on the GPS position's sunny forecast", lambda: reason(h) == WEATHER, 20)
+    finally:
+        h.stop()
+
+
+PARTS = {
+    # A sunny forecast, then a cloudy and a mixed one at the next refreshes.
+    "refresh": lambda c, srv, d: sunny_then_cloudy(c, srv, d),
+    # The SoC floor, and the position from the boat's GPS on NMEA 2000.
+    "floor": lambda c, srv, d: (soc_floor(c, srv, d), position_from_nmea2000(c, srv, d)),
+    # A broken server, five ways.
+    "broken": lambda c, srv, d: [broken(c, srv, d, answer, why) for answer, why in [
+        ("500", "HTTP 500"), ("badjson", "not JSON"), ("shape", "no daily object"), ("huge", "body limit"),
+        ("timeout", "timeout")]],
+}
+
+
 def main():
     daemon = sys.argv[1]
+    parts = sys.argv[2:] or list(PARTS)
     c = Checks()
     srv = Server()
-    sunny_then_cloudy(c, srv, daemon)
-    soc_floor(c, srv, daemon)
-    for answer, why in [("500", "HTTP 500"), ("badjson", "not JSON"), ("shape", "no daily object"),
-                        ("huge", "body limit"), ("timeout", "timeout")]:
-        broken(c, srv, daemon, answer, why)
+    for p in parts:
+        PARTS[p](c, srv, daemon)
     srv.httpd.shutdown()
     return c.done()
 

@@ -151,7 +151,8 @@ struct IntegrationState {
   std::string last_error;
   std::uint64_t messages_sent = 0, messages_received = 0, messages_dropped = 0, values_refused = 0,
                 outages = 0;
-  std::map<std::string, double> values;  // what it reads (the Victron limits); NaN = none
+  std::map<std::string, double> values;      // what it reads (the Victron limits); NaN = none
+  std::map<std::string, std::string> texts;  // what it reads that is a word (weather: position_source)
 };
 
 // The CAN buses (issue 22) for /api/system. Unknown numbers are NaN (null

@@ -342,6 +342,11 @@ json::object integrationToJson(const IntegrationState& i) {
     for (const auto& [k, x] : i.values) v[k] = number(x);
     o["values"] = std::move(v);
   }
+  if (!i.texts.empty()) {
+    json::object t;
+    for (const auto& [k, x] : i.texts) t[k] = x;
+    o["texts"] = std::move(t);
+  }
   return o;
 }
 

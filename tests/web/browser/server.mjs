@@ -13,7 +13,8 @@ const freePort = () => new Promise((resolve, reject) => {
 
 // stateDir keeps the daemon's state database between runs, so a second
 // daemon sees the first one's events, history and saved parameters.
-export async function startServer({ mode, args, token, stateDir, scenario }) {
+// extraConfig: more TOML for the daemon's configuration file.
+export async function startServer({ mode, args, token, stateDir, scenario, extraConfig = "" }) {
   let port;
   let argv;
   if (mode === "fake") {
@@ -25,7 +26,8 @@ export async function startServer({ mode, args, token, stateDir, scenario }) {
     // starved simulator thread can miss 500 ms of samples and trip the real
     // protection, which is not what these tests are about (the injected
     // sensor fault below still trips it, 3 s later).
-    fs.writeFileSync(cfg, `[web]\ntoken = "${token}"\nwww_root = "${args.www}"\n[sensor_health]\nCurrentStaleMs = 3000\n`);
+    fs.writeFileSync(cfg, `[web]\ntoken = "${token}"\nwww_root = "${args.www}"\n[sensor_health]\nCurrentStaleMs = 3000\n` +
+                     extraConfig);
     argv = [args.server, "--sim", "--speed", "1", "--config", cfg, "--state-db", path.join(stateDir, "state.db"),
             "--http", `127.0.0.1:${port}`];
     if (scenario) {

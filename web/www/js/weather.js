@@ -5,6 +5,12 @@
 import { getJson } from "./api.js";
 
 const PERIOD_MS = 30000;
+// Where the position came from (docs/integrations.md "Where the forecast is asked for").
+const SOURCES = {
+  nmea2000: "from the boat's GPS on NMEA 2000",
+  signalk: "from Signal K",
+  file: "from the configuration file",
+};
 
 function num(v, digits) {
   return typeof v === "number" && Number.isFinite(v) ? v.toFixed(digits) : "—";
@@ -46,7 +52,9 @@ function render(panel, w, reason) {
   const src = document.createElement("p");
   src.className = "hint";
   const age = typeof v.age_s === "number" && Number.isFinite(v.age_s) ? `${Math.round(v.age_s / 60)} min ago` : "none yet";
-  src.textContent = `Position ${num(v.latitude, 3)}, ${num(v.longitude, 3)} (from the configuration file); forecast ${age}.`;
+  const from = SOURCES[(w.texts || {}).position_source] || "no position yet";
+  src.id = "weather-position";
+  src.textContent = `Position ${num(v.latitude, 3)}, ${num(v.longitude, 3)} (${from}); forecast ${age}.`;
   panel.append(h, p, t, src);
 }
 

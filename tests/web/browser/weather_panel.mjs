@@ -1,0 +1,92 @@
+// The Weather mode panel (docs/integrations.md "Weather"), in Debian's
+// Chromium at phone size against the real daemon in --sim: the scenario
+// scenarios/weather-gps.toml puts a GNSS on the simulated NMEA 2000 bus and
+// points the forecast client at a local server answering the recorded sunny
+// forecast. The owner sees the three days, that the alternator is held off
+// and why, and where the position came from; then a cloudy forecast, and
+// the panel says it charges again.
+import { createRequire } from "node:module";
+import fs from "node:fs";
+import http from "node:http";
+import os from "node:os";
+import path from "node:path";
+import assert from "node:assert/strict";
+import { startServer } from "./server.mjs";
+
+const args = Object.fromEntries(
+  process.argv.slice(2).reduce((acc, a, i, all) => (a.startsWith("--") ? [...acc, [a.slice(2), all[i + 1]]] : acc), []));
+const require = createRequire(path.join(path.resolve(args["web-dir"]), "package.json"));
+const { chromium } = require("playwright-core");
+const root = path.resolve(args.root);
+const token = "browser-test-token-0123456789";
+
+// The forecast server: whatever `answer` names, from the recorded answers.
+let answer = "sunny";
+const requests = [];
+const forecast = http.createServer((req, res) => {
+  requests.push(req.url);
+  const body = fs.readFileSync(path.join(root, "tests/integrations/weather", `${answer}.json`));
+  res.writeHead(200, { "Content-Type": "application/json", "Content-Length": body.length });
+  res.end(body);
+});
+await new Promise((r) => forecast.listen(0, "127.0.0.1", r));
+const scenario = fs.readFileSync(path.join(root, "scenarios/weather-gps.toml"), "utf8")
+  .replace("127.0.0.1:8099", `127.0.0.1:${forecast.address().port}`);
+
+const stateDir = fs.mkdtempSync(path.join(os.tmpdir(), "xr-weather-"));
+const server = await startServer({ mode: "daemon", args, token, stateDir, scenario,
+  extraConfig: "[modes]\nweatherModeEnabled = true\nUVThresholdHigh = 6.0\n[can]\nn2k_interface = \"can1\"\n" });
+const browser = await chromium.launch({
+  executablePath: "/usr/bin/chromium", headless: true,
+  args: ["--no-sandbox", "--disable-gpu", "--no-first-run", "--disable-background-networking", "--disable-sync"],
+});
+let failed = false;
+try {
+  const r = await fetch(server.base + "/api/commands", { method: "POST",
+    headers: { Authorization: "Bearer " + token, "Content-Type": "application/json" },
+    body: JSON.stringify({ command: "set_soc", soc_pct: 80 }) });
+  assert.equal(r.status, 200);
+  const ctx = await browser.newContext({ viewport: { width: 390, height: 844 }, locale: "en-GB" });
+  const page = await ctx.newPage();
+  page.setDefaultTimeout(40000);
+  await page.goto(server.base + "/#live");
+  // The panel reads every 30 s: reload until the held-off verdict shows.
+  const verdict = async (re) => {
+    const end = Date.now() + 90000;
+    for (;;) {
+      await page.waitForSelector("#weather-panel:not([hidden]) #weather-verdict");
+      if (re.test(await page.textContent("#weather-verdict"))) return;
+      assert.ok(Date.now() < end, `the verdict never matched ${re}: ${await page.textContent("#weather-verdict")}`);
+      await page.waitForTimeout(2000);
+      await page.reload();
+    }
+  };
+  await verdict(/^Holding the alternator off: 3 of 3 days above UV 6\.0/);
+  const table = await page.textContent("#weather-panel table");
+  assert.match(table, /UV index8\.[45]8\.97\.6/, "the three days' UV index");
+  assert.match(table, /Radiation MJ\/m²29\.430\.027\.9/, "the three days' radiation");
+  assert.match(await page.textContent("#weather-position"),
+    /^Position -33\.857, 151\.215 \(from the boat's GPS on NMEA 2000\); forecast \d+ min ago\.$/);
+  const st = await (await fetch(server.base + "/api/status")).json();
+  assert.equal(st.reason, "REASON_WEATHER_MODE", "the daemon holds the alternator off, as the panel says");
+  assert.ok(requests.some((u) => u.includes("latitude=-33.8568&longitude=151.2153")));
+  await page.locator("#weather-panel").scrollIntoViewIfNeeded();
+  await page.screenshot({ path: path.join(stateDir, "weather-sunny.png") });
+  if (args["docs-dir"]) fs.copyFileSync(path.join(stateDir, "weather-sunny.png"), path.join(args["docs-dir"], "weather-panel.png"));
+  console.log("ok - a sunny forecast for the GPS's position: the panel says the alternator rests, and why");
+
+  answer = "cloudy";  // read at the next refresh (refresh_min = 1)
+  await verdict(/^Charging as usual: 0 of 3 days above UV 6\.0/);
+  assert.notEqual((await (await fetch(server.base + "/api/status")).json()).reason, "REASON_WEATHER_MODE");
+  console.log("ok - a cloudy forecast: the panel says it charges as usual");
+} catch (e) {
+  failed = true;
+  console.error(server.log().slice(-3000));
+  console.error(e);
+} finally {
+  await browser.close();
+  await server.stop();
+  forecast.close();
+  fs.rmSync(stateDir, { recursive: true, force: true });
+}
+process.exit(failed ? 1 : 0);
