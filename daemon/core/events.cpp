@@ -1,64 +1,121 @@
 #include "core/events.h"
 
+#include <cstdio>
+
 #include "core/bms_limits.h"
 #include "core/commands.h"
-
-#include <cstdio>
 
 namespace xr {
 
 std::string_view toString(EventLevel l) {
   switch (l) {
-    case EventLevel::Debug: return "debug";
-    case EventLevel::Info: return "info";
-    case EventLevel::Warning: return "warning";
-    case EventLevel::Error: return "error";
-    case EventLevel::Critical: return "critical";
+    case EventLevel::Debug:
+      return "debug";
+    case EventLevel::Info:
+      return "info";
+    case EventLevel::Warning:
+      return "warning";
+    case EventLevel::Error:
+      return "error";
+    case EventLevel::Critical:
+      return "critical";
   }
   return "?";
 }
 
 std::string_view toString(EventCode c) {
   switch (c) {
-    case EventCode::ModeChanged: return "ModeChanged";
-    case EventCode::ProtectionTrip: return "ProtectionTrip";
-    case EventCode::ProtectionClear: return "ProtectionClear";
-    case EventCode::ImmediateCut: return "ImmediateCut";
-    case EventCode::CutAfterSettle: return "CutAfterSettle";
-    case EventCode::LockoutStarted: return "LockoutStarted";
-    case EventCode::LockoutExpired: return "LockoutExpired";
-    case EventCode::StageChanged: return "StageChanged";
-    case EventCode::FieldOn: return "FieldOn";
-    case EventCode::FieldOff: return "FieldOff";
-    case EventCode::InaLatchSet: return "InaLatchSet";
-    case EventCode::InaLatchCleared: return "InaLatchCleared";
-    case EventCode::VoltageDisagreement: return "VoltageDisagreement";
-    case EventCode::TempSensorStale: return "TempSensorStale";
-    case EventCode::TempTaskHung: return "TempTaskHung";
-    case EventCode::AlarmOn: return "AlarmOn";
-    case EventCode::AlarmOff: return "AlarmOff";
-    case EventCode::LimpHomeActive: return "LimpHomeActive";
-    case EventCode::FullChargeDetected: return "FullChargeDetected";
-    case EventCode::ShuntGainCorrected: return "ShuntGainCorrected";
-    case EventCode::AutoZeroStarted: return "AutoZeroStarted";
-    case EventCode::AutoZeroDone: return "AutoZeroDone";
-    case EventCode::SystemIdDone: return "SystemIdDone";
-    case EventCode::TuningCommitted: return "TuningCommitted";
-    case EventCode::CommandApplied: return "CommandApplied";
-    case EventCode::CommandRejected: return "CommandRejected";
-    case EventCode::Message: return "Message";
-    case EventCode::AlarmCondition: return "AlarmCondition";
-    case EventCode::BatteryTempMissing: return "BatteryTempMissing";
-    case EventCode::BatteryTempBack: return "BatteryTempBack";
-    case EventCode::BmsBadFrames: return "BmsBadFrames";
-    case EventCode::CanBusDown: return "CanBusDown";
-    case EventCode::CanBusBack: return "CanBusBack";
-    case EventCode::CanErrorFrames: return "CanErrorFrames";
+    case EventCode::ModeChanged:
+      return "ModeChanged";
+    case EventCode::ProtectionTrip:
+      return "ProtectionTrip";
+    case EventCode::ProtectionClear:
+      return "ProtectionClear";
+    case EventCode::ImmediateCut:
+      return "ImmediateCut";
+    case EventCode::CutAfterSettle:
+      return "CutAfterSettle";
+    case EventCode::LockoutStarted:
+      return "LockoutStarted";
+    case EventCode::LockoutExpired:
+      return "LockoutExpired";
+    case EventCode::StageChanged:
+      return "StageChanged";
+    case EventCode::FieldOn:
+      return "FieldOn";
+    case EventCode::FieldOff:
+      return "FieldOff";
+    case EventCode::InaLatchSet:
+      return "InaLatchSet";
+    case EventCode::InaLatchCleared:
+      return "InaLatchCleared";
+    case EventCode::VoltageDisagreement:
+      return "VoltageDisagreement";
+    case EventCode::TempSensorStale:
+      return "TempSensorStale";
+    case EventCode::TempTaskHung:
+      return "TempTaskHung";
+    case EventCode::AlarmOn:
+      return "AlarmOn";
+    case EventCode::AlarmOff:
+      return "AlarmOff";
+    case EventCode::LimpHomeActive:
+      return "LimpHomeActive";
+    case EventCode::FullChargeDetected:
+      return "FullChargeDetected";
+    case EventCode::ShuntGainCorrected:
+      return "ShuntGainCorrected";
+    case EventCode::AutoZeroStarted:
+      return "AutoZeroStarted";
+    case EventCode::AutoZeroDone:
+      return "AutoZeroDone";
+    case EventCode::SystemIdDone:
+      return "SystemIdDone";
+    case EventCode::TuningCommitted:
+      return "TuningCommitted";
+    case EventCode::CommandApplied:
+      return "CommandApplied";
+    case EventCode::CommandRejected:
+      return "CommandRejected";
+    case EventCode::Message:
+      return "Message";
+    case EventCode::AlarmCondition:
+      return "AlarmCondition";
+    case EventCode::BatteryTempMissing:
+      return "BatteryTempMissing";
+    case EventCode::BatteryTempBack:
+      return "BatteryTempBack";
+    case EventCode::BmsBadFrames:
+      return "BmsBadFrames";
+    case EventCode::CanBusDown:
+      return "CanBusDown";
+    case EventCode::CanBusBack:
+      return "CanBusBack";
+    case EventCode::CanErrorFrames:
+      return "CanErrorFrames";
+    case EventCode::WeatherForecastMissing:
+      return "WeatherForecastMissing";
+    case EventCode::WeatherForecastBack:
+      return "WeatherForecastBack";
   }
   return "?";
 }
 
 namespace {
+
+std::string weatherMissingText(WeatherMissing w, double httpStatus) {
+  switch (w) {
+    case WeatherMissing::NoPosition:
+      return "no position: none from the boat, none in the file";
+    case WeatherMissing::ServerError:
+      return "the server answered HTTP " + std::to_string(int(httpStatus));
+    case WeatherMissing::NoAnswer:
+      return "no answer from the server";
+    case WeatherMissing::AnswerRefused:
+      return "the answer is not a forecast";
+  }
+  return "?";
+}
 
 // Reason as the seeds' console lines print it: "TEMP_CRITICAL", not "REASON_TEMP_CRITICAL".
 std::string shortReason(Reason r) {
@@ -80,44 +137,55 @@ std::string tripText(const Event& e, char* buf, std::size_t n) {
       std::snprintf(buf, n, "Temperature warning: %.1f F > %.1f F. Ramping field down", e.a, e.b);
       return buf;
     case Reason::REASON_TEMP_SUSTAINED:
-      std::snprintf(buf, n, "Temperature warning sustained: %.1f F > %.1f F. Field off until re-enabled", e.a, e.b);
+      std::snprintf(buf, n, "Temperature warning sustained: %.1f F > %.1f F. Field off until re-enabled", e.a,
+                    e.b);
       return buf;
     case Reason::REASON_ALT_HARD_SHUTDOWN:
       std::snprintf(buf, n, "Alternator hard shutdown: IBV=%.2f V > %.2f V. Ramping field down", e.a, e.b);
       return buf;
     case Reason::REASON_BATTERY_COLD:
-      std::snprintf(buf, n, "Battery too cold to charge: %.1f C < %.1f C. Field off until it warms", e.a, e.b);
+      std::snprintf(buf, n, "Battery too cold to charge: %.1f C < %.1f C. Field off until it warms", e.a,
+                    e.b);
       return buf;
     case Reason::REASON_BATTERY_HOT:
-      std::snprintf(buf, n, "Battery too hot to charge: %.1f C > %.1f C. Field off until 3 C cooler", e.a, e.b);
+      std::snprintf(buf, n, "Battery too hot to charge: %.1f C > %.1f C. Field off until 3 C cooler", e.a,
+                    e.b);
       return buf;
     case Reason::REASON_TEMP_SOAK:
-      std::snprintf(buf, n, "Alternator hot after an engine stop: %.1f F > %.1f F. Field off until it cools", e.a,
-                    e.b);
+      std::snprintf(buf, n, "Alternator hot after an engine stop: %.1f F > %.1f F. Field off until it cools",
+                    e.a, e.b);
       return buf;
     case Reason::REASON_RPM_LOW:
       std::snprintf(buf, n, "RPM below minimum: %.0f < %.0f RPM. Field off", e.a, e.b);
       return buf;
     case Reason::REASON_VOLTAGE_IMPLAUSIBLE:
-      std::snprintf(buf, n, "Battery voltage implausible: IBV=%.2f V, BatteryV=%.2f V. Field shut off for safety!",
+      std::snprintf(buf, n,
+                    "Battery voltage implausible: IBV=%.2f V, BatteryV=%.2f V. Field shut off for safety!",
                     e.a, e.b);
       return buf;
     case Reason::REASON_CURRENT_STALE:
       std::snprintf(buf, n, "Current data stale (CH1 %s, INA228 %s). Field shut off for safety!",
                     e.a != 0.0 ? "stale" : "ok", e.b != 0.0 ? "stale" : "ok");
       return buf;
-    default: return "Protection tripped: " + shortReason(e.reason);
+    default:
+      return "Protection tripped: " + shortReason(e.reason);
   }
 }
 
 const char* alarmRowText(int row) {
   // Order of protection/alarm_rows.h (the seed's buzzer table).
-  static constexpr const char* kRows[] = {
-      "High alternator temperature", "Low alternator temperature", "High battery voltage",
-      "Low battery voltage",         "High alternator current",    "High battery current",
-      "INA228 hardware overvoltage", "Temp sensor not responding", "Efficiency anomaly",
-      "Field protection active",     "TempTask hung",
-      "BMS limits stale"};
+  static constexpr const char* kRows[] = {"High alternator temperature",
+                                          "Low alternator temperature",
+                                          "High battery voltage",
+                                          "Low battery voltage",
+                                          "High alternator current",
+                                          "High battery current",
+                                          "INA228 hardware overvoltage",
+                                          "Temp sensor not responding",
+                                          "Efficiency anomaly",
+                                          "Field protection active",
+                                          "TempTask hung",
+                                          "BMS limits stale"};
   if (row < 0 || row >= static_cast<int>(sizeof kRows / sizeof kRows[0])) return "Alarm";
   return kRows[row];
 }
@@ -129,57 +197,68 @@ std::string describe(const Event& e) {
   const std::string reason = shortReason(e.reason);
   switch (e.code) {
     case EventCode::ModeChanged:
-      if (e.mode == FieldControlMode::MODE_NORMAL_AUTO_PID || e.mode == FieldControlMode::MODE_NORMAL_MANUAL ||
-          e.mode == FieldControlMode::MODE_LIMP_HOME)
+      if (e.mode == FieldControlMode::MODE_NORMAL_AUTO_PID ||
+          e.mode == FieldControlMode::MODE_NORMAL_MANUAL || e.mode == FieldControlMode::MODE_LIMP_HOME)
         return "Entering normal mode";
       if (e.detail == 1) return "Mode changed: " + std::string(toString(e.mode)) + " (" + reason + ")";
       return "Exiting normal mode: " + reason;
-    case EventCode::ProtectionTrip: return tripText(e, buf, sizeof buf);
-    case EventCode::ProtectionClear: return "Protection cleared: " + reason;
-    case EventCode::ImmediateCut: return "GPIO4 immediate cut: " + reason;
-    case EventCode::CutAfterSettle: return "GPIO4 cut after settle: " + reason;
+    case EventCode::ProtectionTrip:
+      return tripText(e, buf, sizeof buf);
+    case EventCode::ProtectionClear:
+      return "Protection cleared: " + reason;
+    case EventCode::ImmediateCut:
+      return "GPIO4 immediate cut: " + reason;
+    case EventCode::CutAfterSettle:
+      return "GPIO4 cut after settle: " + reason;
     case EventCode::LockoutStarted:
       std::snprintf(buf, sizeof buf, "Field lockout started: %.0fs cooldown before restart allowed", e.a);
       return buf;
-    case EventCode::LockoutExpired: return "Field lockout expired - normal operation resumed";
+    case EventCode::LockoutExpired:
+      return "Field lockout expired - normal operation resumed";
     case EventCode::StageChanged:
-      if (static_cast<ChargeStage>(static_cast<int>(e.b)) == ChargeStage::BULK) return "CHARGING: Returning to bulk stage";
+      if (static_cast<ChargeStage>(static_cast<int>(e.b)) == ChargeStage::BULK)
+        return "CHARGING: Returning to bulk stage";
       std::snprintf(buf, sizeof buf, "CHARGING: %s stage complete, switching to %s",
                     std::string(toString(static_cast<ChargeStage>(static_cast<int>(e.a)))).c_str(),
                     std::string(toString(static_cast<ChargeStage>(static_cast<int>(e.b)))).c_str());
       return buf;
     case EventCode::InaLatchSet:
-      std::snprintf(buf, sizeof buf, "INA228 hardware overvoltage alert: IBV=%.2f V (limit %.2f V). Field cut, latched",
-                    e.a, e.b);
+      std::snprintf(buf, sizeof buf,
+                    "INA228 hardware overvoltage alert: IBV=%.2f V (limit %.2f V). Field cut, latched", e.a,
+                    e.b);
       return buf;
     case EventCode::InaLatchCleared:
       std::snprintf(buf, sizeof buf, "INA228 overvoltage latch cleared after %.0f s", e.b);
       return buf;
     case EventCode::VoltageDisagreement:
       std::snprintf(buf, sizeof buf,
-                    "Battery Voltage disagreement! BatteryV=%.2f V, IBV=%.2f V. Field shut off for safety!", e.a,
-                    e.b);
+                    "Battery Voltage disagreement! BatteryV=%.2f V, IBV=%.2f V. Field shut off for safety!",
+                    e.a, e.b);
       return buf;
-    case EventCode::TempSensorStale: return "OneWire sensor stale, sensor dead or disconnected";
+    case EventCode::TempSensorStale:
+      return "OneWire sensor stale, sensor dead or disconnected";
     case EventCode::TempTaskHung:
       std::snprintf(buf, sizeof buf, "TempTask hung: no heartbeat for %.0f s. Alarm on", e.a);
       return buf;
-    case EventCode::AlarmOn: return "Alarm ON";
-    case EventCode::AlarmOff: return "Alarm OFF";
+    case EventCode::AlarmOn:
+      return "Alarm ON";
+    case EventCode::AlarmOff:
+      return "Alarm OFF";
     case EventCode::AlarmCondition:
       std::snprintf(buf, sizeof buf, "ALARM: %s (%.2f, limit %.2f)", alarmRowText(e.detail), e.a, e.b);
       return buf;
-    case EventCode::FieldOn: return "Field enabled (GPIO4 HIGH)";
+    case EventCode::FieldOn:
+      return "Field enabled (GPIO4 HIGH)";
     case EventCode::FieldOff:
       return e.reason == Reason::NONE ? std::string("Field disabled (GPIO4 LOW)")
                                       : "Field disabled (GPIO4 LOW): " + reason;
     case EventCode::LimpHomeActive:
-      std::snprintf(buf, sizeof buf, "LIMP HOME active: fixed %.0f %% duty, only the INA228 latch protects", e.a);
+      std::snprintf(buf, sizeof buf, "LIMP HOME active: fixed %.0f %% duty, only the INA228 latch protects",
+                    e.a);
       return buf;
     case EventCode::CommandApplied:
     case EventCode::CommandRejected:
-    case EventCode::TuningCommitted:
-    {
+    case EventCode::TuningCommitted: {
       // The argument travels in a (duty or SoC %); the event list shows it (issue 25 item 11).
       const auto type = static_cast<CommandType>(e.detail);
       const std::string_view arg = commandArgument(type);
@@ -213,10 +292,12 @@ std::string describe(const Event& e) {
       return buf;
     case EventCode::BmsBadFrames:
       std::snprintf(buf, sizeof buf, "BMS CAN: %.0f bad frame(s) ignored (last: 0x%03X, %s)", e.a,
-                    static_cast<unsigned>(e.b), std::string(bmsRejectText(static_cast<BmsReject>(e.detail))).c_str());
+                    static_cast<unsigned>(e.b),
+                    std::string(bmsRejectText(static_cast<BmsReject>(e.detail))).c_str());
       return buf;
     case EventCode::CanBusDown:
-      std::snprintf(buf, sizeof buf, "CAN %s bus cannot be opened (%.0f failed attempt(s)); retry in %.0f s%s",
+      std::snprintf(buf, sizeof buf,
+                    "CAN %s bus cannot be opened (%.0f failed attempt(s)); retry in %.0f s%s",
                     e.detail == 0 ? "BMS" : "NMEA 2000", e.a, e.b,
                     e.detail == 0 ? ": the BMS limits go stale" : ": no NMEA 2000 output");
       return buf;
@@ -228,13 +309,21 @@ std::string describe(const Event& e) {
       std::snprintf(buf, sizeof buf, "CAN %s bus: %.0f error frame(s) (last error class 0x%X)",
                     e.detail == 0 ? "BMS" : "NMEA 2000", e.a, static_cast<unsigned>(e.b));
       return buf;
+    case EventCode::WeatherForecastMissing:
+      std::snprintf(buf, sizeof buf,
+                    "Weather forecast cannot be read (%s); next try in %.0f s. Without a "
+                    "forecast younger than 24 h the alternator charges as usual",
+                    weatherMissingText(static_cast<WeatherMissing>(e.detail), e.a).c_str(), e.b);
+      return buf;
+    case EventCode::WeatherForecastBack:
+      return "Weather forecast read again: weather mode follows it";
     case EventCode::AutoZeroDone:
-      std::snprintf(buf, sizeof buf, "Auto-zero done: DynamicAltCurrentZero %.3f A from %.0f samples%s", e.a, e.b,
-                    e.detail ? " (rejected, offset kept)" : "");
+      std::snprintf(buf, sizeof buf, "Auto-zero done: DynamicAltCurrentZero %.3f A from %.0f samples%s", e.a,
+                    e.b, e.detail ? " (rejected, offset kept)" : "");
       return buf;
     default:
-      std::snprintf(buf, sizeof buf, "%s %s a=%.3f b=%.3f", std::string(toString(e.code)).c_str(), reason.c_str(),
-                    e.a, e.b);
+      std::snprintf(buf, sizeof buf, "%s %s a=%.3f b=%.3f", std::string(toString(e.code)).c_str(),
+                    reason.c_str(), e.a, e.b);
       return buf;
   }
 }

@@ -15,16 +15,16 @@ namespace xr {
 enum class EventLevel { Debug, Info, Warning, Error, Critical };
 
 enum class EventCode {
-  ModeChanged,          // "Entering normal mode" / "Exiting normal mode: <reason>"
-  ProtectionTrip,       // a protection fired (reason)
-  ProtectionClear,      // a protection cleared (reason)
-  ImmediateCut,         // "GPIO4 immediate cut: <reason>"
-  CutAfterSettle,       // "GPIO4 cut after settle: <reason>"
-  LockoutStarted,       // "Field lockout started: Xs cooldown before restart allowed"
-  LockoutExpired,       // "Field lockout expired - normal operation resumed"
-  StageChanged,         // "CHARGING: ..." (a = from stage, b = to stage)
-  FieldOn,              // field enable rising edge
-  FieldOff,             // field enable falling edge (store checkpoint + 5 s)
+  ModeChanged,      // "Entering normal mode" / "Exiting normal mode: <reason>"
+  ProtectionTrip,   // a protection fired (reason)
+  ProtectionClear,  // a protection cleared (reason)
+  ImmediateCut,     // "GPIO4 immediate cut: <reason>"
+  CutAfterSettle,   // "GPIO4 cut after settle: <reason>"
+  LockoutStarted,   // "Field lockout started: Xs cooldown before restart allowed"
+  LockoutExpired,   // "Field lockout expired - normal operation resumed"
+  StageChanged,     // "CHARGING: ..." (a = from stage, b = to stage)
+  FieldOn,          // field enable rising edge
+  FieldOff,         // field enable falling edge (store checkpoint + 5 s)
   InaLatchSet,
   InaLatchCleared,
   VoltageDisagreement,  // "Battery Voltage disagreement! BatteryV=X V, IBV=Y V. Field shut off for safety!"
@@ -32,7 +32,7 @@ enum class EventCode {
   TempTaskHung,
   AlarmOn,
   AlarmOff,
-  LimpHomeActive,       // one per 30 s
+  LimpHomeActive,  // one per 30 s
   FullChargeDetected,
   ShuntGainCorrected,
   AutoZeroStarted,
@@ -41,21 +41,27 @@ enum class EventCode {
   TuningCommitted,
   CommandApplied,
   CommandRejected,
-  Message,              // generic; text chosen by detail code
-  AlarmCondition,       // one buzzer-table row holds (detail = AlarmRow, a = value, b = threshold); 30 s throttled
-  BatteryTempMissing,   // battery temperature missing or stale (detail 1: current capped at C/10, a = cap A;
-                        // detail 0: charging uncompensated); once per episode (issue 21)
-  BatteryTempBack,      // a fresh battery temperature again (a = degC)
+  Message,         // generic; text chosen by detail code
+  AlarmCondition,  // one buzzer-table row holds (detail = AlarmRow, a = value, b = threshold); 30 s throttled
+  BatteryTempMissing,  // battery temperature missing or stale (detail 1: current capped at C/10, a = cap A;
+                       // detail 0: charging uncompensated); once per episode (issue 21)
+  BatteryTempBack,     // a fresh battery temperature again (a = degC)
   // The CAN side (issue 22), posted by the xr-can thread through SideEvents,
   // each at most once per 30 s. detail = the bus: 0 BMS, 1 NMEA 2000.
-  BmsBadFrames,         // bad BMS frames dropped (a = how many since the last, b = last id, detail = BmsReject)
-  CanBusDown,           // a bus cannot be opened (a = failed attempts, b = retry in s)
-  CanBusBack,           // open again (a = failed attempts before)
-  CanErrorFrames,       // error frames on a bus (a = how many since the last, b = last error class bits)
+  BmsBadFrames,    // bad BMS frames dropped (a = how many since the last, b = last id, detail = BmsReject)
+  CanBusDown,      // a bus cannot be opened (a = failed attempts, b = retry in s)
+  CanBusBack,      // open again (a = failed attempts before)
+  CanErrorFrames,  // error frames on a bus (a = how many since the last, b = last error class bits)
+  // The weather forecast (docs/integrations.md "Weather"), posted by the
+  // integrations thread through SideEvents, once per outage.
+  WeatherForecastMissing,  // cannot be read (detail: WeatherMissing; a = HTTP status or 0, b = next try in s)
+  WeatherForecastBack,     // read again after an outage
 };
+// Why the weather forecast cannot be read (WeatherForecastMissing's detail).
+enum class WeatherMissing { NoPosition = 0, ServerError = 1, NoAnswer = 2, AnswerRefused = 3 };
 // How many codes there are (keep it after the last one): parsing a stored
 // code name tries each.
-inline constexpr int kEventCodeCount = static_cast<int>(EventCode::CanErrorFrames) + 1;
+inline constexpr int kEventCodeCount = static_cast<int>(EventCode::WeatherForecastBack) + 1;
 
 struct Event {
   TimeNs t = 0;
@@ -74,10 +80,15 @@ struct EventBatch {
   std::array<Event, kCapacity> items{};
   std::size_t count = 0;
   std::size_t dropped = 0;
-  void clear() { count = 0; dropped = 0; }
+  void clear() {
+    count = 0;
+    dropped = 0;
+  }
   void push(const Event& e) {
-    if (count < kCapacity) items[count++] = e;
-    else ++dropped;
+    if (count < kCapacity)
+      items[count++] = e;
+    else
+      ++dropped;
   }
 };
 

@@ -25,6 +25,14 @@ namespace {
 constexpr auto kIoTimeout = 10s;      // the whole request: connect, write, read
 constexpr auto kPositionCheck = 10s;  // between refreshes: did a position appear, did the boat move?
 constexpr const char* kSource = "weather forecast";
+
+// A failed refresh, with why in the event's terms.
+struct ForecastError : std::runtime_error {
+  ForecastError(WeatherMissing w, const std::string& text, int httpStatus = 0)
+      : std::runtime_error(text), why(w), status(httpStatus) {}
+  WeatherMissing why;
+  int status;
+};
 }  // namespace
 
 std::optional<HttpUrl> parseHttpUrl(const std::string& url) {
@@ -50,7 +58,7 @@ std::string forecastTarget(const std::string& path, double latitude, double long
       path, latitude, longitude);
 }
 
-WeatherClient::WeatherClient(asio::io_context& io, const WeatherSettings& s, const rt::Handoffs& handoffs,
+WeatherClient::WeatherClient(asio::io_context& io, const WeatherSettings& s, rt::Handoffs& handoffs,
                              CommandSink commands, const SignalKPosition* signalk)
     : io_(io),
       settings_(s),
@@ -76,14 +84,17 @@ asio::awaitable<void> WeatherClient::run() {
     health_.attempt();
     std::chrono::steady_clock::duration next = std::chrono::minutes(settings_.refresh_min);
     std::string error;
+    WeatherMissing why = WeatherMissing::NoAnswer;
+    int status = 0;
     asked_ = currentPosition();
     try {
       if (!asked_)
-        throw std::runtime_error(
-            "no position (set latitude and longitude, or a GPS on NMEA 2000 or Signal K)");
+        throw ForecastError(WeatherMissing::NoPosition,
+                            "no position (set latitude and longitude, or a GPS on NMEA 2000 or Signal K)");
       const std::string body = co_await fetch(*asked_);
       auto parsed = parseOpenMeteoDaily(body);
-      if (!parsed.forecast) throw std::runtime_error("answer refused: " + parsed.error);
+      if (!parsed.forecast)
+        throw ForecastError(WeatherMissing::AnswerRefused, "answer refused: " + parsed.error);
       forecast_ = parsed.forecast;
       forecastAt_ = std::chrono::steady_clock::now();
       health_.received();
@@ -91,6 +102,12 @@ asio::awaitable<void> WeatherClient::run() {
       backoff_.reset();
     } catch (const boost::system::system_error& e) {
       error = e.code().message();  // what() carries Beast's source location: not for the user
+      if (e.code() == http::error::body_limit) why = WeatherMissing::AnswerRefused;
+      next = backoff_.next();
+    } catch (const ForecastError& e) {
+      error = e.what();
+      why = e.why;
+      status = e.status;
       next = backoff_.next();
     } catch (const std::exception& e) {
       error = e.what();
@@ -98,13 +115,7 @@ asio::awaitable<void> WeatherClient::run() {
     }
     if (stopping_) break;
     decide(std::chrono::steady_clock::now());
-    if (!error.empty()) {
-      const auto s = std::chrono::duration_cast<std::chrono::seconds>(next).count();
-      health_.failed(fmt::format("{}: {}; next try in {} s", error,
-                                 sent_.value_or(false) ? "weather mode holds on the last forecast"
-                                                       : "weather mode off, charging as usual",
-                                 s));
-    }
+    report(error, why, status, next);
     co_await waitForNextRefresh(next);
   }
 }
@@ -122,6 +133,28 @@ asio::awaitable<void> WeatherClient::waitForNextRefresh(std::chrono::steady_cloc
     co_await wait.async_wait(asio::redirect_error(use_awaitable, ec));
     if (needsNewForecast(asked_, currentPosition())) break;
   }
+}
+
+// One log line and one event per outage, with the next try; one event when
+// it is back. Retries are counted in /api/system, not logged.
+void WeatherClient::report(const std::string& error, WeatherMissing why, int status,
+                           std::chrono::steady_clock::duration next) {
+  const auto s = std::chrono::duration_cast<std::chrono::seconds>(next).count();
+  const TimeNs now = handoffs_.latest().telemetry.now;  // the loop's clock, like every event
+  if (error.empty()) {
+    if (outage_) handoffs_.sideEvents.post(makeEvent(now, EventLevel::Info, EventCode::WeatherForecastBack));
+    outage_ = false;
+    return;
+  }
+  health_.failed(fmt::format("{}: {}; next try in {} s", error,
+                             sent_.value_or(false) ? "weather mode holds on the last forecast"
+                                                   : "weather mode off, charging as usual",
+                             s));
+  if (!outage_)
+    handoffs_.sideEvents.post(makeEvent(now, EventLevel::Warning, EventCode::WeatherForecastMissing,
+                                        Reason::NONE, static_cast<double>(status), static_cast<double>(s),
+                                        static_cast<int>(why)));
+  outage_ = true;
 }
 
 std::optional<ChosenPosition> WeatherClient::currentPosition() const {
@@ -158,7 +191,8 @@ asio::awaitable<std::string> WeatherClient::fetch(const ChosenPosition& at) {
   stream.socket().shutdown(tcp::socket::shutdown_both, ec);
   const auto& res = parser.get();
   if (res.result() != http::status::ok)
-    throw std::runtime_error("server answered HTTP " + std::to_string(res.result_int()));
+    throw ForecastError(WeatherMissing::ServerError,
+                        "server answered HTTP " + std::to_string(res.result_int()), res.result_int());
   co_return res.body();
 }
 

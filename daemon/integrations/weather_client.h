@@ -44,7 +44,7 @@ inline constexpr std::size_t kForecastBodyLimit = 64 * 1024;
 class WeatherClient {
  public:
   // `signalk`: the Signal K client's navigation.position, or null.
-  WeatherClient(boost::asio::io_context& io, const WeatherSettings& s, const rt::Handoffs& handoffs,
+  WeatherClient(boost::asio::io_context& io, const WeatherSettings& s, rt::Handoffs& handoffs,
                 CommandSink commands, const SignalKPosition* signalk = nullptr);
   void start();
   void stop();
@@ -59,13 +59,15 @@ class WeatherClient {
   boost::asio::awaitable<std::string> fetch(const ChosenPosition& at);
   boost::asio::awaitable<void> waitForNextRefresh(std::chrono::steady_clock::duration next);
   std::optional<ChosenPosition> currentPosition() const;
+  void report(const std::string& error, WeatherMissing why, int status,
+              std::chrono::steady_clock::duration next);
   void decide(std::chrono::steady_clock::time_point now);
   void send(bool active, const std::string& why);
   void publish(const WeatherDecision& d, double ageS);
 
   boost::asio::io_context& io_;
   WeatherSettings settings_;
-  const rt::Handoffs& handoffs_;
+  rt::Handoffs& handoffs_;  // reads, and posts events (SideEvents)
   CommandSink commands_;
   const SignalKPosition* signalk_;
   HttpUrl url_;
@@ -76,6 +78,7 @@ class WeatherClient {
   std::optional<ChosenPosition> asked_;  // the position of the last request, answered or not
   std::chrono::steady_clock::time_point forecastAt_{};
   std::optional<bool> sent_;  // the last state handed to the regulator
+  bool outage_ = false;       // a WeatherForecastMissing event stands
   mutable std::mutex m_;      // values_ are read by the web threads
   std::map<std::string, double> values_;
   std::map<std::string, std::string> texts_;

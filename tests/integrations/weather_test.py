@@ -131,6 +131,7 @@ def sunny_then_cloudy(c, srv, daemon):
         time.sleep(1)
         c.check(reason(h) != WEATHER, "mixed (1 sunny day of 3, one null): charging")
         c.check(h.integration("weather")["values"]["sunny_days"] == 1, "mixed: one sunny day")
+        c.check(weather_events(h) == [], "a server that answers: no weather event")
     finally:
         h.stop()
 
@@ -156,7 +157,12 @@ def soc_floor(c, srv, daemon):
         h.stop()
 
 
-def broken(c, srv, daemon, answer, why):
+def weather_events(h):
+    ev = json.loads(h.get("/api/events?limit=200"))["events"]
+    return [e for e in ev if e["code"] in ("WeatherForecastMissing", "WeatherForecastBack")]
+
+
+def broken(c, srv, daemon, answer, why, event_why):
     h = Harness(daemon)
     try:
         srv.answer = answer
@@ -169,6 +175,9 @@ def broken(c, srv, daemon, answer, why):
         c.check(h.daemon.poll() is None, f"{answer}: the daemon runs")
         lines = [l for l in h.log_text().splitlines() if "weather:" in l and "next try in" in l]
         c.check(len(lines) == 1, f"{answer}: one log line says why with the next try, got {len(lines)}")
+        ev = weather_events(h)
+        c.check(len(ev) == 1 and ev[0]["code"] == "WeatherForecastMissing" and event_why in ev[0]["text"] and
+                "next try in" in ev[0]["text"], f"{answer}: one event says why with the next try: {ev}")
     finally:
         h.stop()
 
@@ -203,6 +212,7 @@ n2k_interface = "can1"
         c.check(abs(w["values"]["latitude"] + 33.8568) < 1e-6 and abs(w["values"]["longitude"] - 151.2153) < 1e-6,
                 f"the position shown is the GPS's ({w['values']['latitude']}, {w['values']['longitude']})")
         wait_until("weather mode on the GPS position's sunny forecast", lambda: reason(h) == WEATHER, 20)
+        c.check(weather_events(h) == [], "the GPS was heard before any 'no position' was said")
     finally:
         h.stop()
 
@@ -213,9 +223,10 @@ PARTS = {
     # The SoC floor, and the position from the boat's GPS on NMEA 2000.
     "floor": lambda c, srv, d: (soc_floor(c, srv, d), position_from_nmea2000(c, srv, d)),
     # A broken server, five ways.
-    "broken": lambda c, srv, d: [broken(c, srv, d, answer, why) for answer, why in [
-        ("500", "HTTP 500"), ("badjson", "not JSON"), ("shape", "no daily object"), ("huge", "body limit"),
-        ("timeout", "timeout")]],
+    "broken": lambda c, srv, d: [broken(c, srv, d, answer, why, ev) for answer, why, ev in [
+        ("500", "HTTP 500", "server answered HTTP 500"), ("badjson", "not JSON", "not a forecast"),
+        ("shape", "no daily object", "not a forecast"), ("huge", "body limit", "not a forecast"),
+        ("timeout", "timeout", "no answer from the server")]],
 }
 
 
