@@ -568,6 +568,20 @@ TEST_F(WebApiTest, Limits_OversizedBodyAndHeadersAndGarbage) {
   EXPECT_EQ(get("/healthz").status, 200);
 }
 
+TEST_F(WebApiTest, AnEmptyOrMissingHostHeaderIsAnsweredBadRequest) {
+  start();
+  EXPECT_EQ(rawExchange(port_, "GET /api/status HTTP/1.1\r\nHost: \r\n\r\n").substr(0, 12), "HTTP/1.1 400");
+  EXPECT_EQ(rawExchange(port_, "GET /api/status HTTP/1.1\r\nConnection: close\r\n\r\n").substr(0, 12),
+            "HTTP/1.1 400");
+  EXPECT_EQ(rawExchange(port_, "GET /healthz HTTP/1.1\r\nHost: a\r\nHost: b\r\n\r\n").substr(0, 12),
+            "HTTP/1.1 400");
+  // An HTTP/1.0 tool without Host, and a proper request, are served.
+  EXPECT_EQ(rawExchange(port_, "GET /healthz HTTP/1.0\r\n\r\n").substr(0, 12), "HTTP/1.0 200");
+  EXPECT_EQ(rawExchange(port_, "GET /healthz HTTP/1.1\r\nHost: localhost\r\nConnection: close\r\n\r\n")
+                .substr(0, 12),
+            "HTTP/1.1 200");
+}
+
 TEST_F(WebApiTest, WebSocket_StreamsSharedFramesWithIncreasingSeq) {
   api_.publish();
   start();

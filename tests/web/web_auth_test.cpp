@@ -131,6 +131,15 @@ TEST(Pairing, Sha256KnownAnswer) {
 
 // ---------------------------------------------------------------- Host / Origin
 
+TEST(RequestChecks, AnEmptyMissingOrRepeatedHostIsABadRequest) {
+  EXPECT_EQ(hostHeaderProblem(1, "", 11), "empty Host header");
+  EXPECT_EQ(hostHeaderProblem(1, "  ", 10), "empty Host header");
+  EXPECT_EQ(hostHeaderProblem(0, "", 11), "no Host header");
+  EXPECT_EQ(hostHeaderProblem(2, "boat", 11), "more than one Host header");
+  EXPECT_EQ(hostHeaderProblem(0, "", 10), "");  // HTTP/1.0 tools send none
+  EXPECT_EQ(hostHeaderProblem(1, "boat:8080", 11), "");
+}
+
 TEST(RequestChecks, HostNamesThisMachineAnswersTo) {
   const std::vector<std::string> none;
   EXPECT_TRUE(hostAllowed("", none, "boat"));

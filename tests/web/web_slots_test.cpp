@@ -117,6 +117,51 @@ TEST_F(SlotsTest, OneAddressHoldsAtMostItsShareOfConnections) {
   EXPECT_EQ(httpRequest(port_, bhttp::verb::get, "/healthz").status, 200);
 }
 
+// A client that sends half a request from `from` and then waits.
+struct SlowRequest {
+  SlowRequest(asio::io_context& ioc, std::uint16_t port, const std::string& from) : sock(ioc) {
+    sock.open(tcp::v4());
+    sock.bind(tcp::endpoint(asio::ip::make_address(from), 0));
+    sock.connect(tcp::endpoint(asio::ip::make_address("127.0.0.1"), port));
+    asio::write(sock, asio::buffer(std::string("GET /api/status HTTP/1.1\r\nHost: localhost\r\nX-Slow: ")));
+  }
+  tcp::socket sock;
+};
+
+TEST_F(SlotsTest, SixtyFourSlowRequestsFromEightAddressesDoNotStarveHealthz) {
+  WebServerOptions o;
+  o.max_connections = 64;
+  o.evict_waiting_after = std::chrono::milliseconds(0);  // what the default 2 s is for: here at once
+  start(o);
+  asio::io_context ioc;
+  std::vector<std::unique_ptr<SlowRequest>> slow;
+  for (int a = 0; a < 8; ++a)
+    for (int i = 0; i < 8; ++i)
+      slow.push_back(std::make_unique<SlowRequest>(ioc, port_, "127.0.0." + std::to_string(a + 2)));
+  ASSERT_TRUE(waitFor([&] { return server_->stats().connections == 64; }));
+  // Every slot is held by a request that never ends; each health check
+  // closes the one that has waited longest.
+  int healthy = 0;
+  for (int i = 0; i < 20; ++i) healthy += httpRequest(port_, bhttp::verb::get, "/healthz").status == 200;
+  EXPECT_EQ(healthy, 20);
+  EXPECT_GE(server_->stats().connections_evicted, 1u);  // a slot freed is reused by the next check
+  EXPECT_EQ(server_->stats().connections_refused, 0u);
+}
+
+TEST_F(SlotsTest, ARequestWaitingLessThanTheGraceIsNotClosed) {
+  WebServerOptions o;
+  o.max_connections = 2;
+  o.max_per_ip = 100;
+  o.evict_waiting_after = std::chrono::hours(1);
+  start(o);
+  asio::io_context ioc;
+  SlowRequest a(ioc, port_, "127.0.0.2"), b(ioc, port_, "127.0.0.3");
+  ASSERT_TRUE(waitFor([&] { return server_->stats().connections == 2; }));
+  const auto r = rawExchange(port_, "GET /healthz HTTP/1.1\r\nHost: localhost\r\n\r\n");
+  EXPECT_EQ(r.substr(0, 12), "HTTP/1.1 503");
+  EXPECT_EQ(server_->stats().connections_evicted, 0u);
+}
+
 TEST_F(SlotsTest, AWebSocketThatNeverReadsIsClosed) {
   api_.publish();
   WebServerOptions o;

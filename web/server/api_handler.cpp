@@ -204,6 +204,7 @@ Response ApiHandler::getSystem(const Request& req) {
     w["ws_frames_dropped"] = s.ws_frames_dropped;
     w["connections"] = s.connections;
     w["connections_refused"] = s.connections_refused;
+    w["connections_evicted"] = s.connections_evicted;
     o["web"] = std::move(w);
   }
   json::array integrations;

@@ -17,6 +17,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
  public:
   HttpSession(tcp::socket&& socket, WebServer::Impl& impl, const asio::ip::address& peer)
       : stream_(std::move(socket)), impl_(impl), peer_(peer), guard_(impl, peer) {}
+  ~HttpSession() { impl_.removeWaiting(waitingId_); }
 
   void run() {
     asio::dispatch(stream_.get_executor(),
@@ -31,11 +32,22 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     // One deadline for the whole request: a client dripping bytes is cut off.
     stream_.expires_after(first_ ? impl_.opts.request_timeout : impl_.opts.keepalive_timeout);
     first_ = false;
+    // Until the request is read, a new connection may close this one when
+    // every slot is taken (server_impl.h evictOldestWaiting).
+    waitingId_ = impl_.addWaiting([weak = weak_from_this()] {
+      if (auto self = weak.lock())
+        asio::post(self->stream_.get_executor(), [self] {
+          beast::error_code ec;
+          self->stream_.socket().shutdown(tcp::socket::shutdown_both, ec);
+          self->stream_.socket().close(ec);
+        });
+    });
     http::async_read(stream_, buffer_, *parser_,
                      beast::bind_front_handler(&HttpSession::onRead, shared_from_this()));
   }
 
   void onRead(beast::error_code ec, std::size_t) {
+    impl_.removeWaiting(waitingId_);
     if (ec == http::error::end_of_stream) return close();
     if (ec == http::error::body_limit)
       return sendError(http::status::payload_too_large, "request body too large");
@@ -49,6 +61,9 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     Request req = parser_->release();
     const std::string_view target = req.target();
     const std::string_view path = target.substr(0, target.find('?'));
+    if (auto bad = hostHeaderProblem(req.count(http::field::host), req[http::field::host], req.version());
+        !bad.empty())
+      return sendResponse(makeError(req, http::status::bad_request, bad));
     if (!hostAllowed(req[http::field::host], impl_.opts.allowed_hosts, machineHostname()))
       return sendResponse(makeError(req, http::status::misdirected_request, "Host not served here"));
     const bool read = req.method() == http::verb::get || req.method() == http::verb::head;
@@ -122,6 +137,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   ConnGuard guard_;
   std::optional<http::request_parser<http::string_body>> parser_;
   bool first_ = true;
+  std::uint64_t waitingId_ = 0;  // 0: not waiting
 };
 
 }  // namespace

@@ -294,6 +294,9 @@ std::string metricsText(const StatusSnapshot* s, const WebServerStats& st) {
   promLine(out, "xregulator_connections", "gauge", "Open connections", static_cast<double>(st.connections));
   promLine(out, "xregulator_connections_refused_total", "counter", "Connections refused over the cap",
            static_cast<double>(st.connections_refused));
+  promLine(out, "xregulator_connections_evicted_total", "counter",
+           "Connections still reading a request, closed to make room for a new one",
+           static_cast<double>(st.connections_evicted));
   return out;
 }
 

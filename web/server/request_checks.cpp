@@ -31,6 +31,13 @@ std::string_view hostName(std::string_view host) {
 
 }  // namespace
 
+std::string_view hostHeaderProblem(std::size_t count, std::string_view value, unsigned httpVersion) {
+  if (count > 1) return "more than one Host header";
+  if (count == 1 && value.find_first_not_of(" \t") == std::string_view::npos) return "empty Host header";
+  if (count == 0 && httpVersion >= 11) return "no Host header";
+  return {};
+}
+
 bool hostAllowed(std::string_view host, const std::vector<std::string>& allowedHosts,
                  std::string_view machineName) {
   if (host.empty()) return true;

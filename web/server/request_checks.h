@@ -13,8 +13,15 @@
 
 namespace xr::web {
 
-// host: the Host header value (may carry :port). Empty is allowed (HTTP/1.0
-// tools). machineName: gethostname() (tests pass their own).
+// What is wrong with a request's Host header fields, or empty when nothing
+// (RFC 9112 3.2: an HTTP/1.1 request has exactly one Host; a field that is
+// there names a host, so it is not empty). An HTTP/1.0 request may have none
+// (old tools). `count`: how many Host fields; `value`: the first one's.
+std::string_view hostHeaderProblem(std::size_t count, std::string_view value, unsigned httpVersion);
+
+// host: the Host header value (may carry :port). Empty is allowed (an
+// HTTP/1.0 request without one; hostHeaderProblem refuses the rest). machineName: gethostname() (tests pass
+// their own).
 bool hostAllowed(std::string_view host, const std::vector<std::string>& allowedHosts,
                  std::string_view machineName);
 

@@ -8,6 +8,7 @@
 #include <boost/beast/core.hpp>
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -33,7 +34,7 @@ struct WebServer::Impl {
   WebServerOptions opts;
 
   std::atomic<std::uint64_t> httpRequests{0}, httpErrors{0}, wsClients{0}, wsSent{0}, wsDropped{0},
-      connections{0}, refused{0};
+      connections{0}, refused{0}, evicted{0};
   ApiHandler handler;
 
   // Per-address counts for the per-client bounds: {connections, WebSockets}.
@@ -80,6 +81,42 @@ struct WebServer::Impl {
     return true;
   }
 
+  // Connections reading a request (headers or body), oldest first by id:
+  // what a new connection may close when every slot is taken.
+  struct Waiting {
+    std::chrono::steady_clock::time_point since;
+    std::function<void()> evict;  // posts a close to the session's strand
+  };
+  std::mutex waitingMutex;
+  std::map<std::uint64_t, Waiting> waiting;
+  std::uint64_t nextWaitingId = 0;  // under waitingMutex
+  std::uint64_t addWaiting(std::function<void()> evict) {
+    std::lock_guard lock(waitingMutex);
+    waiting.emplace(++nextWaitingId, Waiting{std::chrono::steady_clock::now(), std::move(evict)});
+    return nextWaitingId;
+  }
+  void removeWaiting(std::uint64_t id) {
+    std::lock_guard lock(waitingMutex);
+    waiting.erase(id);
+  }
+  // Closes the connection that has waited longest for its request, when it
+  // has waited evict_waiting_after; true when one was told to close.
+  bool evictOldestWaiting() {
+    std::function<void()> evict;
+    {
+      std::lock_guard lock(waitingMutex);
+      auto it = waiting.begin();  // ids rise with time: the first waited longest
+      if (it == waiting.end() ||
+          std::chrono::steady_clock::now() - it->second.since < opts.evict_waiting_after)
+        return false;
+      evict = std::move(it->second.evict);
+      waiting.erase(it);
+    }
+    evicted.fetch_add(1);
+    evict();
+    return true;
+  }
+
   std::mutex wsMutex;
   std::vector<std::weak_ptr<WsSession>> wsSessions;
 
@@ -101,6 +138,7 @@ struct WebServer::Impl {
     s.ws_frames_dropped = wsDropped.load();
     s.connections = connections.load();
     s.connections_refused = refused.load();
+    s.connections_evicted = evicted.load();
     return s;
   }
 

@@ -30,8 +30,10 @@ void WebServer::Impl::onAccept(beast::error_code ec, tcp::socket socket) {
   if (!ec) {
     beast::error_code aec;
     const auto peer = socket.remote_endpoint(aec).address();
-    if (aec || connections.load() >= static_cast<std::uint64_t>(std::max(1, opts.max_connections)) ||
-        !admit(peer)) {
+    // Every slot taken: the connection that waited longest for its request
+    // gives way (slow clients cannot starve /healthz; docs/security.md).
+    const bool full = connections.load() >= static_cast<std::uint64_t>(std::max(1, opts.max_connections));
+    if (aec || (full && !evictOldestWaiting()) || !admit(peer)) {
       refused.fetch_add(1);
       static constexpr std::string_view kBusy =
           "HTTP/1.1 503 Service Unavailable\r\nContent-Type: application/json\r\nContent-Length: 33\r\n"

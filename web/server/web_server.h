@@ -44,7 +44,11 @@ struct WebServerOptions {
   std::size_t header_limit = 8 * 1024;
   std::chrono::milliseconds request_timeout{10000};    // whole request read / response write
   std::chrono::milliseconds keepalive_timeout{10000};  // idle keep-alive (docs/dashboard.md)
-  std::chrono::milliseconds ws_idle_timeout{30000};    // no pong within this: close
+  // At max_connections, a new connection closes the connection that has
+  // waited longest for its request, once it has waited this long: clients
+  // dripping their headers cannot hold every slot (docs/security.md).
+  std::chrono::milliseconds evict_waiting_after{2000};
+  std::chrono::milliseconds ws_idle_timeout{30000};  // no pong within this: close
   // A frame the client does not take within this (it never reads): close.
   std::chrono::milliseconds ws_write_timeout{10000};
   // Kernel send buffer of each WebSocket: bounds what a slow client can hold
@@ -82,6 +86,7 @@ struct WebServerStats {
   std::uint64_t ws_frames_dropped = 0;  // replaced by a newer snapshot before sending
   std::uint64_t connections = 0;        // open now
   std::uint64_t connections_refused = 0;
+  std::uint64_t connections_evicted = 0;  // closed while reading a request, to make room
 };
 
 class WebServer {
