@@ -6,6 +6,7 @@
 #include "battery/battery_monitor.h"
 #include "battery/monitor_helpers.h"
 #include "params/constants.h"
+#include "params/derived.h"
 
 namespace xr {
 
@@ -156,7 +157,8 @@ void BatteryMonitor::runSocBody(TimeNs now, double elapsed_s, EventBatch& ev) {
 
   // ---- system class and cycles
   if (lastValidVoltage_ > 4.0)
-    nominalVoltage_ = lastValidVoltage_ < 16.0 ? 12 : (lastValidVoltage_ < 32.0 ? 24 : 48);
+    nominalVoltage_ =
+        nominalVoltage(bankClassOfVoltage(lastValidVoltage_));  // docs/deviations.md "One bank-class rule"
 
   // ---- time-weighted averages
   const double soc = socPercent();

@@ -288,11 +288,6 @@ class Loader {
   std::map<std::string, Location> settingLoc_;
 };
 
-std::string dotted(const char* name) {
-  const ParamSpec* s = findParam(name);
-  return std::string(tomlTableName(s->group)) + "." + name;
-}
-
 }  // namespace
 
 LoadResult loadConfigString(std::string_view text, std::string_view name) { return Loader(name).run(text); }
@@ -305,74 +300,6 @@ LoadResult loadConfigFile(const std::string& path) {
     return r;
   }
   return loadConfigString(text, path);
-}
-
-std::vector<ConfigError> checkConsistency(const Params& p, std::string_view file) {
-  std::vector<ConfigError> errs;
-  const std::string f(file.empty() ? std::string_view("params") : file);
-  auto err = [&](const char* key, std::string msg) {
-    errs.push_back({f, 0, 0, dotted(key), std::move(msg)});
-  };
-  auto v = [](double x, const char* unit) { return formatNumber(x) + " " + unit; };
-
-  if (p.AbsorptionVoltage > p.BulkVoltage)
-    err("AbsorptionVoltage", v(p.AbsorptionVoltage, "V") + " is above BulkVoltage " + v(p.BulkVoltage, "V") +
-                                 "; it must not exceed it");
-  if (p.FloatVoltage > p.AbsorptionVoltage)
-    err("FloatVoltage", v(p.FloatVoltage, "V") + " is above AbsorptionVoltage " +
-                            v(p.AbsorptionVoltage, "V") + "; it must not exceed it");
-  if (p.RebulkVoltage >= p.FloatVoltage)
-    err("RebulkVoltage", v(p.RebulkVoltage, "V") + " must be below FloatVoltage " + v(p.FloatVoltage, "V"));
-  // A software trip at or below the charging target would trip in normal
-  // bulk charging (safeties-and-protections.md "Alternator Hard Shutdown").
-  if (p.AlternatorHardShutdownV != 0.0 && p.AlternatorHardShutdownV <= p.BulkVoltage)
-    err("AlternatorHardShutdownV", v(p.AlternatorHardShutdownV, "V") + " must be above BulkVoltage " +
-                                       v(p.BulkVoltage, "V") +
-                                       " (or 0 for the first-boot default BulkVoltage + 0.3 V)");
-  // The INA228 hardware limit is BulkVoltage + 0.3 V: a higher target would
-  // trip the hardware ALERT in normal operation.
-  if (p.TargetVoltageSetpoint > voltageHardwareLimit(p))
-    err("TargetVoltageSetpoint", v(p.TargetVoltageSetpoint, "V") + " is above the INA228 hardware limit " +
-                                     v(voltageHardwareLimit(p), "V") + " (BulkVoltage + 0.3 V)");
-  {
-    const auto range = plausibleVoltageRange(p);
-    if (p.FloatVoltage < range.min || p.RebulkVoltage < range.min)
-      err("FloatVoltage",
-          "FloatVoltage/RebulkVoltage must lie in the plausible range of the system class set by "
-          "BulkVoltage (" +
-              v(range.min, "V") + " to " + v(range.max, "V") + ")");
-  }
-  if (p.MinDuty > p.MaxDuty) err("MinDuty", v(p.MinDuty, "%") + " is above MaxDuty " + v(p.MaxDuty, "%"));
-  if (p.VoltageAlarmLow >= p.VoltageAlarmHigh)
-    err("VoltageAlarmLow",
-        v(p.VoltageAlarmLow, "V") + " must be below VoltageAlarmHigh " + v(p.VoltageAlarmHigh, "V"));
-  if (p.TempAlarmLow != 0.0 && p.TempAlarmLow >= p.TempAlarm)
-    err("TempAlarmLow", v(p.TempAlarmLow, "degF") + " must be below TempAlarm " + v(p.TempAlarm, "degF"));
-  if (p.TempWarnExcess >= p.TempCritExcess)
-    err("TempWarnExcess", v(p.TempWarnExcess, "degF") + " must be below TempCritExcess " +
-                              v(p.TempCritExcess, "degF") + " (T1 warning fires before T3 cut)");
-  if (p.SOC_AllowRebulk_percent > p.SOC_BlockRebulk_percent)
-    err("SOC_AllowRebulk_percent", v(p.SOC_AllowRebulk_percent, "%") + " is above SOC_BlockRebulk_percent " +
-                                       v(p.SOC_BlockRebulk_percent, "%"));
-  if (!(p.LoadDumpDtThresh1 >= p.LoadDumpDtThresh && p.LoadDumpDtThresh >= p.LoadDumpDtThresh3))
-    err("LoadDumpDtThresh",
-        "load dump tiers must satisfy LoadDumpDtThresh1 >= LoadDumpDtThresh >= LoadDumpDtThresh3 (" +
-            formatNumber(p.LoadDumpDtThresh1) + ", " + formatNumber(p.LoadDumpDtThresh) + ", " +
-            formatNumber(p.LoadDumpDtThresh3) + " A/s)");
-  // The battery profile's own limits (issue 21): LiFePO4 cell voltage,
-  // inverted temperature ranges.
-  for (auto& pr : checkProfileLimits(p))
-    errs.push_back({f, 0, 0, dotted(pr.name.c_str()), std::move(pr.message)});
-  for (std::size_t i = 1; i < RPM_TABLE_SIZE; ++i) {
-    if (p.rpmTableRPMPoints[i] <= p.rpmTableRPMPoints[i - 1]) {
-      err("rpmTableRPMPoints", "breakpoints must be strictly ascending (element " + std::to_string(i) +
-                                   " = " + formatNumber(p.rpmTableRPMPoints[i]) +
-                                   " RPM is not above element " + std::to_string(i - 1) + " = " +
-                                   formatNumber(p.rpmTableRPMPoints[i - 1]) + " RPM)");
-      break;
-    }
-  }
-  return errs;
 }
 
 int checkConfigMain(const std::string& path, std::ostream& out, std::ostream& err) {

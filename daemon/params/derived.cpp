@@ -4,10 +4,16 @@
 
 namespace xr {
 
-SystemClass systemClass(const Params& p) {
-  if (p.BulkVoltage < 18.0) return SystemClass::V12;
-  if (p.BulkVoltage <= 36.0) return SystemClass::V24;
+SystemClass bankClassOfVoltage(double volts) {
+  if (volts < 18.0) return SystemClass::V12;
+  if (volts <= 36.0) return SystemClass::V24;
   return SystemClass::V48;
+}
+
+SystemClass systemClass(const Params& p) { return bankClassOfVoltage(p.BulkVoltage); }
+
+bool isBankVoltage(const ParamSpec& spec, double value) {
+  return spec.unit == "V" && (spec.min >= 8.0 || (spec.name == "AlternatorHardShutdownV" && value > 0.0));
 }
 
 int nominalVoltage(SystemClass c) { return static_cast<int>(c); }

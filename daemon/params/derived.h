@@ -7,9 +7,20 @@ namespace xr {
 
 enum class SystemClass { V12 = 12, V24 = 24, V48 = 48 };
 
-// From BulkVoltage: < 18 V -> 12 V, 18–36 V -> 24 V, > 36 V -> 48 V
-// (architecture-legacy.md "Voltage Plausibility Ranges").
+// The one rule for which bank a battery voltage belongs to, whether a
+// set-point or a measurement: below 18 V a 12 V bank, up to 36 V a 24 V bank,
+// above a 48 V bank. The splits lie between what two neighbouring classes can
+// show: a 12 V bank equalising reaches ~16.5 V and a 24 V bank is ruined long
+// before 18 V; a 24 V bank equalising reaches ~32.4 V and a 48 V bank is flat
+// at ~40 V (docs/deviations.md "One bank-class rule").
+SystemClass bankClassOfVoltage(double volts);
+// bankClassOfVoltage(BulkVoltage) (architecture-legacy.md "Voltage
+// Plausibility Ranges").
 SystemClass systemClass(const Params& p);
+// An absolute battery voltage (a set-point or an alarm: unit V, catalogue
+// minimum 8 V, or AlternatorHardShutdownV when set), which must belong to
+// the bank's class; `value` is the parameter's value.
+bool isBankVoltage(const ParamSpec& spec, double value);
 int nominalVoltage(SystemClass c);
 
 struct VoltageRange {

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "params/derived.h"
 #include "web/server/api_handler.h"
 #include "web/server/api_reply.h"
 #include "web/server/json_format.h"
@@ -62,22 +63,19 @@ std::optional<double> scalarFor(const ParamSpec& spec, const json::value& v, std
   return d;
 }
 
-// The bank's class (12/24/48 V) as measured, by the battery monitor's rule
-// (battery_soc.cpp: below 16 V a 12 V bank, below 32 V a 24 V bank); 0 when
-// no battery voltage is measured.
+// The bank's class (12/24/48 V) as measured (params/derived.h
+// bankClassOfVoltage); 0 when no battery voltage is measured.
 int measuredClass(double batteryV) {
   if (!std::isfinite(batteryV) || batteryV < 4.5) return 0;
-  return batteryV < 16.0 ? 12 : (batteryV < 32.0 ? 24 : 48);
+  return nominalVoltage(bankClassOfVoltage(batteryV));
 }
 
 // An absolute battery voltage (a set-point or alarm, catalogue minimum 8 V)
 // must belong to the measured bank: BulkVoltage = 28.8 on a 12 V bank is
-// refused (issue 25 item 6). The classes split as systemClass() does.
+// refused.
 std::string voltageClassError(const ParamSpec& spec, double v, int bank) {
-  const bool absolute =
-      spec.unit == "V" && (spec.min >= 8.0 || (spec.name == "AlternatorHardShutdownV" && v > 0.0));
-  if (!absolute || bank == 0) return "";
-  const int cls = v < 18.0 ? 12 : (v <= 36.0 ? 24 : 48);
+  if (!isBankVoltage(spec, v) || bank == 0) return "";
+  const int cls = nominalVoltage(bankClassOfVoltage(v));
   if (cls == bank) return "";
   return plain(v) + " V is for a " + std::to_string(cls) + " V battery; this battery measures as a " +
          std::to_string(bank) + " V bank";

@@ -1,0 +1,120 @@
+// The checks on a whole parameter set (docs/configuration.md "Checks on the
+// whole set"): each value in its range, but together for the wrong bank,
+// unregulated, or alarming in normal operation. At each rule's edge, and
+// through the configuration file as --check-config reads it.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "config/config.h"
+#include "params/derived.h"
+
+namespace xr {
+namespace {
+
+using ::testing::HasSubstr;
+
+std::vector<std::string> keys(const Params& p) {
+  std::vector<std::string> k;
+  for (const auto& e : checkConsistency(p)) k.push_back(e.key);
+  return k;
+}
+std::string messages(const Params& p) {
+  std::string m;
+  for (const auto& e : checkConsistency(p)) m += e.message + "\n";
+  return m;
+}
+
+TEST(BankClass, OneRuleSplitsAt18And36Volts) {
+  EXPECT_EQ(bankClassOfVoltage(17.99), SystemClass::V12);
+  EXPECT_EQ(bankClassOfVoltage(18.0), SystemClass::V24);
+  EXPECT_EQ(bankClassOfVoltage(16.5), SystemClass::V12);  // a 12 V bank equalising
+  EXPECT_EQ(bankClassOfVoltage(36.0), SystemClass::V24);
+  EXPECT_EQ(bankClassOfVoltage(32.4), SystemClass::V24);  // a 24 V bank equalising
+  EXPECT_EQ(bankClassOfVoltage(36.01), SystemClass::V48);
+  Params p;
+  p.BulkVoltage = 28.8;
+  EXPECT_EQ(systemClass(p), SystemClass::V24);
+}
+
+TEST(SetChecks, A24VoltValueAmong12VoltOnesIsRefusedNamingBoth) {
+  Params p;
+  p.FloatVoltage = 27.0;  // the rest of the set is for 12 V
+  EXPECT_THAT(keys(p), ::testing::Contains("voltage.FloatVoltage"));
+  EXPECT_THAT(messages(p),
+              HasSubstr("FloatVoltage 27 V is for a 24 V bank; BulkVoltage 14.5 V makes this a 12 V bank"));
+}
+
+TEST(SetChecks, AHighVoltageAlarmForAnotherBankIsRefused) {
+  Params p;
+  p.VoltageAlarmHigh = 40.0;
+  EXPECT_THAT(keys(p), ::testing::Contains("alarms.VoltageAlarmHigh"));
+  EXPECT_THAT(messages(p), HasSubstr("40 V is for a 48 V bank"));
+}
+
+TEST(SetChecks, AWhole24VoltSetIsConsistent) {
+  Params p;
+  p.BulkVoltage = 28.8;
+  p.AbsorptionVoltage = 28.6;
+  p.FloatVoltage = 27.0;
+  p.RebulkVoltage = 25.8;
+  p.TargetVoltageSetpoint = 27.2;
+  p.ChargedVoltage = 27.6;
+  p.VoltageAlarmHigh = 30.0;
+  p.VoltageAlarmLow = 22.0;
+  EXPECT_EQ(messages(p), "");
+}
+
+TEST(SetChecks, MinDutyMustStayBelowMaxDutyAndUnderHalfField) {
+  Params p;
+  p.MinDuty = 100;
+  p.MaxDuty = 100;
+  EXPECT_THAT(messages(p), HasSubstr("MinDuty 100 % must be below MaxDuty 100 %"));
+  p.MaxDuty = 99;
+  p.MinDuty = 50;  // the edge: allowed
+  EXPECT_EQ(messages(p), "");
+  p.MinDuty = 50.5;
+  EXPECT_THAT(keys(p), ::testing::ElementsAre("tuning.MinDuty"));
+}
+
+TEST(SetChecks, AnAlarmInsideWhatTheRegulatorMayDoIsRefused) {
+  Params p;
+  p.VoltageAlarmHigh = p.BulkVoltage;  // at the target: sounds in every bulk charge
+  EXPECT_THAT(keys(p), ::testing::ElementsAre("alarms.VoltageAlarmHigh"));
+  p = {};
+  p.TempAlarm = p.TemperatureLimitF;  // at the thermal limit the regulator holds
+  EXPECT_THAT(keys(p), ::testing::ElementsAre("temperature.TempAlarm"));
+  p.TempAlarm = p.TemperatureLimitF + 0.5;
+  EXPECT_EQ(messages(p), "");
+}
+
+TEST(SetChecks, TheTemperatureCutMayNotLieBeyondClassHInsulation) {
+  Params p;
+  p.TemperatureLimitF = 400;
+  p.TempAlarm = 100;
+  const std::string m = messages(p);
+  EXPECT_THAT(m, HasSubstr("TempAlarm"));
+  EXPECT_THAT(m, HasSubstr("is above 356 degF (180 degC, class H insulation)"));
+  p = {};
+  p.TemperatureLimitF = 346;  // + TempCritExcess 10 = 356: the edge
+  p.TempAlarm = 350;
+  EXPECT_EQ(messages(p), "");
+  p.TemperatureLimitF = 346.5;
+  EXPECT_THAT(keys(p), ::testing::ElementsAre("temperature.TemperatureLimitF"));
+}
+
+TEST(SetChecks, TheFileIsRefusedAsPatchWouldRefuseIt) {
+  // What --check-config reads: a 24 V charge set with a 12 V alarm.
+  const LoadResult r = loadConfigString(
+      "[voltage]\nBulkVoltage = 28.8\nAbsorptionVoltage = 28.6\nFloatVoltage = 27.0\nRebulkVoltage = 25.8\n"
+      "TargetVoltageSetpoint = 27.2\nChargedVoltage = 27.6\n",
+      "boat.toml");
+  ASSERT_FALSE(r.ok());
+  std::string all;
+  for (const auto& e : r.errors) all += e.toString() + "\n";
+  EXPECT_THAT(all, HasSubstr("alarms.VoltageAlarmHigh"));
+  EXPECT_THAT(
+      all, HasSubstr("VoltageAlarmHigh 15 V is for a 12 V bank; BulkVoltage 28.8 V makes this a 24 V bank"));
+}
+
+}  // namespace
+}  // namespace xr
