@@ -130,7 +130,7 @@ std::vector<ConfigError> checkConsistency(const Params& p, std::string_view file
         "load dump tiers must satisfy LoadDumpDtThresh1 >= LoadDumpDtThresh >= LoadDumpDtThresh3 (" +
             formatNumber(p.LoadDumpDtThresh1) + ", " + formatNumber(p.LoadDumpDtThresh) + ", " +
             formatNumber(p.LoadDumpDtThresh3) + " A/s)");
-  // The battery profile's own limits (issue 21): LiFePO4 cell voltage,
+  // The battery profile's own limits (docs/batteries.md): LiFePO4 cell voltage,
   // inverted temperature ranges.
   for (auto& pr : checkProfileLimits(p))
     errs.push_back({f, 0, 0, dotted(pr.name.c_str()), std::move(pr.message)});

@@ -44,7 +44,8 @@ enum class EventCode {
   Message,         // generic; text chosen by detail code
   AlarmCondition,  // one buzzer-table row holds (detail = AlarmRow, a = value, b = threshold); 30 s throttled
   BatteryTempMissing,  // battery temperature missing or stale (detail 1: current capped at C/10, a = cap A;
-                       // detail 0: charging uncompensated); once per episode (issue 21)
+                       // detail 0: charging uncompensated); once per episode (docs/batteries.md "Temperature
+                       // rules")
   BatteryTempBack,     // a fresh battery temperature again (a = degC)
   // The CAN side (issue 22), posted by the xr-can thread through SideEvents,
   // each at most once per 30 s. detail = the bus: 0 BMS, 1 NMEA 2000.
