@@ -139,19 +139,21 @@ asio::awaitable<void> WeatherClient::waitForNextRefresh(std::chrono::steady_cloc
 // it is back. Retries are counted in /api/system, not logged.
 void WeatherClient::report(const std::string& error, WeatherMissing why, int status,
                            std::chrono::steady_clock::duration next) {
-  const auto s = std::chrono::duration_cast<std::chrono::seconds>(next).count();
-  const TimeNs now = handoffs_.latest().telemetry.now;  // the loop's clock, like every event
+  // Events are stamped on the loop's clock, like every other event.
+  auto loopNow = [this] { return handoffs_.latest().telemetry.now; };
   if (error.empty()) {
-    if (outage_) handoffs_.sideEvents.post(makeEvent(now, EventLevel::Info, EventCode::WeatherForecastBack));
+    if (outage_)
+      handoffs_.sideEvents.post(makeEvent(loopNow(), EventLevel::Info, EventCode::WeatherForecastBack));
     outage_ = false;
     return;
   }
+  const auto s = std::chrono::duration_cast<std::chrono::seconds>(next).count();
   health_.failed(fmt::format("{}: {}; next try in {} s", error,
                              sent_.value_or(false) ? "weather mode holds on the last forecast"
                                                    : "weather mode off, charging as usual",
                              s));
   if (!outage_)
-    handoffs_.sideEvents.post(makeEvent(now, EventLevel::Warning, EventCode::WeatherForecastMissing,
+    handoffs_.sideEvents.post(makeEvent(loopNow(), EventLevel::Warning, EventCode::WeatherForecastMissing,
                                         Reason::NONE, static_cast<double>(status), static_cast<double>(s),
                                         static_cast<int>(why)));
   outage_ = true;
