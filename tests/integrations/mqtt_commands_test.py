@@ -86,7 +86,16 @@ def commands_stay_off_when_the_broker_accepts_anonymous_clients(c, daemon):
         wait_until("the anonymous broker reported",
                    lambda: "accepts clients without a user name" in h.log_text(), 20)
         c.check(COMMANDS_ON not in h.log_text(), "commands not switched on")
-        configs = {t for t, _ in h.sub("homeassistant/#", 50, timeout=4, retained_only=True)}
+        # Discovery is published after the broker check; on a loaded machine
+        # it can take seconds, so wait for it before judging what it holds.
+        found = {}
+
+        def discovery_published():
+            found["configs"] = {t for t, _ in h.sub("homeassistant/#", 50, timeout=4, retained_only=True)}
+            return bool(found["configs"])
+
+        wait_until("the discovery configs published", discovery_published, 30)
+        configs = found["configs"]
         c.check(configs and not any("/select/" in t or "/button/" in t for t in configs),
                 f"no command entities announced ({len(configs)} configs)")
         h.pub(MODE, "off")
