@@ -155,6 +155,12 @@ std::string tripText(const Event& e, char* buf, std::size_t n) {
       std::snprintf(buf, n, "Alternator hot after an engine stop: %.1f F > %.1f F. Field off until it cools",
                     e.a, e.b);
       return buf;
+    case Reason::REASON_BANK_MISMATCH:
+      std::snprintf(buf, n,
+                    "Battery reads %.1f V but the settings are for a %.0f V bank (BulkVoltage). Field off "
+                    "until they match",
+                    e.a, e.b);
+      return buf;
     case Reason::REASON_RPM_LOW:
       std::snprintf(buf, n, "RPM below minimum: %.0f < %.0f RPM. Field off", e.a, e.b);
       return buf;

@@ -14,14 +14,16 @@ std::string_view lookup(const std::array<std::pair<E, std::string_view>, N>& tab
 }
 
 template <typename E, std::size_t N>
-std::optional<E> reverse(const std::array<std::pair<E, std::string_view>, N>& table,
-                         std::string_view s) {
+std::optional<E> reverse(const std::array<std::pair<E, std::string_view>, N>& table, std::string_view s) {
   for (const auto& [e, name] : table)
     if (name == s) return e;
   return std::nullopt;
 }
 
-#define XR_NAME(E, v) std::pair{E::v, std::string_view{#v}}
+#define XR_NAME(E, v)             \
+  std::pair {                     \
+    E::v, std::string_view { #v } \
+  }
 
 constexpr std::array kModes{
     XR_NAME(FieldControlMode, MODE_CRITICAL_RAMP), XR_NAME(FieldControlMode, MODE_WARNING_RAMP_AND_LOCKOUT),
@@ -78,6 +80,7 @@ constexpr std::array kReasons{
     XR_NAME(Reason, REASON_BATTERY_COLD),
     XR_NAME(Reason, REASON_BATTERY_HOT),
     XR_NAME(Reason, REASON_TEMP_SOAK),
+    XR_NAME(Reason, REASON_BANK_MISMATCH),
 };
 #undef XR_NAME
 

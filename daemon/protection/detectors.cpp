@@ -17,6 +17,12 @@ namespace {
 // first conversion (INA228 slow mode ~1.05 s) with margin.
 constexpr std::int64_t kSensorBootGraceMs = 2000;
 
+// Ours (docs/deviations.md "Bank size check"): how long every voltage sensor
+// must read another bank size before the field is cut. Long enough to ride
+// through a 24 V starter's cranking dip, short enough that a 24 V target on
+// a 12 V bank cannot lift it far (the governor's slew needs seconds).
+constexpr std::int64_t kBankMismatchHoldMs = 5000;
+
 }  // namespace
 
 bool ProtectionSupervisor::sustained(TimerState& t, bool cond, TimeNs hold) const {
@@ -45,6 +51,7 @@ void ProtectionSupervisor::updateDetectors(const Inputs& in, double MeasuredAmps
 
   updateInaLatch(in, ev);
   updateVoltageSensors(in, ev);
+  updateBankMismatch(ev);
   updateRpmGate(ev);
   updateTemperature(in, ev);
   updateCurrent(in, MeasuredAmps, ev);
@@ -140,6 +147,29 @@ void ProtectionSupervisor::updateVoltageSensors(const Inputs& in, EventBatch& ev
   flags_.voltageDisagreeWarning = disW;
   flags_.voltageDisagreeCritical = disC;
   flags_.voltageImplausible = impl;
+}
+
+// Bank size check: every live voltage sensor (IBV unless INADisconnected,
+// BatteryV) reads a bank size other than BulkVoltage's (the one 18/36 V
+// rule, params/derived.h). A dead sensor (< SENSOR_DEAD_V) is left to the
+// disagreement and implausibility detectors.
+void ProtectionSupervisor::updateBankMismatch(EventBatch& ev) {
+  const SystemClass configured = systemClass(p_);
+  int live = 0, other = 0;
+  double shown = 0.0;
+  auto look = [&](double v) {
+    if (!finite(v) || v < k::SENSOR_DEAD_V) return;
+    ++live;
+    if (bankClassOfVoltage(v) != configured) {
+      ++other;
+      shown = v;
+    }
+  };
+  if (!p_.INADisconnected) look(IBV_);
+  look(BatteryV_);
+  flags_.bankMismatch = sustained(bankMismatchT_, live > 0 && other == live, fromMs(kBankMismatchHoldMs));
+  edge(evBank_, flags_.bankMismatch, Reason::REASON_BANK_MISMATCH, shown, nominalVoltage(configured), ev,
+       EventLevel::Critical);
 }
 
 // T1, T2, T3 (IgnoreTemperature), T4 and T5 (not ignorable, see docs).

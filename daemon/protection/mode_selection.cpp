@@ -34,9 +34,14 @@ bool latched(const ProtectionFlags& f, M m) { return f.rampLatched && f.rampLatc
 
 ModeDecision selectFieldMode(const TickSnapshot& s) {
   const ProtectionFlags& f = s.prot;
-  // 0. INA228 latch: all modes, Limp Home included (pre-gate).
+  // 0. Ours: the bank is another size than the settings say, so every
+  // voltage threshold (the hard shutdown's and the INA228 limit too) is
+  // wrong: cut in every mode, and name the cause first — 12 V settings on a
+  // 24 V bank also latch the INA228 alert, which is a symptom of it.
+  if (f.bankMismatch) return {M::MODE_CRITICAL_RAMP, Reason::REASON_BANK_MISMATCH};
+  // 0b. INA228 latch: all modes, Limp Home included (pre-gate).
   if (f.inaOvervoltageLatched) return {M::MODE_CRITICAL_RAMP, Reason::REASON_INA_OVERVOLTAGE};
-  // 0b. Alternator hard shutdown: an immediate cut in every mode (ours, after
+  // 0c. Alternator hard shutdown: an immediate cut in every mode (ours, after
   // the original firmware's later versions; the seed's warning ramp went on
   // feeding a bank already over its trip for seconds).
   if (f.altHardShutdown) return {M::MODE_CRITICAL_RAMP, Reason::REASON_ALT_HARD_SHUTDOWN};
@@ -91,7 +96,7 @@ Reason selectFieldEventReason(const TickSnapshot& s) { return selectFieldMode(s)
 bool isImmediateCutReason(Reason r) {
   return r == Reason::REASON_INA_OVERVOLTAGE || r == Reason::REASON_HARD_OVERCURRENT ||
          r == Reason::REASON_TEMP_CRITICAL || r == Reason::REASON_RPM_LOW ||
-         r == Reason::REASON_ALT_HARD_SHUTDOWN;
+         r == Reason::REASON_ALT_HARD_SHUTDOWN || r == Reason::REASON_BANK_MISMATCH;
 }
 
 bool isNormalMode(FieldControlMode m) {

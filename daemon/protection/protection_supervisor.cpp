@@ -85,6 +85,7 @@ void ProtectionSupervisor::fillTelemetry(ProtectionTelemetry& t) const {
   t.tempStale = flags_.tempStale;
   t.currentStale = flags_.currentStale;
   t.altHardShutdown = flags_.altHardShutdown;
+  t.bankMismatch = flags_.bankMismatch;
   t.voltageDisagreeWarning = flags_.voltageDisagreeWarning;
   t.tempWarning = flags_.tempWarning;
   t.tempSustained = flags_.tempSustained;

@@ -151,6 +151,7 @@ class ProtectionSupervisor {
   bool sustained(TimerState& t, bool cond, TimeNs hold) const;
   void updateInaLatch(const Inputs& in, EventBatch& ev);
   void updateVoltageSensors(const Inputs& in, EventBatch& ev);
+  void updateBankMismatch(EventBatch& ev);
   void updateRpmGate(EventBatch& ev);
   void updateTemperature(const Inputs& in, EventBatch& ev);
   void updateCurrent(const Inputs& in, double MeasuredAmps, EventBatch& ev);
@@ -200,10 +201,10 @@ class ProtectionSupervisor {
   TimeNs inaClearedAt_ = -1;
 
   // Sustained timers.
-  TimerState disagreeWarnT_, disagreeCritT_, hardOcT_, t1T_;
+  TimerState disagreeWarnT_, disagreeCritT_, hardOcT_, t1T_, bankMismatchT_;
   // Edge memories for trip/clear events.
-  EventEdge evHardOc_, evT3_, evT1_, evRpm_, evAltHs_, evDisW_, evDisC_, evImpl_, evT5_, evCur_, evT4_,
-      evSoak_;
+  EventEdge evBank_, evHardOc_, evT3_, evT1_, evRpm_, evAltHs_, evDisW_, evDisC_, evImpl_, evT5_, evCur_,
+      evT4_, evSoak_;
 
   // Shutdown sequencer.
   FieldControlMode lastMode_ = FieldControlMode::MODE_DISABLED_RAMP;

@@ -27,7 +27,8 @@ struct ProtectionTelemetry {
   // through visitProtectionTelemetry, whose order is the exported one).
   bool hardOvercurrent = false, tempCritical = false, rpmBelowMin = false;
   bool voltageDisagreeCritical = false, voltageImplausible = false, tempStale = false, currentStale = false;
-  bool altHardShutdown = false, voltageDisagreeWarning = false, tempWarning = false, tempSustained = false;
+  bool altHardShutdown = false, bankMismatch = false, voltageDisagreeWarning = false, tempWarning = false,
+       tempSustained = false;
   bool fieldCut = false;  // GPIO4 held LOW by the sequencer
   bool alarmLatched = false;
   bool govBypassLatched = false;  // fast-OV (declared here to keep the detector block aligned)
@@ -60,6 +61,7 @@ void visitProtectionTelemetry(T& t, F&& f) {
   f("tempCritical", t.tempCritical);
   f("rpmBelowMin", t.rpmBelowMin);
   f("altHardShutdown", t.altHardShutdown);
+  f("bankMismatch", t.bankMismatch);
   f("voltageDisagreeWarning", t.voltageDisagreeWarning);
   f("voltageDisagreeCritical", t.voltageDisagreeCritical);
   f("voltageImplausible", t.voltageImplausible);

@@ -35,6 +35,10 @@ struct ProtectionFlags {
 
   // Immediate cut in every mode, then the lockout (ours).
   bool altHardShutdown = false;  // IBV > AlternatorHardShutdownV
+  // Every voltage sensor reads another bank size than the settings are for
+  // (a 24 V file on a 12 V bank): every voltage threshold is wrong, so the
+  // field is cut in every mode (ours: docs/deviations.md "Bank size check").
+  bool bankMismatch = false;
   // INADisconnected: AUTO refuses to run without voltage feedback.
   bool inaAbsent = false;
 

@@ -19,7 +19,8 @@ rpm = 1800
 house_a = 5
 [[events]]
 at_s = 120
-)" + faultLines + "\n";
+)" + faultLines +
+         "\n";
 }
 
 // Field truly charging before the fault, truly off within `within` seconds.
@@ -29,7 +30,8 @@ double checkCut(const SimRunResult& r, double within) {
   if (!before) return -1;
   EXPECT_TRUE(before->sim.sim_field_on) << trace(r, 10);
   EXPECT_GT(before->plant.alt_a, 20.0) << trace(r, 10);
-  const double tOff = firstTime(r, [](const SimRow& x) { return !x.sim.sim_field_on; }, 120.0);
+  const double tOff = firstTime(
+      r, [](const SimRow& x) { return !x.sim.sim_field_on; }, 120.0);
   EXPECT_GE(tOff, 120.0) << trace(r, 10);
   EXPECT_LE(tOff, 120.0 + within) << trace(r, 10);
   return tOff;
@@ -56,10 +58,14 @@ at_s = 120
 rpm = 1500
 )");
   // MinRPMForField = 200: below it the field stays off in every respect.
-  EXPECT_TRUE(all(r, [](const SimRow& x) {
-    return !x.telemetry.field_enable && !x.sim.sim_field_on && x.plant.alt_a == 0.0 &&
-           x.telemetry.reason == Reason::REASON_RPM_LOW;
-  }, 0.0, 119.0)) << trace(r, 10);
+  EXPECT_TRUE(all(
+      r,
+      [](const SimRow& x) {
+        return !x.telemetry.field_enable && !x.sim.sim_field_on && x.plant.alt_a == 0.0 &&
+               x.telemetry.reason == Reason::REASON_RPM_LOW;
+      },
+      0.0, 119.0))
+      << trace(r, 10);
   // Above it the regulator charges.
   EXPECT_GT(r.rows.back().plant.alt_a, 20.0) << trace(r, 10);
   EXPECT_TRUE(r.rows.back().telemetry.field_enable);
@@ -82,7 +88,8 @@ TEST(ClosedLoopFault, BatteryVoltageOffsetTripsDisagreement) {
   const auto r = runText(withFaultAt120("fault = \"battery_v_offset\"\nvalue = 1.0"));
   checkCut(r, 30.0);
   const Reason why = reasonAfter(r, 120.0);
-  EXPECT_TRUE(why == Reason::REASON_VOLTAGE_DISAGREE_CRITICAL || why == Reason::REASON_VOLTAGE_DISAGREE_WARNING)
+  EXPECT_TRUE(why == Reason::REASON_VOLTAGE_DISAGREE_CRITICAL ||
+              why == Reason::REASON_VOLTAGE_DISAGREE_WARNING)
       << toString(why);
 }
 
@@ -129,12 +136,17 @@ TEST(ClosedLoopFault, HallOffsetBeyondFuseTripsHardOvercurrent) {
 }
 
 TEST(ClosedLoopFault, FieldOpenNeverOverchargesAndRecovers) {
-  const auto r = runText(withFaultAt120("fault = \"field_open\"\n[[events]]\nat_s = 200\nclear = \"field_open\""));
-  EXPECT_TRUE(all(r, [](const SimRow& x) { return x.plant.alt_a < 0.5; }, 121.0, 199.0)) << trace(r, 10);
+  const auto r =
+      runText(withFaultAt120("fault = \"field_open\"\n[[events]]\nat_s = 200\nclear = \"field_open\""));
+  EXPECT_TRUE(all(
+      r, [](const SimRow& x) { return x.plant.alt_a < 0.5; }, 121.0, 199.0))
+      << trace(r, 10);
   EXPECT_LT(maxOf(r, [](const SimRow& x) { return x.plant.battery_v; }), 14.8);
   // After the winding is back the regulator resumes charging (no runaway step).
   EXPECT_GT(r.rows.back().plant.alt_a, 10.0) << trace(r, 10);
-  EXPECT_LT(maxOf(r, [](const SimRow& x) { return x.plant.alt_a; }, 200.0), 60.0);
+  EXPECT_LT(maxOf(
+                r, [](const SimRow& x) { return x.plant.alt_a; }, 200.0),
+            60.0);
 }
 
 TEST(ClosedLoopFault, BmsDisconnectAtFullOutputCollapsesFieldAndBoundsPeak) {
@@ -158,12 +170,48 @@ TEST(ClosedLoopFault, BmsDisconnectAtFullOutputCollapsesFieldAndBoundsPeak) {
   EXPECT_GT(r.finalTruth.peak_disconnected_v, 14.8);
   // The INA228 ALERT (BOVL) pulled the gate-driver enable low within one
   // 10 ms row, and the regulator named the hardware alert.
-  const double tAlert = firstTime(r, [](const SimRow& x) { return x.inaAlert; }, 299.9);
+  const double tAlert = firstTime(
+      r, [](const SimRow& x) { return x.inaAlert; }, 299.9);
   EXPECT_GE(tAlert, 300.0);
   EXPECT_LE(tAlert, 300.02);
   EXPECT_EQ(reasonAfter(r, 300.0), Reason::REASON_INA_OVERVOLTAGE);
   // And the regulator does not re-energise into the open bus.
-  EXPECT_TRUE(all(r, [](const SimRow& x) { return !x.sim.sim_field_on; }, 301.0));
+  EXPECT_TRUE(all(
+      r, [](const SimRow& x) { return !x.sim.sim_field_on; }, 301.0));
+}
+
+// The reproducer of the bank size check: a consistent 24 V [voltage] set on
+// a 12 V bank (docs/deviations.md "Bank size check"). Before, it ran bulk
+// toward 28.8 V with the field on; now the field is cut within 5 s of the
+// first reading, and stays off, and the bank never leaves 12 V territory.
+TEST(ClosedLoopFault, A24VoltSetOnA12VoltBankCutsTheField) {
+  const auto r = runText(R"(
+duration_s = 120
+seed = 23
+[config]
+BulkVoltage = 28.8
+AbsorptionVoltage = 28.6
+FloatVoltage = 27.0
+RebulkVoltage = 25.8
+TargetVoltageSetpoint = 27.2
+ChargedVoltage = 27.6
+VoltageAlarmHigh = 30.0
+VoltageAlarmLow = 23.0
+[battery]
+chemistry = "agm"
+capacity_ah = 200
+soc_pct = 50
+[engine]
+rpm = 1800
+)");
+  const double tCut =
+      firstTime(r, [](const SimRow& x) { return x.telemetry.reason == Reason::REASON_BANK_MISMATCH; });
+  ASSERT_GE(tCut, 0.0) << trace(r, 10);
+  EXPECT_LE(tCut, 6.0);
+  EXPECT_TRUE(all(
+      r, [](const SimRow& x) { return !x.sim.sim_field_on && !x.telemetry.field_enable; }, tCut + 0.5))
+      << trace(r, 10);
+  EXPECT_LT(maxOf(r, [](const SimRow& x) { return x.plant.battery_v; }), 14.8);
 }
 
 }  // namespace

@@ -54,6 +54,11 @@ TEST(ModeSelection, TwoSimultaneousFaultsHigherPriorityWins) {
       {[](ProtectionFlags& f) { f.tempSoakHold = f.tempCritical = true; }, Reason::REASON_TEMP_CRITICAL},
       {[](ProtectionFlags& f) { f.tempSoakHold = f.lockoutActive = true; }, Reason::REASON_LOCKOUT},
       {[](ProtectionFlags& f) { f.tempSoakHold = true; }, Reason::REASON_TEMP_SOAK},
+      // The bank size check names the cause before its symptoms.
+      {[](ProtectionFlags& f) { f.bankMismatch = f.inaOvervoltageLatched = f.altHardShutdown = true; },
+       Reason::REASON_BANK_MISMATCH},
+      {[](ProtectionFlags& f) { f.bankMismatch = f.lockoutActive = f.voltageImplausible = true; },
+       Reason::REASON_BANK_MISMATCH},
   };
   for (const Case& c : cases) {
     TickSnapshot s = healthy();

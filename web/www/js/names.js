@@ -132,6 +132,12 @@ export const REASONS = {
     action: "Nothing; charging resumes by itself once the alternator is back under its temperature limit, usually within minutes.",
     detail: "Engine restarted above TemperatureLimitF: field off until TempToUse <= TemperatureLimitF; T1/T2 do not count the engine-off soak (docs/deviations.md).",
   },
+  REASON_BANK_MISMATCH: {
+    title: "Settings are for another bank size", kind: "fault", flag: "bank_mismatch",
+    meaning: "The battery measures a different bank size (12, 24 or 48 V) than the charging voltages are set for, so every charging limit would be wrong. The field is off.",
+    action: "Set the charging voltages for this bank (a battery profile on the set-up page, or the [voltage] values in the configuration file), then charging starts by itself.",
+    detail: "Every live voltage sensor read another bank class (below 18 V, 18 to 36 V, above 36 V) than BulkVoltage for 5 s: immediate cut in every mode until they agree (docs/deviations.md).",
+  },
   REASON_BMS_STALE: {
     title: "Battery management silent", kind: "warn",
     meaning: "The battery's management system stopped sending its charge limits, so charging continues at a reduced, safe current.",
