@@ -24,7 +24,7 @@ constexpr ParamGroup kGroups[] = {ParamGroup::Voltage,  ParamGroup::Overvoltage,
                                   ParamGroup::Shutdown, ParamGroup::Current,     ParamGroup::Tuning,
                                   ParamGroup::Charging, ParamGroup::Battery,     ParamGroup::Temperature,
                                   ParamGroup::Alarms,   ParamGroup::Modes,       ParamGroup::Can,
-                              ParamGroup::RpmTables};
+                                  ParamGroup::RpmTables};
 
 // Word-wrapped "# " comment lines.
 void comment(std::ostream& o, std::string_view text, std::size_t width = 88) {
@@ -61,9 +61,12 @@ std::string tomlString(std::string_view s) {
 std::string paramDefault(const ParamSpec& s, bool toml) {
   if (!s.choices.empty()) return tomlString(std::string(choiceName(s, static_cast<int>(s.defaultValue))));
   switch (s.kind) {
-    case ParamKind::Float: return toml ? tomlFloat(s.defaultValue) : formatNumber(s.defaultValue);
-    case ParamKind::Int: return formatNumber(s.defaultValue);
-    case ParamKind::Bool: return s.defaultValue != 0.0 ? "true" : "false";
+    case ParamKind::Float:
+      return toml ? tomlFloat(s.defaultValue) : formatNumber(s.defaultValue);
+    case ParamKind::Int:
+      return formatNumber(s.defaultValue);
+    case ParamKind::Bool:
+      return s.defaultValue != 0.0 ? "true" : "false";
     case ParamKind::Table: {
       std::string r = "[";
       for (std::size_t i = 0; i < RPM_TABLE_SIZE; ++i) {
@@ -88,9 +91,12 @@ std::string paramRange(const ParamSpec& s) {
 std::string settingDefault(const SettingSpec& s) {
   const SettingValue v = s.get(Settings{});
   switch (s.kind) {
-    case SettingKind::String: return tomlString(std::get<std::string>(v));
-    case SettingKind::Bool: return std::get<bool>(v) ? "true" : "false";
-    case SettingKind::Float: return tomlFloat(std::get<double>(v));
+    case SettingKind::String:
+      return tomlString(std::get<std::string>(v));
+    case SettingKind::Bool:
+      return std::get<bool>(v) ? "true" : "false";
+    case SettingKind::Float:
+      return tomlFloat(std::get<double>(v));
     case SettingKind::Int: {
       const auto i = std::get<std::int64_t>(v);
       if (!s.hex) return std::to_string(i);
@@ -110,9 +116,12 @@ std::string settingDefault(const SettingSpec& s) {
 
 std::string settingRange(const SettingSpec& s) {
   switch (s.kind) {
-    case SettingKind::String: return s.choices.empty() ? "text" : "one of " + std::string(s.choices);
-    case SettingKind::Bool: return "true/false";
-    case SettingKind::IntList: return "list of " + formatNumber(s.min) + " to " + formatNumber(s.max);
+    case SettingKind::String:
+      return s.choices.empty() ? "text" : "one of " + std::string(s.choices);
+    case SettingKind::Bool:
+      return "true/false";
+    case SettingKind::IntList:
+      return "list of " + formatNumber(s.min) + " to " + formatNumber(s.max);
     case SettingKind::Int:
     case SettingKind::Float: {
       std::string r = formatNumber(s.min) + " to " + formatNumber(s.max);
@@ -121,6 +130,17 @@ std::string settingRange(const SettingSpec& s) {
     }
   }
   return "";
+}
+
+// What an installer must decide (docs/configuration.md "One chain of
+// values"): written as live keys. Everything else is written commented out,
+// so the shipped file pins nothing the profile or the dashboard should set.
+bool installerParam(std::string_view name) {
+  return name == "BatteryProfile" || name == "BatteryCells" || name == "BatteryCapacity_Ah";
+}
+bool installerSetting(std::string_view table, std::string_view key) {
+  return table == "hardware" || table == "hardware.frontend" ||
+         (table == "web" && (key == "listen" || key == "port"));
 }
 
 std::string tomlText() {
@@ -132,7 +152,11 @@ std::string tomlText() {
        "# (daemon/config/settings_schema.cpp). Do not edit the copy in the source tree:\n"
        "# change those, then run `cmake --build build --target regen-docs`.\n"
        "#\n"
-       "# Every key is optional: a key left out keeps the default shown here.\n"
+       "# Every key is optional. The ones an installer must decide are set: the battery\n"
+       "# type and size, the hardware lines and the web address. Every other key is\n"
+       "# here commented out with its default, so it documents without pinning: the\n"
+       "# battery profile and the dashboard can still set it. Uncomment a key to fix it\n"
+       "# here; a value in this file wins over the profile (docs/configuration.md).\n"
        "# Check an edited file with `xregulatord --config FILE --check-config`\n"
        "# (exit 0 = OK, 78 = errors, all of them listed with file:line:column).\n"
        "# Parameter names are the seeds' names and each is unique across tables.\n"
@@ -149,7 +173,7 @@ std::string tomlText() {
       std::string meta = paramRange(s);
       if (!s.unit.empty()) meta += " " + std::string(s.unit);
       comment(o, meta + ". Default " + paramDefault(s, false) + ".");
-      o << s.name << " = " << paramDefault(s, true) << "\n";
+      o << (installerParam(s.name) ? "" : "# ") << s.name << " = " << paramDefault(s, true) << "\n";
     }
     // A table that holds settings beside its parameters ([can]).
     for (const auto& s : settingsSchema()) {
@@ -157,7 +181,7 @@ std::string tomlText() {
       o << "\n";
       comment(o, s.help);
       comment(o, settingRange(s) + ".");
-      o << s.key << " = " << settingDefault(s) << "\n";
+      o << (installerSetting(s.table, s.key) ? "" : "# ") << s.key << " = " << settingDefault(s) << "\n";
     }
   }
   o << "\n# ============================================================ settings\n";
@@ -168,7 +192,7 @@ std::string tomlText() {
       o << "\n";
       comment(o, s.help);
       comment(o, settingRange(s) + ".");
-      o << s.key << " = " << settingDefault(s) << "\n";
+      o << (installerSetting(s.table, s.key) ? "" : "# ") << s.key << " = " << settingDefault(s) << "\n";
     }
   }
   return o.str();
@@ -177,8 +201,10 @@ std::string tomlText() {
 std::string mdCell(std::string_view s) {
   std::string r;
   for (char c : s) {
-    if (c == '|') r += "\\|";
-    else r += c;
+    if (c == '|')
+      r += "\\|";
+    else
+      r += c;
   }
   return r;
 }
@@ -222,8 +248,8 @@ std::string markdownText() {
         o << "\nSettings in the same table (read at start only):\n\n"
              "| Key | Default | Allowed | Description |\n|---|---|---|---|\n";
       header = true;
-      o << "| `" << s.key << "` | `" << mdCell(settingDefault(s)) << "` | " << mdCell(settingRange(s)) << " | "
-        << mdCell(s.help) << " |\n";
+      o << "| `" << s.key << "` | `" << mdCell(settingDefault(s)) << "` | " << mdCell(settingRange(s))
+        << " | " << mdCell(s.help) << " |\n";
     }
   }
   o << "\n<a id=\"settings\"></a>\n## Settings\n\n"
@@ -233,8 +259,8 @@ std::string markdownText() {
     o << "\n### `[" << table << "]`\n\n| Key | Default | Allowed | Description |\n|---|---|---|---|\n";
     for (const auto& s : settingsSchema()) {
       if (s.table != table) continue;
-      o << "| `" << s.key << "` | `" << mdCell(settingDefault(s)) << "` | " << mdCell(settingRange(s)) << " | "
-        << mdCell(s.help) << " |\n";
+      o << "| `" << s.key << "` | `" << mdCell(settingDefault(s)) << "` | " << mdCell(settingRange(s))
+        << " | " << mdCell(s.help) << " |\n";
     }
   }
   return o.str();

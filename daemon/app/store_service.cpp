@@ -88,11 +88,16 @@ OverrideResolution StoreService::applyOverrides(const Params& fileParams) {
   return r;
 }
 
+// Why a settings change cannot be made durable now; "" when it can.
+std::string StoreService::unwritable() const {
+  if (!store_.inMemory() && store_.isOpen()) return "";
+  return "the state database cannot be written (" + open_.message +
+         "): the change would be lost at the next start";
+}
+
 std::string StoreService::saveOverrides(const Params& fileParams, const Params& before, const Params& after) {
   std::lock_guard lock(m_);
-  if (store_.inMemory() || !store_.isOpen())
-    return "the state database cannot be written (" + open_.message +
-           "): the change would be lost at the next start";
+  if (std::string why = unwritable(); !why.empty()) return why;
   std::string failed;
   for (const ParamSpec& spec : catalogue()) {
     bool changed = false;
@@ -106,6 +111,16 @@ std::string StoreService::saveOverrides(const Params& fileParams, const Params& 
     }
   }
   return failed;
+}
+
+std::string StoreService::dropOverrides(const std::vector<std::string>& names) {
+  if (names.empty()) return "";
+  std::lock_guard lock(m_);
+  if (std::string why = unwritable(); !why.empty()) return why;
+  for (const auto& name : names)
+    if (const StoreStatus st = store_.resetOverride(name); !st)
+      return "cannot forget " + name + ": " + st.error;
+  return "";
 }
 
 StoreService::Status StoreService::status() {

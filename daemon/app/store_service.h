@@ -39,6 +39,8 @@ class StoreService {
   // or why the change could not be saved (read-only file, in-memory
   // fallback, a full disk): the caller must not report success then.
   std::string saveOverrides(const Params& fileParams, const Params& before, const Params& after);
+  // Forgets the stored dashboard values of `names` (a PATCH's nulls); "" or why not.
+  std::string dropOverrides(const std::vector<std::string>& names);
 
   // For /api/system and the journal.
   struct Status {
@@ -78,6 +80,7 @@ class StoreService {
   static const char* alarmCode(const OpenResult& o);
 
  private:
+  std::string unwritable() const;  // caller holds m_
   void recordOpenAlarm();
 
   std::mutex m_;

@@ -43,6 +43,7 @@ class WebApi final : public web::DaemonApi {
   Params currentParams() override;
   Params fileParams() override { return ctx_.fileParams; }
   std::map<std::string, std::string> paramSources() override;
+  std::set<std::string> profileOwned() override;
   web::PatchResult patchParams(const std::vector<web::ParamChange>& changes,
                                const std::string& source) override;
   web::CommandResult command(const Command& cmd) override;

@@ -2,6 +2,8 @@
 // home every layer calls (the file, the scenario's [config], the stored
 // dashboard overrides, PATCH, MQTT): docs/configuration.md "Checks on the
 // whole set".
+#include <algorithm>
+#include <cmath>
 #include <functional>
 #include <string>
 
@@ -43,6 +45,29 @@ void checkBankClass(const Params& p, const ErrFn& err) {
   }
 }
 
+// The most alternator current the regulator may ask for: the cap tables
+// clipped by MaxTableValue (a power cap, capLimitMode 1, can reach it).
+double maxCommandableAmps(const Params& p) {
+  if (p.capLimitMode != 0) return p.MaxTableValue;
+  double cap = 0.0;
+  for (std::size_t i = 0; i < RPM_TABLE_SIZE; ++i)
+    cap = std::max({cap, p.rpmCapCurrentTable[i], p.rpmCapCurrentTableLo[i]});
+  return std::min(cap, p.MaxTableValue);
+}
+
+// The alternator current alarm must sit clear of what the regulator is
+// allowed to command: held at a 100 A cap, a 100 A alarm sounds every few
+// seconds of a normal charge. 5 % clears the reading's ripple at the cap.
+void checkCurrentAlarm(const Params& p, const ErrFn& err) {
+  constexpr double kAlarmMargin = 1.05;
+  const double cap = maxCommandableAmps(p);
+  if (p.CurrentAlarmHigh < cap * kAlarmMargin)
+    err("CurrentAlarmHigh", "CurrentAlarmHigh " + withUnit(p.CurrentAlarmHigh, "A") +
+                                " must be at least 5 % above the most current the regulator may command, " +
+                                withUnit(cap, "A") + " (MaxTableValue and the RPM cap tables): at least " +
+                                withUnit(std::ceil(cap * kAlarmMargin), "A"));
+}
+
 // Sets whose values are each in range but together unsafe or noisy
 // (docs/configuration.md "Checks on the whole set").
 void checkBankAndAlarmSet(const Params& p, const ErrFn& err) {
@@ -66,6 +91,7 @@ void checkBankAndAlarmSet(const Params& p, const ErrFn& err) {
     err("TempAlarm", "TempAlarm " + withUnit(p.TempAlarm, "degF") + " must be above TemperatureLimitF " +
                          withUnit(p.TemperatureLimitF, "degF") +
                          ": the regulator holds the alternator at the limit, so the alarm would sound");
+  checkCurrentAlarm(p, err);
   // The T3 cut may not lie beyond what any alternator's winding is rated
   // for: class H insulation, 180 degC (IEC 60085), the highest in use.
   const double t3 = p.TemperatureLimitF + p.TempCritExcess;

@@ -92,7 +92,8 @@ class FakeDaemonApi : public DaemonApi {
     lastPatchSource_ = source;
     Params next = current_;
     for (const auto& c : changes)
-      c.spec->set(next, c.index < 0 ? 0 : static_cast<std::size_t>(c.index), c.value);
+      c.spec->set(next, c.index < 0 ? 0 : static_cast<std::size_t>(c.index),
+                  c.drop ? c.spec->get(file_, 0) : c.value);  // drop: the file's value again
     PatchResult r;
     if (next.FloatVoltage > next.BulkVoltage)
       r.errors.push_back({"FloatVoltage", "must not exceed BulkVoltage"});

@@ -249,11 +249,22 @@ TEST_F(WebApiTest, Patch_401WithoutToken403WithWrongToken) {
   EXPECT_DOUBLE_EQ(api_.currentParams().BulkVoltage, Params{}.BulkVoltage);
 }
 
+// null is "drop the dashboard's value": the layer below applies again
+// (docs/configuration.md "One chain of values").
+TEST_F(WebApiTest, Patch_NullDropsTheDashboardValue) {
+  start();
+  ASSERT_EQ(patch(R"({"FloatVoltage": 13.1})").status, 200);
+  EXPECT_DOUBLE_EQ(api_.currentParams().FloatVoltage, 13.1);
+  const auto r = patch(R"({"FloatVoltage": null})");
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_DOUBLE_EQ(api_.currentParams().FloatVoltage, api_.fileParams().FloatVoltage);
+}
+
 TEST_F(WebApiTest, Patch_OneBadFieldAppliesNothingAndNamesEachBadField) {
   start();
   const auto r =
       patch(R"({"BulkVoltage": 14.2, "FloatVoltage": 999, "NoSuchParam": 1, "PidSampleDivisor": 1.5,
-                          "TuningMode": "yes", "AbsorptionVoltage": null})");
+                          "TuningMode": "yes", "AbsorptionVoltage": []})");
   ASSERT_EQ(r.status, 400);
   const auto errors = obj(r).at("errors").as_object();
   EXPECT_EQ(errors.size(), 5u);

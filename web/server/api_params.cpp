@@ -94,8 +94,9 @@ Response patchErrors(const Request& req, const std::vector<FieldError>& errors) 
 }  // namespace
 
 Response ApiHandler::getParams(const Request& req) {
-  return jsonReply(req, http::status::ok,
-                   paramsToJson(api_.currentParams(), api_.fileParams(), api_.paramSources()));
+  return jsonReply(
+      req, http::status::ok,
+      paramsToJson(api_.currentParams(), api_.fileParams(), api_.paramSources(), api_.profileOwned()));
 }
 
 Response ApiHandler::patchParams(const Request& req) {
@@ -114,6 +115,10 @@ Response ApiHandler::patchParams(const Request& req) {
     const ParamSpec* spec = findParam(name);
     if (!spec) {
       errors.push_back({name, "unknown parameter"});
+      continue;
+    }
+    if (kv.value().is_null()) {
+      changes.push_back({spec, -1, 0.0, true});  // back to the file / profile / default
       continue;
     }
     if (spec->kind == ParamKind::Table) {
@@ -144,7 +149,7 @@ Response ApiHandler::patchParams(const Request& req) {
   if (api_.latestStatus(snap)) {
     const int bank = measuredClass(snap.telemetry.battery_v);
     for (const auto& c : changes)
-      if (c.index < 0)
+      if (c.index < 0 && !c.drop)
         if (auto e = voltageClassError(*c.spec, c.value, bank); !e.empty())
           errors.push_back({std::string(c.spec->name), e});
     if (!errors.empty()) return patchErrors(req, errors);

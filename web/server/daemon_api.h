@@ -15,6 +15,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -94,6 +95,9 @@ struct ParamChange {
   const ParamSpec* spec = nullptr;
   int index = -1;
   double value = 0.0;
+  // JSON null in a PATCH: forget the dashboard's value of this parameter, so
+  // the layer below (file, profile or default) applies again.
+  bool drop = false;
 };
 
 // A per-field rejection: name = parameter name, message = why.
@@ -202,6 +206,9 @@ class DaemonApi {
   // "file" or "dashboard" (issue 21). Empty: the server infers it from
   // currentParams() and fileParams() (no profile known).
   virtual std::map<std::string, std::string> paramSources() { return {}; }
+  // The names a battery profile sets when nothing above it does; the set-up
+  // page drops the dashboard's values of these when a chemistry is chosen.
+  virtual std::set<std::string> profileOwned() { return {}; }
 
   // Apply a set of changes atomically: validate them TOGETHER against the
   // current set (cross-field rules), then hand the whole new Params to the

@@ -167,7 +167,8 @@ json::object statusToJson(const StatusSnapshot& s) {
 std::string serializeStatus(const StatusSnapshot& s) { return jsonText(statusToJson(s)); }
 
 json::object paramsToJson(const Params& current, const Params& file,
-                          const std::map<std::string, std::string>& sources) {
+                          const std::map<std::string, std::string>& sources,
+                          const std::set<std::string>& profileOwned) {
   const Params defaults{};
   json::array list;
   for (const auto& spec : catalogue()) {
@@ -184,6 +185,7 @@ json::object paramsToJson(const Params& current, const Params& file,
     p["file"] = paramValue(spec, file);
     p["changed"] = !sameValue(spec, current, defaults);  // differs from the catalogue default
     p["overridden"] = !sameValue(spec, current, file);   // differs from the config file (runtime override)
+    p["profile_owned"] = profileOwned.contains(std::string(spec.name));
     if (auto it = sources.find(std::string(spec.name)); it != sources.end())
       p["source"] = it->second;
     else

@@ -22,8 +22,10 @@ std::string serializeStatus(const StatusSnapshot& s);
 // default, file, changed, overridden}...], "groups":[...]}.
 // sources: name -> "default" | "profile" | "file" | "dashboard" (issue 21);
 // a name missing from it is inferred from current, file and the defaults.
+// profileOwned: the names a battery profile sets ("profile_owned": true).
 boost::json::object paramsToJson(const Params& current, const Params& file,
-                                 const std::map<std::string, std::string>& sources = {});
+                                 const std::map<std::string, std::string>& sources = {},
+                                 const std::set<std::string>& profileOwned = {});
 
 boost::json::object eventToJson(const EventRecord& e);
 boost::json::object historyToJson(const HistoryResult& h);

@@ -164,5 +164,49 @@ TEST(WebApiProfiles, ABadProfileValueIsRefusedAndNothingApplied) {
   EXPECT_EQ(r.api->currentParams(), before);
 }
 
+// The set-up page's save, as the owner makes it: a chemistry chosen over a
+// float voltage typed on the settings page earlier. The PATCH's null drops
+// that value, so the profile's applies, and nothing of it stays stored.
+TEST(WebApiProfiles, ANullDropsTheDashboardValueSoTheProfileAppliesAgain) {
+  TempDir d;
+  Rig r(d.file("p.db"));
+  ASSERT_TRUE(r.api->patchParams({change("FloatVoltage", 13.2)}, "test").errors.empty());
+  EXPECT_EQ(r.api->paramSources().at("FloatVoltage"), "dashboard");
+  web::ParamChange drop{findParam("FloatVoltage"), -1, 0.0, true};
+  const auto res = r.api->patchParams({change("BatteryProfile", 1), drop}, "test");  // agm
+  ASSERT_TRUE(res.errors.empty()) << res.errors[0].message;
+  EXPECT_DOUBLE_EQ(r.api->currentParams().FloatVoltage, 13.3);  // the AGM profile's, not 13.2
+  EXPECT_EQ(r.api->paramSources().at("FloatVoltage"), "profile");
+  const auto stored = r.store->applyOverrides(Params{}).applied;
+  EXPECT_THAT(stored, ::testing::Contains("BatteryProfile"));
+  EXPECT_THAT(stored, ::testing::Not(::testing::Contains("FloatVoltage")));
+  EXPECT_TRUE(r.api->profileOwned().contains("FloatVoltage"));
+  EXPECT_FALSE(r.api->profileOwned().contains("PidKp"));
+}
+
+// A set for another bank than the one measured is refused as a whole: the
+// set-up's 24 V LiFePO4 (BatteryCells = 8) on a bank reading 12.9 V, which
+// names no voltage itself.
+TEST(WebApiPatch, ASetForAnotherBankThanTheMeasuredOneIsRefused) {
+  Rig r;
+  rt::RuntimeSnapshot snap;
+  snap.tick = 1;
+  snap.telemetry.battery_v = 12.9;
+  r.handoffs.snapshot.store(snap);
+  const Params before = r.api->currentParams();
+  const auto res = r.api->patchParams({change("BatteryProfile", 0), change("BatteryCells", 8)}, "test");
+  ASSERT_EQ(res.errors.size(), 1u);
+  EXPECT_EQ(res.errors[0].name, "BulkVoltage");
+  EXPECT_THAT(res.errors[0].message, HasSubstr("for a 24 V bank"));
+  EXPECT_THAT(res.errors[0].message, HasSubstr("measures as a 12 V bank"));
+  EXPECT_EQ(r.api->currentParams(), before);
+  // The same on a 24 V bank is accepted, with the profile's 24 V values.
+  snap.telemetry.battery_v = 26.1;
+  r.handoffs.snapshot.store(snap);
+  ASSERT_TRUE(
+      r.api->patchParams({change("BatteryProfile", 0), change("BatteryCells", 8)}, "test").errors.empty());
+  EXPECT_DOUBLE_EQ(r.api->currentParams().AbsorptionVoltage, 28.4);
+}
+
 }  // namespace
 }  // namespace xr::app

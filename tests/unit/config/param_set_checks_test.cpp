@@ -116,5 +116,29 @@ TEST(SetChecks, TheFileIsRefusedAsPatchWouldRefuseIt) {
       all, HasSubstr("VoltageAlarmHigh 15 V is for a 12 V bank; BulkVoltage 28.8 V makes this a 24 V bank"));
 }
 
+// A current alarm at the cap sounds through every normal charge held there.
+TEST(SetChecks, ACurrentAlarmAtTheCapIsRefusedNamingBoth) {
+  Params p;
+  p.MaxTableValue = 120;
+  for (std::size_t i = 1; i < RPM_TABLE_SIZE; ++i) p.rpmCapCurrentTable[i] = 100;
+  p.CurrentAlarmHigh = 100;  // the reproducer: 19 alarms in 10 minutes at the cap
+  EXPECT_THAT(keys(p), ::testing::ElementsAre("current.CurrentAlarmHigh"));
+  EXPECT_THAT(messages(p), HasSubstr("CurrentAlarmHigh 100 A must be at least 5 % above"));
+  EXPECT_THAT(messages(p), HasSubstr("100 A (MaxTableValue and the RPM cap tables): at least 105 A"));
+  p.CurrentAlarmHigh = 104.9;
+  EXPECT_FALSE(messages(p).empty());
+  p.CurrentAlarmHigh = 105;  // the edge
+  EXPECT_EQ(messages(p), "");
+  // The rating clips the table: a 60 A alternator under a 100 A table.
+  p.MaxTableValue = 60;
+  p.CurrentAlarmHigh = 63;
+  EXPECT_EQ(messages(p), "");
+  // The power cap can reach the rating.
+  p.capLimitMode = 1;
+  p.MaxTableValue = 120;
+  p.CurrentAlarmHigh = 125;
+  EXPECT_THAT(keys(p), ::testing::ElementsAre("current.CurrentAlarmHigh"));
+}
+
 }  // namespace
 }  // namespace xr

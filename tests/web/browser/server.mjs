@@ -13,8 +13,9 @@ const freePort = () => new Promise((resolve, reject) => {
 
 // stateDir keeps the daemon's state database between runs, so a second
 // daemon sees the first one's events, history and saved parameters.
-// extraConfig: more TOML for the daemon's configuration file.
-export async function startServer({ mode, args, token, stateDir, scenario, extraConfig = "" }) {
+// extraConfig: more TOML for the daemon's configuration file. shipped: start
+// from config/xregulator.toml (needs args.root) instead of a minimal file.
+export async function startServer({ mode, args, token, stateDir, scenario, extraConfig = "", shipped = false }) {
   let port;
   let argv;
   if (mode === "fake") {
@@ -26,8 +27,17 @@ export async function startServer({ mode, args, token, stateDir, scenario, extra
     // starved simulator thread can miss 500 ms of samples and trip the real
     // protection, which is not what these tests are about (the injected
     // sensor fault below still trips it, 3 s later).
-    fs.writeFileSync(cfg, `[web]\ntoken = "${token}"\nwww_root = "${args.www}"\n[sensor_health]\nCurrentStaleMs = 3000\n` +
-                     extraConfig);
+    if (shipped) {
+      // The file the package installs, with only the test's token, assets
+      // and sensor timeout added in its own tables (an owner's first start).
+      const text = fs.readFileSync(path.join(path.resolve(args.root), "config/xregulator.toml"), "utf8")
+        .replace(/^\[web\]$/m, `[web]\ntoken = "${token}"\nwww_root = "${args.www}"`)
+        .replace(/^\[sensor_health\]$/m, "[sensor_health]\nCurrentStaleMs = 3000");
+      fs.writeFileSync(cfg, text + extraConfig);
+    } else {
+      fs.writeFileSync(cfg, `[web]\ntoken = "${token}"\nwww_root = "${args.www}"\n[sensor_health]\nCurrentStaleMs = 3000\n` +
+                       extraConfig);
+    }
     argv = [args.server, "--sim", "--speed", "1", "--config", cfg, "--state-db", path.join(stateDir, "state.db"),
             "--http", `127.0.0.1:${port}`];
     if (scenario) {

@@ -13,11 +13,15 @@ const SETUP_PARAMS = ["BatteryProfile", "BatteryCapacity_Ah", "BulkVoltage", "Ma
 let params = [];
 const find = (n) => params.find((p) => p.name === n);
 
-// Charge voltages per bank size for a lead-acid/AGM default; the profile step
-// (BatteryProfile, when the daemon has it) sets them per chemistry instead.
+// Charge voltages per bank size for the "custom" profile (no chemistry):
+// lead-acid/AGM values, scaled from 12 V.
 const BANK = { 12: { BulkVoltage: 14.4, AbsorptionVoltage: 14.4, FloatVoltage: 13.5 },
   24: { BulkVoltage: 28.8, AbsorptionVoltage: 28.8, FloatVoltage: 27.0 },
   48: { BulkVoltage: 57.6, AbsorptionVoltage: 57.6, FloatVoltage: 54.0 } };
+// Cells per 12 V of each chemistry (3.2 V LiFePO4, 2 V lead-acid cells;
+// docs/batteries.md): the bank voltage chosen here becomes BatteryCells.
+const CELLS_PER_12V = { lifepo4: 4, agm: 6, flooded: 6, gel: 6 };
+const bankOf = (bulk) => (bulk < 18 ? 12 : bulk <= 36 ? 24 : 48);
 
 function field(label, id, value, unit, help) {
   return `<label class="field"><span>${label}</span><span class="row"><input id="${id}" inputmode="decimal" value="${value ?? ""}">` +
@@ -30,22 +34,23 @@ function renderSteps() {
   const unit = tempUnit();
   const tLimit = find("TemperatureLimitF").value;
   const profile = find("BatteryProfile");
-  const cells = find("BatteryCells");
   const steps = [];
   if (profile) {
     const opts = (choicesOf(profile) || []).map(([v, l]) => `<option value="${v}" ${v === profile.value ? "selected" : ""}>${l}</option>`).join("");
     steps.push(`<h3>1 · Battery type</h3><label class="field"><span>Battery profile</span><select id="su-profile">${opts}</select>` +
-      `<small>Sets the charge voltages for the chemistry.</small></label>`);
+      `<small>Sets the charge voltages, currents and temperature limits for the chemistry and the bank voltage; custom keeps the values in Settings.</small></label>`);
   }
-  const bulk = find("BulkVoltage").value;
-  const bank = bulk < 18 ? 12 : bulk <= 36 ? 24 : 48;
+  const bank = bankOf(find("BulkVoltage").value);
   steps.push(`<h3>${steps.length + 1} · Battery bank</h3>` +
     `<label class="field"><span>Bank voltage</span><select id="su-bank">${[12, 24, 48].map((b) => `<option ${b === bank ? "selected" : ""}>${b}</option>`).join("")}</select></label>` +
-    field("Capacity", "su-capacity", find("BatteryCapacity_Ah").value, "Ah", "The nameplate capacity of the whole bank.") +
-    (cells ? field("Cells in series", "su-cells", cells.value, "", "0 = worked out from the bank voltage; LiFePO4 4/8/16, lead-acid 6/12/24.") : ""));
+    field("Capacity", "su-capacity", find("BatteryCapacity_Ah").value, "Ah", "The nameplate capacity of the whole bank."));
+  const table = find("rpmCapCurrentTable").value;
+  const cap = Math.max(...table);
   steps.push(`<h3>${steps.length + 1} · Alternator and belt</h3>` +
-    field("Alternator rating", "su-rating", find("MaxTableValue").value, "A", "The most current the regulator ever asks for.") +
-    field("Belt limit", "su-belt", Math.max(...find("rpmCapCurrentTable").value), "A", "The most the belt and the alternator take for long; caps every engine speed.") +
+    field("Alternator rating", "su-rating", find("MaxTableValue").value, "A", "The rated output on its label: the most current the regulator ever asks for.") +
+    field("Belt limit", "su-belt", cap, "A", "The most the belt takes for long (a single V-belt about 80 A, a serpentine belt about 150 A); caps every engine speed.") +
+    `<label class="field"><span>Small alternator</span><span class="row"><input type="checkbox" id="su-small" ${table[1] < cap ? "checked" : ""}>` +
+    `<span>less current at idle</span></span><small>Half the limit at the lowest engine speeds, where a small alternator runs hot.</small></label>` +
     field("Lowest engine speed to charge", "su-minrpm", find("MinRPMForField").value, "rpm", ""));
   steps.push(`<h3>${steps.length + 1} · Temperature limit</h3>` +
     field("Alternator temperature limit", "su-templimit", unit === "F" ? Math.round(tLimit) : Math.round(fToC(tLimit)), unit === "F" ? "°F" : "°C",
@@ -62,30 +67,69 @@ function read(id, label, min, max) {
   return v;
 }
 
+// The battery's part: a chemistry sets BatteryCells from the bank voltage
+// and drops the dashboard values the profile would set (null in the PATCH),
+// so the chemistry's values apply; "custom" scales the voltages instead.
+function collectBattery(body) {
+  const bank = Number($("su-bank").value);
+  const sel = $("su-profile");
+  const name = sel ? (choicesOf(find("BatteryProfile")) || []).find(([v]) => String(v) === sel.value)?.[1] : null;
+  if (sel) body.BatteryProfile = Number(sel.value);
+  if (name && CELLS_PER_12V[name]) {
+    body.BatteryCells = (CELLS_PER_12V[name] * bank) / 12;
+    for (const p of params)
+      if (p.profile_owned && p.source === "dashboard" && !(p.name in body)) body[p.name] = null;
+  } else {
+    const was = bankOf(find("BulkVoltage").value);
+    if (bank !== was) {
+      // A different bank: its charge voltages, and the other absolute voltages scaled.
+      Object.assign(body, BANK[bank]);
+      for (const n of ["RebulkVoltage", "TargetVoltageSetpoint", "ChargedVoltage", "VoltageAlarmHigh", "VoltageAlarmLow"])
+        if (find(n)) body[n] = Math.round((find(n).value * bank) / was * 100) / 100;
+    }
+  }
+  body.BatteryCapacity_Ah = read("su-capacity", "Capacity", 1, 100000);
+}
+
+// The alternator's part: the rating is MaxTableValue; the cap table is the
+// belt limit (never above the rating) at every running speed, half and
+// three quarters of it at the two lowest for a small alternator; the low
+// charge-rate table keeps its quarter; the current alarm moves clear above.
+function collectAlternator(body) {
+  const rating = read("su-rating", "Alternator rating", 1, 1000);
+  const cap = Math.min(read("su-belt", "Belt limit", 1, 1000), rating);
+  const small = $("su-small").checked;
+  const table = find("rpmCapCurrentTable").value.map((_, i) =>
+    i === 0 ? 0 : Math.round(cap * (small && i === 1 ? 0.5 : small && i === 2 ? 0.75 : 1) * 10) / 10);
+  body.MaxTableValue = rating;
+  body.rpmCapCurrentTable = table;
+  body.rpmCapCurrentTableLo = table.map((a) => Math.round(a * 2.5) / 10);
+  if (find("CurrentAlarmHigh").value < cap * 1.05) body.CurrentAlarmHigh = Math.ceil(cap * 1.1);
+  body.MinRPMForField = read("su-minrpm", "Lowest engine speed", 0, 10000);
+}
+
 // The set-up's values as one PATCH body.
 function collect() {
   const body = {};
-  if ($("su-profile")) body.BatteryProfile = Number($("su-profile").value);
-  const bank = Number($("su-bank").value);
-  const bulk = find("BulkVoltage").value;
-  const was = bulk < 18 ? 12 : bulk <= 36 ? 24 : 48;
-  if (!$("su-profile") && bank !== was) {
-    // A different bank: its charge voltages, and the other absolute voltages scaled.
-    Object.assign(body, BANK[bank]);
-    for (const n of ["RebulkVoltage", "TargetVoltageSetpoint", "ChargedVoltage", "VoltageAlarmHigh", "VoltageAlarmLow"])
-      if (find(n)) body[n] = Math.round((find(n).value * bank) / was * 100) / 100;
-  }
-  body.BatteryCapacity_Ah = read("su-capacity", "Capacity", 1, 100000);
-  // BatteryCells 0 means "from the bank voltage" (its default): the catalogue's range, not 1..64.
-  if ($("su-cells")) body.BatteryCells = Math.round(read("su-cells", "Cells", find("BatteryCells").min, find("BatteryCells").max));
-  const rating = read("su-rating", "Alternator rating", 1, 1000);
-  const belt = read("su-belt", "Belt limit", 1, 1000);
-  body.MaxTableValue = rating;
-  body.rpmCapCurrentTable = find("rpmCapCurrentTable").value.map((a) => Math.min(a, belt, rating));
-  body.MinRPMForField = read("su-minrpm", "Lowest engine speed", 0, 10000);
+  collectBattery(body);
+  collectAlternator(body);
   const t = read("su-templimit", "Temperature limit", tempUnit() === "F" ? 50 : 10, tempUnit() === "F" ? 400 : 204);
   body.TemperatureLimitF = Math.round((tempUnit() === "F" ? t : (t * 9) / 5 + 32) * 10) / 10;
   return body;
+}
+
+// What now runs, read back from the daemon, and what the file still pins
+// over the profile (only the file can release those).
+function renderResult() {
+  const v = (n) => find(n) && find(n).value;
+  const rows = [["Bulk", `${v("BulkVoltage")} V`], ["Absorption", `${v("AbsorptionVoltage")} V`],
+    ["Float", v("UseFloat") ? `${v("FloatVoltage")} V` : "off (rests after absorption)"],
+    ["Battery current limit", `${v("MaximumAllowedBatteryAmps")} A`],
+    ["Alternator limit", `${Math.max(...v("rpmCapCurrentTable"))} A`]];
+  const pinned = params.filter((p) => p.profile_owned && p.source === "file").map((p) => p.name);
+  $("setup-result").innerHTML = `<h3>Now in effect</h3><table class="kv">${rows.map(([k, x]) => `<tr><th>${k}</th><td>${x}</td></tr>`).join("")}</table>` +
+    (pinned.length ? `<p class="msg warn">Still set by the configuration file, not by the profile: ${pinned.join(", ")}. Comment them out in xregulator.toml to let the profile decide.</p>` : "");
+  $("setup-result").hidden = false;
 }
 
 async function saveSetup(runCommand) {
@@ -100,6 +144,8 @@ async function saveSetup(runCommand) {
     msg.className = "msg bad";
     return;
   }
+  params = (await getJson("/api/params")).params;
+  renderResult();
   $("first-run").hidden = true;
   msg.textContent = "Saved. Press “Start charging” when the engine runs.";
   msg.className = "msg ok";
@@ -110,6 +156,7 @@ async function saveSetup(runCommand) {
 export async function loadSetup() {
   params = (await getJson("/api/params")).params;
   renderSteps();
+  $("setup-result").hidden = true;
   $("setup-start").hidden = true;
   $("setup-msg").textContent = "";
 }

@@ -1,0 +1,128 @@
+// The dashboard's parameter layer (docs/configuration.md "One chain of
+// values"): GET's sources, and PATCH — set a value, or drop the dashboard's
+// value (JSON null) so the file, the battery profile or the default applies
+// again. Checked as a whole set, against the bank the regulator measures,
+// saved, then applied; or nothing at all.
+#include <algorithm>
+#include <cmath>
+
+#include "app/effective_params.h"
+#include "app/param_change_text.h"
+#include "app/web_api.h"
+#include "config/battery_profiles.h"
+#include "config/config.h"
+#include "config/format.h"
+#include "params/derived.h"
+
+namespace xr::app {
+namespace {
+
+std::size_t slots(const ParamSpec& spec) { return spec.kind == ParamKind::Table ? RPM_TABLE_SIZE : 1; }
+
+void copyValue(const ParamSpec& spec, const Params& from, Params& to) {
+  for (std::size_t i = 0; i < slots(spec); ++i) spec.set(to, i, spec.get(from, i));
+}
+
+// The whole set must be for the bank the regulator measures: a set-up that
+// picks 24 V (BatteryCells = 8) on a bank reading 12.8 V is refused, as one
+// BulkVoltage of 28.8 V is (the bank size check would cut the field anyway).
+std::string bankError(const Params& p, double batteryV) {
+  if (!std::isfinite(batteryV) || batteryV < 4.5) return "";
+  const int measured = nominalVoltage(bankClassOfVoltage(batteryV));
+  const int set = nominalVoltage(systemClass(p));
+  if (measured == set) return "";
+  return "these settings are for a " + std::to_string(set) + " V bank (BulkVoltage " +
+         formatNumber(p.BulkVoltage) + " V); this battery measures as a " + std::to_string(measured) +
+         " V bank";
+}
+
+}  // namespace
+
+Params WebApi::currentParams() { return ctx_.handoffs->acceptedParams(); }
+
+std::map<std::string, std::string> WebApi::paramSources() {
+  std::lock_guard lock(patchMutex_);
+  std::map<std::string, std::string> out;
+  for (const auto& s : catalogue()) out.emplace(s.name, toString(ctx_.origins.of(s.name)));
+  return out;
+}
+
+std::set<std::string> WebApi::profileOwned() {
+  std::set<std::string> out;
+  for (std::string_view n : profileOwnedNames()) out.emplace(n);
+  return out;
+}
+
+web::PatchResult WebApi::patchParams(const std::vector<web::ParamChange>& changes,
+                                     const std::string& source) {
+  web::PatchResult r;
+  std::lock_guard lock(patchMutex_);
+  const Params before = ctx_.handoffs->acceptedParams();
+  Params p = before;
+  ParamOrigins origins = ctx_.origins;
+  std::vector<std::string> patched, dropped;
+  for (const auto& c : changes) {
+    if (!c.spec) {
+      r.errors.push_back({"", "unknown parameter"});
+      continue;
+    }
+    const std::string name(c.spec->name);
+    if (c.drop) {
+      // The layer below: the file's value (its default when the file has
+      // none); the battery profile refills it below when it owns the name.
+      origins.dashboard.erase(name);
+      copyValue(*c.spec, ctx_.fileParams, p);
+      dropped.push_back(name);
+      continue;
+    }
+    const std::size_t idx = c.index < 0 ? 0 : static_cast<std::size_t>(c.index);
+    if (!valueFits(*c.spec, c.value)) {
+      r.errors.push_back({name, "value out of range [" + formatNumber(c.spec->min) + ", " +
+                                    formatNumber(c.spec->max) + "]"});
+      continue;
+    }
+    c.spec->set(p, idx, c.value);
+    if (std::find(patched.begin(), patched.end(), name) == patched.end()) patched.push_back(name);
+  }
+  // The patched names join the dashboard layer; the battery profile fills
+  // again what nobody set (a new BatteryProfile, BatteryCells or capacity
+  // moves its values), and the whole set is checked (docs/batteries.md).
+  if (r.errors.empty()) p = withPatch(p, patched, origins);
+  if (r.errors.empty()) {
+    // Bare parameter names, like every other error of the API: the loader's
+    // keys carry the file's table ("voltage.").
+    for (const auto& e : checkConsistency(p))
+      r.errors.push_back({e.key.substr(e.key.rfind('.') + 1), e.message});
+    web::StatusSnapshot snap;
+    if (latestStatus(snap))
+      if (std::string e = bankError(p, snap.telemetry.battery_v); !e.empty())
+        r.errors.push_back({"BulkVoltage", e});
+  }
+  if (!r.errors.empty()) return r;  // nothing applied
+  // Saved first, applied second: a change that cannot be saved is refused,
+  // not applied for this run only and silently lost at the next start.
+  if (ctx_.store) {
+    // Only what the patch named is stored: values the profile moved stay the
+    // profile's, and follow it at the next start.
+    Params named = before;
+    for (const auto& name : patched) copyValue(*findParam(name), p, named);
+    std::string why = ctx_.store->dropOverrides(dropped);
+    if (why.empty()) why = ctx_.store->saveOverrides(ctx_.fileParams, before, named);
+    if (!why.empty()) {
+      r.errors.push_back({"store", why + "; nothing applied"});
+      return r;
+    }
+  }
+  ctx_.handoffs->submitParams(p);  // whole swap, between ticks
+  ctx_.origins = std::move(origins);
+  logPatch(changes.size());
+  // Who changed what, in the event list; a PATCH that changes nothing (the
+  // same values again) makes no event.
+  std::vector<std::string> named = patched;
+  named.insert(named.end(), dropped.begin(), dropped.end());
+  if (const std::string text = paramChangeText(before, p, named, source); !text.empty())
+    recordEvent("ParamsChanged", text);
+  return r;
+}
+
+}  // namespace xr::app
