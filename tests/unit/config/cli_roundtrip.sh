@@ -51,6 +51,25 @@ for want in 'BatteryProfile = "agm"  # file' 'FloatVoltage = 13.2  # file' 'Abso
   [ $rc = 0 ] && grep -qF "$want" "$tmp/out" && echo "ok: --print-config has: $want" \
     || { echo "FAIL: --print-config (exit $rc) lacks: $want"; cat "$tmp/err"; fail=1; }
 done
+# The shipped file pins none of a profile's values: with only the battery
+# lines edited, a profile is what runs (docs/configuration.md "One chain of
+# values"), for a 24 V LiFePO4 bank and for 12 V AGM.
+sed -e 's/^BatteryProfile = "custom"/BatteryProfile = "lifepo4"/' -e 's/^BatteryCells = 0/BatteryCells = 8/' \
+  -e 's/^BatteryCapacity_Ah = 200.0/BatteryCapacity_Ah = 400/' "$root/config/xregulator.toml" >"$tmp/lfp24.toml"
+"$exe" --config "$tmp/lfp24.toml" --check-config >/dev/null 2>"$tmp/err" && echo "ok: shipped file + LiFePO4 24 V passes --check-config" \
+  || { cat "$tmp/err"; echo "FAIL: shipped file + LiFePO4 24 V refused"; fail=1; }
+"$exe" --config "$tmp/lfp24.toml" --state-db "$tmp/none.db" --print-config >"$tmp/out" 2>"$tmp/err"
+for want in 'AbsorptionVoltage = 28.4  # profile' 'BulkVoltage = 28.4  # profile' 'UseFloat = false  # profile' \
+  'BatteryCells = 8  # file' 'ChargeMinTempC = 0  # profile'; do
+  grep -qF "$want" "$tmp/out" && echo "ok: shipped file + LiFePO4 24 V: $want" \
+    || { echo "FAIL: shipped file + LiFePO4 24 V lacks: $want"; fail=1; }
+done
+sed -e 's/^BatteryProfile = "custom"/BatteryProfile = "agm"/' "$root/config/xregulator.toml" >"$tmp/agm12.toml"
+"$exe" --config "$tmp/agm12.toml" --state-db "$tmp/none.db" --print-config >"$tmp/out" 2>"$tmp/err"
+for want in 'AbsorptionVoltage = 14.4  # profile' 'FloatVoltage = 13.3  # profile'; do
+  grep -qF "$want" "$tmp/out" && echo "ok: shipped file + AGM 12 V: $want" \
+    || { echo "FAIL: shipped file + AGM 12 V lacks: $want"; cat "$tmp/err"; fail=1; }
+done
 # Issue 26, item 4: the kept fuzz finding (a non-ASCII letter after a bare
 # key, undefined behaviour inside toml++ 3.3.0) is refused before toml++ sees
 # it: exit 78 as a configuration, 64 as a scenario, at file:line:column.
