@@ -138,4 +138,22 @@ std::string stateJson(const IntegrationSample& s) {
   return json::serialize(o);
 }
 
+HaCommandDecision decodeHaCommand(const HaTopics& t, std::string_view topic, std::string_view payload) {
+  HaCommandDecision d;
+  if (topic == t.modeCommand()) {
+    if (payload == "off")
+      d.command = CommandType::Off;
+    else if (payload == "auto")
+      d.command = CommandType::Auto;
+    else
+      d.refused = "mode command '" + std::string(payload.substr(0, 32)) + "' is not off or auto";
+  } else if (topic == t.limpHomeCommand()) {
+    if (payload == "PRESS")
+      d.command = CommandType::LimpHome;
+    else
+      d.refused = "limp home command payload is not PRESS";
+  }
+  return d;
+}
+
 }  // namespace xr::integrations

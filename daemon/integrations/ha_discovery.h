@@ -8,9 +8,12 @@
 //   xregulator/<id>/state                                  one JSON document
 //   xregulator/<id>/availability                           online / offline (LWT)
 //   xregulator/<id>/set/mode, xregulator/<id>/set/limp_home  commands (opt-in)
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "core/commands.h"
 #include "integrations/integration_sample.h"
 
 namespace xr::integrations {
@@ -31,6 +34,15 @@ struct HaTopics {
     return prefix + "/" + component + "/xregulator_" + id + "/" + object + "/config";
   }
 };
+
+// What one message on a command topic asks for: a command, or why it is
+// refused (a payload other than "off"/"auto" on the mode topic or "PRESS"
+// on the limp-home one). nullopt and an empty `refused` for another topic.
+struct HaCommandDecision {
+  std::optional<CommandType> command;
+  std::string refused;
+};
+HaCommandDecision decodeHaCommand(const HaTopics& t, std::string_view topic, std::string_view payload);
 
 // Every retained discovery config: the sensors and binary sensors always,
 // the select (off/auto) and the button (limp home) only when withCommands.

@@ -143,23 +143,11 @@ void HomeAssistantBridge::onMessage(const std::string& topic, std::string_view p
 
 void HomeAssistantBridge::onCommand(const std::string& topic, std::string_view payload) {
   const std::string source = "Home Assistant (MQTT " + settings_.host + ")";
+  const HaCommandDecision d = decodeHaCommand(topics_, topic, payload);
+  if (!d.refused.empty()) health_.refused(d.refused);
+  if (!d.command) return;
   Command c;
-  if (topic == topics_.modeCommand()) {
-    if (payload == "off") {
-      c.type = CommandType::Off;
-    } else if (payload == "auto") {
-      c.type = CommandType::Auto;
-    } else {
-      health_.refused("mode command '" + std::string(payload.substr(0, 32)) + "' is not off or auto");
-      return;
-    }
-  } else {
-    if (payload != "PRESS") {
-      health_.refused("limp home command payload is not PRESS");
-      return;
-    }
-    c.type = CommandType::LimpHome;
-  }
+  c.type = *d.command;
   commands_(c, source);
 }
 

@@ -111,5 +111,23 @@ TEST(SignalKWords, ChargingModeFollowsTheStage) {
   EXPECT_EQ(signalKChargingMode(ChargeStage::BULK, false), "other");
 }
 
+// A command is an exact word on its own topic; anything else is refused with
+// a reason (counted, never applied), and other topics are not commands.
+TEST(HaDiscovery, CommandsAreExactWordsOnTheirTopics) {
+  const HaTopics t{"homeassistant", "boat1"};
+  EXPECT_EQ(decodeHaCommand(t, t.modeCommand(), "off").command, CommandType::Off);
+  EXPECT_EQ(decodeHaCommand(t, t.modeCommand(), "auto").command, CommandType::Auto);
+  EXPECT_EQ(decodeHaCommand(t, t.limpHomeCommand(), "PRESS").command, CommandType::LimpHome);
+  for (const char* bad : {"OFF", "off ", "", "limp", "PRESS"}) {
+    const auto d = decodeHaCommand(t, t.modeCommand(), bad);
+    EXPECT_FALSE(d.command) << bad;
+    EXPECT_FALSE(d.refused.empty()) << bad;
+  }
+  EXPECT_FALSE(decodeHaCommand(t, t.limpHomeCommand(), "press").command);
+  const auto other = decodeHaCommand(t, "xregulator/boat2/set/mode", "off");
+  EXPECT_FALSE(other.command);
+  EXPECT_TRUE(other.refused.empty());
+}
+
 }  // namespace
 }  // namespace xr::integrations

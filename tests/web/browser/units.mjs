@@ -126,6 +126,43 @@ await test("TOML export re-imports to the same values; sections are the file's",
   for (const p of params) assert.deepEqual(back.values[p.name], p.value, p.name);
 });
 
+// The settings export as a hostile or damaged file: 4000 seeded mutations
+// (bytes changed, lines cut, duplicated or swapped, odd numbers put in).
+// The import never throws, and whatever it accepts is what the PATCH can
+// carry: a finite number in the parameter's kind, a table of the right
+// length, a boolean, a choice that exists — never Infinity or NaN, which
+// JSON would send as null ("drop the dashboard's value").
+await test("TOML import of 4000 mutated exports: never throws, accepts only values a PATCH carries", () => {
+  const text = T.exportToml(params, groups);
+  let seed = 12345;
+  const rnd = (k) => { seed = (seed * 1103515245 + 12345) % 2147483648; return seed % k; };
+  const odd = ["1e999", "-1e999", "nan", "inf", "0x10", "1_000", "\u0000", "[]", "[1,]", "\"lifepo4\"", "true", "1e-400", "-0", "9".repeat(400)];
+  const byName = Object.fromEntries(params.map((p) => [p.name, p]));
+  for (let i = 0; i < 4000; i++) {
+    let lines = text.split("\n");
+    for (let m = 1 + rnd(4); m > 0; m--) {
+      const at = rnd(lines.length);
+      switch (rnd(5)) {
+        case 0: lines[at] = lines[at].replace(/=.*$/, "= " + odd[rnd(odd.length)]); break;
+        case 1: lines.splice(at, 1); break;
+        case 2: lines.splice(at, 0, lines[rnd(lines.length)]); break;
+        case 3: { const c = lines[at]; const k = rnd(c.length + 1); lines[at] = c.slice(0, k) + String.fromCharCode(rnd(128)) + c.slice(k + 1); break; }
+        default: lines = lines.slice(0, at);
+      }
+    }
+    const r = T.parseParamsToml(lines.join("\n"), params);
+    for (const [name, v] of Object.entries(r.values)) {
+      const p = byName[name];
+      const kind = String(p.kind).toLowerCase();
+      if (kind === "bool") assert.equal(typeof v, "boolean", `${name}: ${v}`);
+      else if (kind === "table") assert.ok(Array.isArray(v) && v.length === p.value.length && v.every(Number.isFinite), `${name}: ${v}`);
+      else assert.ok(Number.isFinite(v), `${name}: ${v}`);
+      if (Array.isArray(p.choices)) assert.ok(Number.isInteger(v) && v >= 0 && v < p.choices.length, `${name}: ${v}`);
+      assert.notEqual(JSON.stringify({ v }), '{"v":null}', `${name} would be sent as null`);
+    }
+  }
+});
+
 await test("TOML import refuses the whole file on any bad line and names it", () => {
   const r = T.parseParamsToml("[voltage]\nBulkVoltage = 14.2\nNoSuch = 1\n[charging]\nUseFloat = maybe\n[rpm_tables]\nrpmCapCurrentTable = [1, 2]\n[web]\nport = 80\n", params);
   assert.equal(r.errors.length, 3);

@@ -31,7 +31,12 @@ function parseScalar(text) {
   const t = text.trim();
   if (t === "true") return true;
   if (t === "false") return false;
-  if (/^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$/.test(t.replace(/_/g, ""))) return Number(t.replace(/_/g, ""));
+  if (/^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$/.test(t.replace(/_/g, ""))) {
+    // "1e999" is Infinity, which JSON sends as null: "drop the dashboard's
+    // value" to the daemon. Not a number a file can mean.
+    const v = Number(t.replace(/_/g, ""));
+    return Number.isFinite(v) ? v : undefined;
+  }
   return undefined;
 }
 
