@@ -73,6 +73,16 @@ StoreStatus Store::appendHistory(std::int64_t tUnixMs, std::span<const double> v
     }
 
   if (lastFlushS_ < 0) lastFlushS_ = sec;
+  // The wall clock went back (NTP or a GPS correcting a Pi that booted on
+  // its last saved time): the intervals count from here, or nothing would
+  // be written until the clock caught up again, hours later
+  // (docs/security.md "The clock"). What was buffered goes to the card
+  // now, as at any discontinuity.
+  if (sec < lastFlushS_) {
+    lastFlushS_ = sec;
+    lastCompactS_ = std::min(lastCompactS_, sec);
+    return flushPending(false);
+  }
   if (sec - lastFlushS_ >= opt_.historyFlushS) {
     lastFlushS_ = sec;
     StoreStatus st = flushPending(false);

@@ -8,7 +8,9 @@ generated from this table, so the two cannot drift apart.
 
   layout_rules.py check ROOT      every include follows the table, no source
                                   includes a .cpp, no non-test source over
-                                  MAX_LINES lines (exit 1 and a list if not)
+                                  MAX_LINES lines, no function over
+                                  MAX_FUNCTION_LINES, no clock in the pure
+                                  layers (exit 1 and a list if not)
   layout_rules.py dot             print the Graphviz source of the picture
   layout_rules.py dot-check ROOT  docs/architecture.dot matches this table
   layout_rules.py self-test       the checks catch a planted violation of each
@@ -81,6 +83,67 @@ MAX_LINES = 400
 LONG_FILE_EXEMPTIONS: dict = {}
 # Sources allowed to include a .cpp for now, with the reason.
 CPP_INCLUDE_EXEMPTIONS: dict = {}
+# Functions longer than this (a definition's first line to its closing brace
+# at column 0) are split along their steps (the developers' guide).
+MAX_FUNCTION_LINES = 80
+# Functions over MAX_FUNCTION_LINES today, by "file:first line text", each to
+# be split; the check keeps new ones out and fails when one of these grows.
+# The number is the length it may not exceed.
+LONG_FUNCTION_EXEMPTIONS = {
+    "daemon/app/daemon.cpp:int Daemon::run() {": 342,
+    "daemon/control/regulator.cpp:const Outputs& Regulator::step(const Inputs& in) {": 205,
+    "daemon/app/cli.cpp:CliResult parseCommandLine(": 181,
+    "daemon/protection/shutdown_sequencer.cpp:ShutdownCommand ProtectionSupervisor::runShutdownPath(": 146,
+    "daemon/control/control_law.cpp:double ControlLaw::finishAuto(": 145,
+    "daemon/core/events.cpp:std::string describe(const Event& e) {": 135,
+    "daemon/protection/fast_ov.cpp:FastOvAction ProtectionSupervisor::runFastOvSupervisors(": 131,
+    "daemon/store/store_open.cpp:OpenResult Store::open(": 124,
+    "drivers/sim/scenario.cpp:ScenarioEvent parseEvent(": 98,
+    "daemon/integrations/signalk_client.cpp:asio::awaitable<void> SignalKClient::session() {": 97,
+    "daemon/can/bms_codec.cpp:BmsFrameResult BmsDecoder::feed(": 85,
+    "daemon/control/control_targets.cpp:void ControlLaw::updateChargingStage(": 83,
+    "daemon/battery/battery_soc.cpp:void BatteryMonitor::runSocBody(": 82,
+    "drivers/sim/scenario.cpp:Scenario parseTable(": 81,
+}
+# The pure layers take time as an input (TimeNs from the loop's monotonic
+# clock): none of them may read a clock, so a wall-clock jump cannot move a
+# stage timer, a protection's debounce or the SoC integration
+# (docs/security.md "The clock").
+PURE_FOLDERS = {"daemon/params", "daemon/core", "daemon/protection", "daemon/battery", "daemon/control"}
+CLOCK_RE = re.compile(r"\b(system_clock|steady_clock|high_resolution_clock|gettimeofday|clock_gettime|"
+                      r"CLOCK_REALTIME|CLOCK_MONOTONIC|localtime|gmtime)\b|\btime\s*\(\s*(nullptr|NULL|0)?\s*\)")
+SIGNATURE_SKIP = ("#", "//", "namespace", "}", "using", "class", "struct", "enum", "extern", "template", "static_assert")
+
+
+def long_functions(text):
+    """(first line number, first line text, length) of each function over
+    MAX_FUNCTION_LINES: a definition starts at column 0 and ends at the next
+    '}' at column 0 (clang-format's layout of this code)."""
+    lines = text.split("\n")
+    out, start = [], None
+    for i, line in enumerate(lines):
+        if start is None:
+            if not line or line[0].isspace() or line.startswith(SIGNATURE_SKIP) or "(" not in line:
+                continue
+            j = i
+            while j < len(lines) and not lines[j].rstrip().endswith(("{", ";", "}")):
+                j += 1
+            if j < len(lines) and lines[j].rstrip().endswith("{") and "=" not in lines[j].split("(")[0]:
+                start = i
+        elif line.startswith("}"):
+            n = i - start + 1
+            if n > MAX_FUNCTION_LINES:
+                out.append((start + 1, lines[start], n))
+            start = None
+    return out
+
+
+def exemption_of(rel, first_line):
+    for key, limit in LONG_FUNCTION_EXEMPTIONS.items():
+        f, head = key.split(":", 1)
+        if f == rel and first_line.startswith(head):
+            return limit
+    return None
 DAEMON_FOLDERS = {f.split("/")[1] for f, _, _ in LAYERS if f.startswith("daemon/")}
 INCLUDE_RE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 
@@ -135,6 +198,16 @@ def check(root):
         lines = text.count("\n")
         if rel.endswith((".h", ".cpp")) and lines > MAX_LINES and rel not in LONG_FILE_EXEMPTIONS:
             problems.append(f"{rel}: {lines} lines (more than {MAX_LINES}: split it along its jobs)")
+        if rel.endswith((".h", ".cpp")):
+            for line, head, n in long_functions(text):
+                limit = exemption_of(rel, head)
+                if limit is None or n > limit:
+                    problems.append(f"{rel}:{line}: a function of {n} lines (more than {MAX_FUNCTION_LINES}: "
+                                    f"split it along its steps): {head.strip()[:60]}")
+        if here in PURE_FOLDERS:
+            for m in CLOCK_RE.finditer(text):
+                line = text.count("\n", 0, m.start()) + 1
+                problems.append(f"{rel}:{line}: the pure layers read no clock ({m.group(0)}): take TimeNs as input")
     return problems
 
 
@@ -200,6 +273,8 @@ def self_test():
         "daemon/store/c.cpp": '#include "store/other.cpp"\n',           # a .cpp included
         "web/server/d.cpp": "// long\n" * (MAX_LINES + 1),             # too long
         "daemon/nowhere/e.h": "",                                     # folder not in the table
+        "daemon/control/f.cpp": "int f() {\n" + "  g();\n" * MAX_FUNCTION_LINES + "}\n",  # a long function
+        "daemon/battery/g.cpp": "auto t = std::chrono::system_clock::now();\n",  # a clock in the core
     }
     failures = []
     with tempfile.TemporaryDirectory() as tmp:
