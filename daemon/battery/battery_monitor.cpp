@@ -21,6 +21,7 @@ BatteryMonitor::BatteryMonitor(const Params& p) : p_(p) {
   // the charger would never rest; a full guess defers to voltage/current
   // re-bulk once 5 % has been counted out. socKnown() says it is a guess.
   ledger_.CoulombCount_Ah = p_.BatteryCapacity_Ah * kUnknownSocPercent / 100.0;
+  ledger_.SocSource = static_cast<double>(SocSource::Unknown);
   ledger_.valid = true;
 }
 
@@ -63,7 +64,7 @@ bool BatteryMonitor::setSoc(double pct) {
   // The operator's figure is a reference point for the gain correction.
   gainReferenceValid_ = true;
   unclampedCount_Ah_ = ledger_.CoulombCount_Ah;
-  socKnown_ = true;
+  setSocSource(SocSource::Counted);
   return true;
 }
 
@@ -84,7 +85,11 @@ void BatteryMonitor::restoreLedger(const BatteryLedger& in) {
   using namespace battery_k;
   BatteryLedger l = in;
   const double cap = p_.BatteryCapacity_Ah;
+  const bool countOk = std::isfinite(l.CoulombCount_Ah) && l.valid;
   l.CoulombCount_Ah = clampFinite(l.CoulombCount_Ah, 0.0, cap, cap * kUnknownSocPercent / 100.0);
+  // 0, 1 or 2; anything else (a damaged row) is counted as unknown.
+  const double src = l.SocSource;
+  l.SocSource = countOk && (src == 1.0 || src == 2.0) ? src : 0.0;
   l.coulombAccumulator_Ah = clampFinite(l.coulombAccumulator_Ah, -COULOMB_COMMIT_AH, COULOMB_COMMIT_AH, 0.0);
   l.DynamicShuntGainFactor =
       clampFinite(l.DynamicShuntGainFactor, MIN_DYNAMIC_GAIN_FACTOR, MAX_DYNAMIC_GAIN_FACTOR, 1.0);
@@ -116,7 +121,6 @@ void BatteryMonitor::restoreLedger(const BatteryLedger& in) {
   ledger_ = l;
   telemetryStale_ = true;
   gainReferenceValid_ = false;
-  socKnown_ = std::isfinite(in.CoulombCount_Ah) && in.valid;
 }
 
 // ---------------------------------------------------------------- outputs
@@ -139,12 +143,14 @@ void BatteryMonitor::updateTelemetry(BatteryTelemetry& t) {
   // true at a detected full charge, which happens inside it).
   t.batteryCurrentForSoC = batteryCurrentForSoC_;
   t.usingVictronCurrent = usingVictron_;
-  t.socKnown = socKnown_;
+  t.socKnown = socKnown();
+  t.socSource = socSource();
 }
 
 void BatteryMonitor::fillTelemetry(BatteryTelemetry& t) const {
   t.SOC_percent = socPercent();
-  t.socKnown = socKnown_;
+  t.socKnown = socKnown();
+  t.socSource = socSource();
   t.CoulombCount_Ah = ledger_.CoulombCount_Ah;
   t.batteryCurrentForSoC = batteryCurrentForSoC_;
   t.FullChargeDetected = FullChargeDetected_;

@@ -149,7 +149,8 @@ class BatteryMonitor {
   // False while the SoC is the constructor's guess: no valid ledger restored,
   // no setSoc, no full-charge detection yet. Control may ignore SOC gating
   // (StageInputs::socValid) while this is false.
-  bool socKnown() const { return socKnown_; }
+  bool socKnown() const { return socSource() == SocSource::Counted; }
+  SocSource socSource() const { return static_cast<SocSource>(static_cast<int>(ledger_.SocSource)); }
   bool fullChargeDetected() const { return FullChargeDetected_; }
   // The charging stage ended absorption on its tail current: the bank is
   // full, a detected full charge like the monitor's own (its voltage and
@@ -175,6 +176,11 @@ class BatteryMonitor {
   void runSocBody(TimeNs now, double elapsed_s, EventBatch& ev);
   void applySocGainCorrection(TimeNs now, EventBatch& ev);
   void declareFullCharge(TimeNs now, EventBatch& ev);
+  void setSocSource(SocSource s) {
+    ledger_.SocSource = static_cast<double>(s);
+    telemetryStale_ = true;
+  }
+  void estimateSocAtRest(double dt_s, double amps, double volts, double altAmps);
   void calculateChargeTimes(const Inputs& in);
   void commitEnergy(Energy& e, double& lifetimeWhole, double delta_Wh);
   double temperatureF(const Inputs& in) const;
@@ -205,7 +211,9 @@ class BatteryMonitor {
   double batteryCurrentForSoC_ = 0.0;
   bool usingVictron_ = false;
   bool socInputsValid_ = false;
-  bool socKnown_ = false;  // current and voltage samples live at the last tick
+  // The start-up estimate from the rested voltage (battery_ocv.cpp).
+  double restTimer_s_ = 0.0;
+  double restVoltSum_ = 0.0;
   double lastValidVoltage_ = 0.0;
 
   // Session energies and figures.

@@ -83,6 +83,7 @@ void BatteryMonitor::UpdateBatterySOC(const Inputs& in, double measuredAltAmps, 
     lastSocUpdate_ = in.now;
     runSocBody(in.now, elapsed, ev);
   }
+  estimateSocAtRest(dt, iOk ? I : NAN, vOk ? V : NAN, measuredAltAmps);
   if (in.now - lastChargeTimes_ >= fromMs(k::INA_SLOW_INTERVAL_MS)) {
     lastChargeTimes_ = in.now;
     calculateChargeTimes(in);
@@ -198,7 +199,7 @@ void BatteryMonitor::declareFullCharge(TimeNs now, EventBatch& ev) {
   ledger_.CoulombCount_Ah = cap;
   ledger_.coulombAccumulator_Ah = 0.0;
   FullChargeDetected_ = true;
-  socKnown_ = true;
+  setSocSource(SocSource::Counted);
   gainReferenceValid_ = true;
   unclampedCount_Ah_ = cap;
   telemetryStale_ = true;

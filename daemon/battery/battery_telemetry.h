@@ -2,9 +2,15 @@
 // SoC and energy figures exported per tick. Owned by daemon/battery.
 namespace xr {
 
+// Where the SoC figure comes from (docs/batteries.md "State of charge at
+// first start"): the dashboard shows no number while it is Unknown, and "≈"
+// while it is an OcvEstimate.
+enum class SocSource { Unknown = 0, OcvEstimate = 1, Counted = 2 };
+
 struct BatteryTelemetry {
   double SOC_percent = 0.0;
   bool socKnown = false;  // false while SOC_percent is only the start-up guess (dashboard shows "estimate")
+  SocSource socSource = SocSource::Unknown;  // not visited: the status JSON names it (soc_source)
   double CoulombCount_Ah = 0.0;
   double batteryCurrentForSoC = 0.0;
   bool FullChargeDetected = false;

@@ -19,6 +19,11 @@ struct BatteryLedger {
   double totalVoltageSampleTime_AllTime = 0.0;  // s
   double AlternatorFuelUsed_AllTime_L = 0.0;
   double AlternatorOnTime_AllTime_s = 0.0;
+  // Where CoulombCount_Ah comes from (SocSource in battery_telemetry.h):
+  // 0 unknown, 1 an estimate from the rested voltage, 2 counted from a
+  // known point (a full charge or a value set). A database from before this
+  // field has no row for it and keeps 2, what those releases assumed.
+  double SocSource = 2.0;
   bool valid = false;  // false until restored from the store or initialised
 
   bool operator==(const BatteryLedger&) const = default;
@@ -41,6 +46,7 @@ void visitLedgerFields(L& l, F&& f) {
   f("totalVoltageSampleTime_AllTime", l.totalVoltageSampleTime_AllTime);
   f("AlternatorFuelUsed_AllTime", l.AlternatorFuelUsed_AllTime_L);
   f("AlternatorOnTime_AllTime", l.AlternatorOnTime_AllTime_s);
+  f("SocSource", l.SocSource);
 }
 
 }  // namespace xr

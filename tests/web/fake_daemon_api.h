@@ -14,6 +14,8 @@ namespace xr::web::test {
 
 class FakeDaemonApi : public DaemonApi {
  public:
+  // Where the published SoC comes from (a test sets Unknown or OcvEstimate).
+  SocSource socSource = SocSource::Counted;
   FakeDaemonApi() {
     for (int i = 1; i <= 250; ++i) {
       EventRecord r;
@@ -56,6 +58,8 @@ class FakeDaemonApi : public DaemonApi {
     t.soc_pct = 55.0 + k * 0.001;
     t.charged_wh_lifetime = 1234.5;
     t.battery.SOC_percent = t.soc_pct;
+    t.battery.socSource = socSource;
+    t.battery.socKnown = socSource == SocSource::Counted;
     t.battery.ChargeCycles = 12.3;
     t.battery.timeToFullChargeMin = 95.0;
     t.protection.lastTripReason = Reason::REASON_TEMP_WARNING;

@@ -142,6 +142,25 @@ TEST_F(WebApiTest, Status_HasEveryDesignCsvColumnWithFakeValues) {
   EXPECT_EQ(o.at("protection").at("hard_overcurrent").as_bool(), s.telemetry.protection.hardOvercurrent);
 }
 
+// No number for a SoC the regulator does not know (docs/batteries.md "State
+// of charge at first start"), and the source of one it shows.
+TEST_F(WebApiTest, Status_SocIsNullWhileUnknownAndNamesItsSource) {
+  api_.socSource = SocSource::Unknown;
+  api_.publish();
+  start();
+  auto o = obj(get("/api/status"));
+  EXPECT_TRUE(o.at("soc_pct").is_null());
+  EXPECT_EQ(o.at("soc_source").as_string(), "unknown");
+  api_.socSource = SocSource::OcvEstimate;
+  api_.publish();
+  o = obj(get("/api/status"));
+  EXPECT_GT(o.at("soc_pct").to_number<double>(), 0.0);
+  EXPECT_EQ(o.at("soc_source").as_string(), "ocv_estimate");
+  api_.socSource = SocSource::Counted;
+  api_.publish();
+  EXPECT_EQ(obj(get("/api/status")).at("soc_source").as_string(), "counted");
+}
+
 TEST_F(WebApiTest, Status_FollowsNewTicks) {
   api_.publish();
   start();

@@ -143,6 +143,13 @@ json::object statusToJson(const StatusSnapshot& s) {
     o["sim_bms_connected"] = s.sim->bms_connected;
     o["sim_field_on"] = s.sim->field_on;
   }
+  // Where the SoC comes from (docs/batteries.md "State of charge at first
+  // start"); no number while the regulator does not know it.
+  const SocSource src = s.telemetry.battery.socSource;
+  o["soc_source"] = src == SocSource::Counted       ? "counted"
+                    : src == SocSource::OcvEstimate ? "ocv_estimate"
+                                                    : "unknown";
+  if (src == SocSource::Unknown) o["soc_pct"] = nullptr;
   o["seq"] = s.seq;
   o["wall_time_s"] = statusNumber("wall_time_s", s.wall_time_s);
   o["simulated"] = s.sim.has_value();

@@ -43,13 +43,17 @@ export async function daemonChecks(t) {
   };
   await page.evaluate(() => localStorage.setItem("xregulator.tempUnit", "C"));
 
-  // ---- Item 1: a fresh install's SoC is shown as an estimate.
+  // ---- A fresh install with no battery type chosen does not know its SoC:
+  // the API gives no number and says so; the tile says "unknown", not a guess
+  // (docs/batteries.md "State of charge at first start").
   const s0 = await status();
   assert.equal(s0.schema, 2);
   assert.equal(s0.battery.soc_known, false);
-  await page.waitForFunction(() => document.getElementById("v-soc_pct").textContent.startsWith("≈"));
-  assert.match(await page.textContent("#v-soc_pct"), /estimate/);
-  console.log("ok - a fresh install shows the SoC as an estimate: " + (await page.textContent("#v-soc_pct")));
+  assert.equal(s0.soc_pct, null);
+  assert.equal(s0.soc_source, "unknown");
+  await page.waitForFunction(() => document.getElementById("v-soc_pct").textContent.startsWith("unknown"));
+  assert.doesNotMatch(await page.textContent("#v-soc_pct"), /\d/);
+  console.log("ok - a fresh install shows the SoC as unknown, with no number: " + (await page.textContent("#v-soc_pct")));
 
   // ---- Item 16: /api/status for programs.
   assert.equal(typeof s0.field_enable, "boolean");

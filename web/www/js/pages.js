@@ -47,7 +47,8 @@ export function renderProtections(s) {
 export function renderBattery(s) {
   const b = s.battery || {};
   kvTable("batt-table", [
-    ["state of charge (%)", b.soc_known === false ? `≈ ${plain(s.soc_pct, 0)} (estimate)` : plain(s.soc_pct, 1)],
+    ["state of charge (%)", s.soc_pct === null || s.soc_source === "unknown" ? "unknown until the first full charge (or set it below)"
+      : b.soc_known === false ? `≈ ${plain(s.soc_pct, 0)} (estimate${s.soc_source === "ocv_estimate" ? " from the rested voltage" : ""})` : plain(s.soc_pct, 1)],
     ["charge counted (Ah)", plain(b.coulomb_count_ah, 1)], ["battery current (A)", plain(s.bcur_a, 1)],
     ["full charge seen", yes(b.full_charge_detected)],
     ["time to full", b.soc_known === false ? "unknown until the SoC is known" : hmin(b.time_to_full_charge_min)],
