@@ -136,7 +136,9 @@ std::string settingRange(const SettingSpec& s) {
 // values"): written as live keys. Everything else is written commented out,
 // so the shipped file pins nothing the profile or the dashboard should set.
 bool installerParam(std::string_view name) {
-  return name == "BatteryProfile" || name == "BatteryCells" || name == "BatteryCapacity_Ah";
+  // BatteryProfile is left commented: naming it is what sets the regulator
+  // up (docs/configuration.md "Not set up").
+  return name == "BatteryCells" || name == "BatteryCapacity_Ah";
 }
 bool installerSetting(std::string_view table, std::string_view key) {
   return table == "hardware" || table == "hardware.frontend" ||

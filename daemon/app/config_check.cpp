@@ -7,6 +7,7 @@
 #include "app/stored_overrides.h"
 #include "config/battery_profiles.h"
 #include "config/config.h"
+#include "config/setup_pending.h"
 #include "config/web_checks.h"
 
 namespace xr::app {
@@ -21,6 +22,11 @@ int checkConfigAndState(const std::string& configPath, const std::optional<std::
     out << "warning: " << w << "\n";
   if (auto n = profileShadowNotice(r.config->params, r.config->fileParamNames); !n.empty())
     out << "warning: " << n << "\n";
+  // Not an error: the set-up page may still choose the battery.
+  if (!r.config->fileParamNames.count("BatteryProfile"))
+    out << "note: no BatteryProfile in this file; unless the set-up page chose one, the regulator is not set "
+           "up and charges only within limits safe for every chemistry ("
+        << setupPendingLimitsText(r.config->params) << ")\n";
 
   const std::string db = stateDb.value_or(r.config->settings.store.path);
   std::error_code ec;
@@ -69,6 +75,7 @@ int printConfigMain(const std::optional<std::string>& configPath, const std::opt
       if (!setAside.empty()) err << "warning: " << setAside << "\n";
     }
   }
+  params = runningParams(params, origins);
   out << effectiveConfigText(config.settings, params, origins);
   return 0;
 }

@@ -18,7 +18,7 @@
 #include "app/can_wiring.h"
 #include "app/csv_writer.h"
 #include "app/daemon_notices.h"
-#include "app/effective_params.h"
+#include "app/daemon_start.h"
 #include "app/integrations_wiring.h"
 #include "app/pair_cli.h"
 #include "app/sim_wiring.h"
@@ -59,58 +59,16 @@ int Daemon::run() {
                cli_.sim ? "simulation" : "board", kernel.release, kernel.preemptRt ? "yes" : "no",
                kernel.how);
 
-  // ---- parameters: file, then scenario [config], then stored overrides ----
-  if (auto n = profileShadowNotice(config_.params, config_.fileParamNames); !n.empty()) spdlog::warn("{}", n);
-  Params fileParams = config_.params;
-  ParamOrigins origins;  // issue 21: where each value comes from
-  origins.file = config_.fileParamNames;
-  std::optional<sim::Scenario> scenario;
-  if (cli_.sim) {
-    try {
-      scenario = cli_.scenario ? sim::loadScenario(*cli_.scenario) : sim::defaultScenario();
-      sim::applyOverrides(fileParams, scenario->config, scenario->source);
-      for (const auto& c : scenario->config) origins.file.insert(c.name);
-      applyScenarioWeather(*scenario, settings.integrations.weather);
-    } catch (const std::exception& e) {
-      // A bad scenario is bad input on the command line (issue 20: exit 64,
-      // EX_USAGE), not a bad configuration file (78).
-      spdlog::critical("{}", e.what());
-      std::fprintf(stderr, "xregulatord: %s\n", e.what());
-      return kExitUsage;
-    }
-    spdlog::info("scenario '{}' ({} s, seed {})", scenario->name, scenario->duration_s,
-                 cli_.seed ? *cli_.seed : scenario->seed);
-  }
-
-  fileParams = applyLayers(fileParams, origins);  // the profile under the file and [config]
-  std::unique_ptr<StoreService> store;
-  std::string dbPath = cli_.stateDb.value_or(cli_.sim ? std::string() : settings.store.path);
-  Params params = fileParams;
-  std::optional<BatteryLedger> restored;
-  std::unique_ptr<StateLock> stateLock;  // held until exit (store/state_lock.h)
-  if (!dbPath.empty()) {
-    stateLock = lockStateDatabase(dbPath);
-    if (!stateLock) return kExitTempFail;  // before any output is driven: the field was never enabled by us
-    store = std::make_unique<StoreService>(dbPath, settings.store.checkpoint_interval_s);
-    const OpenResult& o = store->openResult();
-    if (const char* code = StoreService::alarmCode(o))
-      spdlog::error("store: {}: {}", code, o.message);  // the line to look for (docs/operations.md)
-    else
-      spdlog::info("store: {} ({})", dbPath, o.message);
-    if (auto saved = store->loadLedger()) {
-      restored = saved->ledger;
-      spdlog::info("store: ledger restored (saved for '{}')", saved->reason);
-    }
-    const OverrideResolution resolved = store->applyOverrides(fileParams);
-    for (const auto& d : resolved.dropped) spdlog::error("{}", d.text());
-    std::string why;
-    params = withDashboardLayer(fileParams, resolved, origins, &why);
-    if (!why.empty()) spdlog::error("{}", why);
-  }
+  // ---- parameters and the state database (daemon_start.h) ----
+  StartState start = loadStartState(config_, cli_, settings);
+  if (start.exitCode != 0) return start.exitCode;
+  std::unique_ptr<StoreService>& store = start.store;
+  std::optional<sim::Scenario>& scenario = start.scenario;
+  const Params& params = start.running;
 
   // ---- the core and the hand-offs ----
   Regulator regulator(params);
-  if (restored) regulator.restoreLedger(*restored);
+  if (start.restored) regulator.restoreLedger(*start.restored);
   rt::RegulatorCore core(regulator);
   auto handoffs = std::make_unique<rt::Handoffs>(params);
 
@@ -215,8 +173,9 @@ int Daemon::run() {
   if (wantWeb) {
     WebApiContext ctx;
     ctx.handoffs = handoffs.get();
-    ctx.fileParams = fileParams;
-    ctx.origins = origins;
+    ctx.fileParams = start.fileParams;
+    ctx.origins = start.origins;
+    ctx.configured = start.configured;
     ctx.store = store.get();
     ctx.events = &recent;
     ctx.sim = cli_.sim;

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "app/can_wiring.h"
+#include "config/config.h"
 
 namespace xr::app {
 
@@ -20,6 +21,15 @@ sim::SimRigOptions rigOptions(const CliOptions& cli, std::ostream* canLog) {
   return o;
 }
 }  // namespace
+
+bool scenarioConfigFits(const Params& effective, const std::string& source) {
+  const auto errs = checkConsistency(effective, source);
+  for (const auto& e : errs) {
+    spdlog::critical("{}: [config] {}", source, e.toString());
+    std::fprintf(stderr, "xregulatord: %s: [config] %s\n", source.c_str(), e.toString().c_str());
+  }
+  return errs.empty();
+}
 
 void applyScenarioWeather(const sim::Scenario& scenario, WeatherSettings& weather) {
   if (!scenario.weather) return;

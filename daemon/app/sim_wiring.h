@@ -22,6 +22,12 @@ namespace xr::app {
 // url and, when given, its position and refresh (docs/simulator.md).
 void applyScenarioWeather(const sim::Scenario& scenario, WeatherSettings& weather);
 
+// A scenario's [config] on top of the file, with the battery profile under
+// both, passes the checks on the whole set every other layer passes
+// (docs/configuration.md "Checks on the whole set"); else each problem is
+// printed and false returned (the daemon exits 64: bad command-line input).
+bool scenarioConfigFits(const Params& effective, const std::string& source);
+
 class SimWiring final : public rt::TickHook {
  public:
   // Throws std::runtime_error (with a clear message) on setup errors.

@@ -95,32 +95,32 @@ std::string StoreService::unwritable() const {
          "): the change would be lost at the next start";
 }
 
-std::string StoreService::saveOverrides(const Params& fileParams, const Params& before, const Params& after) {
+std::string StoreService::saveOverrides(const Params& fileParams, const Params& before, const Params& after,
+                                        const std::vector<std::string>& dropped) {
   std::lock_guard lock(m_);
   if (std::string why = unwritable(); !why.empty()) return why;
-  std::string failed;
-  for (const ParamSpec& spec : catalogue()) {
-    bool changed = false;
-    const std::size_t n = spec.kind == ParamKind::Table ? RPM_TABLE_SIZE : 1;
-    for (std::size_t i = 0; i < n; ++i) changed |= spec.get(before, i) != spec.get(after, i);
-    if (!changed) continue;
-    const StoreStatus st = saveParamOverride(store_, spec.name, fileParams, after, unixMsNow());
-    if (!st) {
-      spdlog::error("store: cannot save override {}: {}", spec.name, st.error);
-      if (failed.empty()) failed = "cannot save " + std::string(spec.name) + ": " + st.error;
+  const std::int64_t now = unixMsNow();
+  const StoreStatus st = store_.inTransaction([&]() -> StoreStatus {
+    for (const auto& name : dropped)
+      if (StoreStatus s = store_.resetOverride(name); !s) {
+        s.error = "cannot forget " + name + ": " + s.error;
+        return s;
+      }
+    for (const ParamSpec& spec : catalogue()) {
+      bool changed = false;
+      const std::size_t n = spec.kind == ParamKind::Table ? RPM_TABLE_SIZE : 1;
+      for (std::size_t i = 0; i < n; ++i) changed |= spec.get(before, i) != spec.get(after, i);
+      if (!changed) continue;
+      if (StoreStatus s = saveParamOverride(store_, spec.name, fileParams, after, now); !s) {
+        s.error = "cannot save " + std::string(spec.name) + ": " + s.error;
+        return s;
+      }
     }
-  }
-  return failed;
-}
-
-std::string StoreService::dropOverrides(const std::vector<std::string>& names) {
-  if (names.empty()) return "";
-  std::lock_guard lock(m_);
-  if (std::string why = unwritable(); !why.empty()) return why;
-  for (const auto& name : names)
-    if (const StoreStatus st = store_.resetOverride(name); !st)
-      return "cannot forget " + name + ": " + st.error;
-  return "";
+    return StoreStatus{};
+  });
+  if (st) return "";
+  spdlog::error("store: a settings change was not saved (nothing of it): {}", st.error);
+  return st.error;
 }
 
 StoreService::Status StoreService::status() {

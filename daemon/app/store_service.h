@@ -35,12 +35,13 @@ class StoreService {
   // set (stored_overrides.h). Each dropped override is forgotten in the
   // store and recorded there as an OverrideDropped warning event.
   OverrideResolution applyOverrides(const Params& fileParams);
-  // Persist the names whose values differ between before and after. Empty,
-  // or why the change could not be saved (read-only file, in-memory
-  // fallback, a full disk): the caller must not report success then.
-  std::string saveOverrides(const Params& fileParams, const Params& before, const Params& after);
-  // Forgets the stored dashboard values of `names` (a PATCH's nulls); "" or why not.
-  std::string dropOverrides(const std::vector<std::string>& names);
+  // One PATCH, in one transaction: forgets the stored dashboard values of
+  // `dropped` (its nulls) and persists the names whose values differ
+  // between before and after. Empty, or why the change could not be saved
+  // (read-only file, in-memory fallback, a full disk, a failed row); then
+  // nothing of it is saved, and the caller must not report success.
+  std::string saveOverrides(const Params& fileParams, const Params& before, const Params& after,
+                            const std::vector<std::string>& dropped = {});
 
   // For /api/system and the journal.
   struct Status {

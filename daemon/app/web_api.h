@@ -8,6 +8,7 @@
 #include <chrono>
 #include <functional>
 #include <mutex>
+#include <optional>
 #include <vector>
 
 #include "app/can_status.h"
@@ -23,7 +24,10 @@ namespace xr::app {
 struct WebApiContext {
   rt::Handoffs* handoffs = nullptr;
   Params fileParams;
-  ParamOrigins origins;           // where each value comes from (issue 21)
+  ParamOrigins origins;  // where each value comes from (docs/configuration.md)
+  // The configured set before the "not set up" limits (runningParams()),
+  // which a PATCH starts from; unset: the set in force.
+  std::optional<Params> configured;
   StoreService* store = nullptr;  // may be null (no --state-db in --sim)
   RecentEvents* events = nullptr;
   bool sim = false;
@@ -44,6 +48,7 @@ class WebApi final : public web::DaemonApi {
   Params fileParams() override { return ctx_.fileParams; }
   std::map<std::string, std::string> paramSources() override;
   std::set<std::string> profileOwned() override;
+  SetupState setupState() override;
   web::PatchResult patchParams(const std::vector<web::ParamChange>& changes,
                                const std::string& source) override;
   web::CommandResult command(const Command& cmd) override;

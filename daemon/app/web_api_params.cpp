@@ -12,6 +12,7 @@
 #include "config/battery_profiles.h"
 #include "config/config.h"
 #include "config/format.h"
+#include "config/setup_pending.h"
 #include "params/derived.h"
 
 namespace xr::app {
@@ -47,6 +48,12 @@ std::map<std::string, std::string> WebApi::paramSources() {
   return out;
 }
 
+web::DaemonApi::SetupState WebApi::setupState() {
+  std::lock_guard lock(patchMutex_);
+  if (ctx_.origins.setUp()) return {};
+  return {false, setupPendingLimitsText(ctx_.handoffs->acceptedParams())};
+}
+
 std::set<std::string> WebApi::profileOwned() {
   std::set<std::string> out;
   for (std::string_view n : profileOwnedNames()) out.emplace(n);
@@ -57,7 +64,7 @@ web::PatchResult WebApi::patchParams(const std::vector<web::ParamChange>& change
                                      const std::string& source) {
   web::PatchResult r;
   std::lock_guard lock(patchMutex_);
-  const Params before = ctx_.handoffs->acceptedParams();
+  const Params before = ctx_.configured.value_or(ctx_.handoffs->acceptedParams());
   Params p = before;
   ParamOrigins origins = ctx_.origins;
   std::vector<std::string> patched, dropped;
@@ -106,15 +113,20 @@ web::PatchResult WebApi::patchParams(const std::vector<web::ParamChange>& change
     // profile's, and follow it at the next start.
     Params named = before;
     for (const auto& name : patched) copyValue(*findParam(name), p, named);
-    std::string why = ctx_.store->dropOverrides(dropped);
-    if (why.empty()) why = ctx_.store->saveOverrides(ctx_.fileParams, before, named);
+    const std::string why = ctx_.store->saveOverrides(ctx_.fileParams, before, named, dropped);
     if (!why.empty()) {
       r.errors.push_back({"store", why + "; nothing applied"});
       return r;
     }
   }
-  ctx_.handoffs->submitParams(p);  // whole swap, between ticks
+  const bool wasSetUp = ctx_.origins.setUp();
+  if (ctx_.configured) ctx_.configured = p;
+  ctx_.handoffs->submitParams(runningParams(p, origins));  // whole swap, between ticks
   ctx_.origins = std::move(origins);
+  if (!wasSetUp && ctx_.origins.setUp())
+    recordEvent("SetupDone", "Battery type chosen (" +
+                                 std::string(choiceName(*findParam("BatteryProfile"), p.BatteryProfile)) +
+                                 "): the \"not set up\" limits are lifted");
   logPatch(changes.size());
   // Who changed what, in the event list; a PATCH that changes nothing (the
   // same values again) makes no event.

@@ -45,23 +45,14 @@ void checkBankClass(const Params& p, const ErrFn& err) {
   }
 }
 
-// The most alternator current the regulator may ask for: the cap tables
-// clipped by MaxTableValue (a power cap, capLimitMode 1, can reach it).
-double maxCommandableAmps(const Params& p) {
-  if (p.capLimitMode != 0) return p.MaxTableValue;
-  double cap = 0.0;
-  for (std::size_t i = 0; i < RPM_TABLE_SIZE; ++i)
-    cap = std::max({cap, p.rpmCapCurrentTable[i], p.rpmCapCurrentTableLo[i]});
-  return std::min(cap, p.MaxTableValue);
-}
-
 // The alternator current alarm must sit clear of what the regulator is
 // allowed to command: held at a 100 A cap, a 100 A alarm sounds every few
 // seconds of a normal charge. 5 % clears the reading's ripple at the cap.
+// 0 is derived above it (params/derived.h currentAlarmHighAmps).
 void checkCurrentAlarm(const Params& p, const ErrFn& err) {
   constexpr double kAlarmMargin = 1.05;
   const double cap = maxCommandableAmps(p);
-  if (p.CurrentAlarmHigh < cap * kAlarmMargin)
+  if (p.CurrentAlarmHigh > 0.0 && p.CurrentAlarmHigh < cap * kAlarmMargin)
     err("CurrentAlarmHigh", "CurrentAlarmHigh " + withUnit(p.CurrentAlarmHigh, "A") +
                                 " must be at least 5 % above the most current the regulator may command, " +
                                 withUnit(cap, "A") + " (MaxTableValue and the RPM cap tables): at least " +

@@ -5,6 +5,7 @@
 #include "config/format.h"
 #include "config/param_values.h"
 #include "config/settings_schema.h"
+#include "config/setup_pending.h"
 
 namespace xr {
 
@@ -18,11 +19,16 @@ std::string_view toString(ParamSource s) {
       return "file";
     case ParamSource::Dashboard:
       return "dashboard";
+    case ParamSource::SetupPending:
+      return "not set up";
   }
   return "default";
 }
 
+bool ParamOrigins::setUp() const { return assumeSetUp || batteryChosen(file, dashboard); }
+
 ParamSource ParamOrigins::of(std::string_view name) const {
+  if (setupPending.count(name)) return ParamSource::SetupPending;
   if (dashboard.count(name)) return ParamSource::Dashboard;
   if (file.count(name)) return ParamSource::File;
   if (profile.count(name)) return ParamSource::Profile;
@@ -35,6 +41,12 @@ Params applyLayers(const Params& p, ParamOrigins& origins) {
   ProfileApplied r = applyBatteryProfile(p, pinned);
   origins.profile = std::move(r.setByProfile);
   return r.params;
+}
+
+Params runningParams(const Params& configured, ParamOrigins& origins) {
+  origins.setupPending.clear();
+  if (origins.setUp()) return configured;
+  return withSetupPendingLimits(configured, origins.setupPending);
 }
 
 namespace {
@@ -73,6 +85,10 @@ std::string effectiveConfigText(const Settings& settings, const Params& p, const
   std::ostringstream o;
   o << "# Effective configuration of xregulatord: the file, the battery profile and the stored\n"
        "# dashboard overrides. Each value names its source.\n";
+  if (!origins.setUp())
+    o << "#\n# NOT SET UP: no battery type is chosen (BatteryProfile, in the file or on the set-up\n"
+         "# page), so the regulator charges only within limits safe for every chemistry: "
+      << setupPendingLimitsText(p) << ". Values marked '# not set up' are lowered to them.\n";
   std::string_view table;
   for (const auto& s : catalogue()) {
     if (tomlTableName(s.group) != table) {

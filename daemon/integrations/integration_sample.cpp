@@ -1,6 +1,7 @@
 #include "integrations/integration_sample.h"
 
 #include <cmath>
+#include <limits>
 
 namespace xr::integrations {
 
@@ -24,9 +25,13 @@ IntegrationSample sampleOf(const rt::RuntimeSnapshot& s) {
   o.alarm = t.alarm;
   o.setpoint_v = t.target_v;
   o.setpoint_a = t.target_a;
-  o.soc_pct = t.soc_pct;
+  // A SoC the regulator does not know is not sent as a number: Signal K
+  // leaves the path out, Home Assistant gets null (docs/batteries.md "State
+  // of charge at first start").
+  const bool socUnknown = t.battery.socSource == SocSource::Unknown;
+  o.soc_pct = socUnknown ? std::numeric_limits<double>::quiet_NaN() : t.soc_pct;
   const double minutes = t.battery.timeToFullDischargeMin;
-  o.time_to_empty_s = std::isfinite(minutes) && minutes > 0 ? minutes * 60.0 : -1.0;
+  o.time_to_empty_s = !socUnknown && std::isfinite(minutes) && minutes > 0 ? minutes * 60.0 : -1.0;
   o.power_w = o.battery_v * o.alt_a;
   o.charged_kwh = finiteOr(t.charged_wh_lifetime, 0.0) / 1000.0;
   o.mode = std::string(toString(t.mode));

@@ -60,7 +60,7 @@ std::vector<SignalKValue> signalKValues(const IntegrationSample& s, const std::s
   num(bat + "voltage", s.battery_v);
   num(bat + "current", s.battery_a);
   if (std::isfinite(s.battery_temp_c)) num(bat + "temperature", s.battery_temp_c + kZeroCelsiusK);
-  num(bat + "capacity.stateOfCharge", s.soc_pct / 100.0);
+  if (std::isfinite(s.soc_pct)) num(bat + "capacity.stateOfCharge", s.soc_pct / 100.0);
   if (s.time_to_empty_s >= 0) num(bat + "capacity.timeRemaining", s.time_to_empty_s);
   return v;
 }

@@ -1,5 +1,7 @@
 #include "params/derived.h"
 
+#include <algorithm>
+
 #include "params/constants.h"
 
 namespace xr {
@@ -30,6 +32,19 @@ VoltageRange plausibleVoltageRange(const Params& p) {
       return {18.0, 60.5};
   }
   return {4.5, 15.5};
+}
+
+double maxCommandableAmps(const Params& p) {
+  if (p.capLimitMode != 0) return p.MaxTableValue;
+  double cap = 0.0;
+  for (std::size_t i = 0; i < RPM_TABLE_SIZE; ++i)
+    cap = std::max({cap, p.rpmCapCurrentTable[i], p.rpmCapCurrentTableLo[i]});
+  return std::min(cap, p.MaxTableValue);
+}
+
+double currentAlarmHighAmps(const Params& p) {
+  constexpr double kDerivedMargin = 1.10;
+  return p.CurrentAlarmHigh > 0.0 ? p.CurrentAlarmHigh : maxCommandableAmps(p) * kDerivedMargin;
 }
 
 double criticalDisagreementThreshold(const Params& p) {

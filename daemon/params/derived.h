@@ -29,6 +29,15 @@ struct VoltageRange {
 };
 // 12 V: 4.5–15.5 V, 24 V: 9.0–30.5 V, 48 V: 18.0–60.5 V (0.5 V buffer included).
 VoltageRange plausibleVoltageRange(const Params& p);
+
+// The most alternator current the regulator may ask for: the RPM cap tables
+// (both charge rates) clipped by MaxTableValue; MaxTableValue alone with the
+// power cap (capLimitMode 1).
+double maxCommandableAmps(const Params& p);
+// The alternator current alarm in force: CurrentAlarmHigh, or when it is 0,
+// 10 % above maxCommandableAmps (docs/deviations.md "CurrentAlarmHigh follows
+// the cap").
+double currentAlarmHighAmps(const Params& p);
 // 1 / 2 / 4 V by system class.
 double criticalDisagreementThreshold(const Params& p);
 // AlternatorHardShutdownV, or BulkVoltage + 0.3 V when it is 0 (it then

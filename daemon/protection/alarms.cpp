@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "params/constants.h"
+#include "params/derived.h"
 #include "protection/alarm_rows.h"
 #include "protection/protection_supervisor.h"
 
@@ -29,8 +30,9 @@ bool ProtectionSupervisor::checkAlarms(bool effAnomalyAlarmActive, EventBatch& e
   set(AlarmRow::VoltageLow,
       p_.VoltageAlarmLow > k::VOLTAGE_ALARM_LOW_FLOOR_V && std::isfinite(IBV_) && IBV_ < p_.VoltageAlarmLow,
       IBV_, p_.VoltageAlarmLow);
-  set(AlarmRow::AltCurrentHigh, std::isfinite(MeasuredAmps_) && MeasuredAmps_ > p_.CurrentAlarmHigh,
-      MeasuredAmps_, p_.CurrentAlarmHigh);
+  const double currentAlarm = currentAlarmHighAmps(p_);
+  set(AlarmRow::AltCurrentHigh, std::isfinite(MeasuredAmps_) && MeasuredAmps_ > currentAlarm, MeasuredAmps_,
+      currentAlarm);
   set(AlarmRow::BatteryCurrentHigh, std::isfinite(Bcur_) && std::fabs(Bcur_) > p_.MaximumAllowedBatteryAmps,
       Bcur_, p_.MaximumAllowedBatteryAmps);
   set(AlarmRow::InaOvervoltage, flags_.inaOvervoltageLatched, IBV_, 0.0);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "config/battery_profiles.h"
+#include "config/config.h"
 #include "control/regulator.h"
 #include "params/derived.h"
 #include "runtime/control_cycle.h"
@@ -47,7 +48,11 @@ struct SimRunner::Impl {
     NameSet pinned = namesDifferingFromDefaults(p);
     applyOverrides(p, o.scenario.config, o.scenario.source);
     for (const auto& c : o.scenario.config) pinned.insert(c.name);
-    return applyBatteryProfile(p, pinned).params;
+    Params out = applyBatteryProfile(p, pinned).params;
+    // The checks on the whole set, as for every layer (docs/configuration.md).
+    if (const auto errs = checkConsistency(out, o.scenario.source); !errs.empty())
+      throw ScenarioError(errs.front().toString());
+    return out;
   }
 
   explicit Impl(SimRunOptions o)

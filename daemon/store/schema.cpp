@@ -43,6 +43,16 @@ CREATE TABLE history_1m(key INTEGER PRIMARY KEY, data BLOB NOT NULL);
 CREATE INDEX events_t ON events(t_ms);
 )sql";
 
+// v3 -> v4: "not set up" became a state (docs/configuration.md "Not set
+// up"). An install that already ran (a saved ledger or a dashboard setting)
+// charged with its file's values as chosen; it keeps doing so after the
+// upgrade rather than drop to the not-set-up limits because the new packaged
+// file no longer names a battery type.
+constexpr const char* kV4 = R"sql(
+INSERT INTO kv(key, value) SELECT 'set_up_before_upgrade', '1'
+  WHERE EXISTS (SELECT 1 FROM ledger_meta) OR EXISTS (SELECT 1 FROM overrides);
+)sql";
+
 }  // namespace
 
 int createV1(sql::Db& db) {
@@ -62,6 +72,10 @@ int migrateStep(sql::Db& db, int from) {
     case 2: {
       int rc = db.exec(kV3);
       return rc == SQLITE_OK ? setVersion(db, 3) : rc;
+    }
+    case 3: {
+      int rc = db.exec(kV4);
+      return rc == SQLITE_OK ? setVersion(db, 4) : rc;
     }
     default:
       return db.setError(SQLITE_MISMATCH, "no migration from version " + std::to_string(from));

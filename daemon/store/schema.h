@@ -8,13 +8,15 @@
 //       events gain reason/a/b, kv (web token, tuning logs)
 //   v3  history_1s / history_1m (packed float buckets, rowid = bucket * 64 + series)
 //       + series names, events index
+//   v4  kv 'set_up_before_upgrade' for an install that had already run (it keeps
+//       its file's values rather than the not-set-up limits)
 #include <string>
 
 #include "store/sqlite_db.h"
 
 namespace xr::store {
 
-inline constexpr int kSchemaVersion = 3;
+inline constexpr int kSchemaVersion = 4;
 // History rows: rowid = bucket start (s) * kSeriesSlots + series id.
 inline constexpr int kSeriesSlots = 64;
 

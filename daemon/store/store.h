@@ -19,6 +19,7 @@
 // database. All of these are reported by OpenResult::alarm() so the daemon
 // raises an event. Write errors (a full disk) come back as StoreStatus values.
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <mutex>
 #include <optional>
@@ -144,6 +145,9 @@ class Store {
   std::optional<OverrideRow> findOverride(std::string_view name);
   // Forget the operator's value: the file value applies again.
   StoreStatus resetOverride(std::string_view name);
+  // fn's writes as one transaction: committed when fn succeeds, rolled back
+  // when it fails, so a change of several values is saved whole or not at all.
+  StoreStatus inTransaction(const std::function<StoreStatus()>& fn);
 
   // ---- events ----------------------------------------------------------------
   StoreStatus appendEvents(std::span<const EventRecord> events);

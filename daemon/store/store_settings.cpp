@@ -83,6 +83,14 @@ StoreStatus Store::resetOverride(std::string_view name) {
   return changed(status(st.bind(1, name).step(), "resetOverride"));
 }
 
+StoreStatus Store::inTransaction(const std::function<StoreStatus()>& fn) {
+  const std::lock_guard<std::recursive_mutex> lock(mu_);
+  sql::Transaction tx(db_);
+  if (tx.beginRc() != SQLITE_OK) return status(tx.beginRc(), "begin");
+  if (StoreStatus s = fn(); !s) return s;  // tx rolls back as it goes
+  return status(tx.commit(), "commit");
+}
+
 // ---------------------------------------------------------------- token
 
 std::string Store::getOrCreateToken() {

@@ -69,6 +69,8 @@ TEST(IntegrationSample, FromASnapshotInTheIntegrationsUnits) {
   snap.telemetry.charged_wh_lifetime = 2500.0;
   snap.telemetry.stage = ChargeStage::FLOAT;
   snap.telemetry.battery.timeToFullDischargeMin = 90.0;
+  snap.telemetry.soc_pct = 80.0;
+  snap.telemetry.battery.socSource = SocSource::Counted;
   auto s = sampleOf(snap);
   EXPECT_TRUE(s.valid);
   EXPECT_DOUBLE_EQ(s.alt_temp_c, 100.0);
@@ -78,6 +80,13 @@ TEST(IntegrationSample, FromASnapshotInTheIntegrationsUnits) {
   EXPECT_EQ(s.stage, "FLOAT");
   snap.telemetry.battery.timeToFullDischargeMin = -999.0;  // the battery monitor's "unknown"
   EXPECT_LT(sampleOf(snap).time_to_empty_s, 0.0);
+  // A SoC the regulator does not know yet is no number, and no time to empty.
+  snap.telemetry.battery.timeToFullDischargeMin = 90.0;
+  snap.telemetry.battery.socSource = SocSource::Unknown;
+  EXPECT_TRUE(std::isnan(sampleOf(snap).soc_pct));
+  EXPECT_LT(sampleOf(snap).time_to_empty_s, 0.0);
+  snap.telemetry.battery.socSource = SocSource::OcvEstimate;
+  EXPECT_DOUBLE_EQ(sampleOf(snap).soc_pct, 80.0);
   snap.telemetry.battery_v = std::numeric_limits<double>::quiet_NaN();
   EXPECT_TRUE(std::isnan(sampleOf(snap).battery_v));  // no plausible-looking 0
   EXPECT_TRUE(std::isnan(sampleOf(snap).power_w));

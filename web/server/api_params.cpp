@@ -94,9 +94,12 @@ Response patchErrors(const Request& req, const std::vector<FieldError>& errors) 
 }  // namespace
 
 Response ApiHandler::getParams(const Request& req) {
-  return jsonReply(
-      req, http::status::ok,
-      paramsToJson(api_.currentParams(), api_.fileParams(), api_.paramSources(), api_.profileOwned()));
+  json::object o =
+      paramsToJson(api_.currentParams(), api_.fileParams(), api_.paramSources(), api_.profileOwned());
+  const DaemonApi::SetupState s = api_.setupState();
+  o["set_up"] = s.setUp;
+  if (!s.setUp) o["setup_limits"] = s.limits;
+  return jsonReply(req, http::status::ok, o);
 }
 
 Response ApiHandler::patchParams(const Request& req) {

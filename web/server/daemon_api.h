@@ -209,6 +209,13 @@ class DaemonApi {
   // The names a battery profile sets when nothing above it does; the set-up
   // page drops the dashboard's values of these when a chemistry is chosen.
   virtual std::set<std::string> profileOwned() { return {}; }
+  // Whether a battery type is chosen; until then, the limits in force in
+  // words (docs/configuration.md "Not set up").
+  struct SetupState {
+    bool setUp = true;
+    std::string limits;
+  };
+  virtual SetupState setupState() { return {}; }
 
   // Apply a set of changes atomically: validate them TOGETHER against the
   // current set (cross-field rules), then hand the whole new Params to the

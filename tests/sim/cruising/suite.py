@@ -17,6 +17,7 @@ import concurrent.futures
 import os
 import subprocess
 import sys
+import tempfile
 import tomllib
 from pathlib import Path
 
@@ -41,7 +42,15 @@ def flatten(table: dict, out: dict | None = None) -> dict:
 
 
 def effective_params(daemon: str, scenario: dict) -> dict:
-    text = subprocess.run([daemon, "--print-default-config"], check=True, capture_output=True, text=True).stdout
+    # Every parameter's default: --print-config of a file that names only the
+    # battery type (the shipped file writes most keys commented out), as a
+    # scenario's boat is set up (docs/configuration.md "Not set up"). No state
+    # database is opened.
+    with tempfile.TemporaryDirectory() as tmp:
+        empty = Path(tmp) / "empty.toml"
+        empty.write_text('[battery]\nBatteryProfile = "custom"\n')
+        text = subprocess.run([daemon, "--config", str(empty), "--state-db", str(Path(tmp) / "none.db"),
+                               "--print-config"], check=True, capture_output=True, text=True).stdout
     params = flatten(tomllib.loads(text))
     params.update(scenario.get("config", {}))
     return params

@@ -16,9 +16,17 @@ struct WebApiRig {
   std::unique_ptr<StoreService> store;
   RecentEvents recent;
   std::unique_ptr<WebApi> api;
-  explicit WebApiRig(const std::string& db = {}) {
+  // setUp: as a file that names the battery type (most tests); false: a
+  // fresh install, whose PATCHes start from `params` unlowered, as in the
+  // daemon (docs/configuration.md "Not set up").
+  explicit WebApiRig(const std::string& db = {}, bool setUp = true) {
     if (!db.empty()) store = std::make_unique<StoreService>(db, 300);
     WebApiContext ctx;
+    ctx.origins.assumeSetUp = setUp;
+    if (!setUp) {
+      ctx.configured = params;
+      handoffs.submitParams(runningParams(params, ctx.origins));
+    }
     ctx.handoffs = &handoffs;
     ctx.store = store.get();
     ctx.events = &recent;

@@ -6,11 +6,13 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <sqlite3.h>
 
 #include <cmath>
 #include <fstream>
 
 #include "app/store_service.h"
+#include "store/sqlite_db.h"
 #include "store_test_util.h"
 #include "web_api_rig.h"
 
@@ -71,6 +73,30 @@ TEST(WebApiPatch, AChangeThatCannotBeSavedIsRefusedAndNotApplied) {
   EXPECT_THAT(res.errors[0].message, HasSubstr("would be lost at the next start"));
   EXPECT_DOUBLE_EQ(r.api->currentParams().MaxDuty, before);
   EXPECT_THAT(r.api->versions()["store"], HasSubstr("NOT SAVING"));
+}
+
+// A PATCH of two values whose second row cannot be written (a trigger
+// planted in the database refuses it): nothing is applied and nothing of it
+// is saved, so the next start runs what the answer said (before: the first
+// row stayed saved while the API answered "nothing applied").
+TEST(WebApiPatch, AChangeIsSavedWholeOrNotAtAll) {
+  TempDir d;
+  Rig r(d.file("x.db"));
+  {
+    sql::Db raw;
+    ASSERT_EQ(raw.open(d.file("x.db")), SQLITE_OK);
+    ASSERT_EQ(raw.exec("CREATE TRIGGER planted BEFORE INSERT ON overrides WHEN NEW.name = 'FloatVoltage' "
+                       "BEGIN SELECT RAISE(ABORT, 'planted failure'); END"),
+              SQLITE_OK);
+  }
+  const Params before = r.api->currentParams();
+  const auto res =
+      r.api->patchParams({change("AbsorptionVoltage", 14.3), change("FloatVoltage", 13.3)}, "test");
+  ASSERT_EQ(res.errors.size(), 1u);
+  EXPECT_EQ(res.errors[0].name, "store");
+  EXPECT_THAT(res.errors[0].message, HasSubstr("cannot save FloatVoltage"));
+  EXPECT_EQ(r.api->currentParams(), before);
+  EXPECT_TRUE(r.store->applyOverrides(Params{}).applied.empty()) << "AbsorptionVoltage was saved alone";
 }
 
 TEST(WebApiPatch, AChangeThatIsSavedIsAppliedAndTheStoreShowsOk) {
@@ -206,6 +232,58 @@ TEST(WebApiPatch, ASetForAnotherBankThanTheMeasuredOneIsRefused) {
   ASSERT_TRUE(
       r.api->patchParams({change("BatteryProfile", 0), change("BatteryCells", 8)}, "test").errors.empty());
   EXPECT_DOUBLE_EQ(r.api->currentParams().AbsorptionVoltage, 28.4);
+}
+
+}  // namespace
+}  // namespace xr::app
+
+// Not set up (docs/configuration.md "Not set up"): a fresh install runs
+// within the limits safe for every battery; choosing the battery type on the
+// set-up page lifts them at once, from what the file and the dashboard
+// really say, and leaves one event.
+namespace xr::app {
+namespace {
+
+TEST(NotSetUp, AFreshInstallRunsLoweredAndSaysSo) {
+  Rig r({}, false);
+  const Params p = r.api->currentParams();
+  EXPECT_DOUBLE_EQ(p.BulkVoltage, 14.0);
+  EXPECT_DOUBLE_EQ(p.FloatVoltage, 13.4);
+  EXPECT_DOUBLE_EQ(p.ChargeMinTempC, 5.0);
+  EXPECT_EQ(r.api->paramSources().at("BulkVoltage"), "not set up");
+  EXPECT_EQ(r.api->paramSources().at("PidKp"), "default");
+  const auto s = r.api->setupState();
+  EXPECT_FALSE(s.setUp);
+  EXPECT_THAT(s.limits, HasSubstr("at most 14 V, float 13.4 V"));
+}
+
+TEST(NotSetUp, AVoltageSetBeforeTheBatteryIsChosenStaysLowered) {
+  Rig r({}, false);
+  ASSERT_TRUE(r.api->patchParams({change("BulkVoltage", 14.6)}, "test").errors.empty());
+  EXPECT_DOUBLE_EQ(r.api->currentParams().BulkVoltage, 14.0);
+  EXPECT_FALSE(r.api->setupState().setUp);
+}
+
+TEST(NotSetUp, ChoosingTheBatteryLiftsTheLimitsFromTheValuesSetBelowThem) {
+  Rig r({}, false);
+  ASSERT_TRUE(r.api->patchParams({change("BulkVoltage", 14.6)}, "test").errors.empty());
+  ASSERT_TRUE(r.api->patchParams({change("BatteryProfile", 4)}, "test").errors.empty());  // custom
+  const Params p = r.api->currentParams();
+  EXPECT_DOUBLE_EQ(p.BulkVoltage, 14.6);  // the owner's value, not the lowered 14.0
+  EXPECT_DOUBLE_EQ(p.FloatVoltage, 13.5);
+  EXPECT_DOUBLE_EQ(p.ChargeMinTempC, -45.0);
+  EXPECT_TRUE(r.api->setupState().setUp);
+  EXPECT_EQ(r.api->paramSources().at("FloatVoltage"), "default");
+  int lifted = 0;
+  for (const auto& e : r.api->events(web::EventQuery{}))
+    lifted += e.text.find("limits are lifted") != std::string::npos;
+  EXPECT_EQ(lifted, 1);
+}
+
+TEST(NotSetUp, AFileThatNamesTheBatteryIsSetUp) {
+  Rig r;  // as daemon.cpp with a file naming BatteryProfile
+  EXPECT_TRUE(r.api->setupState().setUp);
+  EXPECT_DOUBLE_EQ(r.api->currentParams().BulkVoltage, 14.5);
 }
 
 }  // namespace

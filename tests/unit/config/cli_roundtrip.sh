@@ -51,10 +51,24 @@ for want in 'BatteryProfile = "agm"  # file' 'FloatVoltage = 13.2  # file' 'Abso
   [ $rc = 0 ] && grep -qF "$want" "$tmp/out" && echo "ok: --print-config has: $want" \
     || { echo "FAIL: --print-config (exit $rc) lacks: $want"; cat "$tmp/err"; fail=1; }
 done
+# The shipped file as it comes names no battery: not set up, it runs within
+# the limits safe for every chemistry, and says so (docs/configuration.md
+# "Not set up").
+"$exe" --config "$root/config/xregulator.toml" --check-config >"$tmp/out" 2>"$tmp/err"
+rc=$?
+[ $rc = 0 ] && grep -qF "note: no BatteryProfile in this file" "$tmp/out" \
+  && echo "ok: the shipped file passes --check-config with the not-set-up note" \
+  || { cat "$tmp/out" "$tmp/err"; echo "FAIL: shipped file --check-config (exit $rc)"; fail=1; }
+"$exe" --config "$root/config/xregulator.toml" --state-db "$tmp/none.db" --print-config >"$tmp/out" 2>"$tmp/err"
+for want in '# NOT SET UP' 'BulkVoltage = 14  # not set up' 'FloatVoltage = 13.4  # not set up' \
+  'ChargeMinTempC = 5  # not set up' 'ChargeMaxTempC = 45  # not set up' 'MaxTableValue = 60  # default'; do
+  grep -qF "$want" "$tmp/out" && echo "ok: the shipped file, not set up: $want" \
+    || { echo "FAIL: the shipped file, not set up, lacks: $want"; fail=1; }
+done
 # The shipped file pins none of a profile's values: with only the battery
 # lines edited, a profile is what runs (docs/configuration.md "One chain of
 # values"), for a 24 V LiFePO4 bank and for 12 V AGM.
-sed -e 's/^BatteryProfile = "custom"/BatteryProfile = "lifepo4"/' -e 's/^BatteryCells = 0/BatteryCells = 8/' \
+sed -e 's/^# BatteryProfile = "custom"/BatteryProfile = "lifepo4"/' -e 's/^BatteryCells = 0/BatteryCells = 8/' \
   -e 's/^BatteryCapacity_Ah = 200.0/BatteryCapacity_Ah = 400/' "$root/config/xregulator.toml" >"$tmp/lfp24.toml"
 "$exe" --config "$tmp/lfp24.toml" --check-config >/dev/null 2>"$tmp/err" && echo "ok: shipped file + LiFePO4 24 V passes --check-config" \
   || { cat "$tmp/err"; echo "FAIL: shipped file + LiFePO4 24 V refused"; fail=1; }
@@ -64,7 +78,7 @@ for want in 'AbsorptionVoltage = 28.4  # profile' 'BulkVoltage = 28.4  # profile
   grep -qF "$want" "$tmp/out" && echo "ok: shipped file + LiFePO4 24 V: $want" \
     || { echo "FAIL: shipped file + LiFePO4 24 V lacks: $want"; fail=1; }
 done
-sed -e 's/^BatteryProfile = "custom"/BatteryProfile = "agm"/' "$root/config/xregulator.toml" >"$tmp/agm12.toml"
+sed -e 's/^# BatteryProfile = "custom"/BatteryProfile = "agm"/' "$root/config/xregulator.toml" >"$tmp/agm12.toml"
 "$exe" --config "$tmp/agm12.toml" --state-db "$tmp/none.db" --print-config >"$tmp/out" 2>"$tmp/err"
 for want in 'AbsorptionVoltage = 14.4  # profile' 'FloatVoltage = 13.3  # profile'; do
   grep -qF "$want" "$tmp/out" && echo "ok: shipped file + AGM 12 V: $want" \

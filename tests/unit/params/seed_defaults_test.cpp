@@ -73,7 +73,9 @@ constexpr SeedDefault kScalarDefaults[] = {
     {"IgnoreTemperature", 0, "S&P quick ref"},
     // Overcurrent / RPM
     {"HardOCDebounceMs", 20, "S&P quick ref"},
-    {"CurrentAlarmHigh", 100, "S&P quick ref"},
+    // Ours (docs/deviations.md "CurrentAlarmHigh follows the cap"): 0 = 10 %
+    // above the commandable current; the seed's S&P quick ref has 100 A.
+    {"CurrentAlarmHigh", 0, "ours; seed S&P quick ref 100"},
     {"MaximumAllowedBatteryAmps", 150, "S&P quick ref"},
     {"MinRPMForField", 200, "S&P quick ref"},
     {"IgnoreRPM", 0, "S&P quick ref"},

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "params/derived.h"
 #include "protection/alarm_rows.h"
 #include "rig.h"
 
@@ -36,6 +37,7 @@ Params alarmParams() {
   Params p;
   p.IgnoreTemperature = true;
   p.MaxTableValue = 200.0;           // hard OC far above the current alarm
+  p.CurrentAlarmHigh = 100.0;        // the seed's figure, set (0 derives it from the cap)
   p.AlternatorHardShutdownV = 15.5;  // the hard over-voltage cut (all modes) above the voltage alarm
   return p;
 }
@@ -174,6 +176,29 @@ TEST(Alarms, EvaluatedOnThe250msCadence) {
   const TimeNs took = r.runUntil([&] { return r.buzzer; }, fromSec(1.0));
   EXPECT_GE(took, 0);
   EXPECT_LE(took, fromMs(250));
+}
+
+// CurrentAlarmHigh = 0 (the default): 10 % above the most current the
+// regulator may command, so holding the cap never sounds it
+// (docs/deviations.md "CurrentAlarmHigh follows the cap").
+TEST(CurrentAlarmDerived, SitsTenPercentAboveTheCapAndNeverSoundsAtIt) {
+  Params p = alarmParams();
+  p.CurrentAlarmHigh = 0.0;
+  p.MaxTableValue = 120.0;
+  for (std::size_t i = 1; i < RPM_TABLE_SIZE; ++i) p.rpmCapCurrentTable[i] = 100.0;
+  EXPECT_DOUBLE_EQ(currentAlarmHighAmps(p), 110.0);
+  for (const bool above : {false, true}) {
+    Rig r(p);
+    r.manual = true;
+    r.warmUp();
+    r.altAmps = above ? 110.1 : 109.9;  // 109.9: over the 100 A cap, under the alarm
+    r.run(fromSec(1.0));
+    EXPECT_EQ(r.buzzer, above) << r.altAmps;
+    bool saw = false;
+    for (const Event& e : r.log)
+      saw |= e.code == EventCode::AlarmCondition && e.detail == static_cast<int>(AlarmRow::AltCurrentHigh);
+    EXPECT_EQ(saw, above) << r.altAmps;
+  }
 }
 
 }  // namespace

@@ -238,7 +238,7 @@ TEST(StoreBackup, ANewerSchemaThisReleaseCannotReadRunsFromTheBackup) {
   const std::string db = d.file("x.db");
   const UserData u = writeUserData(db);
   // The newer release renamed a table this release reads.
-  makeNewer(db, 4, "ALTER TABLE overrides RENAME TO settings");
+  makeNewer(db, store::kSchemaVersion + 1, "ALTER TABLE overrides RENAME TO settings");
   const std::string fileBefore = readAll(db);
   Store s;
   const OpenResult r = s.open(db, kT0 + kDayMs);

@@ -65,6 +65,8 @@ TEST_P(Migration, FromEarlierSchemaKeepsData) {
   if (from >= 2) {
     EXPECT_EQ(s.getOrCreateToken(), "oldtoken");
   }
+  // An install that ran before "not set up" existed stays set up (v4).
+  EXPECT_EQ(s.getBlob("set_up_before_upgrade"), std::optional<std::string>("1"));
   // The new tables work after migration.
   std::vector<double> v(defaultHistorySeries().size(), 1.0);
   ASSERT_TRUE(s.appendHistory(kT0, v).ok);
@@ -77,6 +79,13 @@ TEST_P(Migration, FromEarlierSchemaKeepsData) {
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryEarlierVersion, Migration, ::testing::Range(1, store::kSchemaVersion));
+
+TEST(Migration, AFreshDatabaseIsNotSetUpByUpgrade) {
+  TempDir d;
+  Store s;
+  ASSERT_TRUE(s.open(d.file("fresh.db"), kT0).ok);
+  EXPECT_FALSE(s.getBlob("set_up_before_upgrade").has_value());
+}
 
 TEST(StoreFailure, GarbageFileIsKeptAsideAndStartsFresh) {
   TempDir d;

@@ -71,7 +71,11 @@ export async function daemonChecks(t) {
   await page.reload();
   await page.waitForSelector("#first-run:not([hidden])");
   assert.equal((await send({ command: "off" })).status, 200);
-  await page.waitForFunction(() => document.getElementById("headline").textContent.startsWith("Not charging"));
+  await page.waitForFunction(() => document.getElementById("headline").textContent.startsWith("Not set up · Not charging"));
+  // Not set up is a state: the limits safe for every battery are named, and in force.
+  assert.match(await page.textContent("#first-run"), /at most 14 V, float 13\.4 V, battery 5-45 degC/);
+  assert.equal(await param("BulkVoltage"), 14);
+  assert.equal(await param("ChargeMinTempC"), 5);
   await page.click("#first-run a");
   await page.waitForSelector("#page-setup:not([hidden]) #su-capacity");
   await page.fill("#su-capacity", "280");
@@ -89,6 +93,8 @@ export async function daemonChecks(t) {
   assert.equal(Math.max(...(await param("rpmCapCurrentTable"))), 40);  // the belt caps every speed
   assert.equal(await param("MinRPMForField"), 600);
   assert.equal(await param("TemperatureLimitF"), 185);
+  assert.equal((await get("/api/params")).set_up, true, "saving the set-up chose the battery");
+  assert.notEqual(await param("ChargeMinTempC"), 5, "the not-set-up limits are lifted");
   await page.click("#setup-start");
   await page.waitForSelector("#page-live:not([hidden])");
   await page.waitForFunction(() => /^(Charging|Alternator on)/.test(document.getElementById("headline").textContent));
@@ -275,6 +281,35 @@ export async function daemonChecks(t) {
   assert.equal(await param("BulkVoltage"), 14.5);
   console.log("ok - configuration exported as TOML (a file --check-config takes) and re-imported; a bad file changes nothing");
 
+  // ---- A switch that takes a protection away asks first; while it is off a
+  // banner on every page says so; switching it back asks nothing.
+  await page.goto(server.base + "/#settings");
+  await page.waitForSelector(".param");
+  if (!(await page.isChecked("#param-advanced"))) await page.check("#param-advanced");
+  const ignoreTemp = 'input[aria-label="IgnoreTemperature"]';
+  await page.evaluate((sel) => { document.querySelector(sel).closest("details").open = true; }, ignoreTemp);
+  await page.check(ignoreTemp);
+  await page.click("#param-apply");
+  await page.waitForSelector("#confirm-dialog[open]");
+  assert.match(await page.textContent("#confirm-text"), /temperature protection is OFF/);
+  await page.click("#confirm-cancel");
+  assert.equal(await param("IgnoreTemperature"), false, "cancel sends nothing");
+  await page.click("#param-apply");
+  await page.waitForSelector("#confirm-dialog[open]");
+  await page.click("#confirm-ok");
+  await until("IgnoreTemperature on", async () => (await param("IgnoreTemperature")) === true);
+  await page.goto(server.base + "/#battery");
+  await page.waitForSelector("#guard-banner:not([hidden])");
+  assert.match(await page.textContent("#guard-banner"), /temperature protection is OFF \(IgnoreTemperature\)/);
+  await page.goto(server.base + "/#settings");
+  await page.waitForSelector(".param");
+  await page.evaluate((sel) => { document.querySelector(sel).closest("details").open = true; }, ignoreTemp);
+  await page.uncheck(ignoreTemp);
+  await page.click("#param-apply");
+  await until("IgnoreTemperature off", async () => (await param("IgnoreTemperature")) === false);
+  await page.waitForSelector("#guard-banner", { state: "hidden" });
+  console.log("ok - switching the temperature protection off asks first and shows a banner on every page until it is back");
+
   // ---- Item 3: the daemon stops; the page goes unmistakably offline.
   await page.setViewportSize(PHONE);
   await page.goto(server.base + "/#live");
@@ -285,8 +320,12 @@ export async function daemonChecks(t) {
   const look = await page.evaluate(() => ({ offline: document.body.classList.contains("offline"),
     opacity: Number(getComputedStyle(document.getElementById("v-battery_v")).opacity), conn: document.getElementById("conn").textContent }));
   assert.ok(look.offline && look.opacity <= 0.5 && look.conn === "OFFLINE", JSON.stringify(look));
+  await page.waitForFunction(() => document.getElementById("off-button").disabled);
+  const live = await page.evaluate(() => [...document.querySelectorAll("main button, main input, main select")]
+    .filter((el) => !el.disabled).map((el) => el.id || el.name || el.outerHTML.slice(0, 40)));
+  assert.deepEqual(live, [], "every control is disabled while offline");
   await shot("dashboard-offline");
-  console.log("ok - daemon stopped: offline banner with the age, values greyed");
+  console.log("ok - daemon stopped: offline banner with the age, values greyed, every control disabled");
 
   // ---- Items 2, 11, 12: a second run (same state database) with a sensor
   // fault: charging, then the banner with what to do; earlier events kept.

@@ -51,7 +51,7 @@ try {
   await page.goto(server.base + "/");
   await page.waitForSelector("#conn.on");
   await page.waitForFunction(() => /\d+\.\d\d/.test(document.getElementById("v-battery_v").textContent));
-  assert.match(await page.textContent("#headline"), /^(Charging|Alternator on|Not charging)/);
+  assert.match(await page.textContent("#headline"), /^(Not set up · )?(Charging|Alternator on|Not charging)/);
   assert.match(await page.textContent("#v-temp"), /°[CF]/);
   assert.doesNotMatch(await page.textContent("#hdr-mode"), /MODE_|SYS_/);
   console.log("ok - dashboard loads, live values and a headline: " + (await page.textContent("#headline")));

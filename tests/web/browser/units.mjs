@@ -163,6 +163,15 @@ await test("TOML import of 4000 mutated exports: never throws, accepts only valu
   }
 });
 
+await test("a change that takes a protection away is recognised, in either polarity; its way back is not", async () => {
+  const G = await mod("web/www/js/guards.js");
+  assert.deepEqual(G.unsafeChanges({ IgnoreTemperature: true }).map((x) => x.name), ["IgnoreTemperature"]);
+  assert.deepEqual(G.unsafeChanges({ IgnoreTemperature: false, OvGroup1Enable: true, FloatVoltage: 13.2 }), []);
+  assert.deepEqual(G.unsafeChanges({ OvGroup1Enable: false, OnOff: 0 }).map((x) => x.name), ["OvGroup1Enable", "OnOff"]);
+  assert.deepEqual(G.activeUnsafe([{ name: "IgnoreRPM", value: true }, { name: "AlarmActivate", value: true }])
+    .map((x) => x.name), ["IgnoreRPM"]);
+});
+
 await test("TOML import refuses the whole file on any bad line and names it", () => {
   const r = T.parseParamsToml("[voltage]\nBulkVoltage = 14.2\nNoSuch = 1\n[charging]\nUseFloat = maybe\n[rpm_tables]\nrpmCapCurrentTable = [1, 2]\n[web]\nport = 80\n", params);
   assert.equal(r.errors.length, 3);
@@ -252,6 +261,9 @@ await test("the headline says Charging only while current goes into the battery"
   assert.match(L.headline({ ...base, bcur_a: -6 }), /^Alternator on · .* · 6 A still from the battery · 792 W$/);
   assert.match(L.headline({ ...base, bcur_a: -0.4 }), /^Charging/);  // within the noise of a resting battery
   assert.match(L.headline({ ...base, field_enable: false, alt_a: 0, bcur_a: -6 }), /^Not charging/);
+  // Until a battery type is chosen the headline says so first (docs/configuration.md "Not set up").
+  assert.match(L.headline({ ...base, bcur_a: 42 }, true), /^Not set up · Charging · .* · 42 A into the battery/);
+  assert.match(L.headline({ ...base, bcur_a: 42 }, false), /^Charging/);
 });
 
 await test("the System page's CAN rows say the BMS and NMEA 2000 state in words, never invent a value", () => {
@@ -303,6 +315,57 @@ await test("the event filter shows a level at or above the chosen one", () => {
   assert.ok(!P.levelShown("Warning", "error"));
   assert.ok(!P.levelShown("Debug", "info"));
   assert.ok(P.levelShown("Something new", "error"));  // an unknown level is never hidden
+});
+
+// One thermal fault as the daemon stores it (scenarios/faults-tour.toml: the
+// alternator sensor reads 170 F at 900 s and is fixed at 1000 s), between a
+// command before it and the engine stopping 200 s after it.
+const E = await mod("web/www/js/events.js");
+const ev = (id, t, level, code, reason, text) => ({ id, t_s: t, wall_time_s: 1.7e9 + t, level, code, reason, text });
+const thermal = [
+  ev(21, 850, "info", "CommandApplied", "NONE", "Command auto applied"),
+  ev(22, 900, "error", "ProtectionTrip", "REASON_TEMP_WARNING", "Temperature warning: 170.0 F > 152.0 F. Ramping field down"),
+  ev(23, 900, "critical", "ProtectionTrip", "REASON_TEMP_CRITICAL", "Temperature critical: 170.0 F > 160.0 F. Field shut off!"),
+  ev(24, 900, "warning", "ModeChanged", "REASON_TEMP_CRITICAL", "Exiting normal mode: TEMP_CRITICAL"),
+  ev(25, 900, "critical", "ImmediateCut", "REASON_TEMP_CRITICAL", "GPIO4 immediate cut: TEMP_CRITICAL"),
+  ev(26, 900, "info", "FieldOff", "REASON_TEMP_CRITICAL", "Field disabled (GPIO4 LOW): TEMP_CRITICAL"),
+  ev(27, 900, "warning", "AlarmCondition", "NONE", "ALARM: Field protection active (0.00, limit 0.00)"),
+  ev(28, 900, "warning", "AlarmOn", "NONE", "Alarm ON"),
+  ev(29, 930, "warning", "AlarmCondition", "NONE", "ALARM: Field protection active (0.00, limit 0.00)"),
+  ev(30, 960, "warning", "AlarmCondition", "NONE", "ALARM: Field protection active (0.00, limit 0.00)"),
+  ev(31, 1000, "info", "ModeChanged", "NONE", "Entering normal mode"),
+  ev(32, 1000, "info", "FieldOn", "NONE", "Field enabled (GPIO4 HIGH)"),
+  ev(33, 1000, "info", "ProtectionClear", "REASON_TEMP_WARNING", "Protection cleared: TEMP_WARNING"),
+  ev(34, 1000, "info", "ProtectionClear", "REASON_TEMP_CRITICAL", "Protection cleared: TEMP_CRITICAL"),
+  ev(35, 1001, "info", "AlarmOff", "NONE", "Alarm OFF"),
+  ev(36, 1200, "info", "ProtectionTrip", "REASON_RPM_LOW", "RPM below minimum: 199 < 200 RPM. Field off"),
+  ev(37, 1200, "warning", "ModeChanged", "REASON_RPM_LOW", "Exiting normal mode: RPM_LOW"),
+  ev(38, 1200, "info", "FieldOff", "REASON_RPM_LOW", "Field disabled (GPIO4 LOW): RPM_LOW"),
+];
+
+await test("one thermal fault is one incident row: what happened, what the regulator did, what to do", () => {
+  const rows = E.groupIncidents(thermal);
+  assert.equal(rows.length, 3, rows.map((r) => (r.incident ? r.incident.title : r.event.code)).join(" | "));
+  assert.equal(rows[0].event.code, "CommandApplied");
+  const hot = rows[1].incident;
+  assert.equal(hot.title, N.REASONS.REASON_TEMP_CRITICAL.title);
+  assert.equal(hot.level, "critical");
+  assert.equal(hot.events.length, 14);
+  assert.equal(hot.action, N.REASONS.REASON_TEMP_CRITICAL.action);
+  assert.match(hot.did, /cut the field at once.*sounded the alarm.*resumed charging/);
+  assert.equal(hot.over, "Over after 2 min.");
+  const rpm = rows[2].incident;
+  assert.equal(rpm.title, N.REASONS.REASON_RPM_LOW.title);
+  assert.equal(rpm.over, "Still acting.");
+});
+
+await test("an incident ends: a trip after its clears and settle time, or long after its last event, is a new row", () => {
+  const later = thermal.slice(1, 15).map((e) => ({ ...e, id: e.id + 100, t_s: e.t_s + 700, wall_time_s: e.wall_time_s + 700 }));
+  assert.equal(E.groupIncidents([...thermal.slice(1, 15), ...later]).length, 2);
+  // Just inside the settle time after the last clear, the buzzer going quiet still belongs to it.
+  const quiet = { ...thermal[14], id: 99, t_s: 1004.9, wall_time_s: 1.7e9 + 1004.9 };
+  assert.equal(E.groupIncidents([...thermal.slice(1, 14), quiet]).length, 1);
+  assert.equal(E.groupIncidents([...thermal.slice(1, 14), { ...quiet, t_s: 1005.1, wall_time_s: 1.7e9 + 1005.1 }]).length, 2);
 });
 
 console.log(`${n} dashboard unit tests passed`);

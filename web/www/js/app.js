@@ -3,12 +3,13 @@ import { command, getJson, toast } from "./api.js";
 import { backfillLive, chartDebug, drawLive, initCharts, loadHistory, pushLive } from "./charts.js";
 import { CONFIRM_TEXT, confirmAction } from "./confirm.js";
 import { parseDecimal } from "./format.js";
-import { latestStatus, renderLive, tick } from "./live.js";
+import { latestStatus, renderLive, renderSetupState, tick } from "./live.js";
 import { commandAnswer, plainCommand } from "./names.js";
 import { applyEventFilter, loadEvents, loadSystem, renderBattery, renderProtections, renderTuning } from "./pages.js";
 import { initPairing, loadDevices } from "./pairing.js";
 import { initSettings, loadSettings, setParam } from "./settings.js";
 import { initSetup } from "./setup.js";
+import { renderGuardBanner } from "./guards.js";
 
 const $ = (id) => document.getElementById(id);
 
@@ -143,6 +144,12 @@ function init() {
   // The event list follows new events while it is open.
   setInterval(() => { if (currentPage() === "events") loadEvents("refresh").catch(() => {}); }, 3000);
   setInterval(tick, 1000);
+  // A protection switched off shows on every page, whoever switched it
+  // (this page, another phone, the file): the parameters are read again.
+  const guards = () => getJson("/api/params").then((b) => { renderGuardBanner(b.params); renderSetupState(b); })
+    .catch(() => {});
+  guards();
+  setInterval(guards, 15000);
   route();
   backfillLive();
   connect();

@@ -3,7 +3,7 @@
 // fault and stage markers from the events. Legends always show the newest
 // values, since a phone cannot hover.
 import { getJson } from "./api.js";
-import { fToC } from "./format.js";
+import { clock, fToC } from "./format.js";
 import { tempUnit } from "./live.js";
 
 const $ = (id) => document.getElementById(id);
@@ -50,8 +50,10 @@ function make(el, scales, axes, series) {
   if (!window.uPlot) { el.textContent = "charts unavailable (uPlot not installed: run make deps)"; return null; }
   return new uPlot({
     width: width(el), height: 220, scales, legend: { live: true },
-    axes: [{ stroke: css("--dim"), grid: { stroke: css("--grid") } }, ...axes],
-    series: [{}, ...series], plugins: [markerPlugin(() => marks)],
+    // One 24 h clock everywhere (the event list's too): the time axis and
+    // the legend's time say "14:05", never uPlot's default "2:05pm".
+    axes: [{ stroke: css("--dim"), grid: { stroke: css("--grid") }, values: (u, v) => v.map((t) => clock(t, t)) }, ...axes],
+    series: [{ value: (u, t) => (t == null ? "—" : clock(t)) }, ...series], plugins: [markerPlugin(() => marks)],
   }, [[], ...series.map(() => [])], el);
 }
 const volts = { scale: "V", size: 60, grid: { stroke: "#8884" }, values: (u, v) => v.map((x) => x.toFixed(1) + " V") };

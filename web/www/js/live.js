@@ -25,10 +25,19 @@ const on = (v) => v === true || v === 1;
 // "Charging · Absorption · 42 A into the battery · 580 W",
 // "Alternator on · Bulk · 6 A still from the battery · 900 W" or
 // "Not charging · Engine stopped or idling".
-export function headline(s) {
+// Until a battery type is chosen the headline starts with "Not set up"
+// (docs/configuration.md "Not set up"); /api/params says which.
+let setUp = true;
+export function renderSetupState(paramsBody) {
+  setUp = paramsBody.set_up !== false;
+  $("first-run").hidden = setUp;
+  $("first-run-limits").textContent = paramsBody.setup_limits || "";
+}
+
+export function headline(s, notSetUp = !setUp) {
   const regulating = ["MODE_NORMAL_AUTO_PID", "MODE_NORMAL_MANUAL", "MODE_LIMP_HOME"].includes(s.mode);
   const charging = on(s.field_enable) && isNum(s.alt_a) && s.alt_a > 0.5;
-  const parts = [];
+  const parts = notSetUp ? ["Not set up"] : [];
   const why = () => (s.reason && s.reason !== "NONE" ? reasonInfo(s.reason).title
     : s.control && s.control.sys_mode === "SYS_MODE_OFF" ? "Switched off" : "");
   if (charging && !regulating) {
@@ -156,6 +165,23 @@ export function tick() {
   const conn = $("conn");
   conn.textContent = offline ? "OFFLINE" : "live";
   conn.className = offline ? "conn off" : "conn on";
+  disableControlsWhileOffline(offline);
+}
+
+// Offline, no control acts on values the owner cannot see: every button,
+// box and choice of the pages is disabled (marked, so the ones disabled for
+// their own reasons stay so when the connection is back). Every second, so
+// a page drawn while offline is covered too.
+function disableControlsWhileOffline(offline) {
+  for (const el of document.querySelectorAll("main button, main input, main select")) {
+    if (offline && !el.disabled) {
+      el.disabled = true;
+      el.dataset.offline = "1";
+    } else if (!offline && el.dataset.offline) {
+      el.disabled = false;
+      delete el.dataset.offline;
+    }
+  }
 }
 
 export const latestStatus = () => lastStatus;

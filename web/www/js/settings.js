@@ -3,6 +3,7 @@
 // each value comes from, and the server's messages next to each field.
 import { getJson, write } from "./api.js";
 import { parseDecimal } from "./format.js";
+import { confirmUnsafe, renderGuardBanner } from "./guards.js";
 import { REASONS } from "./names.js";
 
 let params = [];
@@ -17,6 +18,33 @@ export const BASIC = ["BatteryProfile", "BatteryCells", "BatteryCapacity_Ah", "B
   "FloatVoltage", "UseFloat", "RebulkVoltage", "TailCurrent_A", "MaxTableValue", "MaximumAllowedBatteryAmps",
   "MinRPMForField", "TemperatureLimitF", "TempSource", "BatteryCurrentSource", "VoltageAlarmHigh", "VoltageAlarmLow",
   "OnOff", "weatherModeEnabled", "rpmCapCurrentTable", "rpmTableRPMPoints"];
+
+// Plain words first; the parameter's own name (the seeds', which the file,
+// the docs and the journal use) under it. A name without a label shows as is.
+export const LABELS = {
+  BatteryProfile: "Battery type", BatteryCells: "Cells in series", BatteryCapacity_Ah: "Battery capacity",
+  BulkVoltage: "Bulk charge voltage", AbsorptionVoltage: "Absorption voltage", FloatVoltage: "Float voltage",
+  UseFloat: "Float after absorption", RebulkVoltage: "Start a new charge below", TailCurrent_A: "Charge is done below",
+  MaxTableValue: "Alternator rating", MaximumAllowedBatteryAmps: "Battery charge current limit",
+  MinRPMForField: "Lowest engine speed to charge", TemperatureLimitF: "Alternator temperature limit",
+  TempSource: "Alternator temperature sensor", BatteryCurrentSource: "Battery current measured by",
+  VoltageAlarmHigh: "High battery voltage alarm", VoltageAlarmLow: "Low battery voltage alarm",
+  OnOff: "Charging allowed", weatherModeEnabled: "Weather mode (solar first)",
+  rpmCapCurrentTable: "Alternator current limit by engine speed", rpmTableRPMPoints: "Engine speeds of the tables",
+  CurrentAlarmHigh: "High alternator current alarm", IgnoreTemperature: "Ignore the alternator temperature",
+  IgnoreRPM: "Ignore the engine speed", ChargeMinTempC: "No charging below (battery temperature)",
+  ChargeMaxTempC: "No charging above (battery temperature)", TempAlarm: "Alternator temperature alarm",
+  AlarmActivate: "Alarm buzzer",
+};
+
+// The catalogue's groups in an owner's words.
+export const GROUP_TITLES = {
+  Voltage: "Charge voltages and the voltage loop", Overvoltage: "Fast over-voltage protection",
+  SensorHealth: "Sensor checks", Shutdown: "How the field is switched off", Current: "Alternator current and belt",
+  Tuning: "Current loop (tuning)", Charging: "Charge stages", Battery: "Battery", Temperature: "Temperatures",
+  Alarms: "Alarms", Modes: "Modes: weather, tuning", Can: "BMS and NMEA 2000 (CAN bus)",
+  RpmTables: "Engine-speed tables",
+};
 
 const kindOf = (p) => String(p.kind).toLowerCase();  // the API says "bool"/"table"/"int"/"float"
 
@@ -76,7 +104,13 @@ function renderRow(p) {
   row.dataset.kind = kind;
   const name = document.createElement("label");
   name.className = "name";
-  name.textContent = p.name;
+  name.textContent = LABELS[p.name] || p.name;
+  if (LABELS[p.name]) {
+    const code = document.createElement("small");
+    code.className = "pname";
+    code.textContent = p.name;
+    name.append(" ", code);
+  }
   const edit = document.createElement("div");
   edit.className = "edit";
   const choices = choicesOf(p);
@@ -121,19 +155,32 @@ function renderRow(p) {
   reset.title = "back to the default " + fmt(p.default);
   reset.disabled = same(p.value, p.default);
   reset.addEventListener("click", () => applyChanges({ [p.name]: p.default }));
+  const controls = [reset];
+  if (sourceOf(p) === "dashboard") {
+    // Forget the dashboard's value: the file's (or the profile's) applies again.
+    const back = document.createElement("button");
+    back.textContent = "Use the file's";
+    back.title = "forget this dashboard value; the file has " + fmt(p.file);
+    back.addEventListener("click", () => applyChanges({ [p.name]: null }));
+    controls.push(back);
+  }
   const meta = document.createElement("div");
   meta.className = "meta";
   const range = kind === "bool" || choices ? "" : `${p.min} … ${p.max} ${p.unit}`.trim();
   const src = sourceOf(p);
   const from = document.createElement("span");
-  from.className = "source source-" + src;
-  from.textContent = `from ${src}`;
+  from.className = "source source-" + src.replace(/ /g, "-");
+  // "not set up": lowered to the limits safe for every battery until the set-up chose one.
+  from.textContent = src === "not set up" ? "lowered until set up" : `from ${src}`;
   meta.append(from, " · " + [range ? "range " + range : "", "default " + fmt(p.default),
     src === "dashboard" ? "file has " + fmt(p.file) : "", plainHelp(p.help)].filter(Boolean).join(" · "));
   const err = document.createElement("div");
   err.className = "err";
   err.setAttribute("role", "alert");
-  row.append(name, edit, reset, meta, err);
+  const actions = document.createElement("div");
+  actions.className = "actions";
+  actions.append(...controls);
+  row.append(name, edit, actions, meta, err);
   edit.addEventListener("input", () => onEdit(p, row));
   edit.addEventListener("change", () => onEdit(p, row));
   return row;
@@ -167,7 +214,7 @@ function render() {
   const basic = params.filter((p) => BASIC.includes(p.name) && match(p));
   const sections = [["Basic settings", basic, true]];
   if (advanced || filter)
-    for (const g of groups) sections.push([g, params.filter((p) => p.group === g && !BASIC.includes(p.name) && match(p)), !!filter]);
+    for (const g of groups) sections.push([GROUP_TITLES[g] || g, params.filter((p) => p.group === g && !BASIC.includes(p.name) && match(p)), !!filter]);
   for (const [title, list, open] of sections) {
     if (!list.length) continue;
     const d = document.createElement("details");
@@ -200,6 +247,7 @@ export async function loadSettings() {
   const body = await getJson("/api/params");
   params = body.params;
   groups = body.groups;
+  renderGuardBanner(params);
   pending.clear();
   invalid.clear();
   const note = fileNotice(params);
@@ -236,6 +284,11 @@ async function applyChanges(only) {
     return;
   }
   const payload = only || Object.fromEntries(pending);
+  if (!(await confirmUnsafe(payload))) {
+    msg.textContent = "Nothing was sent.";
+    msg.className = "msg";
+    return;
+  }
   try {
     await write("PATCH", "/api/params", payload);
     msg.textContent = `Applied: ${Object.keys(payload).join(", ")}`;
@@ -257,6 +310,9 @@ export function initSettings() {
 }
 
 // Sets one parameter (Tuning page toggles, set-up steps).
+// Refused (an Error) when it would switch a protection off and the owner
+// does not confirm.
 export async function setParam(name, value) {
+  if (!(await confirmUnsafe({ [name]: value }))) throw new Error("cancelled: nothing was sent");
   await write("PATCH", "/api/params", { [name]: value });
 }

@@ -3,13 +3,11 @@
 // is sent as ONE change: the server checks it all or applies nothing.
 import { getJson, toast, write } from "./api.js";
 import { fToC, parseDecimal } from "./format.js";
-import { tempUnit } from "./live.js";
+import { renderSetupState, tempUnit } from "./live.js";
 import { choicesOf, loadSettings } from "./settings.js";
 import { exportToml, parseParamsToml } from "./toml.js";
 
 const $ = (id) => document.getElementById(id);
-const SETUP_PARAMS = ["BatteryProfile", "BatteryCapacity_Ah", "BulkVoltage", "MaxTableValue", "rpmCapCurrentTable",
-  "MinRPMForField", "TemperatureLimitF"];
 let params = [];
 const find = (n) => params.find((p) => p.name === n);
 
@@ -104,7 +102,9 @@ function collectAlternator(body) {
   body.MaxTableValue = rating;
   body.rpmCapCurrentTable = table;
   body.rpmCapCurrentTableLo = table.map((a) => Math.round(a * 2.5) / 10);
-  if (find("CurrentAlarmHigh").value < cap * 1.05) body.CurrentAlarmHigh = Math.ceil(cap * 1.1);
+  // 0 (the default) follows the cap by itself; a value set must clear it.
+  const alarm = find("CurrentAlarmHigh").value;
+  if (alarm > 0 && alarm < cap * 1.05) body.CurrentAlarmHigh = Math.ceil(cap * 1.1);
   body.MinRPMForField = read("su-minrpm", "Lowest engine speed", 0, 10000);
 }
 
@@ -144,9 +144,10 @@ async function saveSetup(runCommand) {
     msg.className = "msg bad";
     return;
   }
-  params = (await getJson("/api/params")).params;
+  const after = await getJson("/api/params");
+  params = after.params;
   renderResult();
-  $("first-run").hidden = true;
+  renderSetupState(after);
   msg.textContent = "Saved. Press “Start charging” when the engine runs.";
   msg.className = "msg ok";
   $("setup-start").hidden = false;
@@ -209,8 +210,4 @@ export function initSetup(runCommand) {
     const f = e.target.files[0];
     if (f) importConfig(f).catch((err) => toast(err.message, true)).finally(() => { e.target.value = ""; });
   });
-  // A fresh install (none of the set-up's values changed from the defaults) offers the set-up.
-  getJson("/api/params").then((b) => {
-    $("first-run").hidden = b.params.some((p) => SETUP_PARAMS.includes(p.name) && p.changed);
-  }).catch(() => {});
 }

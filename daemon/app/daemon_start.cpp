@@ -1,0 +1,97 @@
+#include "app/daemon_start.h"
+
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+#include <exception>
+
+#include "app/daemon_notices.h"
+#include "app/effective_params.h"
+#include "app/sim_wiring.h"
+#include "config/battery_profiles.h"
+#include "config/setup_pending.h"
+
+namespace xr::app {
+
+namespace {
+
+// The scenario (--sim), its [config] joining the file's layer. false: a bad
+// scenario, said on stderr and in the journal.
+bool loadScenario(const CliOptions& cli, Settings& settings, StartState& st) {
+  try {
+    st.scenario = cli.scenario ? sim::loadScenario(*cli.scenario) : sim::defaultScenario();
+    sim::applyOverrides(st.fileParams, st.scenario->config, st.scenario->source);
+    for (const auto& c : st.scenario->config) st.origins.file.insert(c.name);
+    st.origins.assumeSetUp = cli.scenario.has_value();  // a scenario's boat is set up (param_sources.h)
+    applyScenarioWeather(*st.scenario, settings.integrations.weather);
+  } catch (const std::exception& e) {
+    spdlog::critical("{}", e.what());
+    std::fprintf(stderr, "xregulatord: %s\n", e.what());
+    return false;
+  }
+  spdlog::info("scenario '{}' ({} s, seed {})", st.scenario->name, st.scenario->duration_s,
+               cli.seed ? *cli.seed : st.scenario->seed);
+  return true;
+}
+
+// Opens the state database (locked first: one daemon per database), restores
+// the ledger and lays the stored dashboard settings over the file's.
+void openStore(const std::string& dbPath, const Settings& settings, StartState& st) {
+  st.store = std::make_unique<StoreService>(dbPath, settings.store.checkpoint_interval_s);
+  const OpenResult& o = st.store->openResult();
+  if (const char* code = StoreService::alarmCode(o))
+    spdlog::error("store: {}: {}", code, o.message);  // the line to look for (docs/operations.md)
+  else
+    spdlog::info("store: {} ({})", dbPath, o.message);
+  if (auto saved = st.store->loadLedger()) {
+    st.restored = saved->ledger;
+    spdlog::info("store: ledger restored (saved for '{}')", saved->reason);
+  }
+  // An install from before "not set up" existed keeps charging as it did
+  // (store/schema.cpp, v4).
+  if (st.store->loadValue("set_up_before_upgrade")) st.origins.assumeSetUp = true;
+  const OverrideResolution resolved = st.store->applyOverrides(st.fileParams);
+  for (const auto& d : resolved.dropped) spdlog::error("{}", d.text());
+  std::string why;
+  st.configured = withDashboardLayer(st.fileParams, resolved, st.origins, &why);
+  if (!why.empty()) spdlog::error("{}", why);
+}
+
+}  // namespace
+
+StartState loadStartState(const Config& config, const CliOptions& cli, Settings& settings) {
+  StartState st;
+  if (auto n = profileShadowNotice(config.params, config.fileParamNames); !n.empty()) spdlog::warn("{}", n);
+  st.fileParams = config.params;
+  st.origins.file = config.fileParamNames;
+  // A bad scenario is bad input on the command line (exit 64, EX_USAGE), not
+  // a bad configuration file (78).
+  if (cli.sim && !loadScenario(cli, settings, st)) {
+    st.exitCode = kExitUsage;
+    return st;
+  }
+  st.fileParams = applyLayers(st.fileParams, st.origins);  // the profile under the file and [config]
+  if (st.scenario && !scenarioConfigFits(st.fileParams, st.scenario->source)) {
+    st.exitCode = kExitUsage;
+    return st;
+  }
+  st.configured = st.fileParams;
+  const std::string dbPath = cli.stateDb.value_or(cli.sim ? std::string() : settings.store.path);
+  if (!dbPath.empty()) {
+    st.stateLock = lockStateDatabase(dbPath);
+    if (!st.stateLock) {
+      st.exitCode = kExitTempFail;  // before any output is driven: the field was never enabled by us
+      return st;
+    }
+    openStore(dbPath, settings, st);
+  }
+  st.running = runningParams(st.configured, st.origins);
+  if (!st.origins.setUp())
+    spdlog::warn(
+        "not set up: no battery type is chosen (BatteryProfile, in the file or on the set-up page); "
+        "charging only within limits safe for every chemistry: {}",
+        setupPendingLimitsText(st.running));
+  return st;
+}
+
+}  // namespace xr::app
