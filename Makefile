@@ -82,6 +82,8 @@ dashboard-screenshots: build
 	  --www $(BUILD)/web/www --root . --docs-dir docs/img
 	node tests/web/browser/setup_lfp24.mjs --web-dir web --server $(BUILD)/daemon/app/xregulatord \
 	  --www $(BUILD)/web/www --root . --docs-dir docs/img
+	node tests/web/browser/events_incident.mjs --web-dir web --server $(BUILD)/daemon/app/xregulatord \
+	  --www $(BUILD)/web/www --root . --docs-dir docs/img
 
 # make bench measures its own optimised tree (Release, LTO, profile-guided,
 # for this machine's CPU: tests/bench/build-pgo.sh) so the figures are what the

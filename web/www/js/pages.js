@@ -2,7 +2,7 @@
 // the event list and the System page. Plain names, rounded numbers, clock times.
 import { getJson } from "./api.js";
 import { ago, clock, hmin, hminFromSeconds, num, plain } from "./format.js";
-import { REASONS, plainCommand, plainMode, reasonInfo } from "./names.js";
+import { plainMode, reasonInfo } from "./names.js";
 
 const $ = (id) => document.getElementById(id);
 
@@ -80,63 +80,8 @@ export function renderTuning(s) {
 }
 
 // ---------------------------------------------------------------- events
-// An event's words: the stored text (a command's event carries its argument)
-// without "nan", GPIO numbers or reason codes.
-export function eventText(e) {
-  // The journal keeps the firmware's console words; the list says them plainly:
-  // "GPIO4" is the field enable, reason codes get their titles.
-  let text = String(e.text || e.code).replace(/\bnan\b/gi, "—")
-    .replace(/\s*\(GPIO4 (HIGH|LOW)\)/g, "").replace(/\bGPIO4\b/g, "Field")
-    .replace(/^Command ([a-z_]+)/, (m, c) => "Command " + plainCommand(c))
-    .replace(/\b(?:REASON_)?([A-Z]{2,}(?:_[A-Z0-9]+)+)\b/g, (m, code) =>
-      (REASONS["REASON_" + code] ? REASONS["REASON_" + code].title.toLowerCase() : m));
-  if (e.reason && e.reason !== "NONE" && !text.toLowerCase().includes(reasonInfo(e.reason).title.toLowerCase()))
-    text += ` (${reasonInfo(e.reason).title})`;
-  return text;
-}
-
-// The filter by level (docs/dashboard.md, Events): a row shows when its level
-// is at least the chosen one, so "warning" hides the routine stage changes.
-const LEVELS = ["debug", "info", "warning", "error", "critical"];
-export function levelShown(level, min = "debug") {
-  const at = LEVELS.indexOf(String(level).toLowerCase());
-  return at < 0 || at >= Math.max(0, LEVELS.indexOf(String(min).toLowerCase()));
-}
-const minLevel = () => (typeof document !== "undefined" && $("events-level") ? $("events-level").value : "debug");
-export function applyEventFilter() {
-  for (const tr of $("events-body").rows) tr.hidden = !levelShown(tr.dataset.level, minLevel());
-}
-
-let oldestEvent = null, newestEvent = null;
-function eventRow(e) {
-  const tr = document.createElement("tr");
-  tr.className = "level-" + String(e.level).toLowerCase();
-  tr.dataset.level = String(e.level).toLowerCase();
-  tr.hidden = !levelShown(e.level, minLevel());
-  tr.dataset.id = e.id;
-  tr.insertCell().textContent = e.wall_time_s ? clock(e.wall_time_s) : `${plain(e.t_s, 0)} s after start`;
-  tr.insertCell().textContent = String(e.level).toLowerCase();
-  tr.insertCell().textContent = eventText(e);
-  return tr;
-}
-// Stored events newest first (earlier runs too), paged with "Older";
-// `refresh` adds only the events newer than the top row.
-export async function loadEvents(mode = "first") {
-  const tb = $("events-body");
-  if (mode === "refresh") {
-    if (newestEvent === null) return loadEvents("first");
-    const body = await getJson("/api/events?limit=100");
-    const fresh = body.events.filter((e) => e.id > newestEvent);
-    fresh.reverse().forEach((e) => tb.insertBefore(eventRow(e), tb.firstChild));
-    if (fresh.length) newestEvent = fresh[fresh.length - 1].id;
-    return;
-  }
-  const q = mode === "more" && oldestEvent !== null ? `&before=${oldestEvent}` : "";
-  const body = await getJson(`/api/events?limit=50${q}`);
-  if (mode === "first") { tb.textContent = ""; newestEvent = body.events.length ? body.events[0].id : null; }
-  for (const e of body.events) { tb.appendChild(eventRow(e)); oldestEvent = e.id; }
-  $("events-more").disabled = body.events.length < 50;
-}
+// The event list lives in events.js; these names stay here for the pages' callers.
+export { applyEventFilter, eventText, levelShown, loadEvents } from "./events.js";
 
 // /api/system "bms" and "n2k" (issue 22) in plain words; a value the daemon
 // does not know is shown as a dash, never made up.

@@ -1,0 +1,95 @@
+// One thermal fault is one row on the Events page (docs/dashboard.md,
+// Events), in Debian's Chromium at phone size against the real daemon in
+// --sim: the alternator's sensor reads 170 °F (above the critical limit) from
+// 8 s to 20 s. The daemon stores about fourteen events for it; the owner reads
+// one row that names the fault, what the regulator did and what to do, with
+// the events folded out under it.
+import { createRequire } from "node:module";
+import fs from "node:fs";
+import os from "node:os";
+import path from "node:path";
+import assert from "node:assert/strict";
+import { startServer } from "./server.mjs";
+
+const args = Object.fromEntries(
+  process.argv.slice(2).reduce((acc, a, i, all) => (a.startsWith("--") ? [...acc, [a.slice(2), all[i + 1]]] : acc), []));
+const require = createRequire(path.join(path.resolve(args["web-dir"]), "package.json"));
+const { chromium } = require("playwright-core");
+const token = "browser-test-token-0123456789";
+
+const scenario = `name = "a thermal fault"
+duration_s = 3600
+seed = 3
+[battery]
+chemistry = "agm"
+capacity_ah = 300
+soc_pct = 50
+[engine]
+rpm = 1700
+[config]
+BatteryProfile = "agm"
+[[events]]
+at_s = 8
+fault = "temp_value"
+value = 170
+[[events]]
+at_s = 20
+clear = "temp_value"
+`;
+
+const stateDir = fs.mkdtempSync(path.join(os.tmpdir(), "xr-incident-"));
+const server = await startServer({ mode: "daemon", args, token, stateDir, scenario });
+const browser = await chromium.launch({
+  executablePath: "/usr/bin/chromium", headless: true,
+  args: ["--no-sandbox", "--disable-gpu", "--no-first-run", "--disable-background-networking", "--disable-sync"],
+});
+const get = async (p) => (await fetch(server.base + p)).json();
+const until = async (what, fn, ms = 60000) => {
+  const end = Date.now() + ms;
+  for (;;) {
+    if (await fn()) return;
+    assert.ok(Date.now() < end, "timed out waiting for " + what);
+    await new Promise((r) => setTimeout(r, 250));
+  }
+};
+let failed = false;
+try {
+  const cleared = async () => (await get("/api/events?limit=200")).events.some(
+    (e) => e.code === "ProtectionClear" && e.reason === "REASON_TEMP_CRITICAL");
+  await until("the thermal fault to trip and clear", cleared);
+  await new Promise((r) => setTimeout(r, 6000));  // the field back on and the buzzer quiet
+  const stored = (await get("/api/events?limit=200")).events.filter((e) => e.id);
+  const thermal = stored.filter((e) => /TEMP_(CRITICAL|WARNING)/.test(e.reason));
+  assert.ok(thermal.length >= 4, `the daemon stored the fault's events (${thermal.length})`);
+
+  const ctx = await browser.newContext({ viewport: { width: 390, height: 844 }, locale: "en-GB" });
+  const page = await ctx.newPage();
+  page.setDefaultTimeout(30000);
+  await page.goto(server.base + "/#events");
+  await page.waitForSelector("#events-body tr");
+  const rows = page.locator("#events-body tr", { hasText: "Alternator far too hot" });
+  assert.equal(await rows.count(), 1, "one row for the thermal fault");
+  const row = await rows.first().locator("td.incident").innerText();
+  assert.match(row, /cut the field at once/);
+  assert.match(row, /What to do: Let it cool/);
+  assert.match(row, /Over after \d+ s\./);
+  assert.match(await rows.first().locator("td").nth(1).textContent(), /critical/);
+  // The fault's own events are in the row, folded; none is a row of its own.
+  const alone = await page.locator("#events-body > tr > td:not(.incident)", { hasText: /immediate cut|Alarm ON|Protection cleared/ }).count();
+  assert.equal(alone, 0, "the cut, the alarm and the clears fold into the incident");
+  assert.equal(await rows.first().locator("details").getAttribute("open"), null, "folded until asked");
+  await rows.first().locator("summary").click();
+  assert.match(await rows.first().locator("details").innerText(), /Field immediate cut: alternator far too hot/);
+  await page.screenshot({ path: path.join(stateDir, "events-incident.png"), fullPage: false });
+  if (args["docs-dir"]) fs.copyFileSync(path.join(stateDir, "events-incident.png"), path.join(args["docs-dir"], "events-incident.png"));
+  console.log(`ok - one thermal fault (${thermal.length} stored events) is one row with its action: ${row.split("\n")[0]}`);
+} catch (e) {
+  failed = true;
+  console.error(server.log().slice(-3000));
+  console.error(e);
+} finally {
+  await browser.close();
+  await server.stop();
+  fs.rmSync(stateDir, { recursive: true, force: true });
+}
+process.exit(failed ? 1 : 0);
