@@ -67,6 +67,9 @@ class StoreService {
   std::vector<HistoryPoint> queryHistory(const std::string& series, std::int64_t fromMs, std::int64_t toMs,
                                          std::int64_t stepMs);
   std::vector<std::string> series() const { return series_; }
+  // The History page's summaries, newest first (store/charge_tally.h).
+  std::vector<DaySummary> days(std::size_t n);
+  std::vector<ChargeSummary> charges(std::size_t n);
   std::string token();
   // Small named strings kept with the state (the Signal K token, issue 23).
   std::optional<std::string> loadValue(const std::string& key);
@@ -83,6 +86,9 @@ class StoreService {
  private:
   std::string unwritable() const;  // caller holds m_
   void recordOpenAlarm();
+  // Once a second: the day and charge summaries, saved every minute and
+  // whenever a day or a charge ends (caller holds m_).
+  void tallySummaries(const rt::RuntimeSnapshot& s, std::int64_t nowMs);
 
   std::mutex m_;
   Store store_;
@@ -90,6 +96,8 @@ class StoreService {
   CheckpointPolicy policy_;
   std::vector<std::string> series_;
   std::int64_t lastHistoryS_ = -1;
+  ChargeTally tally_;  // the History page's day and charge summaries
+  std::int64_t lastSummarySaveMs_ = 0;
 };
 
 }  // namespace xr::app

@@ -55,6 +55,12 @@ class WebApi final : public web::DaemonApi {
   void securityEvent(const std::string& text) override;
   std::vector<web::EventRecord> events(const web::EventQuery& q) override;
   web::HistoryResult history(const web::HistoryQuery& q) override;
+  std::vector<DaySummary> historyDays(std::size_t n) override {
+    return ctx_.store ? ctx_.store->days(n) : std::vector<DaySummary>{};
+  }
+  std::vector<ChargeSummary> historyCharges(std::size_t n) override {
+    return ctx_.store ? ctx_.store->charges(n) : std::vector<ChargeSummary>{};
+  }
   std::vector<web::ProbeResult> probeResults() override;
   web::VersionMap versions() override;
   web::Health health() override;

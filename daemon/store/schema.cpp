@@ -48,9 +48,18 @@ CREATE INDEX events_t ON events(t_ms);
 // charged with its file's values as chosen; it keeps doing so after the
 // upgrade rather than drop to the not-set-up limits because the new packaged
 // file no longer names a battery type.
+// Also the History page's summaries (store/charge_tally.h): one row per
+// local day, one per charge. NULL: not known (no reading that day).
 constexpr const char* kV4 = R"sql(
 INSERT INTO kv(key, value) SELECT 'set_up_before_upgrade', '1'
   WHERE EXISTS (SELECT 1 FROM ledger_meta) OR EXISTS (SELECT 1 FROM overrides);
+CREATE TABLE history_days(day TEXT PRIMARY KEY, alt_ah REAL NOT NULL, alt_wh REAL NOT NULL,
+  batt_ah_in REAL NOT NULL, batt_ah_out REAL NOT NULL, bulk_s REAL NOT NULL, absorption_s REAL NOT NULL,
+  float_s REAL NOT NULL, idle_s REAL NOT NULL, field_on_s REAL NOT NULL, peak_alt_temp_c REAL,
+  min_soc REAL, max_soc REAL);
+CREATE TABLE history_charges(id INTEGER PRIMARY KEY, start_ms INTEGER NOT NULL, end_ms INTEGER NOT NULL,
+  bulk_s REAL NOT NULL, absorption_s REAL NOT NULL, float_s REAL NOT NULL, alt_ah REAL NOT NULL,
+  alt_wh REAL NOT NULL, start_soc REAL, end_soc REAL, end_reason TEXT NOT NULL, open INTEGER NOT NULL);
 )sql";
 
 }  // namespace
@@ -112,6 +121,10 @@ std::string missingForReading(sql::Db& db) {
       "SELECT id, name FROM series",
       "SELECT key, data FROM history_1s",
       "SELECT key, data FROM history_1m",
+      "SELECT day, alt_ah, alt_wh, batt_ah_in, batt_ah_out, bulk_s, absorption_s, float_s, idle_s, field_on_s, "
+      "peak_alt_temp_c, min_soc, max_soc FROM history_days",
+      "SELECT id, start_ms, end_ms, bulk_s, absorption_s, float_s, alt_ah, alt_wh, start_soc, end_soc, "
+      "end_reason, open FROM history_charges",
   };
   for (const char* q : kReads) {
     sql::Stmt st(db, std::string(q) + " LIMIT 0");

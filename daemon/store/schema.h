@@ -9,7 +9,8 @@
 //   v3  history_1s / history_1m (packed float buckets, rowid = bucket * 64 + series)
 //       + series names, events index
 //   v4  kv 'set_up_before_upgrade' for an install that had already run (it keeps
-//       its file's values rather than the not-set-up limits)
+//       its file's values rather than the not-set-up limits); history_days and
+//       history_charges (the History page's summaries)
 #include <string>
 
 #include "store/sqlite_db.h"

@@ -30,6 +30,7 @@
 
 #include "battery/ledger.h"
 #include "core/events.h"
+#include "store/charge_tally.h"
 #include "store/sqlite_db.h"
 
 namespace xr {
@@ -145,6 +146,16 @@ class Store {
   std::optional<OverrideRow> findOverride(std::string_view name);
   // Forget the operator's value: the file value applies again.
   StoreStatus resetOverride(std::string_view name);
+  // ---- day and charge summaries (store/charge_tally.h) ----------------------
+  StoreStatus saveDay(const DaySummary& d);  // inserts or replaces the day's row
+  std::optional<DaySummary> findDay(std::string_view day);
+  std::vector<DaySummary> days(std::size_t n);  // newest first
+  // Inserts (c.id == 0: c.id is set) or updates the charge's row.
+  StoreStatus saveCharge(ChargeSummary& c);
+  std::vector<ChargeSummary> charges(std::size_t n);  // newest first
+  // A charge still open when the daemon stopped ended then: `reason`.
+  StoreStatus closeOpenCharges(std::string_view reason);
+
   // fn's writes as one transaction: committed when fn succeeds, rolled back
   // when it fails, so a change of several values is saved whole or not at all.
   StoreStatus inTransaction(const std::function<StoreStatus()>& fn);

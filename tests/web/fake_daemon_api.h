@@ -125,6 +125,25 @@ class FakeDaemonApi : public DaemonApi {
       if (!q.before || it->id < *q.before) out.push_back(*it);
     return out;
   }
+  // One day and one open charge, with small and large decimals in them.
+  std::vector<DaySummary> historyDays(std::size_t) override {
+    DaySummary d;
+    d.day = "2026-07-01";
+    d.altAh = 123.456789;
+    d.altWh = 1728.39512;
+    d.bulkS = 4321.5;
+    d.peakAltTempC = 88.04;
+    d.minSocPct = 0.0000123;
+    return {d};
+  }
+  std::vector<ChargeSummary> historyCharges(std::size_t) override {
+    ChargeSummary c;
+    c.id = 7;
+    c.startMs = 1'782'900'000'123;
+    c.endMs = c.startMs + 5'400'000;
+    c.altAh = 0.000042;
+    return {c};
+  }
   HistoryResult history(const HistoryQuery& q) override {
     HistoryResult r;
     for (const auto& s : q.series)

@@ -97,7 +97,8 @@ TEST_F(JsonNumbersRoutes, EveryGetRouteAndTheWebSocketFrameHaveNoExponent) {
   for (int i = 0; i < 5; ++i) api_.publish();
   for (const std::string target :
        {"/api/status", "/api/events", "/api/system", "/api/params", "/api/commands", "/api/pair/devices",
-        "/api/history?series=battery_v,bcur_a,temp_f,soc_pct&from=-600&step=1", "/api/no-such-route"}) {
+        "/api/history?series=battery_v,bcur_a,temp_f,soc_pct&from=-600&step=1", "/api/history/days",
+        "/api/history/charges", "/api/no-such-route"}) {
     const auto r = httpRequest(port, bhttp::verb::get, target, "", auth);
     ASSERT_FALSE(r.body.empty()) << target;
     EXPECT_NO_THROW(json::parse(r.body)) << target;

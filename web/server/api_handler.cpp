@@ -146,6 +146,8 @@ Response ApiHandler::route(const Request& req) {
   if (path == "/api/status") return onlyGet([&] { return getStatus(req); });
   if (path == "/api/events") return onlyGet([&] { return getEvents(req, query); });
   if (path == "/api/history") return onlyGet([&] { return getHistory(req, query); });
+  if (path == "/api/history/days") return onlyGet([&] { return getHistoryDays(req, query); });
+  if (path == "/api/history/charges") return onlyGet([&] { return getHistoryCharges(req, query); });
   if (path == "/api/system") return onlyGet([&] { return getSystem(req); });
   if (path == "/metrics") return onlyGet([&] { return getMetrics(req); });
   if (path == "/api/params" || path == "/api/commands") {

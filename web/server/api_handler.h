@@ -48,6 +48,8 @@ class ApiHandler {
   Response postCommand(const Request& req);
   Response getEvents(const Request& req, std::string_view query);
   Response getHistory(const Request& req, std::string_view query);
+  Response getHistoryDays(const Request& req, std::string_view query);
+  Response getHistoryCharges(const Request& req, std::string_view query);
   Response getSystem(const Request& req);
   Response getCommands(const Request& req);
   Response getMetrics(const Request& req);

@@ -4,6 +4,7 @@
 #include <boost/json.hpp>
 #include <chrono>
 #include <cstdint>
+#include <optional>
 #include <string_view>
 
 #include "web/server/api_handler.h"
@@ -94,6 +95,80 @@ Response ApiHandler::getHistory(const Request& req, std::string_view query) {
   o["from"] = q.from_s;
   o["to"] = q.to_s;
   o["step"] = q.step_s;
+  return jsonReply(req, http::status::ok, o);
+}
+
+// ---------------------------------------------------------------- summaries
+
+namespace {
+
+constexpr std::int64_t kMaxSummaryRows = 366;
+
+double hours(double s) { return s / 3600.0; }
+
+json::object dayToJson(const DaySummary& d) {
+  json::object o;
+  o["day"] = d.day;
+  o["alt_ah"] = number(d.altAh);
+  o["alt_wh"] = number(d.altWh);
+  o["battery_ah_in"] = number(d.batteryAhIn);
+  o["battery_ah_out"] = number(d.batteryAhOut);
+  o["bulk_h"] = number(hours(d.bulkS));
+  o["absorption_h"] = number(hours(d.absorptionS));
+  o["float_h"] = number(hours(d.floatS));
+  o["resting_h"] = number(hours(d.idleS));
+  o["field_on_h"] = number(hours(d.fieldOnS));
+  o["peak_alt_temp_c"] = number(d.peakAltTempC);
+  o["min_soc_pct"] = number(d.minSocPct);
+  o["max_soc_pct"] = number(d.maxSocPct);
+  return o;
+}
+
+json::object chargeToJson(const ChargeSummary& c) {
+  json::object o;
+  o["id"] = c.id;
+  o["start_s"] = number(static_cast<double>(c.startMs) / 1000.0);
+  o["end_s"] = number(static_cast<double>(c.endMs) / 1000.0);
+  o["bulk_min"] = number(c.bulkS / 60.0);
+  o["absorption_min"] = number(c.absorptionS / 60.0);
+  o["float_min"] = number(c.floatS / 60.0);
+  o["alt_ah"] = number(c.altAh);
+  o["alt_wh"] = number(c.altWh);
+  o["start_soc_pct"] = number(c.startSocPct);
+  o["end_soc_pct"] = number(c.endSocPct);
+  o["ended_by"] = c.open ? json::value(nullptr) : json::value(c.endReason);
+  o["open"] = c.open;
+  return o;
+}
+
+// ?n= (days) or ?limit= (charges): 1 to kMaxSummaryRows, dflt when absent.
+std::optional<std::size_t> rowsParam(std::string_view query, std::string_view key, std::size_t dflt) {
+  const auto s = queryParam(query, key);
+  if (!s) return dflt;
+  const auto v = parseInt(*s);
+  if (!v || *v < 1 || *v > kMaxSummaryRows) return std::nullopt;
+  return static_cast<std::size_t>(*v);
+}
+
+}  // namespace
+
+Response ApiHandler::getHistoryDays(const Request& req, std::string_view query) {
+  const auto n = rowsParam(query, "n", 30);
+  if (!n) return error(req, http::status::bad_request, "n must be a whole number from 1 to 366");
+  json::array a;
+  for (const auto& d : api_.historyDays(*n)) a.push_back(dayToJson(d));
+  json::object o;
+  o["days"] = std::move(a);
+  return jsonReply(req, http::status::ok, o);
+}
+
+Response ApiHandler::getHistoryCharges(const Request& req, std::string_view query) {
+  const auto n = rowsParam(query, "limit", 20);
+  if (!n) return error(req, http::status::bad_request, "limit must be a whole number from 1 to 366");
+  json::array a;
+  for (const auto& c : api_.historyCharges(*n)) a.push_back(chargeToJson(c));
+  json::object o;
+  o["charges"] = std::move(a);
   return jsonReply(req, http::status::ok, o);
 }
 

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "control/telemetry.h"
+#include "core/charge_summaries.h"
 #include "core/commands.h"
 #include "core/events.h"
 #include "core/time.h"
@@ -235,6 +236,10 @@ class DaemonApi {
 
   virtual std::vector<EventRecord> events(const EventQuery& q) = 0;
   virtual HistoryResult history(const HistoryQuery& q) = 0;
+  // The History page's summaries, newest first (docs/dashboard.md
+  // "History"); empty without a state database.
+  virtual std::vector<DaySummary> historyDays(std::size_t /*n*/) { return {}; }
+  virtual std::vector<ChargeSummary> historyCharges(std::size_t /*n*/) { return {}; }
 
   virtual std::vector<ProbeResult> probeResults() = 0;
   virtual VersionMap versions() = 0;

@@ -83,6 +83,25 @@ try {
   await page.screenshot({ path: path.join(stateDir, "events-incident.png"), fullPage: false });
   if (args["docs-dir"]) fs.copyFileSync(path.join(stateDir, "events-incident.png"), path.join(args["docs-dir"], "events-incident.png"));
   console.log(`ok - one thermal fault (${thermal.length} stored events) is one row with its action: ${row.split("\n")[0]}`);
+
+  // The History page (docs/dashboard.md "History"): today's bar and this
+  // charge, which the 12 s fault did not end (a charge ends after 5 min off).
+  await page.click('nav a[href="#history"]');
+  await page.waitForSelector("#history-days .day");
+  const today = new Date().toLocaleDateString("sv-SE");  // YYYY-MM-DD, the board's day
+  const day = await page.locator("#history-days .day").first().textContent();
+  assert.match(day, new RegExp(`^${today} · \\d+(\\.\\d)? Ah · \\d+\\.\\d\\d kWh · alternator up to \\d+ °C`), day);
+  const api = await get("/api/history/days?n=30");
+  assert.equal(api.days.length, 1);
+  assert.ok(api.days[0].alt_ah > 0 && api.days[0].field_on_h > 0, JSON.stringify(api.days[0]));
+  const charges = await page.locator("#history-charges tr").allTextContents();
+  assert.equal(charges.length, 1, charges.join(" | "));
+  assert.match(charges[0], /still charging$/);
+  const bad = await fetch(server.base + "/api/history/days?n=0");
+  assert.equal(bad.status, 400);
+  await page.screenshot({ path: path.join(stateDir, "history.png") });
+  if (args["docs-dir"]) fs.copyFileSync(path.join(stateDir, "history.png"), path.join(args["docs-dir"], "history.png"));
+  console.log(`ok - the History page: ${day}; one charge, still going`);
 } catch (e) {
   failed = true;
   console.error(server.log().slice(-3000));

@@ -368,4 +368,23 @@ await test("an incident ends: a trip after its clears and settle time, or long a
   assert.equal(E.groupIncidents([...thermal.slice(1, 14), { ...quiet, t_s: 1005.1, wall_time_s: 1.7e9 + 1005.1 }]).length, 2);
 });
 
+const H = await mod("web/www/js/history.js");
+await test("the History page: bars scaled to the best day, charges in words", () => {
+  const rows = H.dayRows([
+    { day: "2026-07-02", alt_ah: 40, alt_wh: 560, bulk_h: 1.25, absorption_h: 0.5, float_h: 2, peak_alt_temp_c: 88.4 },
+    { day: "2026-07-01", alt_ah: 4.2, alt_wh: 58, bulk_h: 0.1, absorption_h: 0, float_h: 0, peak_alt_temp_c: null },
+  ]);
+  assert.deepEqual(rows.map((r) => r.barPct), [100, 11]);
+  assert.equal(rows[0].amount, "40 Ah · 0.56 kWh");
+  assert.equal(rows[1].amount, "4.2 Ah · 0.06 kWh");
+  assert.equal(rows[0].peak, "88 °C");
+  assert.equal(rows[1].peak, "—");
+  assert.equal(rows[0].stages, "bulk 1.3 h · absorption 0.5 h · float 2.0 h");
+  assert.equal(H.duration(80), "1 h 20 min");
+  assert.equal(H.duration(45), "45 min");
+  assert.equal(H.endedBy({ open: true }), "still charging");
+  assert.equal(H.endedBy({ open: false, ended_by: "STOPPED" }), "the regulator stopped");
+  assert.equal(H.endedBy({ open: false, ended_by: "REASON_RPM_LOW" }), N.REASONS.REASON_RPM_LOW.title);
+});
+
 console.log(`${n} dashboard unit tests passed`);

@@ -9,6 +9,7 @@ import { applyEventFilter, loadEvents, loadSystem, renderBattery, renderProtecti
 import { initPairing, loadDevices } from "./pairing.js";
 import { initSettings, loadSettings, setParam } from "./settings.js";
 import { initSetup } from "./setup.js";
+import { loadHistoryPage } from "./history.js";
 import { renderGuardBanner } from "./guards.js";
 
 const $ = (id) => document.getElementById(id);
@@ -50,7 +51,7 @@ function connect() {
 }
 
 // ---------------------------------------------------------------- routing
-const PAGES = ["live", "settings", "protections", "battery", "tuning", "events", "system", "setup"];
+const PAGES = ["live", "settings", "protections", "battery", "history", "tuning", "events", "system", "setup"];
 const currentPage = () => { const h = location.hash.slice(1); return PAGES.includes(h) ? h : "live"; };
 function route() {
   const page = currentPage();
@@ -59,6 +60,7 @@ function route() {
   const fail = (e) => toast(e.message, true);
   if (page === "settings") loadSettings().catch(fail);
   if (page === "events") loadEvents().catch(fail);
+  if (page === "history") loadHistoryPage().catch(fail);
   if (page === "system") { loadSystem().catch(fail); loadDevices().catch(fail); }
   if (page === "tuning") loadSettingsFlags().catch(fail);
   if (page === "live") { drawLive(); loadHistory(); }
