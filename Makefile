@@ -51,7 +51,7 @@ run: build
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS) --timeout 900
 
-# The cruising-day suite (issue 27): every scenarios/cruising/*.toml through
+# The cruising-day suite: every scenarios/cruising/*.toml through
 # the daemon, one table of pass/fail and key figures, a PNG plot per scenario
 # in $(BUILD)/scenarios. Exits non-zero when a scenario fails.
 # Debian's interpreter, where python3-matplotlib is installed (a python3
@@ -60,7 +60,7 @@ PLOT_PYTHON ?= /usr/bin/python3
 scenarios: build
 	$(PLOT_PYTHON) tests/sim/cruising/suite.py --daemon $(BUILD)/daemon/app/xregulatord --out $(BUILD)/scenarios
 
-# The soak test (issue 26): the daemon in --sim at speed 20 through a simulated
+# The soak test: the daemon in --sim at speed 20 through a simulated
 # day (tests/soak/day.toml) against 20 WebSocket clients, 5 API requests a
 # second, dashboard writes and the integrations (mosquitto with the Home
 # Assistant publisher, signalk-server from `make deps`, the simulated BMS and
@@ -83,6 +83,8 @@ dashboard-screenshots: build
 	node tests/web/browser/setup_lfp24.mjs --web-dir web --server $(BUILD)/daemon/app/xregulatord \
 	  --www $(BUILD)/web/www --root . --docs-dir docs/img
 	node tests/web/browser/events_incident.mjs --web-dir web --server $(BUILD)/daemon/app/xregulatord \
+	  --www $(BUILD)/web/www --root . --docs-dir docs/img
+	node tests/web/browser/screenshots.mjs --web-dir web --server $(BUILD)/daemon/app/xregulatord \
 	  --www $(BUILD)/web/www --root . --docs-dir docs/img
 
 # make bench measures its own optimised tree (Release, LTO, profile-guided,
@@ -159,7 +161,7 @@ deps-cross: deps
 # units, fuzz, TSAN tree, unit files, source and layout rules, soak smoke,
 # cruising and BMS-on-CAN suites, integration daemons, the package and arm
 # judges): they stay in `make test`.
-# Then: the loader/libc pairing that caused the start-up hang of issue 24 and
+# Then: the loader/libc pairing that caused the start-up hang seen under qemu-user and
 # a start, run and SIGTERM stop (tests/arm/emulator_check.sh); the 8 h
 # LiFePO4 charge on both builds (same stages, energy within 0.1 %); the
 # arm64 package (`make deb ARCH=arm64` and its check).
@@ -238,7 +240,7 @@ test-armhf: deps-cross $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS) --target xregulatord
 	$(MAKE) --no-print-directory arm-daemon-checks ARM_BUILD=$(ARMHF_BUILD) QEMU_ARM=qemu-arm-static ARM_TRIPLET=arm-linux-gnueabihf
 
-# The real-kernel rig (issue 24, tests/kernel/run.sh, docs/install.md):
+# The real-kernel rig (tests/kernel/run.sh, docs/install.md):
 # Debian 12's arm64 kernel in qemu-system-aarch64 -M virt (TCG) with an
 # initramfs of the arm64 daemon, xregulator-field-off and the rig's helper;
 # libgpiod on the virt board's PL061, softdog, vcan, i2c-dev, PWM on tmpfs.

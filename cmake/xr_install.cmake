@@ -1,4 +1,4 @@
-# Install layout of the xregulator package (issue 10). Included from
+# Install layout of the xregulator package. Included from
 # tools/CMakeLists.txt. Paths follow Debian: /usr/libexec,
 # /etc/xregulator, /lib/systemd/system.
 include(GNUInstallDirs)

@@ -1,6 +1,6 @@
 // xregulator-field-off: leaves the alternator field OFF. Run by systemd as
 // ExecStartPre= and ExecStopPost= of xregulatord.service, so the field enable
-// is LOW even when the daemon crashed or was killed (issue 10: "ExecStopPost
+// is LOW even when the daemon crashed or was killed ("ExecStopPost
 // leaves the field enable LOW even if the daemon died").
 //
 //   xregulator-field-off [--config FILE]
@@ -28,7 +28,8 @@ bool driveInactive(const xr::FieldOffPlan& plan, std::string& error) {
   bool ok = false;
   gpiod_line* line = gpiod_chip_get_line(chip, static_cast<unsigned>(plan.enableLine));
   if (!line) {
-    error = "no line " + std::to_string(plan.enableLine) + " on " + plan.gpioChip + ": " + std::strerror(errno);
+    error =
+        "no line " + std::to_string(plan.enableLine) + " on " + plan.gpioChip + ": " + std::strerror(errno);
   } else if (gpiod_line_request_output(line, "xregulator-field-off", plan.inactiveLevel) != 0) {
     error = "cannot drive line " + std::to_string(plan.enableLine) + ": " + std::strerror(errno);
   } else {
@@ -70,7 +71,7 @@ int main(int argc, char** argv) {
     std::cerr << "xregulator-field-off: FIELD ENABLE NOT DRIVEN: " << error << "\n";
     return 1;
   }
-  std::cerr << "xregulator-field-off: field enable " << plan.gpioChip << " line " << plan.enableLine << " set to "
-            << plan.inactiveLevel << " (field off)\n";
+  std::cerr << "xregulator-field-off: field enable " << plan.gpioChip << " line " << plan.enableLine
+            << " set to " << plan.inactiveLevel << " (field off)\n";
   return 0;
 }

@@ -1,6 +1,6 @@
 // xr_gendocs: writes config/xregulator.toml and docs/parameters.md from the
 // parameter catalogue and the settings schema, so neither is ever edited by
-// hand (issue 2: "No parameter is spelled out by hand in more than one place").
+// hand ("No parameter is spelled out by hand in more than one place").
 //
 //   xr_gendocs toml                print the default configuration file
 //   xr_gendocs markdown            print docs/parameters.md

@@ -47,7 +47,7 @@ class BoardRig final : public rt::TickHook {
   std::string watchdogWarning_;
   std::string readyLineWarning_;
   std::unique_ptr<Ds18b20Reader> ds18b20_;
-  std::unique_ptr<Ds18b20Reader> batteryDs18b20_;  // [hardware] battery_temp_sensor (issue 21)
+  std::unique_ptr<Ds18b20Reader> batteryDs18b20_;  // [hardware] battery_temp_sensor (docs/batteries.md)
   bool batteryTempPosted_ = false;
   TimeNs lastBatteryHeartbeat_ = 0;
   std::unique_ptr<VeDirectReader> vedirect_;

@@ -1,6 +1,6 @@
 #pragma once
 // The CAN service's status (Handoffs::canStatus) in the words /api/system
-// uses (issue 22). Pure: no clock is read, `st.now` is when it was written.
+// uses (docs/integrations.md). Pure: no clock is read, `st.now` is when it was written.
 //   bms.state  off        no BMS bus configured
 //              bus_error  configured, but the interface is not open
 //              silent     open, no good frame for kSilentS

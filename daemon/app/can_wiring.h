@@ -1,5 +1,5 @@
 #pragma once
-// The CAN service on a board (issue 22): the xr-can thread polls
+// The CAN service on a board (docs/integrations.md): the xr-can thread polls
 // canlink::CanService every 10 ms, off the RT control thread. It opens
 // [can] bms_interface on SocketCAN (retried with backoff when missing: the
 // regulator runs on, with the stale fallback) and writes --can-log. In

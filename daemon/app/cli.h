@@ -38,14 +38,15 @@ struct CliOptions {
   bool printToken = false;
   bool pair = false;  // --pair: a new pairing code from the running daemon
   bool printDefaultConfig = false;
-  bool printConfig = false;  // --print-config: the effective configuration with sources (issue 21)
+  bool printConfig =
+      false;  // --print-config: the effective configuration with sources (docs/configuration.md)
   bool probe = false;
   bool version = false;
   bool help = false;
   std::optional<unsigned long long> seed;
   std::optional<std::string> logLevel;
   std::optional<std::string> simOutputs;
-  std::optional<std::string> canLog;  // candump log of every CAN frame (issue 22)
+  std::optional<std::string> canLog;  // candump log of every CAN frame (docs/integrations.md)
   TestFault testFault = TestFault::None;
   double testFaultAtS = 1.0;
 };

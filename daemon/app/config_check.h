@@ -1,5 +1,5 @@
 #pragma once
-// `xregulatord --check-config` and `--print-token` (issue 26, items 1 and 9):
+// `xregulatord --check-config` and `--print-token` (docs/security.md):
 // the file's own checks, then the stored dashboard overrides on top of it as
 // one set, exactly as the daemon will resolve them at start, read-only.
 #include <iosfwd>
@@ -14,7 +14,7 @@ namespace xr::app {
 int checkConfigAndState(const std::string& configPath, const std::optional<std::string>& stateDb,
                         std::ostream& out, std::ostream& err);
 
-// `--print-config` (issue 21): the effective configuration as TOML, each
+// `--print-config` (docs/configuration.md): the effective configuration as TOML, each
 // value with its source (# default / # profile / # file / # dashboard); the
 // dashboard layer is read from the state database when there is one. 0, or
 // kExitConfig (78) with the errors on err when the file is refused.

@@ -125,7 +125,8 @@ int Daemon::run() {
   cycleCfg.rowPeriod = cli_.telemetryCsv ? fromSec(1.0 / cli_.telemetryRateHz) : 0;
   cycleCfg.blockOnFullRows = cli_.sim && cli_.speed <= 0.0;
   if (cli_.sim && cli_.speed <= 0.0) cycleCfg.thinForUnpacedRun();
-  cycleCfg.rpmFromN2k = settings.can.RpmSource == "n2k";  // engine speed from the CAN service (issue 22)
+  cycleCfg.rpmFromN2k =
+      settings.can.RpmSource == "n2k";  // engine speed from the CAN service (docs/integrations.md)
   rt::ControlCycle cycle(core, devices, *handoffs, stats, *wall, cycleCfg);
   cycle.driveSafeState();  // field known LOW before anything runs
 
@@ -139,7 +140,7 @@ int Daemon::run() {
   // ---- non-RT services ----
   RecentEvents recent;
   rt::EventPump pump(handoffs->events);
-  pump.addSource(handoffs->sideEvents);  // the CAN thread's events (issue 22)
+  pump.addSource(handoffs->sideEvents);  // the CAN thread's events (docs/integrations.md)
   pump.addSink([](const Event& e) { logEvent(e); });
   pump.addSink([&recent](const Event& e) { recent.add(e, wallSecondsNow(), describe(e)); });
   if (store) pump.addSink([&store](const Event& e) { store->appendEvent(e); });
@@ -158,9 +159,9 @@ int Daemon::run() {
     csv->start();
   }
 
-  // The boat's network (issue 23): its own thread, reading the snapshot only.
+  // The boat's network (docs/integrations.md): its own thread, reading the snapshot only.
   const auto integrations = startIntegrations(settings, *handoffs, store.get());
-  // CAN (issue 22): on a board the xr-can thread; the sim rig runs its own.
+  // CAN (docs/integrations.md): on a board the xr-can thread; the sim rig runs its own.
   const auto canThread =
       boardRig ? startCanThread(settings, *handoffs, boardRig->loopClock(), std::move(canLog)) : nullptr;
 
@@ -214,7 +215,7 @@ int Daemon::run() {
         if (auto w = tokenFileWarning(*cli_.config, settings.web.token); !w.empty()) spdlog::warn("{}", w);
     } catch (const std::exception& e) {
       // The dashboard is a convenience; the regulator runs without it
-      // (issue 26, item 3). Loud in the journal, on stderr and in the status.
+      // (docs/security.md). Loud in the journal, on stderr and in the status.
       server.reset();
       webDown = true;
       spdlog::critical(

@@ -53,7 +53,7 @@ void logPairingCode(const web::Pairing::Code& code) {
 
 // The token itself never goes to the journal (any member of systemd-journal
 // could read it): a fingerprint to compare with a phone's, and where to read
-// the token (issue 26, item 9).
+// the token (docs/security.md).
 void logTokenHint(bool generated, bool stored, const std::string& token, const std::string& dbPath) {
   if (!generated) {
     spdlog::info("API write token: from [web] token in the configuration (fingerprint {})",

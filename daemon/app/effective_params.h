@@ -1,5 +1,5 @@
 #pragma once
-// The parameters the daemon runs with, in layers (issue 21): catalogue
+// The parameters the daemon runs with, in layers (docs/configuration.md "One chain of values"): catalogue
 // defaults < battery profile < file (with a scenario's [config]) < stored
 // dashboard overrides. The profile is re-applied whenever a layer above it
 // changes, so a dashboard change of BatteryProfile or BatteryCells moves

@@ -1,5 +1,5 @@
 #pragma once
-// The daemon's side of the integrations (issue 23): builds the service from
+// The daemon's side of the integrations (docs/integrations.md): builds the service from
 // [integrations.*], hands commands from Home Assistant to the regulator (and
 // logs them like the HTTP ones), and shows their state to the web API.
 #include <functional>

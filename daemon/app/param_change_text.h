@@ -1,5 +1,5 @@
 #pragma once
-// The words of a "settings changed" event (issue 25, item 11): every value a
+// The words of a "settings changed" event (docs/dashboard.md): every value a
 // PATCH changed, old -> new, and who asked. Pure; web_api.cpp records it.
 #include <string>
 #include <vector>

@@ -1,11 +1,11 @@
 #pragma once
-// The journal's rate limit for settings changes through the API (issue 26,
+// The journal's rate limit for settings changes through the API (docs/security.md,
 // item 12: 2,000 PATCHes wrote 2,000 lines). The first change after a quiet
 // interval is logged at once; the ones that follow within the interval are
 // counted, and one summary line says how many were held back once the
 // interval has passed (at the next change, or from the once-a-second
 // housekeeping, so a burst followed by silence is still reported). Each
-// change is in the event list anyway (who changed what, issue 25).
+// change is in the event list anyway (who changed what).
 // Not thread-safe: WebApi holds its log mutex around it.
 #include <chrono>
 #include <cstddef>

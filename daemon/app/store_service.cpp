@@ -37,7 +37,7 @@ std::string localDay(std::int64_t unixMs) {
 StoreService::StoreService(const std::string& path, int checkpointIntervalS)
     : policy_(checkpointIntervalS), series_(defaultHistorySeries()) {
   // The database holds the web token: never readable by other users, with or
-  // without systemd's UMask (issue 26, item 9). umask is process-wide, but
+  // without systemd's UMask (docs/security.md). umask is process-wide, but
   // this runs before any other thread of the daemon exists; SQLite gives the
   // -wal and -shm files the database file's mode.
   const mode_t oldMask = ::umask(077);

@@ -71,7 +71,7 @@ class StoreService {
   std::vector<DaySummary> days(std::size_t n);
   std::vector<ChargeSummary> charges(std::size_t n);
   std::string token();
-  // Small named strings kept with the state (the Signal K token, issue 23).
+  // Small named strings kept with the state (the Signal K token).
   std::optional<std::string> loadValue(const std::string& key);
   void saveValue(const std::string& key, const std::string& value);
   // Small named documents (store_auth.h keeps the paired devices here).

@@ -1,5 +1,5 @@
 #pragma once
-// The values the daemon runs with, checked as ONE set (issue 26, item 1):
+// The values the daemon runs with, checked as ONE set (docs/security.md):
 // the file (with a scenario's [config]) plus the dashboard's stored
 // overrides go through the same cross-parameter checks as the file alone.
 //
@@ -26,7 +26,7 @@ struct DroppedOverride {
 struct OverrideResolution {
   Params params;                         // file + every override that fits, consistent
   std::vector<DroppedOverride> dropped;  // in the order they were dropped
-  std::vector<std::string> applied;      // names of the overrides in force (issue 21: their source)
+  std::vector<std::string> applied;      // names of the overrides in force (their source)
 };
 
 // Deterministic: first every row that is malformed on its own (unknown name,

@@ -115,7 +115,7 @@ web::CommandResult WebApi::command(const Command& cmd) {
   }
   // The control thread applies commands between ticks (every 2.5 ms at
   // 400 Hz) and posts the regulator's answer without waiting for anyone;
-  // this HTTP thread polls for it (issue 26, item 11).
+  // this HTTP thread polls for it (docs/security.md).
   const auto deadline = std::chrono::steady_clock::now() + ctx_.commandAckTimeout;
   int answer = -1;
   while ((answer = ctx_.handoffs->acks.find(id)) < 0 && std::chrono::steady_clock::now() < deadline)
@@ -176,7 +176,7 @@ void WebApi::flushPatchLog(PatchLogLimiter::Clock::time_point now) {
 
 std::vector<web::EventRecord> WebApi::events(const web::EventQuery& q) {
   std::vector<web::EventRecord> out;
-  // The store holds every run's events (issue 26, item 10); the in-memory
+  // The store holds every run's events (docs/security.md); the in-memory
   // ring only this run's, and serves when there is no database.
   if (ctx_.store && ctx_.store->status().persistent) {
     for (const auto& s : ctx_.store->queryEvents(q.limit, q.before)) out.push_back(fromStored(s));
@@ -207,7 +207,7 @@ web::HistoryResult WebApi::history(const web::HistoryQuery& q) {
       return r;
     }
   }
-  // Bounds before any float -> integer conversion (issue 26, item 6): a
+  // Bounds before any float -> integer conversion (docs/security.md): a
   // double outside int64's range makes that conversion undefined.
   constexpr double kMaxEpochS = 1e10;     // year 2286
   constexpr double kMaxPoints = 10000.0;  // as the web server allows
@@ -261,7 +261,7 @@ std::string utcText(std::int64_t unixMs) {
 
 web::VersionMap WebApi::versions() {
   web::VersionMap v{{"xregulatord", XR_VERSION_STRING}, {"mode", ctx_.sim ? "sim" : "board"}};
-  // The store's state on the System page (issue 26, item 7): whether changes
+  // The store's state on the System page (docs/security.md): whether changes
   // survive a restart at all.
   if (!ctx_.store) {
     v["store"] = "none: no state database, changes last for this run only";

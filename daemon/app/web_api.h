@@ -36,7 +36,7 @@ struct WebApiContext {
   std::atomic<bool>* fieldSafeFault = nullptr;               // outputs could not be driven
   // How long POST /api/commands waits for the regulator's answer.
   std::chrono::milliseconds commandAckTimeout{1000};
-  // The integrations' state (issue 23); empty when none runs.
+  // The integrations' state (docs/integrations.md); empty when none runs.
   std::function<std::vector<web::IntegrationState>()> integrations;
 };
 

@@ -1,6 +1,6 @@
 #pragma once
-// The battery and regulator state that must survive a restart (persistence
-// issue). One plain struct: the store saves and restores it whole, through
+// The battery and regulator state that must survive a restart
+// (docs/operations.md). One plain struct: the store saves and restores it whole, through
 // visitLedgerFields() so adding a field here is the only edit needed.
 namespace xr {
 

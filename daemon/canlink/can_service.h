@@ -1,5 +1,5 @@
 #pragma once
-// CanService: the daemon's CAN side (issue 22), off the RT control thread.
+// CanService: the daemon's CAN side (docs/integrations.md), off the RT control thread.
 // Each poll() drains the buses it was given and does what is due:
 //   BMS bus : BmsCanLink decodes the configured protocol and posts each
 //             change of the limits into Handoffs::bms, stamped with `now`
@@ -51,8 +51,6 @@ class CanService {
 
   // For tests and /api/system: what the BMS link has seen.
   const BmsCanLink* bmsLink() const { return bmsLink_.get(); }
-  const BusSlot* bmsSlot() const { return bms_.get(); }
-  const N2kNode* n2kNode() const { return n2kNode_.get(); }
 
  private:
   BusSlot::Fault faultEvents(int bus);

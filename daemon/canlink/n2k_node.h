@@ -1,5 +1,5 @@
 #pragma once
-// Our node on NMEA 2000 (issue 22), on the CAN service's thread:
+// Our node on NMEA 2000 (docs/integrations.md), on the CAN service's thread:
 //   start    ISO address claim (60928) at [can] n2k_preferred_address;
 //            conflicts and requests for claims through N2kAddressClaimer
 //   answers  a request (59904) for product information (126996)
@@ -39,7 +39,6 @@ class N2kNode {
   // Reads what is waiting, answers, and sends what is due at `now`.
   void poll(TimeNs now);
   std::uint8_t address() const { return claimer_.address(); }
-  std::uint64_t sendFailures() const { return sendFailures_; }
   std::uint64_t errorFrames() const { return errorFrames_; }
   std::uint64_t txFrames() const { return txFrames_; }
   std::uint64_t rxFrames() const { return rxFrames_; }

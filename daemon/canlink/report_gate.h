@@ -1,5 +1,5 @@
 #pragma once
-// ReportGate: the rate limit of the CAN side's reports (issue 22: bad input
+// ReportGate: the rate limit of the CAN side's reports (bad input
 // is "counted and ignored, with a rate-limited event"). Fed the running
 // total of something counted (bad frames, error frames), it lets the first
 // increase through at once and then at most one report per period, each

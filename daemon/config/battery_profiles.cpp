@@ -53,7 +53,7 @@ constexpr ProfileTable kTables[] = {
 constexpr double kChargedVoltage12 = 13.8;
 constexpr double kVoltageAlarmHigh12 = 15.0;
 constexpr double kVoltageAlarmLow12 = 11.0;
-// Issue 21: LiFePO4 with no battery temperature charges at most C/10; the
+// LiFePO4 with no battery temperature charges at most C/10; the
 // profile's BatteryTempRequired turns that on.
 
 constexpr double kTargetVoltageSetpoint12 = 13.6;

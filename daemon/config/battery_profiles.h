@@ -1,5 +1,5 @@
 #pragma once
-// Battery profiles (issue 21, docs/batteries.md): what a battery type sets.
+// Battery profiles (docs/batteries.md): what a battery type sets.
 //
 // A profile is a table of published 12 V values at 25 degC (plant-facts
 // §3.7-3.8, sources named beside each number in battery_profiles.cpp). A bank

@@ -1,5 +1,5 @@
 #pragma once
-// Reading a configuration-like file safely (issue 26, item 8): only a regular
+// Reading a configuration-like file safely (docs/security.md): only a regular
 // file is read, and only up to a size bound. A directory, a FIFO, a socket or
 // a character device such as /dev/zero is refused before any byte is read, so
 // a mistyped --config can neither look "OK" (a directory read as empty text)

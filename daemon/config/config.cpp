@@ -103,7 +103,7 @@ class Loader {
       return std::move(result_);
     }
     for (auto&& [k, node] : root) topLevel(k, node);
-    // The battery profile fills what the file did not set (issue 21).
+    // The battery profile fills what the file did not set (docs/batteries.md).
     {
       ProfileApplied pa = applyBatteryProfile(config_.params, config_.fileParamNames);
       config_.params = pa.params;
@@ -270,7 +270,7 @@ class Loader {
 
   // [web] is checked here, not first discovered by the web server at run
   // time: there a failure can only mean running without the dashboard
-  // (issue 26, items 3 and 9).
+  // (docs/security.md).
   void webSettings() {
     const auto& w = config_.settings.web;
     if (!isNumericListenAddress(w.listen))

@@ -1,5 +1,5 @@
 #pragma once
-// Loading and checking xregulator.toml (issue 2 "Configuration").
+// Loading and checking xregulator.toml (docs/configuration.md).
 //
 // Every error of a file is collected, never only the first: TOML syntax errors
 // name file:line:column, unknown keys name the closest known key, wrong types
@@ -18,11 +18,11 @@ namespace xr {
 inline constexpr int kExitConfig = 78;
 
 struct ConfigError {
-  std::string file;    // file name or the name given to loadConfigString
-  int line = 0;        // 1-based; 0 when unknown
-  int column = 0;      // 1-based; 0 when unknown
-  std::string key;     // dotted key ("voltage.BulkVoltage"); empty for syntax errors
-  std::string message; // the explanation, without the location
+  std::string file;     // file name or the name given to loadConfigString
+  int line = 0;         // 1-based; 0 when unknown
+  int column = 0;       // 1-based; 0 when unknown
+  std::string key;      // dotted key ("voltage.BulkVoltage"); empty for syntax errors
+  std::string message;  // the explanation, without the location
   // "file:line:column: key: message" (parts that are unknown are left out).
   std::string toString() const;
 };

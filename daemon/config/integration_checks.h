@@ -1,5 +1,5 @@
 #pragma once
-// Checks of [integrations.*] (issue 23) and [can] (issue 22) that the loader
+// Checks of [integrations.*] and [can] (docs/integrations.md) that the loader
 // makes: a value an integration could not use is a configuration error with
 // its key, not a surprise on the boat's network later.
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-// Where each effective parameter value comes from (issue 21): the catalogue
+// Where each effective parameter value comes from (docs/configuration.md): the catalogue
 // default, the battery profile, the configuration file (with a scenario's
 // [config]) or the dashboard (PATCH /api/params, stored overrides). Later
 // layers win: default < profile < file < dashboard.

@@ -54,7 +54,7 @@ struct HardwareSettings {
   int watchdog_timeout_s = 16;
   std::string w1_root = "/sys/bus/w1/devices";
   std::string onewire_sensor_id;    // "28-..." or empty for the first found
-  std::string battery_temp_sensor;  // battery DS18B20 "28-..."; empty = none (issue 21)
+  std::string battery_temp_sensor;  // battery DS18B20 "28-..."; empty = none (docs/batteries.md)
   std::string vedirect_port;        // e.g. /dev/ttyUSB0, empty = none
 };
 
@@ -83,7 +83,7 @@ struct LogSettings {
   std::string level = "info";  // trace, debug, info, warn, error, critical
 };
 
-// [integrations.*] (issue 23): the boat's network. Each is off by default
+// [integrations.*] (docs/integrations.md): the boat's network. Each is off by default
 // and runs on the integrations thread, never the control thread.
 struct SignalKSettings {
   bool enabled = false;
@@ -157,7 +157,7 @@ struct Settings {
 struct Config {
   Settings settings;
   Params params;  // defaults, then the battery profile, then the file
-  // Where the values came from (issue 21, --print-config, GET /api/params):
+  // Where the values came from (--print-config, GET /api/params):
   // the parameters written in the file, and those the profile filled.
   std::set<std::string, std::less<>> fileParamNames;
   std::set<std::string, std::less<>> profileParamNames;

@@ -1,5 +1,5 @@
 #pragma once
-// A check of a TOML text before it goes to toml++ (issue 26, item 4).
+// A check of a TOML text before it goes to toml++ (docs/security.md).
 // toml++ 3.3.0 (Debian 12) reaches a TOML_UNREACHABLE (undefined behaviour)
 // in is_non_ascii_horizontal_whitespace() whenever it asks whether a
 // non-ASCII character is whitespace and the code point falls in a block its

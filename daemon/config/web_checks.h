@@ -1,7 +1,7 @@
 #pragma once
 // Checks of [web] values that the loader makes, so that a value the web
 // server could not use is a configuration error with its key and line, not a
-// failure when the daemon is already running (issue 26, items 3 and 9).
+// failure when the daemon is already running (docs/security.md).
 #include <cstddef>
 #include <string>
 #include <string_view>

@@ -38,7 +38,6 @@ class ChargingStageMachine {
   bool resumeOrBulk(TimeNs now, TimeNs away, const Params& p);
 
   ChargeStage stage() const { return stage_; }
-  ChargeStage previousStage() const { return previous_; }
   bool inBulkStage() const { return stage_ == ChargeStage::BULK; }
   bool inAbsorptionStage() const { return stage_ == ChargeStage::ABSORPTION; }
   bool inFloatStage() const { return stage_ == ChargeStage::FLOAT; }

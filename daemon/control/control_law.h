@@ -44,7 +44,7 @@ struct ControlSensors {
   TimeNs tempStamp = 0;
   double SOC_percent = kNoValue;
   bool socKnown = true;  // false while the battery monitor's SoC is only a guess (no SOC gating then)
-  // Battery temperature current cap (issue 21: cold ramp, no temperature).
+  // Battery temperature current cap (cold ramp, no temperature).
   double batteryChargeCapA = 1e300;
 };
 
@@ -133,14 +133,11 @@ class ControlLaw {
   bool sysIDRunning() const { return sysId_.sysIDRunning(); }
   const ChargingStageMachine& stages() const { return stages_; }
   const BmsLimiter& bms() const { return bms_; }
-  bool bmsCapActive() const { return bmsCapActive_; }
   const Pid& currentPID() const { return currentPID_; }
-  const VoltageCvLoop& cvLoop() const { return cv_; }
   const ThermalDerate& thermal() const { return thermal_; }
   const TuningModeRunner& tuning() const { return tuning_; }
   const CvTuningModeRunner& cvTuning() const { return cvTuning_; }
   const SystemId& systemId() const { return sysId_; }
-  double controlDtSec() const { return controlDt_; }
   bool bulkVoltageLimitActive() const { return bulkVoltageLimitActive_; }
   GovMode govMode() const { return govMode_; }
   double dutyRequest() const { return dutyRequest_; }

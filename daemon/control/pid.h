@@ -37,7 +37,6 @@ class Pid {
     output = clampOut(output);
     outputSum_ = clampOut(outputSum_);
   }
-  void SetControllerDirection(Direction dir) { direction_ = dir; }
   void SetTrackingGain(double perSecond) { trackingGain_ = perSecond; }
   void SetMode(Mode mode);  // bumpless on MANUAL -> AUTOMATIC
   Mode GetMode() const { return mode_; }
@@ -85,7 +84,6 @@ class Pid {
   double GetPterm() const { return pTerm_; }
   double GetIterm() const { return outputSum_; }
   double GetDterm() const { return dTerm_; }
-  double GetKp() const { return kp_; }
 
   // The library's three bound variables, held here instead of by pointer.
   double input = 0.0;

@@ -42,7 +42,7 @@ struct Regulator::State {
   ControlLaw law;
   ProtectionSupervisor prot;
   BatteryMonitor bat;
-  BatteryTemperatureGuard batTemp;  // issue 21
+  BatteryTemperatureGuard batTemp;  // docs/batteries.md "Temperature rules"
   Params compensated;               // p with temperature-compensated targets (when compensating)
   Outputs out;
 
@@ -182,7 +182,7 @@ const Outputs& Regulator::step(const Inputs& in) {
   // tick) quiets the tach: the RPM gate must know it is not a stopped engine.
   s.prot.setFieldResting(s.law.fieldResting());
   s.prot.updateDetectors(in, MeasuredAmps, ev);
-  // Battery temperature (issue 21): cold/hot orders, current cap, and the
+  // Battery temperature (docs/batteries.md): cold/hot orders, current cap, and the
   // compensated targets the stage machine and the voltage loop see.
   const BatteryTempDecision& bt = s.batTemp.update(in, p, ev);
   cs.batteryChargeCapA = bt.currentCapA;

@@ -44,7 +44,7 @@ struct Telemetry {
   double bms_ccl_a = kBmsNoValue;
   double bms_soc_pct = kBmsNoValue;
   BmsState bms_state = BmsState::OFF;
-  double battery_temp_c = kNoValue;  // issue 21; NaN while no sample was ever read
+  double battery_temp_c = kNoValue;  // NaN while no sample was ever read
   bool ignition_on = true;           // the ignition input this tick (pairing by presence, docs/security.md)
 
   ControlTelemetry control;

@@ -265,7 +265,7 @@ std::string describe(const Event& e) {
     case EventCode::CommandApplied:
     case EventCode::CommandRejected:
     case EventCode::TuningCommitted: {
-      // The argument travels in a (duty or SoC %); the event list shows it (issue 25 item 11).
+      // The argument travels in a (duty or SoC %); the event list shows it (docs/dashboard.md).
       const auto type = static_cast<CommandType>(e.detail);
       const std::string_view arg = commandArgument(type);
       char args[48] = "";

@@ -47,7 +47,7 @@ enum class EventCode {
                        // detail 0: charging uncompensated); once per episode (docs/batteries.md "Temperature
                        // rules")
   BatteryTempBack,     // a fresh battery temperature again (a = degC)
-  // The CAN side (issue 22), posted by the xr-can thread through SideEvents,
+  // The CAN side (docs/integrations.md), posted by the xr-can thread through SideEvents,
   // each at most once per 30 s. detail = the bus: 0 BMS, 1 NMEA 2000.
   BmsBadFrames,    // bad BMS frames dropped (a = how many since the last, b = last id, detail = BmsReject)
   CanBusDown,      // a bus cannot be opened (a = failed attempts, b = retry in s)

@@ -20,7 +20,7 @@ struct Reading {
   bool fresh = false;
 };
 
-// Where Inputs::batteryTempC comes from (issue 21). One input, several
+// Where Inputs::batteryTempC comes from (docs/batteries.md). One input, several
 // sources: the battery DS18B20 on the 1-Wire bus today; a BMS over CAN
 // (0x356 temperature) and a Victron device fill the same Reading later and
 // name themselves here. `none`: no source is configured.

@@ -55,7 +55,7 @@ enum class Reason {
   REASON_LIMP_HOME,
   REASON_SYSTEM_ID,
   REASON_BMS_STALE,      // ours: the BMS went silent; charge held under BmsFallbackCapA
-  REASON_BATTERY_COLD,   // battery below ChargeMinTempC: no charging (issue 21)
+  REASON_BATTERY_COLD,   // battery below ChargeMinTempC: no charging (docs/batteries.md)
   REASON_BATTERY_HOT,    // battery above ChargeMaxTempC: no charging until 3 degC below
   REASON_TEMP_SOAK,      // ours: engine restarted above TemperatureLimitF; field held off until it cools
   REASON_BANK_MISMATCH,  // ours: both voltage sensors read another bank size than BulkVoltage's

@@ -1,5 +1,5 @@
 #pragma once
-// Exponential reconnect backoff (issue 23): 1 s, 2 s, 4 s ... up to a cap, back
+// Exponential reconnect backoff (docs/integrations.md): 1 s, 2 s, 4 s ... up to a cap, back
 // to the start after a good connection. Pure: the caller owns the timer.
 #include <algorithm>
 #include <chrono>

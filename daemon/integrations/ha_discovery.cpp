@@ -18,7 +18,7 @@ struct SensorDef {
   const char* icon;         // "" = the device class's
 };
 
-// The list: battery V, battery A, alternator A, alternator degC, SoC,
+// What an owner watches (docs/integrations.md): battery V, battery A, alternator A, alternator degC, SoC,
 // field %, power W, stage, mode, charged kWh.
 constexpr SensorDef kSensors[] = {
     {"battery_voltage", "Battery voltage", "V", "voltage", "measurement", ""},

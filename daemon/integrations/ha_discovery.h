@@ -1,5 +1,5 @@
 #pragma once
-// Home Assistant MQTT discovery documents and the state document (issue 23).
+// Home Assistant MQTT discovery documents and the state document (docs/integrations.md).
 // Pure: topics and JSON text from the settings and one sample, so the tests
 // can check every field Home Assistant requires without a broker.
 //

@@ -1,5 +1,5 @@
 #pragma once
-// Home Assistant through MQTT discovery (issue 23): announces the device
+// Home Assistant through MQTT discovery (docs/integrations.md): announces the device
 // (retained configs), publishes the state document at state_rate_hz, keeps
 // availability through the broker's last will, re-announces when Home
 // Assistant says "online" on <prefix>/status, and takes off/auto and limp
@@ -35,7 +35,6 @@ class HomeAssistantBridge {
   void start();
   void stop();
   IntegrationStatus status() const { return health_.status(); }
-  std::uint64_t announcements() const { return announcements_; }
 
  private:
   void announce();

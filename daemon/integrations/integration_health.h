@@ -1,5 +1,5 @@
 #pragma once
-// The state of one integration (issue 23): connected or not, the last error,
+// The state of one integration (docs/integrations.md): connected or not, the last error,
 // what it sent and what it refused. Written by the integrations thread, read
 // by the web threads for /api/system and /metrics; the control thread never
 // touches it.

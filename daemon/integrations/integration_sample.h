@@ -17,7 +17,7 @@ struct IntegrationSample {
   bool valid = false;  // false before the first tick
   double battery_v = 0, battery_a = 0, alt_a = 0;
   double alt_temp_c = 0;
-  double battery_temp_c = kNoValue;  // not measured yet (the battery sensor comes with issue 22)
+  double battery_temp_c = kNoValue;  // not measured yet (NaN)
   double rpm = 0;
   double field_pct = 0;  // duty
   bool field_on = false;

@@ -1,5 +1,5 @@
 #pragma once
-// The integrations' own thread (issue 23): one Asio io_context, off the
+// The integrations' own thread (docs/integrations.md): one Asio io_context, off the
 // control thread, SCHED_OTHER. Each enabled integration runs on it and reads
 // the telemetry seqlock; nothing here can delay a control tick.
 #include <boost/asio/io_context.hpp>

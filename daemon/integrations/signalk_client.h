@@ -1,5 +1,5 @@
 #pragma once
-// Signal K delta client (issue 23): a WebSocket client (Boost.Beast) on the
+// Signal K delta client (docs/integrations.md): a WebSocket client (Boost.Beast) on the
 // integrations' io_context that pushes deltas to a server's
 // /signalk/v1/stream?subscribe=none.
 //

@@ -1,5 +1,5 @@
 #pragma once
-// Signal K deltas (issue 23; Signal K specification 1.7, "Delta format" and
+// Signal K deltas (docs/integrations.md; Signal K specification 1.7, "Delta format" and
 // the electrical.alternators / electrical.batteries schema). Pure: the paths,
 // SI units and the JSON text, from one sample, so tests can check them
 // without a server.

@@ -1,5 +1,5 @@
 #pragma once
-// The Victron GX's battery limits into the control law (issue 23). The GX
+// The Victron GX's battery limits into the control law (docs/integrations.md). The GX
 // bridge hands its newest VictronLimits to this hop on the integrations
 // thread; the hop turns them into the same BmsLimits a BMS on CAN posts
 // (core/bms_limits.h) and stores them in Handoffs::bms, which the control

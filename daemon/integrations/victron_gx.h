@@ -1,5 +1,5 @@
 #pragma once
-// Victron GX over MQTT (issue 23): reads a battery's charge limits and state
+// Victron GX over MQTT (docs/integrations.md): reads a battery's charge limits and state
 // from Venus OS's local broker, keeps the subscription alive, refuses bad
 // values, and hands the newest limits (with their freshness) to the
 // BMS-limits input through a sink.

@@ -1,5 +1,5 @@
 #pragma once
-// Venus OS (Victron GX) MQTT topics for a battery's charge limits (issue 23).
+// Venus OS (Victron GX) MQTT topics for a battery's charge limits (docs/integrations.md).
 // Venus publishes each D-Bus value as N/<portalId>/<service>/<instance>/<path>
 // with a JSON payload {"value": ...} (null when the value is invalid), and
 // stops publishing unless R/<portalId>/keepalive is written at least every

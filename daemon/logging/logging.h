@@ -1,5 +1,5 @@
 #pragma once
-// Logging sink (issue 2 "Logging"): journald under systemd (JOURNAL_STREAM
+// Logging sink (docs/configuration.md): journald under systemd (JOURNAL_STREAM
 // set) with real priorities, readable console lines otherwise. Events get one
 // structured journal entry each with XREG_EVENT=, XREG_REASON=, XREG_MODE=,
 // so `journalctl -u xregulatord XREG_REASON=REASON_INA_OVERVOLTAGE` works.

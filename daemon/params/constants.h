@@ -93,7 +93,7 @@ inline constexpr double PEUKERT_FACTOR_MIN = 0.5;
 inline constexpr double PEUKERT_FACTOR_MAX = 2.0;
 inline constexpr std::int64_t CRITICAL_ZONE_MS = 5000;  // field-off edge + 5 s checkpoint
 
-// Ours, issue 21 (docs/batteries.md): battery temperature. A sample older than
+// Ours (docs/batteries.md): battery temperature. A sample older than
 // this is stale (the DS18B20 posts every second, a BMS about as often).
 inline constexpr std::int64_t BATTERY_TEMP_STALE_MS = 20000;
 // After start, a configured source has this long to post its first sample;
@@ -102,7 +102,7 @@ inline constexpr std::int64_t BATTERY_TEMP_FIRST_SAMPLE_MS = 5000;
 // DS18B20 measuring range (datasheet-facts §3); outside it a value is invalid.
 inline constexpr double BATTERY_TEMP_VALID_MIN_C = -55.0;
 inline constexpr double BATTERY_TEMP_VALID_MAX_C = 125.0;
-// Hot stop resumes this far below ChargeMaxTempC (issue 21); the cold lockout
+// Hot stop resumes this far below ChargeMaxTempC (docs/batteries.md); the cold lockout
 // releases this far above ChargeMinTempC (the current cap ramps from there).
 inline constexpr double BATTERY_HOT_HYSTERESIS_C = 3.0;
 inline constexpr double BATTERY_COLD_HYSTERESIS_C = 0.5;

@@ -1,5 +1,5 @@
 #pragma once
-// Values derived from parameters, computed in one place (foundation issue).
+// Values derived from parameters, computed in one place.
 #include "params/constants.h"
 #include "params/params.h"
 

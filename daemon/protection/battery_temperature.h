@@ -1,5 +1,5 @@
 #pragma once
-// BatteryTemperatureGuard (issue 21, docs/batteries.md "Temperature rules"):
+// BatteryTemperatureGuard (docs/batteries.md "Temperature rules"):
 // what the battery temperature allows this tick.
 //
 //   - below ChargeMinTempC: REASON_BATTERY_COLD, no charging; released

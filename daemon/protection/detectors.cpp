@@ -184,7 +184,7 @@ void ProtectionSupervisor::updateTemperature(const Inputs& in, EventBatch& ev) {
   const bool usable = tr.stamp != 0 && !stale && inRange && !p_.IgnoreTemperature;
   const double t = tr.value;
 
-  // Ours (issue 27, docs/deviations.md "Heat soak after an engine stop"):
+  // Ours (docs/deviations.md "Heat soak after an engine stop"):
   // with the engine stopped the field is off and the fan still, so heat
   // stored in the windings lifts the case; the field caused none of that
   // rise and can cool none of it, so T1/T2 do not count it. An engine that

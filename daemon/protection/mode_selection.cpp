@@ -11,7 +11,7 @@ Reason hardDisableReason(const TickSnapshot& s) {
   if (!s.OnOff) return Reason::REASON_ONOFF_DISABLED;
   if (!s.bmsChargeEnabled) return Reason::REASON_BMS_DISABLED;
   // The battery's own temperature limits, as a BMS would enforce them
-  // (issue 21): orders about the battery, obeyed in every mode.
+  // (docs/batteries.md): orders about the battery, obeyed in every mode.
   if (s.batteryCold) return Reason::REASON_BATTERY_COLD;
   if (s.batteryHot) return Reason::REASON_BATTERY_HOT;
   return Reason::NONE;

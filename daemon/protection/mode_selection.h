@@ -10,7 +10,7 @@
 //      explicit "do not charge" inputs (ignition off, OnOff = 0, BMS) still
 //      give MODE_DISABLED_RAMP: they are not protections but orders (see
 //      docs/protections.md for why). The battery temperature limits
-//      (REASON_BATTERY_COLD / _HOT, issue 21) are such orders too.
+//      (REASON_BATTERY_COLD / _HOT) are such orders too.
 //   1. Hard overcurrent, then T3 -> MODE_CRITICAL_RAMP (immediate cut).
 //      AUTO and MANUAL.
 //   1b. RPM gate -> MODE_DISABLED_RAMP, REASON_RPM_LOW (immediate cut, no

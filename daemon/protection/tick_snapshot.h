@@ -82,7 +82,7 @@ struct TickSnapshot {
   bool bmsChargeEnabled = true;    // Inputs::bmsChargeEnabled
   bool weatherModeActive = false;  // weatherModeEnabled && currentWeatherMode
   bool idleStage = false;          // ChargeStage::IDLE (UseFloat = 0 after absorption)
-  bool batteryCold = false;        // BatteryTemperatureGuard: below ChargeMinTempC (issue 21)
+  bool batteryCold = false;        // BatteryTemperatureGuard: below ChargeMinTempC (docs/batteries.md)
   bool batteryHot = false;         // above ChargeMaxTempC
 
   // MODE_LOCKOUT_RAMP also covers an auto-zero measurement (field must be off).

@@ -28,7 +28,7 @@ struct CycleConfig {
   // and the final state are never thinned.
   int publishEveryTicks = 1;
   int timeEveryTicks = 1;
-  // RpmSource = n2k (issue 22): the RPM input is the engine speed the CAN
+  // RpmSource = n2k (docs/integrations.md): the RPM input is the engine speed the CAN
   // service posts (Handoffs::engineRpm), not the tach on ADS1115 CH2. None
   // for kEngineRpmStaleS (a silent ECU) reads 0 rpm, as a lost tach does.
   bool rpmFromN2k = false;

@@ -48,7 +48,7 @@ LoopExit ControlLoop::run() {
     // on the wall clock when there is one (in a paced simulation the virtual
     // clock does not move while the tick runs). Skip the missed deadlines
     // rather than bursting to catch up.
-    // Whose overrun is it (issue 26, soak: "0 overruns attributable to the
+    // Whose overrun is it (docs/performance.md, the soak: "0 overruns attributable to the
     // daemon")? With a CPU clock: the daemon's when the tick itself used a
     // period of CPU time; a tick preempted inside (another process, a
     // hypervisor stall) or a late wake-up is the machine's. Without one:

@@ -1,5 +1,5 @@
 #pragma once
-// Absolute-deadline control loop around ControlCycle (issue 7 "Runtime"):
+// Absolute-deadline control loop around ControlCycle (docs/architecture.md):
 // deadlines start + k·period slept to with the Clock seam
 // (clock_nanosleep(TIMER_ABSTIME) on the board, virtual time in simulation),
 // period error measured on the wall clock, overruns detected and skipped.

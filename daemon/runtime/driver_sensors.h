@@ -6,7 +6,7 @@
 // the regulator's INA requests (fast mode while the field is on, BOVL =
 // VoltageHardwareLimit, reprogrammed whenever it changes).
 //
-// ADS1115 pacing (issue 7): with ALERT/RDY wired (`readyEdges`), the loop
+// ADS1115 pacing (docs/architecture.md): with ALERT/RDY wired (`readyEdges`), the loop
 // hands every conversion-ready edge to onReadyEdge() and every conversion is
 // used (~860 samples/s, CH1 ~430/s with the default sequence). If no edge
 // has arrived for kEdgeSilence while the chip answers, the chip is restarted

@@ -16,7 +16,7 @@ inline rt::TemperatureHandoff temperatureHandoff(const Ds18b20Sample& s) noexcep
   return th;
 }
 
-// The battery DS18B20 (issue 21): degC, source ds18b20 even before its first
+// The battery DS18B20 (docs/batteries.md): degC, source ds18b20 even before its first
 // valid reading, so the core knows a sensor is expected.
 inline rt::BatteryTempHandoff batteryTempHandoff(const Ds18b20Sample& s) noexcept {
   rt::BatteryTempHandoff bh;

@@ -1,5 +1,5 @@
 #pragma once
-// Safe state on the fatal exit paths (issue 7 "Runtime"): std::terminate and
+// Safe state on the fatal exit paths (docs/architecture.md): std::terminate and
 // the fatal signals SIGSEGV, SIGABRT, SIGBUS, SIGFPE, SIGILL, SIGTRAP, SIGSYS
 // (runtime/signals.h) run a fixed list
 // of async-signal-safe actions registered at start — pwrite() of prepared

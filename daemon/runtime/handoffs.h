@@ -62,7 +62,7 @@ struct TemperatureHandoff {
   TimeNs stamp = 0;      // when the valid sample was taken (0 = never)
   TimeNs heartbeat = 0;  // last completed cycle of the thread (T4), valid or not
 };
-// The battery temperature (issue 21): from the battery DS18B20 today; a BMS or
+// The battery temperature (docs/batteries.md): from the battery DS18B20 today; a BMS or
 // a Victron device posts here the same way, naming itself in `source`.
 struct BatteryTempHandoff {
   double tempC = kNoValue;
@@ -70,12 +70,12 @@ struct BatteryTempHandoff {
   BatteryTempSource source = BatteryTempSource::none;
 };
 // Engine speed from NMEA 2000 (127488) or J1939 (61444), for RpmSource = n2k
-// (issue 22): posted by the CAN service on each message.
+// (docs/integrations.md): posted by the CAN service on each message.
 struct EngineRpmHandoff {
   double rpm = kNoValue;
   TimeNs stamp = 0;  // when it arrived (0 = never)
 };
-// What the CAN service sees on its buses (issue 22), for /api/system: one
+// What the CAN service sees on its buses (docs/integrations.md), for /api/system: one
 // writer (the service's poll), any readers. Times on the control loop's
 // clock; 0 = never.
 struct CanStatusHandoff {
@@ -104,7 +104,7 @@ struct VictronHandoff {
 };
 
 // Whether the regulator applied or refused a command, per Command::ackId
-// (issue 26, item 11). The control thread posts with one release store into
+// (docs/security.md). The control thread posts with one release store into
 // a slot; any number of readers poll their own id. Never blocks the control
 // thread. A slot is reused after kSlots later acknowledged commands, so a
 // reader checks the id in it, and a late reader sees "unknown" not a wrong

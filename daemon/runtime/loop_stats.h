@@ -1,5 +1,5 @@
 #pragma once
-// Control-loop statistics (issue 7 "Runtime"): period error histogram,
+// Control-loop statistics (docs/architecture.md): period error histogram,
 // compute and I/O time p50/p99/max, overruns, per-channel ADS sample rates.
 // LoopStats lives on the RT thread (fixed arrays, no allocation); its plain
 // LoopStatsSummary is published with every telemetry snapshot and logged

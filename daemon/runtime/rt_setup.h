@@ -1,5 +1,5 @@
 #pragma once
-// Real-time setup of the control thread (issue 7 "Runtime"): SCHED_FIFO at
+// Real-time setup of the control thread (docs/architecture.md): SCHED_FIFO at
 // the configured priority, mlockall(MCL_CURRENT|MCL_FUTURE), a pre-faulted
 // stack, CPU affinity, the thread name. Development runs as a normal user:
 // whatever is not permitted is reported (the caller logs a warning) and the
@@ -13,11 +13,11 @@ namespace xr::rt {
 
 struct RtSetupReport {
   bool named = false;
-  bool fifo = false;        // SCHED_FIFO granted
-  int priority = 0;         // the priority actually in effect
+  bool fifo = false;  // SCHED_FIFO granted
+  int priority = 0;   // the priority actually in effect
   bool memoryLocked = false;
   bool stackPrefaulted = false;
-  bool pinned = false;      // CPU affinity applied (false also when cpu = -1)
+  bool pinned = false;                // CPU affinity applied (false also when cpu = -1)
   std::vector<std::string> warnings;  // one line per thing that was refused
   std::string summary() const;        // "SCHED_FIFO 80, memory locked, cpu 3" / "normal scheduling ..."
 };
@@ -34,8 +34,8 @@ void prefaultStack(std::size_t bytes) noexcept;
 
 struct KernelRtInfo {
   bool preemptRt = false;
-  std::string how;     // "/sys/kernel/realtime = 1" or "uname: ... PREEMPT_RT ..." or "not detected"
-  std::string release; // uname -r
+  std::string how;      // "/sys/kernel/realtime = 1" or "uname: ... PREEMPT_RT ..." or "not detected"
+  std::string release;  // uname -r
 };
 // PREEMPT_RT detection: /sys/kernel/realtime, else the uname version string.
 // sysRealtimePath is a seam for tests.

@@ -1,6 +1,6 @@
 #pragma once
 // SideEvents: events from the daemon's non-RT threads (the xr-can thread's
-// bad BMS frames and bus faults, issue 22) on their way to the same sinks
+// bad BMS frames and bus faults) on their way to the same sinks
 // as the control thread's (journal, /api/events and the dashboard, the
 // store). The EventRing is single-producer and that producer is the control
 // thread, so they cannot go there. The control thread never touches this

@@ -1,5 +1,5 @@
 #pragma once
-// What xregulatord does with every signal (issue 26, item 2). No signal may
+// What xregulatord does with every signal (docs/security.md). No signal may
 // end the process with the field enable left as it was:
 //   Stop           SIGTERM, SIGINT: the controlled ramp, exit 0.
 //   UnexpectedStop every other signal whose default action ends the process

@@ -1,5 +1,5 @@
 #pragma once
-// The CAN side of the one sim rig (issue 22): the simulated BMS bus with
+// The CAN side of the one sim rig (docs/integrations.md): the simulated BMS bus with
 // the SimBms on it, the simulated NMEA 2000 bus (when [can] n2k_interface
 // is set: --sim puts it on this bus instead), and the daemon's CanService
 // on the other end of both. With [engine] ecu = true a simulated engine ECU

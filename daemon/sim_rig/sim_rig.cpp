@@ -20,7 +20,7 @@ std::filesystem::path makeW1Dir() {
   return dir;
 }
 
-// The battery DS18B20 of the simulated board (issue 21): the configured id,
+// The battery DS18B20 of the simulated board (docs/batteries.md): the configured id,
 // else a fixed one when the scenario puts a sensor on the bank ([battery]
 // temp_sensor = true). It sorts after the alternator's simulated sensor.
 std::string batteryW1IdOf(const Scenario& s, const Settings& settings) {

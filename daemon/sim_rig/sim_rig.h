@@ -114,7 +114,7 @@ class SimRig final : public rt::TruthSource {
   DriverSensors sensors_;
   SimReadyEdges readyEdges_;
   std::unique_ptr<Ds18b20Reader> ds18b20_;
-  std::unique_ptr<Ds18b20Reader> batteryDs18b20_;  // [hardware] battery_temp_sensor (issue 21)
+  std::unique_ptr<Ds18b20Reader> batteryDs18b20_;  // [hardware] battery_temp_sensor (docs/batteries.md)
   ScenarioPlayer player_;
   rt::Handoffs* handoffs_ = nullptr;
   std::function<void(int, const std::string&)> problem_;

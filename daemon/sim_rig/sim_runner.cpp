@@ -44,7 +44,7 @@ struct SimRunner::Impl {
   static Params initialParams(const SimRunOptions& o) {
     Params p = o.baseParams.value_or(Params{});
     // The battery profile fills what neither the base set (its values that
-    // differ from the defaults) nor the scenario's [config] set (issue 21).
+    // differ from the defaults) nor the scenario's [config] set (docs/batteries.md).
     NameSet pinned = namesDifferingFromDefaults(p);
     applyOverrides(p, o.scenario.config, o.scenario.source);
     for (const auto& c : o.scenario.config) pinned.insert(c.name);

@@ -1,5 +1,5 @@
 #pragma once
-// Verified backup copies of the state database (issue 26, item 4): the user's
+// Verified backup copies of the state database (docs/security.md): the user's
 // settings, lifetime energy, cycles and web token must survive a damaged file
 // or a downgrade. Copies are made with SQLite's online backup API (a
 // consistent snapshot even while the source is in WAL mode), checked with

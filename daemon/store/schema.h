@@ -32,7 +32,7 @@ int migrate(sql::Db& db);
 // Builds exactly version `v` (tests: a database "written by an older release").
 int createAtVersion(sql::Db& db, int v);
 // Whether every table and column this release reads exists in db (a newer
-// release's database, issue 26 item 4: read what we can). Empty when all
+// release's database: read what we can). Empty when all
 // do, else the first that does not.
 std::string missingForReading(sql::Db& db);
 

@@ -47,7 +47,7 @@ int Db::setError(int rc, std::string_view what) {
   lastError_ = std::string(what) + ": " + sqlite3_errstr(rc);
   // The connection's message only when it belongs to this error: an error we
   // raise ourselves (a newer schema) left "not an error" there, which read as
-  // "datatype mismatch (not an error)" in the journal (issue 26, item 4).
+  // "datatype mismatch (not an error)" in the journal (docs/security.md).
   if (db_ && rc != SQLITE_OK && (sqlite3_extended_errcode(db_) & 0xff) == (rc & 0xff)) {
     const char* m = sqlite3_errmsg(db_);
     if (m && std::string_view(m) != sqlite3_errstr(rc)) lastError_ += std::string(" (") + m + ")";

@@ -85,7 +85,7 @@ int Store::configure() {
   if (rc != SQLITE_OK) return rc;
   if (!inMemory_) {
     // Before a migration, a verified copy of the old schema: a downgrade to
-    // the release that wrote it finds its data there (issue 26, item 4).
+    // the release that wrote it finds its data there (docs/security.md).
     const int v = static_cast<int>(db_.queryInt("PRAGMA user_version", &rc));
     if (!sql::isOk(rc)) return rc;
     if (v >= 1 && v < store::kSchemaVersion) {

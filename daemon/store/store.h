@@ -1,5 +1,5 @@
 #pragma once
-// Store: the SQLite persistence of xregulatord (persistence issue). One
+// Store: the SQLite persistence of xregulatord. One
 // database file: battery ledger + regulator state, parameter overrides,
 // events, chart history, the web token.
 //
@@ -9,7 +9,7 @@
 //
 // Failure policy: nothing throws and nothing aborts, and the user's data
 // (settings, lifetime energy, cycles, the web token) outlives a damaged file
-// (issue 26, item 4). A verified copy `<path>.bak` is written at open, once a
+// (docs/security.md). A verified copy `<path>.bak` is written at open, once a
 // day and, as `<path>.bak-v<N>`, before a migration from schema N. A corrupt
 // or unreadable file is moved aside (`<path>.corrupt-<UTC time>`) and the
 // copy restored; without a usable copy a fresh database is started. A file of

@@ -1,5 +1,5 @@
 // Store::open: every way a state database can be found at start, and what
-// becomes of the user's data in each (issue 26, item 4; docs/operations.md,
+// becomes of the user's data in each (docs/operations.md,
 // "The state database").
 //
 //   healthy, our schema or older  migrate (after a .bak-v<N> copy), back up, run

@@ -1,5 +1,5 @@
 #pragma once
-// ADS1115 driver (issue 7, Drivers): continuous conversion at 860 SPS over a
+// ADS1115 driver (docs/install.md, wiring): continuous conversion at 860 SPS over a
 // channel sequence that favours CH1 (default {1,0,1,2,1,3}, configurable).
 // Each channel sample carries its value (scaled by drivers/frontend), the
 // ADC volts, a timestamp and a freshness flag.

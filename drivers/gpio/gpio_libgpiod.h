@@ -1,5 +1,5 @@
 #pragma once
-// GpioLibgpiod (issue 7, Drivers): libgpiod 1.6 lines with consumer
+// GpioLibgpiod (docs/install.md, wiring): libgpiod 1.6 lines with consumer
 // "xregulatord": field enable (GPIO4) as an output requested with initial
 // LOW (field off), buzzer (GPIO21) output initially LOW, BMS and ignition
 // inputs with configurable polarity. The DigitalOutput / DigitalInput seams

@@ -1,5 +1,5 @@
 #pragma once
-// LinuxI2cBus: the I2cBus seam on /dev/i2c-N (issue 7, Drivers). One I2C_RDWR
+// LinuxI2cBus: the I2cBus seam on /dev/i2c-N (docs/install.md, wiring). One I2C_RDWR
 // ioctl per transfer() (a combined transaction with repeated starts), a
 // bounded number of retries for transient errors, errno returned as a value.
 // RT-safe: transfer() does not allocate, throw or lock.

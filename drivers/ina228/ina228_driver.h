@@ -1,5 +1,5 @@
 #pragma once
-// INA228 driver (issue 7, Drivers): detect by MANUFACTURER_ID/DEVICE_ID,
+// INA228 driver (docs/install.md, wiring): detect by MANUFACTURER_ID/DEVICE_ID,
 // configure CONFIG/ADC_CONFIG/SHUNT_CAL/DIAG_ALRT/BOVL, fast conversions while
 // the field is on and slow averaging while it is off (`inaFastModeActive`),
 // read VBUS/CURRENT/DIETEMP/DIAG_ALRT, count failed reads and re-detect after
@@ -68,7 +68,6 @@ class Ina228Driver {
   // BOVL = VoltageHardwareLimit (BulkVoltage + 0.3 V); call at start and on every
   // BulkVoltage change. Remembered and re-programmed after a re-detection.
   int setBusOvervoltageLimit(double volts) noexcept;
-  double busOvervoltageLimit() const noexcept { return bovlVolts_; }
 
   // Once per control tick. Reads DIAG_ALRT every call and VBUS/CURRENT when a
   // new averaged result is due (conversion cycle of the current mode); once a

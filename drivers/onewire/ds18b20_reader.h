@@ -1,5 +1,5 @@
 #pragma once
-// DS18B20 reader (issue 7, Drivers): a non-RT thread reads
+// DS18B20 reader (docs/install.md, wiring): a non-RT thread reads
 // <root>/<id>/w1_slave at 1 Hz and publishes {tempF, stamp} plus a
 // heartbeat through a LatestValue (lock-free) for the control thread:
 // Inputs::AlternatorTemperatureF (T5 needs the stamps) and
@@ -36,7 +36,7 @@ class Ds18b20Reader {
   Ds18b20Reader& operator=(const Ds18b20Reader&) = delete;
 
   // With an empty sensorId, "the first one found" skips this id (the battery
-  // sensor on the same bus, issue 21).
+  // sensor on the same bus).
   void excludeId(std::string id) { exclude_ = std::move(id); }
 
   void start();

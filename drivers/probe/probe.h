@@ -1,5 +1,5 @@
 #pragma once
-// `xregulatord --probe` (issue 7): checks the I2C bus for both chips (IDs),
+// `xregulatord --probe` (docs/architecture.md): checks the I2C bus for both chips (IDs),
 // the pwmchip, the gpio lines, the watchdog, the 1-Wire sensors and the
 // serial port, and prints a report that tells a new user exactly what to fix.
 // Returns 0 when everything required is present, 1 otherwise. The runtime

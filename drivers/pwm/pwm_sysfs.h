@@ -1,5 +1,5 @@
 #pragma once
-// PwmSysfs (issue 7, Drivers): the PwmOutput seam on
+// PwmSysfs (docs/install.md, wiring): the PwmOutput seam on
 // <root>/pwmchipN/pwmM (root "/sys/class/pwm" on the board; tests use a fake
 // tree). open(): export if needed, disable, set `period` from the frequency,
 // duty 0, `polarity`; keeps duty_cycle and enable open and writes them with
@@ -39,7 +39,6 @@ class PwmSysfs final : public PwmOutput {
   bool setDutyPercent(double pct) noexcept override;
   bool setEnabled(bool on) noexcept override;
   long periodNs() const noexcept { return periodNs_; }
-  long lastDutyNs() const noexcept { return lastDutyNs_; }
 
   PwmSafeStateWriter safeStateWriter() const noexcept { return {dutyFd_, enableFd_, truncate_}; }
   void close() noexcept;

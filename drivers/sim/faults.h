@@ -1,5 +1,5 @@
 #pragma once
-// Injectable faults (issue 6), named as in scenario files: fault = "<name>",
+// Injectable faults (docs/simulator.md), named as in scenario files: fault = "<name>",
 // with value = ... where one applies.
 #include <optional>
 #include <string_view>

@@ -35,7 +35,7 @@ struct ParamOverride {
 // (a cut wire), or sends its limits in frames too short to decode.
 enum class BmsCanMode { Talking, Silent, ShortFrames };
 
-// [bms] (issue 22): a simulated LFP BMS on the simulated BMS CAN bus, driven
+// [bms] (docs/integrations.md): a simulated LFP BMS on the simulated BMS CAN bus, driven
 // by the plant's truth, opening the plant's BMS disconnect when its limits
 // are ignored (drivers/sim/bms/sim_bms.h).
 struct ScenarioBms {
@@ -54,7 +54,7 @@ struct ScenarioEvent {
   std::optional<bool> ignition;            // ignition = "on" | "off"
   std::optional<bool> bms_connected;       // bms = "connect" | "disconnect"
   std::optional<bool> bms_charge_enabled;  // bms_input = "charge_enabled" | "charge_disabled"
-  // The simulated BMS on CAN (issue 22; only with [bms] can = true):
+  // The simulated BMS on CAN (docs/integrations.md; only with [bms] can = true):
   std::optional<BmsCanMode> bms_can;  // bms_can = "talking" | "silent" | "short_frames"
   std::optional<double> bms_ccl_a;    // forced CCL (A); < 0 = "auto" (the BMS's own taper)
   std::optional<double> bms_cvl_v;    // forced CVL (V); < 0 = "auto"

@@ -1,4 +1,4 @@
-// The simulated CAN devices in a scenario file (issue 22): the [bms] table,
+// The simulated CAN devices in a scenario file (docs/integrations.md): the [bms] table,
 // the bms_* event keys and the engine ECU's ecu key. Errors name file:line: like every other scenario key.
 #include "drivers/sim/scenario_toml.h"
 

@@ -1,5 +1,5 @@
 // The plant sections of a scenario file: [battery], [alternator], [noise]
-// (issue 20). Ranges and cross-checks here are what make a bad plant
+// (docs/simulator.md). Ranges and cross-checks here are what make a bad plant
 // parameter a file:line: error instead of a plant that cannot exist.
 #include <cmath>
 #include <sstream>

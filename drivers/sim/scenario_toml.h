@@ -1,7 +1,7 @@
 #pragma once
 // The scenario loader's TOML reading helpers, shared by the scenario file's
 // parts (scenario.cpp: events, config, top level; scenario_plant.cpp: the
-// plant sections). Every error names file:line: (issue 20: exit 64).
+// plant sections). Every error names file:line: (exit 64).
 #include <toml++/toml.h>
 
 #include <string>

@@ -23,7 +23,7 @@ struct Change {
 // per change (no deque node push and pop, no vector growth). Never at the
 // first change: that is the control thread's tick, under mlockall, and
 // faulting in a 1 MiB ring there cost milliseconds of its CPU at the first
-// engine start (issue 26, the soak's RSS step and its worst tick).
+// engine start (docs/performance.md, the soak's RSS step and its worst tick).
 class ChangeLog {
  public:
   explicit ChangeLog(std::size_t capacity = 1u << 16)
@@ -63,7 +63,6 @@ class SimPwm final : public PwmOutput {
   double drive() const noexcept { return enabled_ ? duty_ / 100.0 : 0.0; }
   void setFailing(bool f) noexcept { failing_ = f; }
   const ChangeLog& dutyLog() const noexcept { return dutyLog_; }
-  const ChangeLog& enableLog() const noexcept { return enableLog_; }
 
  private:
   const TimeNs* now_;
@@ -102,9 +101,7 @@ class SimWatchdog final : public Watchdog {
   explicit SimWatchdog(const TimeNs* now, TimeNs timeout = fromSec(16.0)) : now_(now), timeout_(timeout) {}
   bool keepAlive() noexcept override;
   void closeClean() noexcept override;
-  TimeNs lastKick() const noexcept { return last_; }
   std::uint64_t kicks() const noexcept { return kicks_; }
-  bool closedClean() const noexcept { return closed_; }
   // True if at time t the board would have been reset (no kick for timeout).
   bool wouldHaveFired(TimeNs t) const noexcept { return kicks_ > 0 && !closed_ && t - last_ > timeout_; }
   TimeNs longestGap() const noexcept { return longestGap_; }

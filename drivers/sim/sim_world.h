@@ -6,7 +6,7 @@
 // the hal seams (I2cBus, PwmOutput, DigitalOutput, DigitalInput, Watchdog)
 // and the w1 sysfs directory.
 //
-// Board wiring modelled here (issue 6 / DESIGN.md):
+// Board wiring modelled here (docs/simulator.md):
 //   INA228 on a low-side shunt, VBUS on battery positive; its ALERT pin pulls
 //   the gate-driver enable low (so BOVL cuts the field in hardware).
 //   ADS1115 CH0 battery voltage divider, CH1 Hall sensor, CH2 LM2907 (2 s
@@ -50,7 +50,7 @@ struct WorldConfig {
   // 1-Wire sensor simulated.
   std::filesystem::path w1Root;
   // A second DS18B20 on that tree reading the plant's battery temperature
-  // (issue 21): its w1 id, empty = none.
+  // (docs/batteries.md): its w1 id, empty = none.
   std::string batteryW1Id;
   double inaDieTempC = 35.0;
   double adsClockScale = 1.0;  // ADS1115 oscillator: 1.1 = 10 % slow

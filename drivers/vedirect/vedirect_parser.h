@@ -34,7 +34,6 @@ class Parser {
   std::size_t feed(std::string_view bytes, FrameFn onFrame, void* ctx) noexcept;
   void reset() noexcept;
 
-  std::uint32_t goodFrames() const noexcept { return good_; }
   std::uint32_t badChecksums() const noexcept { return badChecksum_; }
   std::uint32_t malformed() const noexcept { return malformed_; }
 

@@ -1,5 +1,5 @@
 #pragma once
-// VE.Direct reader (issue 7, Drivers): a non-RT thread opens the serial port
+// VE.Direct reader (docs/install.md, wiring): a non-RT thread opens the serial port
 // (termios 19200 8N1, raw), parses blocks and publishes {current A, voltage V,
 // ppv W, stamp} through a LatestValue for the control thread
 // (Inputs::VictronCurrent/VictronVoltage/solarPowerW; BatteryCurrentSource = 3

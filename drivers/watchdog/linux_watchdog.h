@@ -1,5 +1,5 @@
 #pragma once
-// LinuxWatchdog (issue 7, Drivers): open the device (default /dev/watchdog,
+// LinuxWatchdog (docs/install.md, wiring): open the device (default /dev/watchdog,
 // tests use a temp file), WDIOC_SETTIMEOUT with read-back, keepAlive() after
 // each healthy control cycle (the runtime decides "healthy": a stalled loop
 // stops feeding and the board resets), magic close 'V' only via closeClean()

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Compares two telemetry CSVs of the same scenario, run by builds for two
-architectures (issue 24: the arm64 daemon under qemu-user against amd64).
+architectures (the arm64 daemon under qemu-user against amd64).
 
 Floating-point results may differ in the last bits between architectures
 (aarch64 GCC contracts a*b+c into one fused instruction, libm differs), so

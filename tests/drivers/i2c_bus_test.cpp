@@ -1,4 +1,4 @@
-// LinuxI2cBus error paths (issue 7 tests): no device, a file that is not an
+// LinuxI2cBus error paths (docs/install.md): no device, a file that is not an
 // i2c-dev adapter, transfers while closed or with bad message lists.
 #include <gtest/gtest.h>
 

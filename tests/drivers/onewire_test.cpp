@@ -124,7 +124,7 @@ TEST_F(Ds18b20ReaderTest, ThreadPublishesAndStops) {
   EXPECT_GT(r.latest().heartbeat, 0);
 }
 
-// Issue 21: a second DS18B20 (the battery's) on the same bus.
+// a second DS18B20 (the battery's) on the same bus.
 TEST_F(Ds18b20ReaderTest, FirstFoundSkipsTheBatterySensor) {
   test::writeFile(d / "28-000000000001/w1_slave", kGood);  // the battery's, sorts first
   test::writeFile(d / "28-00000abc/w1_slave",

@@ -1,4 +1,4 @@
-// PwmSysfs against a fake /sys/class/pwm tree (issue 7 tests).
+// PwmSysfs against a fake /sys/class/pwm tree (docs/install.md).
 #include "drivers/pwm/pwm_sysfs.h"
 
 #include <fcntl.h>

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Whole-daemon tests (issue 7 "Runtime"): end xregulatord by each exit path
+# Whole-daemon tests (docs/architecture.md): end xregulatord by each exit path
 # and read back the last PWM duty and field enable it left, from the
 # simulation's output mirror (--sim-outputs). Also the command line's exit
 # codes. Usage: exit_paths.sh XREGULATORD CASE [REPO_ROOT]
@@ -51,7 +51,7 @@ stop_signal() {
   grep -q "stopped cleanly" "$tmp/log" || fail "no clean-stop log line"
 }
 
-# Any other signal whose default action ends the process (issue 26, item 2):
+# Any other signal whose default action ends the process (docs/security.md):
 # the same controlled ramp, a journal line naming it, and exit 128 + signal
 # so that systemd restarts the regulator. A fault signal sent from outside:
 # the fatal handler drives the field LOW, names the signal, dies with it.
@@ -149,7 +149,7 @@ case "$case_name" in
     grep -q BulkVoltage "$tmp/log" || fail "bad config error does not name the key"
     "$bin" --config "$tmp/bad.toml" --sim --duration 1 --speed max >"$tmp/log" 2>&1
     [ $? = 78 ] || fail "daemon with a bad config: not 78"
-    # issue 26, item 8: only regular files, bounded.
+    # only regular files, bounded.
     mkdir "$tmp/confdir"
     "$bin" --config "$tmp/confdir" --check-config >"$tmp/log" 2>&1; [ $? = 78 ] || fail "a directory as --config: not 78"
     grep -q "is a directory, not a configuration file" "$tmp/log" || fail "directory not named as such"
@@ -157,7 +157,7 @@ case "$case_name" in
     mkfifo "$tmp/fifo.toml"
     "$bin" --config "$tmp/fifo.toml" --sim --duration 1 --speed max >"$tmp/log" 2>&1
     [ $? = 78 ] || fail "a FIFO as --config: not 78"
-    # issue 26, item 3: a listen address the server could not bind is a config error.
+    # a listen address the server could not bind is a config error.
     printf '[web]\nlisten = "localhost"\n' >"$tmp/listen.toml"
     "$bin" --config "$tmp/listen.toml" --check-config >"$tmp/log" 2>&1; [ $? = 78 ] || fail "listen = localhost: not 78"
     grep -q "web.listen: 'localhost' is not an IP address" "$tmp/log" || fail "bad listen not named"
@@ -193,7 +193,7 @@ case "$case_name" in
     grep -q "no-such-dir/t.csv: No such file or directory" "$tmp/log" || fail "--telemetry-csv error not named"
     ;;
   web_cannot_start)
-    # issue 26, item 3: 192.0.2.1 (TEST-NET-1) is a valid address no interface
+    # 192.0.2.1 (TEST-NET-1) is a valid address no interface
     # has: the server cannot bind it. The regulator runs on, loudly.
     "$bin" --sim --speed max --duration 20 --http 192.0.2.1:8080 --sim-outputs "$tmp/out" >"$tmp/log" 2>&1
     rc=$?
@@ -203,7 +203,7 @@ case "$case_name" in
     expect_field_off "$tmp/out" stop
     ;;
   command_refused)
-    # issue 26, items 9 and 11 through the real daemon and HTTP.
+    # items 9 and 11 through the real daemon and HTTP.
     token=0123456789abcdef-e2e
     printf '[web]\ntoken = "%s"\n' "$token" >"$tmp/web.toml"
     chmod 644 "$tmp/web.toml"
@@ -231,7 +231,7 @@ case "$case_name" in
     [ "$(stat -c %a "$tmp/s.db")" = 600 ] || fail "state database mode $(stat -c %a "$tmp/s.db"), expected 600"
     ;;
   store_damaged | store_newer)
-    # issue 26, item 4 through the daemon binary: the user's data survives a
+    # item 4 through the daemon binary: the user's data survives a
     # damaged state database (restored from the verified .bak, said once in
     # the log) and a newer release's database is never written; the field
     # control runs either way.

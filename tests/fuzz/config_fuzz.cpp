@@ -1,9 +1,9 @@
-// libFuzzer target (issue 26: "a fuzzer for the config loader"): arbitrary
+// libFuzzer target ("a fuzzer for the config loader"): arbitrary
 // bytes as xregulator.toml through loadConfigString, the loader the daemon and
 // --check-config use. Findings: a crash, a sanitizer report, an exception out
 // of the loader (it promises a list of errors, never a throw), or a file it
 // accepts although the values the daemon would run with are out of range or
-// inconsistent (the "checked as one set" rule of issue 26, item 1).
+// inconsistent (the "checked as one set" rule, docs/configuration.md).
 #include <cmath>
 #include <cstddef>
 #include <cstdint>

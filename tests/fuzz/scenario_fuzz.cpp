@@ -1,4 +1,4 @@
-// libFuzzer target (issue 26: "a fuzzer for the scenario loader"): arbitrary
+// libFuzzer target ("a fuzzer for the scenario loader"): arbitrary
 // bytes as a scenario file through parseScenario, then its [config] overrides
 // onto the default parameters, as `xregulatord --sim --scenario` does. A bad
 // file must end in ScenarioError ("file:line: ..."), which the daemon turns

@@ -1,4 +1,4 @@
-// Home Assistant discovery documents and the state document (issue 23),
+// Home Assistant discovery documents and the state document (docs/integrations.md),
 // without a broker: topics, the fields Home Assistant requires, units.
 #include "integrations/ha_discovery.h"
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Home Assistant MQTT discovery against Debian's real mosquitto (issue 23).
+"""Home Assistant MQTT discovery against Debian's real mosquitto (docs/integrations.md).
 
   ha_mqtt_test.py XREGULATORD
 

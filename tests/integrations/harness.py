@@ -1,4 +1,4 @@
-"""Shared pieces of the integration tests (issue 23): free ports, a real
+"""Shared pieces of the integration tests (docs/integrations.md): free ports, a real
 mosquitto broker, the daemon in --sim with an [integrations] configuration,
 and small HTTP and MQTT helpers. Every process started here is stopped by
 the Harness, by its own pid."""

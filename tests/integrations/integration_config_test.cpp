@@ -1,4 +1,4 @@
-// [integrations.*] in xregulator.toml (issue 23): the loader reads the nested
+// [integrations.*] in xregulator.toml (docs/integrations.md): the loader reads the nested
 // tables, keeps them off by default, and refuses what an integration could
 // not use with the key and line.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// The isolation frame's small parts (issue 23): reconnect backoff, the
+// The isolation frame's small parts (docs/integrations.md): reconnect backoff, the
 // health record (one outage per loss, however many attempts), the sample.
 #include "integrations/integration_health.h"
 

@@ -1,4 +1,4 @@
-// The integrations in /api/system and /metrics (issue 23): the JSON entry
+// The integrations in /api/system and /metrics (docs/integrations.md): the JSON entry
 // and the Prometheus lines of web/server/json_format.
 #include <gtest/gtest.h>
 

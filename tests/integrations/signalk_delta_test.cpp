@@ -1,4 +1,4 @@
-// Signal K deltas and meta (issue 23) without a server: paths, SI units,
+// Signal K deltas and meta (docs/integrations.md) without a server: paths, SI units,
 // the chargingMode words, values left out when unknown; the URL parser and
 // the [integrations.*] checks of the loader.
 #include "integrations/signalk_delta.h"

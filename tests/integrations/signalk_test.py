@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Signal K deltas against a real signalk-server from the npm registry
-(issue 23), pinned in tests/integrations/signalk/package.json (`make deps`).
+(docs/integrations.md), pinned in tests/integrations/signalk/package.json (`make deps`).
 
   signalk_test.py XREGULATORD NODE SIGNALK_SERVER_BIN plain|secured
 

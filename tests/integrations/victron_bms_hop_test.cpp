@@ -1,4 +1,4 @@
-// The Victron GX's limits into Handoffs::bms (issue 23): the mapping, the
+// The Victron GX's limits into Handoffs::bms (docs/integrations.md): the mapping, the
 // stamp on the control clock, and that a poll bringing nothing new leaves
 // the stamp alone (so a silent GX goes stale like a silent CAN BMS).
 #include "integrations/victron_bms_hop.h"

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The Victron GX follow test (issue 23): the regulator follows a battery's
+"""The Victron GX follow test (docs/integrations.md): the regulator follows a battery's
 limits read from a GX over MQTT.
 
   victron_follow_test.py XREGULATORD SCENARIO

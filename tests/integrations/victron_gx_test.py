@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Victron GX over MQTT against Debian's real mosquitto (issue 23).
+"""Victron GX over MQTT against Debian's real mosquitto (docs/integrations.md).
 
   victron_gx_test.py XREGULATORD
 

@@ -1,4 +1,4 @@
-// Venus OS topics and the validation of their values (issue 23).
+// Venus OS topics and the validation of their values (docs/integrations.md).
 #include "integrations/victron_topics.h"
 
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 #!/bin/bash
-# Package test (issue 10): build the .deb, lintian it, install it on this
+# Package test (docs/install.md): build the .deb, lintian it, install it on this
 # machine, check files, owners, permissions, the user and the daemon's own
 # checks, then purge it and put the machine back as it was.
 #

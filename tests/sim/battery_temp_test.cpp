@@ -1,4 +1,4 @@
-// Battery profiles and battery temperature on the simulator (issue 21): the
+// Battery profiles and battery temperature on the simulator (docs/batteries.md): the
 // real drivers read a second simulated DS18B20 on the bank; the scenarios of
 // scenarios/ drive its temperature.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// ADS1115 pacing through the whole loop (issue 7 targets, on virtual time):
+// ADS1115 pacing through the whole loop (docs/architecture.md targets, on virtual time):
 // with ALERT/RDY wired (the default line), every conversion is used — CH1
 // >= 400 Hz and every channel >= 10 Hz — and charging works as before; with
 // the line not wired (-1), single-shot pacing gives one conversion per tick.

@@ -1,4 +1,4 @@
-// RpmSource = n2k (issue 22): engine speed from a simulated engine ECU on
+// RpmSource = n2k (docs/integrations.md): engine speed from a simulated engine ECU on
 // the simulated NMEA 2000 bus (127488) drives the RPM tables through the
 // daemon's CAN service; a silent ECU is treated like a lost tach (0 rpm:
 // REASON_RPM_LOW, field off) even though the engine, and its W terminal,

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The soak test of issue 26 (`make soak`): xregulatord --sim at --speed 20
+"""The soak test (`make soak`, docs/performance.md): xregulatord --sim at --speed 20
 for a simulated day (tests/soak/day.toml) against 20 WebSocket clients, 5 API
 requests a second, dashboard writes and the integrations that exist (a real
 mosquitto with the Home Assistant publisher, a real signalk-server, the

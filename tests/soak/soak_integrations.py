@@ -1,4 +1,4 @@
-"""The integrations that exist, for the soak test (issue 26: "... and the
+"""The integrations that exist, for the soak test ("... and the
 integrations that exist"), started with the integration tests' own helpers
 (tests/integrations/harness.py, signalk_test.py):
 

@@ -1,4 +1,4 @@
-"""The soak test's load (issue 26): 20 dashboards on WebSockets, 5 API
+"""The soak test's load (docs/security.md): 20 dashboards on WebSockets, 5 API
 requests a second, a dashboard write every 30 s; each counts what it did
 and every failure in a shared Counters. Python standard library only."""
 import base64

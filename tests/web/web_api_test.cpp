@@ -1,4 +1,4 @@
-// API tests of issue 9 against a real WebServer on an ephemeral loopback port
+// API tests (docs/dashboard.md "API") against a real WebServer on an ephemeral loopback port
 // with the fake DaemonApi: every endpoint, auth, atomic PATCH, every command,
 // malformed and oversized inputs, WebSocket, many concurrent clients.
 #include <gtest/gtest.h>
@@ -187,7 +187,7 @@ TEST_F(WebApiTest, Params_ListsEveryCatalogueEntryWithMetadata) {
   EXPECT_FALSE(o.at("groups").as_array().empty());
 }
 
-// Issue 21: each parameter names its source; BatteryProfile is a named choice.
+// each parameter names its source; BatteryProfile is a named choice.
 TEST_F(WebApiTest, Params_NameTheirSourceAndTheProfileItsChoices) {
   start();
   ASSERT_EQ(patch(R"({"BulkVoltage": 14.2})").status, 200);
@@ -307,7 +307,7 @@ TEST_F(WebApiTest, Patch_DaemonCrossFieldRejectionIsAllOrNone) {
   EXPECT_DOUBLE_EQ(api_.currentParams().BulkVoltage, Params{}.BulkVoltage);
 }
 
-// Issue 25 item 6: a set-point for another bank size is refused, at the
+// a set-point for another bank size is refused, at the
 // class boundary too; the fake battery measures 12.8..13.6 V (a 12 V bank).
 TEST_F(WebApiTest, Patch_VoltageForAnotherBankSizeIsRefused) {
   api_.publish();
@@ -566,7 +566,7 @@ TEST_F(WebApiTest, ReadsCanRequireTheToken) {
   EXPECT_NE(ws.read().find("\"battery_v\""), std::string::npos);
 }
 
-// Issue 26, item 12: HEAD on an API route sends headers only, so a
+// HEAD on an API route sends headers only, so a
 // pipelined request behind it is read as a request, not as body bytes.
 TEST_F(WebApiTest, Head_OnApiRoutesSendsNoBodyAndPipeliningWorks) {
   start();

@@ -1,4 +1,4 @@
-// Getting in (issue 26, item 9; issue 25, item 15): pairing codes, per-device
+// Getting in (docs/security.md "Pairing"): pairing codes, per-device
 // write tokens, reads vs writes, the Host and Origin checks against DNS
 // rebinding. Pairing logic with an injected clock, then through a real
 // server on a loopback port.
@@ -225,7 +225,7 @@ TEST_F(AuthServerTest, APairedPhoneWritesAndAStrangerDoesNot) {
   EXPECT_EQ(patchWith(kToken).status, 200);
 }
 
-// Issue 25, item 11: the daemon's settings-change event names who asked.
+// the daemon's settings-change event names who asked.
 TEST_F(AuthServerTest, APatchTellsTheDaemonWhichDeviceSentIt) {
   start();
   const std::string token = pairNewDevice("Anna's phone");

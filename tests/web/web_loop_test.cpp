@@ -1,5 +1,5 @@
 // The control loop's overrun attribution in /api/system and /metrics
-// (issue 26: "0 overruns attributable to the daemon"): the daemon's own
+// ("0 overruns attributable to the daemon"): the daemon's own
 // overruns and the tick CPU time are there, as numbers, beside the total.
 #include <gtest/gtest.h>
 

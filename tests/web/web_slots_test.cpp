@@ -1,4 +1,4 @@
-// Connection slots held without a token (issue 26, item 5): WebSockets that
+// Connection slots held without a token (docs/security.md): WebSockets that
 // never read, and one address holding every slot, must not starve /healthz.
 #include <gtest/gtest.h>
 

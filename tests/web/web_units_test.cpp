@@ -93,7 +93,7 @@ TEST(WebStatic, RejectsTraversalWithoutTouchingDisk) {
   EXPECT_FALSE(resolveStaticPath("", "/index.html").has_value());
 }
 
-// Issue 26, item 12: dotfiles in www_root are never served; a file that only
+// dotfiles in www_root are never served; a file that only
 // contains a dot elsewhere is.
 TEST(WebStatic, DotfilesAreNotServed) {
   char tmpl[] = "/tmp/xr-www-XXXXXX";
@@ -125,7 +125,7 @@ TEST(WebQuery, PercentDecodeAndParams) {
   EXPECT_FALSE(queryParam("a=1", "b").has_value());
 }
 
-// Issue 25 item 16: one naming style, rounded numbers, integers, null sentinels.
+// one naming style, rounded numbers, integers, null sentinels.
 TEST(WebStatusShape, SnakeCaseNames) {
   EXPECT_EQ(snakeName("lockoutRemainingS"), "lockout_remaining_s");
   EXPECT_EQ(snakeName("SOC_percent"), "soc_percent");

@@ -1,4 +1,4 @@
-// HTTP routes of issue 9: /api/status, /api/params (GET, PATCH), /api/commands,
+// HTTP routes (docs/dashboard.md "API"): /api/status, /api/params (GET, PATCH), /api/commands,
 // /api/events, /api/history, /api/system, /metrics, /healthz, static files.
 // This file routes a request and answers the status, system, metrics, health
 // and static-file reads; the parameter, command and events/history routes
@@ -108,7 +108,7 @@ Response ApiHandler::handle(const Request& req) {
     // A bug must cost one request, never the daemon (and never the field).
     res = error(req, http::status::internal_server_error, std::string("internal error: ") + e.what());
   }
-  // HEAD: the headers GET would send, never a body (issue 26, item 12: a
+  // HEAD: the headers GET would send, never a body (a
   // body here desynchronises a pipelining client).
   if (req.method() == http::verb::head && !res.body().empty()) {
     const auto len = res.body().size();

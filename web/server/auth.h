@@ -1,5 +1,5 @@
 #pragma once
-// Bearer-token checks for the web API (issue 9 "Security").
+// Bearer-token checks for the web API (docs/security.md).
 #include <string_view>
 
 namespace xr::web {

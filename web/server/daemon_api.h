@@ -147,7 +147,7 @@ struct HistoryResult {
   std::vector<std::pair<std::string, std::vector<double>>> series;  // same length as t; NaN = no data
 };
 
-// One integration with the boat's network (issue 23: signalk, mqtt,
+// One integration with the boat's network (signalk, mqtt,
 // victron) for /api/system and /metrics.
 struct IntegrationState {
   std::string name;
@@ -160,7 +160,7 @@ struct IntegrationState {
   std::map<std::string, std::string> texts;  // what it reads that is a word (weather: position_source)
 };
 
-// The CAN buses (issue 22) for /api/system. Unknown numbers are NaN (null
+// The CAN buses (docs/integrations.md) for /api/system. Unknown numbers are NaN (null
 // in JSON), never invented.
 struct CanBmsState {
   std::string protocol;       // victron | pylontech | rec; empty when off
@@ -204,7 +204,7 @@ class DaemonApi {
   virtual Params currentParams() = 0;
   virtual Params fileParams() = 0;
   // Where each parameter's value comes from, by name: "default", "profile",
-  // "file" or "dashboard" (issue 21). Empty: the server infers it from
+  // "file" or "dashboard" (docs/batteries.md). Empty: the server infers it from
   // currentParams() and fileParams() (no profile known).
   virtual std::map<std::string, std::string> paramSources() { return {}; }
   // The names a battery profile sets when nothing above it does; the set-up
@@ -224,7 +224,7 @@ class DaemonApi {
   // all. The server has already checked names, kinds and catalogue ranges.
   // source: who asked (a paired device's name, "the installer token"); the
   // daemon records an applied change as an event naming each value's old and
-  // new value and the source (issue 25, item 11).
+  // new value and the source (docs/dashboard.md).
   virtual PatchResult patchParams(const std::vector<ParamChange>& changes, const std::string& source) = 0;
 
   // A security action (pairing, revocation, a pairing lock-out): an event in

@@ -80,7 +80,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
                                       code == 401 ? "missing token" : "invalid token"));
       }
       // One address may not hold every slot with WebSockets, and all of
-      // them together leave room for /healthz (issue 26, item 5).
+      // them together leave room for /healthz (docs/security.md).
       if (!impl_.reserveWs(peer_))
         return sendResponse(makeError(req, http::status::service_unavailable, "too many WebSocket clients"));
       impl_.httpRequests.fetch_add(1);

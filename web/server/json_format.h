@@ -20,7 +20,7 @@ std::string serializeStatus(const StatusSnapshot& s);
 
 // /api/params: {"params":[{name, group, kind, unit, min, max, help, value,
 // default, file, changed, overridden}...], "groups":[...]}.
-// sources: name -> "default" | "profile" | "file" | "dashboard" (issue 21);
+// sources: name -> "default" | "profile" | "file" | "dashboard" (docs/batteries.md);
 // a name missing from it is inferred from current, file and the defaults.
 // profileOwned: the names a battery profile sets ("profile_owned": true).
 boost::json::object paramsToJson(const Params& current, const Params& file,
@@ -33,11 +33,11 @@ boost::json::object historyToJson(const HistoryResult& h);
 // Prometheus text exposition format 0.0.4.
 std::string metricsText(const StatusSnapshot* s, const WebServerStats& stats);
 
-// /api/system "integrations" entries and their /metrics lines (issue 23).
+// /api/system "integrations" entries and their /metrics lines (docs/integrations.md).
 boost::json::object integrationToJson(const IntegrationState& i);
 std::string integrationMetrics(const std::vector<IntegrationState>& list);
 
-// /api/system "bms" and "n2k" (issue 22).
+// /api/system "bms" and "n2k" (docs/integrations.md).
 boost::json::object canBmsToJson(const CanBmsState& b);
 boost::json::object canN2kToJson(const CanN2kState& n);
 

@@ -1,5 +1,5 @@
 #pragma once
-// The /api/status shape for programs (issue 25 item 16): one naming style
+// The /api/status shape for programs (docs/dashboard.md): one naming style
 // (snake_case) in the nested sections, numbers rounded to what the sensors
 // resolve, whole numbers as integers, null for "no value" sentinels. The
 // DESIGN.md CSV column names stay as they are (they are snake_case already).

@@ -1,6 +1,6 @@
 #pragma once
 // Pairing: how a phone on the boat's Wi-Fi gets the right to change things
-// (issue 26, item 9; issue 25, item 15). Reads stay open on the LAN (unless
+// (docs/security.md "Pairing"). Reads stay open on the LAN (unless
 // [web] reads_require_token); every write needs a token in the Authorization
 // header: the configured or generated static token (installers' scripts), or
 // a per-device token handed out by POST /api/pair for a short code.

@@ -1,6 +1,6 @@
 #pragma once
 // Checks on who a request claims to be for, before any route sees it
-// (issue 26, item 12: DNS rebinding).
+// (DNS rebinding).
 //
 // DNS rebinding: a page on evil.example makes its own name resolve to the
 // boat's board, so the owner's browser sends the page's requests here as

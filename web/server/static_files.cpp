@@ -37,7 +37,7 @@ std::optional<std::string> resolveStaticPath(const std::string& root, std::strin
     const auto end = rel.find('/', start);
     const std::string_view seg =
         std::string_view(rel).substr(start, end == std::string::npos ? std::string::npos : end - start);
-    // No dotfiles either (issue 26, item 12): .git, .env, editor swap
+    // No dotfiles either (docs/security.md): .git, .env, editor swap
     // files left in www_root are not the dashboard's.
     if (!seg.empty() && seg.front() == '.') return std::nullopt;
     if (seg.empty() && end != std::string::npos) return std::nullopt;  // "//"

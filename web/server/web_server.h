@@ -32,7 +32,7 @@ struct WebServerOptions {
   double telemetry_rate_hz = 10.0;   // WebSocket rate, clamped to [0.2, 20]
   bool reads_require_token = false;  // true: GETs and /ws need the token too
   int max_connections = 64;          // HTTP + WebSocket, over it: 503 and close
-  // Per-client bounds (issue 26, item 5): one address holds at most
+  // Per-client bounds (docs/security.md): one address holds at most
   // max_per_ip connections (0: 3/4 of max_connections) and max_ws_per_ip
   // WebSockets (0: max_connections / 4); WebSockets together leave
   // max_connections / 8 slots (at least 1) for plain requests such as /healthz.

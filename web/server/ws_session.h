@@ -91,7 +91,7 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
     current_ = std::move(msg);
     ws_.text(true);
     // A client that never reads keeps pinging, so the idle timeout never
-    // fires; a frame it does not take in time closes it (issue 26, item 5).
+    // fires; a frame it does not take in time closes it (docs/security.md).
     writeTimer_.expires_after(impl_.opts.ws_write_timeout);
     writeTimer_.async_wait([self = shared_from_this()](beast::error_code ec) {
       if (ec || !self->writing_) return;

@@ -40,7 +40,7 @@ struct BatteryConfig {
   int cells = 0;              // in series; 0 = from nominal_v
   double r_ohm = 0.0;         // bank ohmic resistance at 25 °C; 0 = typical for chemistry and capacity
   double temp_c = 25.0;       // initial temperature, and the compartment air unless set otherwise
-  bool temp_sensor = false;   // a DS18B20 on the bank, read as the battery temperature (issue 21)
+  bool temp_sensor = false;   // a DS18B20 on the bank, read as the battery temperature (docs/batteries.md)
   std::vector<OcvPoint> ocv;  // per cell; empty = defaultOcvTable(chemistry)
 };
 

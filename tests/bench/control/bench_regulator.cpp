@@ -1,4 +1,4 @@
-// Regulator::step benchmark (issue 3): bulk, absorption (CV active,
+// Regulator::step benchmark (docs/architecture.md): bulk, absorption (CV active,
 // protections armed) and a shutdown ramp. Each iteration is one 2.5 ms tick:
 // build Inputs from the test plant, Regulator::step, advance the plant (the
 // plant and input construction are a few ns of the figure).

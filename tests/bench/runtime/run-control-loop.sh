@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Control-loop timing benchmark (issue 7): a 60 s real-time simulated run
+# Control-loop timing benchmark (docs/architecture.md): a 60 s real-time simulated run
 # (--sim --speed 1) with 20 WebSocket clients on the dashboard; reports the
 # period error p50/p99/max, overruns, compute and I/O time, and the ADS
 # sample rates from the daemon's final statistics line.

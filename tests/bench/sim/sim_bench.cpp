@@ -34,7 +34,7 @@ void runScenario(benchmark::State& state, double durationS) {
       benchmark::Counter(ticks, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
-// The headline: 8 simulated hours, one run.
+// The headline figure (docs/performance.md): 8 simulated hours, one run.
 void BM_LfpCharge8h(benchmark::State& state) { runScenario(state, 8 * 3600.0); }
 BENCHMARK(BM_LfpCharge8h)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Web load benchmark (issue 9): xregulatord --sim --speed 1, 50 WebSocket
+# Web load benchmark (docs/security.md): xregulatord --sim --speed 1, 50 WebSocket
 # clients plus wrk on /api/status for DURATION seconds (default 60). Reports
 # req/s, p99 latency, server RSS, WebSocket frames, and the control loop's
 # overruns (must stay 0) and period p99 from /api/status loop statistics.

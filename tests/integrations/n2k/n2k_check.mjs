@@ -1,5 +1,5 @@
 #!/usr/bin/env node
-// NMEA 2000 cross-check (issue 22): the daemon runs a scenario in --sim with
+// NMEA 2000 cross-check (docs/integrations.md): the daemon runs a scenario in --sim with
 // [can] n2k_interface set (the simulated N2K bus) and --can-log; canboatjs
 // (@canboat/canboatjs from the npm registry, an independent decoder reading
 // the canboat PGN database) decodes every logged frame of that bus, and

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The CAN side through the web API (issue 22), the daemon in --sim:
+"""The CAN side through the web API (docs/integrations.md), the daemon in --sim:
 
   api_check.py XREGULATORD
 

@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
-"""Closed loop through the daemon with a BMS on CAN (issue 22).
+"""Closed loop through the daemon with a BMS on CAN (docs/integrations.md).
 
 Runs one scenarios/bms-can-*.toml through the real daemon
 (xregulatord --sim --scenario FILE --speed max --telemetry-csv ...), reads
 its CSV telemetry (and stderr, for the rate-limited bad-frame reports) and
-checks what the issue asks of that scenario:
+checks what docs/integrations.md says of that scenario:
 
   ccl-step    battery current <= CCL + 2 A within 1 s of each CCL step down;
               the BMS never opens

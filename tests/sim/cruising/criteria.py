@@ -1,4 +1,4 @@
-"""How the cruising-day suite judges one run (issue 27 "Targets").
+"""How the cruising-day suite judges one run (docs/deviations.md).
 
 Every figure comes from the daemon's telemetry CSV (DESIGN.md columns) and
 the plant's truth columns; nothing here knows how the regulator works.

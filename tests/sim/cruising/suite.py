@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The cruising-day suite (issue 27): run each scenarios/cruising/*.toml
+"""The cruising-day suite (docs/deviations.md): run each scenarios/cruising/*.toml
 through the real daemon (--sim --speed max), judge it by criteria.toml, print
 one table and, unless --no-plot, write a PNG per scenario.
 

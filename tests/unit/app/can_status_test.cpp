@@ -1,4 +1,4 @@
-// /api/system's CAN words from the CAN service's status (issue 22): each
+// /api/system's CAN words from the CAN service's status (docs/integrations.md): each
 // state at its edge, unknown values left unknown.
 #include "app/can_status.h"
 

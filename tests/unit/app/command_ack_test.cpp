@@ -1,4 +1,4 @@
-// Issue 26, item 11: a command the regulator refuses is answered as refused,
+// a command the regulator refuses is answered as refused,
 // with the reason, not 200 "queued". A thread stands in for the control
 // thread and applies the queued commands to a real Regulator, posting its
 // answers the way ControlCycle does.

@@ -1,4 +1,4 @@
-// Issue 25, item 11: a settings change is an event naming each value, old ->
+// a settings change is an event naming each value, old ->
 // new, and who asked; it is kept across a restart like every other event.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

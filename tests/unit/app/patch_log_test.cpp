@@ -1,4 +1,4 @@
-// The journal's rate limit for settings changes (issue 26, item 12: 2,000
+// The journal's rate limit for settings changes (2,000
 // PATCHes wrote 2,000 lines; app/patch_log_limiter.h): a burst gives one
 // line at once and one "suppressed N" summary once the minute has passed.
 #include <gmock/gmock.h>

@@ -1,4 +1,4 @@
-// Issue 26, item 4 through the daemon's store service and web API: a damaged
+// item 4 through the daemon's store service and web API: a damaged
 // database comes back from the verified backup with the dashboard setting,
 // lifetime energy and token, and the user is told once (an event, the
 // System page's store line); a newer release's database is read, never

@@ -1,4 +1,4 @@
-// Issue 26, item 9: the state database holds the web token, so it is created
+// the state database holds the web token, so it is created
 // without access for other users even outside systemd (whose UMask=0027
 // would otherwise be the only thing keeping it private).
 #include "app/store_service.h"

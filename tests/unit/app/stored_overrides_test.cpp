@@ -1,4 +1,4 @@
-// Issue 26, item 1: the file and the dashboard's stored overrides are checked
+// the file and the dashboard's stored overrides are checked
 // as ONE set, at start and by --check-config; an override that no longer fits
 // is dropped with an event naming it.
 #include "app/stored_overrides.h"

@@ -1,4 +1,4 @@
-// Issue 26 through the daemon's side of the web API (app/web_api.cpp):
+// Hardening (docs/security.md) through the daemon's side of the web API (app/web_api.cpp):
 // items 6 (history bounds), 7 (a change that cannot be saved is refused;
 // the store's state is shown), 10 (events of earlier runs), 12 (bare error
 // keys).
@@ -38,7 +38,7 @@ TEST(WebApiHistory, AbsurdStepFromAndToAreRejectedBeforeAnyConversion) {
     q.step_s = step;
     return r.api->history(q);
   };
-  // The issue's reproducers: before, 100,000 points per series (and UB).
+  // The reproducers: before, 100,000 points per series (and UB).
   for (auto res : {ask(now - 3600, now, 1e300), ask(-1e300, now, 1e300), ask(now, 1e300, 1e299),
                    ask(now - 3600, now, std::nan("")), ask(now - 3600, now, 0.5)}) {
     EXPECT_FALSE(res.error.empty());
@@ -152,7 +152,7 @@ TEST(WebApiEvents, EveryCodeComesBackFromTheStoreByName) {
 }  // namespace
 }  // namespace xr::app
 
-// Issue 21: PATCH /api/params and the battery profile.
+// PATCH /api/params and the battery profile.
 namespace xr::app {
 namespace {
 

@@ -1,4 +1,4 @@
-// The CAN service (issue 22): buses opened with retry and backoff, limits
+// The CAN service (docs/integrations.md): buses opened with retry and backoff, limits
 // posted into the hand-off stamped with the caller's clock, every frame in
 // the candump log.
 #include "canlink/can_service.h"

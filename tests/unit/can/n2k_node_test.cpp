@@ -1,4 +1,4 @@
-// Our NMEA 2000 node (issue 22): claims its address first, answers requests,
+// Our NMEA 2000 node (docs/integrations.md): claims its address first, answers requests,
 // publishes on the bus from the telemetry snapshot at its rates, and moves
 // when a node with a smaller NAME claims its address.
 #include "canlink/n2k_node.h"

@@ -1,4 +1,4 @@
-// Battery profiles (issue 21): each profile's effective values at 12, 24 and
+// Battery profiles (docs/batteries.md): each profile's effective values at 12, 24 and
 // 48 V against the published figures of plant-facts.md §3.7-3.8, overrides,
 // provenance, and the profile limits that refuse a file.
 #include "config/battery_profiles.h"
@@ -40,7 +40,7 @@ const Row kRows[] = {
     // SUNL / LBS 45 degC.
     {"lifepo4", 4, 14.2, 13.5, 12.9, false, 0.03, 1.0, 0.5, 0.0, 0.0, 5.0, 45.0, true},
     // LL / VIC-CHG Normal 14.4 V, LL 13.3 V float, MS/CONC 0.5 % C, MV 3 h,
-    // TAR AGM -0.024 V/degC per 12 V, MS 0.4 C; issue 21 lead-acid 50 degC.
+    // TAR AGM -0.024 V/degC per 12 V, MS 0.4 C; lead-acid 50 degC (docs/batteries.md).
     {"agm", 6, 14.4, 13.3, 12.8, true, 0.005, 3.0, 0.4, -4.0, -45.0, -45.0, 50.0, false},
     // VIC-CHG High / TROJ 2.45 V/cell, TAR FLA 13.5 V, ROLLS 2 % C20, MV 4 h,
     // TAR / TROJ -5 mV/degC/cell, HP C/5.

@@ -1,4 +1,4 @@
-// [can] (issue 22): values the CAN service could never use are configuration
+// [can] (docs/integrations.md): values the CAN service could never use are configuration
 // errors at their line (--check-config exits 78 on them).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 #!/bin/sh
-# End to end through the real binary (issue 2 acceptance): the printed default
+# End to end through the real binary (docs/configuration.md): the printed default
 # configuration is exactly config/xregulator.toml, it passes --check-config
 # (exit 0), and a bad file exits 78 with its errors on stderr.
 #   cli_roundtrip.sh XREGULATORD SOURCE_ROOT
@@ -35,7 +35,7 @@ rc=$?
 [ $rc = 78 ] && grep -q "syntax.toml:1:" "$tmp/err" && echo "ok: syntax error exits 78 with file:line" \
   || { cat "$tmp/err"; echo "FAIL: syntax error: exit $rc"; fail=1; }
 
-# Issue 21: a profile's limits through the binary (exit 78 naming value and
+# a profile's limits through the binary (exit 78 naming value and
 # limit), and --print-config naming each value's source.
 printf '[battery]\nBatteryProfile = "lifepo4"\n[voltage]\nBulkVoltage = 14.8\nAbsorptionVoltage = 14.8\n' >"$tmp/lfp.toml"
 "$exe" --config "$tmp/lfp.toml" --check-config >"$tmp/out" 2>"$tmp/err"
@@ -84,7 +84,7 @@ for want in 'AbsorptionVoltage = 14.4  # profile' 'FloatVoltage = 13.3  # profil
   grep -qF "$want" "$tmp/out" && echo "ok: shipped file + AGM 12 V: $want" \
     || { echo "FAIL: shipped file + AGM 12 V lacks: $want"; cat "$tmp/err"; fail=1; }
 done
-# Issue 26, item 4: the kept fuzz finding (a non-ASCII letter after a bare
+# the kept fuzz finding (a non-ASCII letter after a bare
 # key, undefined behaviour inside toml++ 3.3.0) is refused before toml++ sees
 # it: exit 78 as a configuration, 64 as a scenario, at file:line:column.
 kept="$root/tests/fuzz/regressions/non-ascii-after-bare-key.toml"

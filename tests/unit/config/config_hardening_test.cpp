@@ -1,4 +1,4 @@
-// Issue 26: config robustness (item 8), [web] listen checked by the loader
+// config robustness (item 8), [web] listen checked by the loader
 // (item 3), the token's rules (item 9).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

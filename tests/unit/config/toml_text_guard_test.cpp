@@ -1,4 +1,4 @@
-// The check in front of toml++ (issue 26, item 4; config/toml_text_guard.h):
+// The check in front of toml++ (config/toml_text_guard.h, docs/security.md):
 // what would reach toml++ 3.3.0's TOML_UNREACHABLE is refused at its line
 // and column; what TOML allows (non-ASCII in strings and comments) passes.
 #include "config/toml_text_guard.h"

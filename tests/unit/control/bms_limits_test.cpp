@@ -1,4 +1,4 @@
-// A BMS's charge limits (issue 22): the BmsLimiter on its own, then the whole
+// A BMS's charge limits (docs/integrations.md): the BmsLimiter on its own, then the whole
 // Regulator against the test plant following CCL, CVL, charge-disable,
 // warnings and a silent BMS.
 #include <gtest/gtest.h>

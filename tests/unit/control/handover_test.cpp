@@ -1,4 +1,4 @@
-// Issue 27, the failures left on the issue-20 plant (docs/deviations.md
+// the failures left on the issue-20 plant (docs/deviations.md
 // names these tests): the field rests when the voltage loop asks for no
 // current, a load dump's recovery starts from what the bank accepted, and
 // the thermal loop counts the current a full field cannot add as implied.

@@ -1,5 +1,5 @@
 // Lead-acid temperature compensation and the battery temperature current cap
-// through Regulator::step (issue 21): at the reference, at the clamp limits,
+// through Regulator::step (docs/batteries.md): at the reference, at the clamp limits,
 // just inside them, with a stale sample, and under the trip ceiling.
 #include "control/temp_compensation.h"
 

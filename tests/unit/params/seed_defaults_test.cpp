@@ -1,5 +1,5 @@
 // Every default in the seeds' quick-reference tables is the catalogue's default
-// (issue 2 acceptance). One row per seed entry: name, seed value in the
+// (docs/parameters.md). One row per seed entry: name, seed value in the
 // catalogue's unit, and where the seed states it. Newer seeds win over
 // architecture-legacy.md where they disagree (DESIGN.md); the legacy "Key
 // Parameters Reference" column is labelled "Example Default" and its rows that
@@ -94,7 +94,7 @@ constexpr SeedDefault kScalarDefaults[] = {
     {"rebulkDebounceTime", 60000, "FC FLOAT: default 60 s"},
     // battery-management.md
     {"SOCUpdateInterval", 2000, "BM: every 2 s (SOCUpdateInterval)"},
-    // issue 2: the seeds imply BulkVoltage = 14.5 V (hard shutdown 14.8 V = Bulk + 0.3)
+    // the seeds imply BulkVoltage = 14.5 V (hard shutdown 14.8 V = Bulk + 0.3)
     {"BulkVoltage", 14.5, "S&P Cascade (Default 12 V Settings)"},
 };
 

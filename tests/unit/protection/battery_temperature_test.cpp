@@ -1,5 +1,5 @@
 // BatteryTemperatureGuard and the battery temperature orders in mode
-// selection (issue 21): each limit at its threshold, just inside it, with its
+// selection (docs/batteries.md): each limit at its threshold, just inside it, with its
 // hysteresis, stale, and in each mode.
 #include "protection/battery_temperature.h"
 

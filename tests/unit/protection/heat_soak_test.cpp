@@ -1,5 +1,5 @@
 // Heat soak after an engine stop (ours, docs/deviations.md "Heat soak after
-// an engine stop", issue 27 scenario 18): with the engine stopped T1/T2 do
+// an engine stop", cruising scenario 18): with the engine stopped T1/T2 do
 // not count the soak; an engine that restarts above TemperatureLimitF keeps
 // the field off (REASON_TEMP_SOAK, no alarm, no lockout) until the case is
 // back at the limit. T3 and T5 act as always; a running engine keeps the

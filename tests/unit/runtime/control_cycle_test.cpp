@@ -178,7 +178,7 @@ TEST(ControlCycle, RejectedCommandsAreCounted) {
   EXPECT_EQ(r.handoffs.latest().health.commandsRejected, 1u);
 }
 
-// Issue 26, item 11: the regulator's answer reaches the submitter.
+// the regulator's answer reaches the submitter.
 TEST(ControlCycle, PostsTheRegulatorsAnswerForAcknowledgedCommands) {
   CycleRig r;
   const std::uint32_t applied = r.handoffs.submitCommandForAck(Command{});

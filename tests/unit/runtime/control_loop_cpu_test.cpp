@@ -1,4 +1,4 @@
-// Whose overrun is it (issue 26: "0 overruns attributable to the daemon")?
+// Whose overrun is it ("0 overruns attributable to the daemon")?
 // The loop judges by the control thread's CPU time per tick, read through
 // LoopConfig::cpuTime (CLOCK_THREAD_CPUTIME_ID on the daemon, a counter the
 // test moves here): a tick that used a period of CPU is the daemon's; a tick

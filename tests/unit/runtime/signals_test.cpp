@@ -1,4 +1,4 @@
-// Issue 26, item 2: no signal may end xregulatord with the field enable left
+// no signal may end xregulatord with the field enable left
 // as it was. Checked against signal(7)'s default actions, written out here
 // independently of runtime/signals.cpp.
 #include "runtime/signals.h"

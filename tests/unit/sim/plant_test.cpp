@@ -105,7 +105,7 @@ TEST(Battery, ChargingRaisesSocWithCoulombicEfficiency) {
 }
 
 TEST(Battery, FullLfpBankRelaxesWithinMinutes) {
-  // The case: a full bank left at 14.49 V with 1 A of load must fall
+  // A full bank left at 14.49 V with 1 A of load must fall
   // toward ~13.6 V within minutes to an hour.
   BatteryConfig c;
   c.capacity_ah = 100;
@@ -157,7 +157,7 @@ TEST(Plant, NodeBalancesAndAlternatorFollowsBus) {
 }
 
 TEST(Plant, NoOutputAtFloorDutyFromTheKnee) {
-  // The case: 4 % duty at 2,000 engine rpm gives nothing on a real
+  // 4 % duty at 2,000 engine rpm gives nothing on a real
   // machine (the knee), and our old plant gave ~4.5 A.
   PlantConfig c;
   c.battery.chemistry = Chemistry::agm;

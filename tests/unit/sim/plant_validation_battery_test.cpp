@@ -1,5 +1,5 @@
 // Battery, alternator thermal and load-dump models against published data
-// (issue 20 "Done when"); sources by their plant-facts keys.
+// (docs/simulator.md); sources by their plant-facts keys.
 #include <gtest/gtest.h>
 
 #include <algorithm>

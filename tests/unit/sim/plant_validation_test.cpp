@@ -1,6 +1,6 @@
-// Plant models against published data (issue 20 "Done when"). Every figure
+// Plant models against published data (docs/simulator.md). Every figure
 // is from the shared plant facts, by source key (docs/simulator.md lists the
-// sources); each expectation is the tolerance the issue sets.
+// sources); each expectation is the tolerance docs/simulator.md sets.
 #include <gtest/gtest.h>
 
 #include <cmath>

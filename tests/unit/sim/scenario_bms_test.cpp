@@ -1,4 +1,4 @@
-// The simulated BMS's scenario keys (issue 22): [bms] and the bms_* events,
+// The simulated BMS's scenario keys (docs/integrations.md): [bms] and the bms_* events,
 // with file:line: errors on bad values (the daemon exits 64 on them).
 #include <gtest/gtest.h>
 

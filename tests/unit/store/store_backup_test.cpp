@@ -1,4 +1,4 @@
-// Issue 26, item 4: the user's data (dashboard settings, lifetime energy,
+// the user's data (dashboard settings, lifetime energy,
 // cycles, the web token) survives a damaged, lost or newer-schema database,
 // through the verified backup <db>.bak. Real SQLite files throughout.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Store: ledger, overrides, events, history, token (persistence issue).
+// Store: ledger, overrides, events, history, token.
 #include <gtest/gtest.h>
 
 #include <atomic>

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Checks systemd/ with systemd's own tools (issue 10: "systemd-analyze verify
+# Checks systemd/ with systemd's own tools ("systemd-analyze verify
 # is clean (a test)"). Any message from the verifier fails the test, not only a
 # non-zero exit: systemd-analyze exits 0 on unknown keys and bad values. The
 # script first proves it would notice a broken unit.
@@ -50,7 +50,7 @@ else
   fail=1
 fi
 
-# 3. The properties issue 10 asks for are really there; issue 26: SIGKILL
+# 3. The unit's properties (docs/install.md) are really there; SIGKILL
 # cannot be caught, so ExecStopPost's xregulator-field-off must run after
 # every end of the main process (ExecStopPost runs after a kill -9 too), and
 # config/usage errors must not be restarted into a loop.

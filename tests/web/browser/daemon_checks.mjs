@@ -1,5 +1,5 @@
 // What a boat owner and an installer do, against the real daemon in --sim
-// (issue 25 "Done when"). Each step asserts what the user sees and what the
+// (docs/dashboard.md). Each step asserts what the user sees and what the
 // daemon then holds (its API), so a page that only looks right fails.
 import assert from "node:assert/strict";
 import { spawnSync } from "node:child_process";

@@ -1,7 +1,7 @@
-// Browser test of the dashboard (issues 9, 25): playwright-core drives
+// Browser test of the dashboard (docs/dashboard.md): playwright-core drives
 // Debian's /usr/bin/chromium (never a downloaded browser) against
 //   --mode fake    xr_web_testserver (fake DaemonApi): loading, charts, editing
-//   --mode daemon  xregulatord --sim --speed 1: everything a user does (issue 25
+//   --mode daemon  xregulatord --sim --speed 1: everything a user does (docs/dashboard.md
 //                  "Done when"), at phone (390x844) and desktop sizes.
 // Screenshots go to --artifacts DIR; --docs-dir DIR also copies the phone
 // screenshots docs/dashboard.md shows (web/tools/dashboard-screenshots.sh).

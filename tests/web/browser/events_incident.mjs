@@ -4,17 +4,12 @@
 // 8 s to 20 s. The daemon stores about fourteen events for it; the owner reads
 // one row that names the fault, what the regulator did and what to do, with
 // the events folded out under it.
-import { createRequire } from "node:module";
 import fs from "node:fs";
-import os from "node:os";
 import path from "node:path";
 import assert from "node:assert/strict";
-import { startServer } from "./server.mjs";
+import { parseArgs, runDaemonBrowserTest, until } from "./server.mjs";
 
-const args = Object.fromEntries(
-  process.argv.slice(2).reduce((acc, a, i, all) => (a.startsWith("--") ? [...acc, [a.slice(2), all[i + 1]]] : acc), []));
-const require = createRequire(path.join(path.resolve(args["web-dir"]), "package.json"));
-const { chromium } = require("playwright-core");
+const args = parseArgs();
 const token = "browser-test-token-0123456789";
 
 const scenario = `name = "a thermal fault"
@@ -37,26 +32,10 @@ at_s = 20
 clear = "temp_value"
 `;
 
-const stateDir = fs.mkdtempSync(path.join(os.tmpdir(), "xr-incident-"));
-const server = await startServer({ mode: "daemon", args, token, stateDir, scenario });
-const browser = await chromium.launch({
-  executablePath: "/usr/bin/chromium", headless: true,
-  args: ["--no-sandbox", "--disable-gpu", "--no-first-run", "--disable-background-networking", "--disable-sync"],
-});
-const get = async (p) => (await fetch(server.base + p)).json();
-const until = async (what, fn, ms = 60000) => {
-  const end = Date.now() + ms;
-  for (;;) {
-    if (await fn()) return;
-    assert.ok(Date.now() < end, "timed out waiting for " + what);
-    await new Promise((r) => setTimeout(r, 250));
-  }
-};
-let failed = false;
-try {
+await runDaemonBrowserTest({ args, token, scenario, prefix: "xr-incident-" }, async ({ server, browser, stateDir, get }) => {
   const cleared = async () => (await get("/api/events?limit=200")).events.some(
     (e) => e.code === "ProtectionClear" && e.reason === "REASON_TEMP_CRITICAL");
-  await until("the thermal fault to trip and clear", cleared);
+  await until("the thermal fault to trip and clear", cleared, 60000);
   await new Promise((r) => setTimeout(r, 6000));  // the field back on and the buzzer quiet
   const stored = (await get("/api/events?limit=200")).events.filter((e) => e.id);
   const thermal = stored.filter((e) => /TEMP_(CRITICAL|WARNING)/.test(e.reason));
@@ -102,13 +81,4 @@ try {
   await page.screenshot({ path: path.join(stateDir, "history.png") });
   if (args["docs-dir"]) fs.copyFileSync(path.join(stateDir, "history.png"), path.join(args["docs-dir"], "history.png"));
   console.log(`ok - the History page: ${day}; one charge, still going`);
-} catch (e) {
-  failed = true;
-  console.error(server.log().slice(-3000));
-  console.error(e);
-} finally {
-  await browser.close();
-  await server.stop();
-  fs.rmSync(stateDir, { recursive: true, force: true });
-}
-process.exit(failed ? 1 : 0);
+});

@@ -1,4 +1,4 @@
-// Getting in (issue 25, item 15) and plain words (item 7), against the real
+// Getting in (docs/dashboard.md) and plain words (item 7), against the real
 // daemon: called from daemon_checks.mjs at the points of its user's story.
 import assert from "node:assert/strict";
 import { execFileSync } from "node:child_process";

@@ -66,3 +66,51 @@ export async function startServer({ mode, args, token, stateDir, scenario, extra
   const stopped = new Promise((resolve) => proc.on("exit", resolve));
   return { proc, base: `http://127.0.0.1:${port}`, log: () => out, stop: () => { proc.kill("SIGTERM"); return stopped; } };
 }
+
+// ---------------------------------------------------------------- one browser test
+// What every browser test against the daemon does around its own steps:
+// the command line, the daemon, Debian's Chromium, and the clean-up.
+
+// "--web-dir web --server x" -> { "web-dir": "web", server: "x" }.
+export const parseArgs = (argv = process.argv.slice(2)) =>
+  Object.fromEntries(argv.reduce((acc, a, i, all) => (a.startsWith("--") ? [...acc, [a.slice(2), all[i + 1]]] : acc), []));
+
+// Polls fn until it is true; fails naming `what` after ms.
+export async function until(what, fn, ms = 20000) {
+  const end = Date.now() + ms;
+  for (;;) {
+    if (await fn()) return;
+    if (Date.now() >= end) throw new Error("timed out waiting for " + what);
+    await new Promise((r) => setTimeout(r, 250));
+  }
+}
+
+// Starts the daemon (startServer's options) and Chromium, runs
+// body({ server, browser, stateDir, get }), then stops both and removes the
+// state; exits 1 with the daemon's last log lines when body throws.
+export async function runDaemonBrowserTest({ args, prefix, ...serverOptions }, body) {
+  const { createRequire } = await import("node:module");
+  const os = await import("node:os");
+  const require = createRequire(path.join(path.resolve(args["web-dir"]), "package.json"));
+  const { chromium } = require("playwright-core");
+  const stateDir = fs.mkdtempSync(path.join(os.tmpdir(), prefix));
+  const server = await startServer({ mode: "daemon", args, stateDir, ...serverOptions });
+  const browser = await chromium.launch({
+    executablePath: "/usr/bin/chromium", headless: true,
+    args: ["--no-sandbox", "--disable-gpu", "--no-first-run", "--disable-background-networking", "--disable-sync"],
+  });
+  const get = async (p) => (await fetch(server.base + p)).json();
+  let failed = false;
+  try {
+    await body({ server, browser, stateDir, get });
+  } catch (e) {
+    failed = true;
+    console.error(server.log().slice(-3000));
+    console.error(e);
+  } finally {
+    await browser.close();
+    await server.stop();
+    fs.rmSync(stateDir, { recursive: true, force: true });
+  }
+  process.exit(failed ? 1 : 0);
+}

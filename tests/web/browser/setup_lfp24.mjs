@@ -8,17 +8,12 @@
 // chooses LiFePO4, 24 V, 400 Ah, 120 A, 100 A and saves: no error, the page
 // reads back the profile's 24 V values, the daemon holds them (its API) with
 // the cap table at 100 A, and the alternator charges.
-import { createRequire } from "node:module";
 import fs from "node:fs";
-import os from "node:os";
 import path from "node:path";
 import assert from "node:assert/strict";
-import { startServer } from "./server.mjs";
+import { parseArgs, runDaemonBrowserTest, until } from "./server.mjs";
 
-const args = Object.fromEntries(
-  process.argv.slice(2).reduce((acc, a, i, all) => (a.startsWith("--") ? [...acc, [a.slice(2), all[i + 1]]] : acc), []));
-const require = createRequire(path.join(path.resolve(args["web-dir"]), "package.json"));
-const { chromium } = require("playwright-core");
+const args = parseArgs();
 const token = "browser-test-token-0123456789";
 
 const scenario = `name = "24 V LiFePO4, 400 Ah, before its set-up"
@@ -41,24 +36,9 @@ rpm = 1800
 house_a = 5
 `;
 
-const stateDir = fs.mkdtempSync(path.join(os.tmpdir(), "xr-setup-"));
-const server = await startServer({ mode: "daemon", args, token, stateDir, scenario, shipped: true });
-const browser = await chromium.launch({
-  executablePath: "/usr/bin/chromium", headless: true,
-  args: ["--no-sandbox", "--disable-gpu", "--no-first-run", "--disable-background-networking", "--disable-sync"],
-});
-const get = async (p) => (await fetch(server.base + p)).json();
-const params = async () => Object.fromEntries((await get("/api/params")).params.map((p) => [p.name, p]));
-const until = async (what, fn, ms = 20000) => {
-  const end = Date.now() + ms;
-  for (;;) {
-    if (await fn()) return;
-    assert.ok(Date.now() < end, "timed out waiting for " + what);
-    await new Promise((r) => setTimeout(r, 250));
-  }
-};
-let failed = false;
-try {
+await runDaemonBrowserTest({ args, token, scenario, shipped: true, prefix: "xr-setup-" },
+  async ({ server, browser, stateDir, get }) => {
+  const params = async () => Object.fromEntries((await get("/api/params")).params.map((p) => [p.name, p]));
   // Before the set-up: 12 V settings on a 24 V bank; the field is held off.
   await until("the bank size check", async () => (await get("/api/status")).reason === "REASON_BANK_MISMATCH");
   assert.equal((await get("/api/status")).field_enable, false);
@@ -113,13 +93,4 @@ try {
     return s.reason !== "REASON_BANK_MISMATCH" && s.field_enable === true;
   }, 30000);
   console.log("ok - the field is on again once the settings match the bank");
-} catch (e) {
-  failed = true;
-  console.error(server.log().slice(-3000));
-  console.error(e);
-} finally {
-  await browser.close();
-  await server.stop();
-  fs.rmSync(stateDir, { recursive: true, force: true });
-}
-process.exit(failed ? 1 : 0);
+});

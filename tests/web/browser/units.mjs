@@ -1,5 +1,5 @@
 // Unit tests of the dashboard's pure modules under node (no browser):
-// formatting and parsing (issue 25 items 6, 13), plain names and the one
+// formatting and parsing (docs/dashboard.md), plain names and the one
 // reasons table shared with docs/operations.md (items 2, 7), the TOML
 // export/import (item 8), the settings' choices and sources (items 5, 8),
 // event texts (item 11), pairing messages (item 15).

@@ -1,4 +1,4 @@
-// libFuzzer target (issue 9): arbitrary bytes through the request/JSON
+// libFuzzer target (docs/security.md): arbitrary bytes through the request/JSON
 // handling. The first byte picks the entry point:
 //   0: raw HTTP request bytes -> Beast parser (with the server's limits) -> ApiHandler
 //   1: PATCH /api/params body   2: POST /api/commands body

@@ -10,8 +10,9 @@ const STALE_AFTER_S = 3;  // no frame for this long = not live (frames come at 2
 let lastFrameAt = 0;      // Date.now() of the last frame
 let lastStatus = null;
 
-export const tempUnit = () => localStorage.getItem("xregulator.tempUnit") ||
-  (/^en-US$/i.test(navigator.language || "") ? "F" : "C");
+// °C unless the owner chose °F (the unit switch on the System page): one
+// unit everywhere, whatever language the phone is set to.
+export const tempUnit = () => localStorage.getItem("xregulator.tempUnit") || "C";
 
 function setValue(id, text, unit, note) {
   const el = $(id);

@@ -112,7 +112,7 @@ export const REASONS = {
     action: "Check the BMS (full, cold or protecting its cells), and the BMS input polarity setting.",
     detail: "The BMS input asks to stop charging; check bms_active_low.",
   },
-  // Battery temperature limits (issue 21, the profiles branch): listed here so
+  // Battery temperature limits (docs/batteries.md): listed here so
   // the banner and docs/operations.md have them once that branch is merged.
   REASON_BATTERY_COLD: {
     title: "Battery too cold to charge", kind: "warn",

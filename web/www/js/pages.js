@@ -83,7 +83,7 @@ export function renderTuning(s) {
 // The event list lives in events.js; these names stay here for the pages' callers.
 export { applyEventFilter, eventText, levelShown, loadEvents } from "./events.js";
 
-// /api/system "bms" and "n2k" (issue 22) in plain words; a value the daemon
+// /api/system "bms" and "n2k" (docs/integrations.md) in plain words; a value the daemon
 // does not know is shown as a dash, never made up.
 const BMS_WORDS = {
   off: ["not set up", ""],

@@ -1,4 +1,4 @@
-// Getting in (issue 25, item 15): "Pair this device" with the 6-digit code
+// Getting in (docs/dashboard.md): "Pair this device" with the 6-digit code
 // the regulator prints (journal at every start, `xregulatord --pair`, or a
 // device paired before), the installer's token as the fallback, and the
 // System page's list of paired devices with revoke and "new code".

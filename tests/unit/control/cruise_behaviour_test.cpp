@@ -1,5 +1,6 @@
-// Issue 27's control fixes, each at its threshold and just below
-// (docs/deviations.md names these tests).
+// The control behaviour a cruising day needs — the field resting on a full
+// bank, the absorption tail, the thermal derate, the voltage loop — each at its
+// threshold and just below (docs/deviations.md names these tests).
 #include <gtest/gtest.h>
 
 #include <algorithm>
