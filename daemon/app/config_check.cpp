@@ -63,6 +63,7 @@ int printConfigMain(const std::optional<std::string>& configPath, const std::opt
   const std::string db = stateDb.value_or(configPath ? config.settings.store.path : std::string());
   std::error_code ec;
   if (!db.empty() && std::filesystem::exists(db, ec)) {
+    origins.assumeSetUp = setUpBeforeUpgradeReadOnly(db);  // as the daemon will (daemon_start.cpp)
     std::string why;
     const auto rows = readOverridesReadOnly(db, &why);
     if (!why.empty()) {

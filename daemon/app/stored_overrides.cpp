@@ -141,4 +141,15 @@ std::string readTokenReadOnly(const std::string& dbPath, std::string* error) {
   return st.step() == SQLITE_ROW ? st.colText(0) : std::string();
 }
 
+bool setUpBeforeUpgradeReadOnly(const std::string& dbPath) {
+  sql::Db db;
+  if (!openReadOnly(db, dbPath, nullptr)) return false;
+  if (db.queryInt("PRAGMA user_version") >= 4) {
+    sql::Stmt st(db, "SELECT 1 FROM kv WHERE key = 'set_up_before_upgrade'");
+    return st.ok() && st.step() == SQLITE_ROW;
+  }
+  sql::Stmt st(db, "SELECT (EXISTS (SELECT 1 FROM ledger_meta)) OR (EXISTS (SELECT 1 FROM overrides))");
+  return st.ok() && st.step() == SQLITE_ROW && st.colInt(0) != 0;
+}
+
 }  // namespace xr::app

@@ -42,5 +42,9 @@ OverrideResolution resolveStoredOverrides(const Params& fileParams, const std::v
 std::vector<OverrideRow> readOverridesReadOnly(const std::string& dbPath, std::string* error);
 // The stored web token (empty when none), read-only, for --print-token.
 std::string readTokenReadOnly(const std::string& dbPath, std::string* error);
+// True when the database belongs to an install that ran before "not set up"
+// existed (store/schema.cpp, v4): the flag, or for a database not migrated
+// yet, a saved ledger or a dashboard setting, which the migration will mark.
+bool setUpBeforeUpgradeReadOnly(const std::string& dbPath);
 
 }  // namespace xr::app

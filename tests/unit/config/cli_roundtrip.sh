@@ -65,6 +65,20 @@ for want in '# NOT SET UP' 'BulkVoltage = 14  # not set up' 'FloatVoltage = 13.4
   grep -qF "$want" "$tmp/out" && echo "ok: the shipped file, not set up: $want" \
     || { echo "FAIL: the shipped file, not set up, lacks: $want"; fail=1; }
 done
+# An install that ran before "not set up" existed (a v3 state database with
+# a saved ledger) keeps its values after the upgrade: --print-config says so
+# before the daemon has migrated the database (the migration itself:
+# Migration.FromEarlierSchemaKeepsData).
+sqlite3 "$tmp/old.db" "CREATE TABLE ledger(name TEXT PRIMARY KEY, value REAL NOT NULL);
+  CREATE TABLE overrides(name TEXT PRIMARY KEY, value TEXT NOT NULL, file_value TEXT,
+    changed_at_ms INTEGER NOT NULL DEFAULT 0);
+  CREATE TABLE ledger_meta(id INTEGER PRIMARY KEY CHECK (id = 1), saved_at_ms INTEGER NOT NULL, reason TEXT NOT NULL);
+  INSERT INTO ledger_meta VALUES(1, 1700000000000, 'stop'); CREATE TABLE kv(key TEXT PRIMARY KEY, value TEXT NOT NULL);
+  PRAGMA user_version = 3;"
+"$exe" --config "$root/config/xregulator.toml" --state-db "$tmp/old.db" --print-config >"$tmp/out" 2>"$tmp/err"
+! grep -qF "NOT SET UP" "$tmp/out" && grep -qF "BulkVoltage = 14.5  # default" "$tmp/out" \
+  && echo "ok: an install from before keeps its values (unmigrated database)" \
+  || { cat "$tmp/err"; echo "FAIL: an upgraded install is shown as not set up"; fail=1; }
 # The shipped file pins none of a profile's values: with only the battery
 # lines edited, a profile is what runs (docs/configuration.md "One chain of
 # values"), for a 24 V LiFePO4 bank and for 12 V AGM.
