@@ -4,6 +4,7 @@
 
 #include "battery/battery_monitor.h"
 #include "battery/monitor_helpers.h"
+#include "core/alternator_temperature.h"
 #include "params/constants.h"
 
 namespace xr {
@@ -13,7 +14,7 @@ using namespace battery_detail;
 // ---------------------------------------------------------------- auto-zero
 
 double BatteryMonitor::temperatureF(const Inputs& in) const {
-  return p_.TempSource == 1 ? in.thermistorF.value : in.AlternatorTemperatureF.value;
+  return alternatorTemperature(in, p_.TempSource).value;
 }
 
 void BatteryMonitor::checkAutoZeroTriggers(const Inputs& in, EventBatch& ev) {

@@ -7,6 +7,7 @@
 
 #include "control/rpm_tables.h"
 #include "control/slew.h"
+#include "core/alternator_temperature.h"
 #include "core/finite.h"
 #include "params/constants.h"
 #include "params/derived.h"
@@ -68,8 +69,7 @@ double ControlLaw::computeUTarget(const ControlSensors& s, const Params& p) {
   ti.TempToUse = s.TempToUse;
   ti.tempFresh = s.tempStamp != lastTempStamp_;
   lastTempStamp_ = s.tempStamp;
-  ti.tempValid = s.tempStamp != 0 && finite(s.TempToUse) && s.TempToUse >= k::TEMP_VALID_MIN_F &&
-                 s.TempToUse <= k::TEMP_VALID_MAX_F && (s.now - s.tempStamp) <= fromMs(k::TEMP_STALE_MS);
+  ti.tempValid = temperatureFresh(s.TempToUse, s.tempStamp, s.now);
   ti.impliedPenalty = std::max(0.0, I_cap_ - nonThermalCeiling_);
   const double penalty = thermal_.update(ti, p);
 

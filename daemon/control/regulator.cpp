@@ -21,6 +21,7 @@
 #include "battery/battery_monitor.h"
 #include "control/control_law.h"
 #include "control/temp_compensation.h"
+#include "core/alternator_temperature.h"
 #include "params/derived.h"
 #include "protection/battery_temperature.h"
 #include "protection/mode_selection.h"
@@ -163,7 +164,7 @@ const Outputs& Regulator::step(const Inputs& in) {
   const double MeasuredAmps =
       std::isfinite(in.altCurrentRaw.value) ? s.bat.correctedAltAmps(in.altCurrentRaw.value) : kNoValue;
   const double Bcur = std::isfinite(in.Bcur.value) ? s.bat.correctedBcur(in.Bcur.value) : kNoValue;
-  const Reading& temp = p.TempSource == 1 ? in.thermistorF : in.AlternatorTemperatureF;
+  const Reading& temp = alternatorTemperature(in, p.TempSource);
   ControlSensors cs;
   cs.now = in.now;
   cs.ch1Fresh = in.altCurrentRaw.fresh;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/alternator_temperature.h"
 #include "core/finite.h"
 #include "params/constants.h"
 #include "params/derived.h"
@@ -174,14 +175,13 @@ void ProtectionSupervisor::updateBankMismatch(EventBatch& ev) {
 
 // T1, T2, T3 (IgnoreTemperature), T4 and T5 (not ignorable, see docs).
 void ProtectionSupervisor::updateTemperature(const Inputs& in, EventBatch& ev) {
-  const Reading& tr = p_.TempSource == 0 ? in.AlternatorTemperatureF : in.thermistorF;
+  const Reading& tr = alternatorTemperature(in, p_.TempSource);
   TempToUse_ = tr.value;
-  const bool inRange = finite(tr.value) && tr.value >= k::TEMP_VALID_MIN_F && tr.value <= k::TEMP_VALID_MAX_F;
+  const bool fresh = temperatureFresh(tr.value, tr.stamp, now_);
   // T5: never read after 60 s of uptime; older than 20 s; NaN / out of range.
-  const bool stale = tr.stamp == 0 ? (now_ - boot_ > fromMs(k::TEMP_BOOT_GRACE_MS))
-                                   : (now_ - tr.stamp > fromMs(k::TEMP_STALE_MS) || !inRange);
+  const bool stale = tr.stamp == 0 ? (now_ - boot_ > fromMs(k::TEMP_BOOT_GRACE_MS)) : !fresh;
   tempStaleRaw_ = stale;
-  const bool usable = tr.stamp != 0 && !stale && inRange && !p_.IgnoreTemperature;
+  const bool usable = fresh && !p_.IgnoreTemperature;
   const double t = tr.value;
 
   // Ours (docs/deviations.md "Heat soak after an engine stop"):
