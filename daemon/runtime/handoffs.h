@@ -17,10 +17,10 @@
 #include "control/telemetry.h"
 #include "core/commands.h"
 #include "core/inputs.h"
+#include "core/seqlock.h"
 #include "params/params.h"
 #include "runtime/event_pump.h"
 #include "runtime/loop_stats.h"
-#include "runtime/seqlock.h"
 #include "runtime/spsc_queue.h"
 #include "runtime/triple_buffer.h"
 

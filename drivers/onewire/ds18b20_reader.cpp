@@ -110,7 +110,7 @@ void Ds18b20Reader::readOnce() {
   }
   state_.lastError = r.error;
   state_.heartbeat = t;
-  out_.publish(state_);
+  out_.store(state_);
 }
 
 void Ds18b20Reader::run() {

@@ -1,7 +1,7 @@
 #pragma once
 // DS18B20 reader (docs/install.md, wiring): a non-RT thread reads
 // <root>/<id>/w1_slave at 1 Hz and publishes {tempF, stamp} plus a
-// heartbeat through a LatestValue (lock-free) for the control thread:
+// heartbeat through a SeqLock (lock-free) for the control thread:
 // Inputs::AlternatorTemperatureF (T5 needs the stamps) and
 // Inputs::tempTaskHeartbeat (T4: the temperature task is alive).
 #include <atomic>
@@ -9,8 +9,8 @@
 #include <string>
 #include <thread>
 
+#include "core/seqlock.h"
 #include "core/time.h"
-#include "drivers/onewire/latest_value.h"
 #include "drivers/onewire/w1_therm.h"
 
 namespace xr {
@@ -44,7 +44,7 @@ class Ds18b20Reader {
   // One read cycle (what the thread does each period); public for tests.
   void readOnce();
   // RT-safe: the newest published sample.
-  Ds18b20Sample latest() const noexcept { return out_.read(); }
+  Ds18b20Sample latest() const noexcept { return out_.load(); }
   const std::string& sensorPath() const noexcept { return path_; }
 
  private:
@@ -60,7 +60,7 @@ class Ds18b20Reader {
   TimeNs period_;
   NowFn now_;
   Ds18b20Sample state_;
-  LatestValue<Ds18b20Sample> out_;
+  SeqLock<Ds18b20Sample> out_;
   std::atomic<bool> stop_{false};
   std::thread thread_;
 };

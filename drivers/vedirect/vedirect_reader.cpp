@@ -86,7 +86,7 @@ void VeDirectReader::run() {
         nextOpen = now_() + reopenPeriod_;
         parser_.reset();
         state_.portOpen = fd >= 0;
-        out_.publish(state_);
+        out_.store(state_);
       }
       if (fd < 0) {
         pollfd w{wakeFd_[0], POLLIN, 0};
@@ -103,7 +103,7 @@ void VeDirectReader::run() {
       if (r > 0) {
         parser_.feed(std::string_view(buf, static_cast<std::size_t>(r)), &VeDirectReader::onFrame, this);
         state_.badChecksums = parser_.badChecksums();
-        out_.publish(state_);
+        out_.store(state_);
       } else if (r == 0 || (errno != EAGAIN && errno != EINTR)) {
         lost = true;
       }
@@ -116,7 +116,7 @@ void VeDirectReader::run() {
       fd = -1;
       nextOpen = now_() + reopenPeriod_;
       state_.portOpen = false;
-      out_.publish(state_);
+      out_.store(state_);
     }
   }
   if (fd >= 0) ::close(fd);

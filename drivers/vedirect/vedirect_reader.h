@@ -1,7 +1,7 @@
 #pragma once
 // VE.Direct reader (docs/install.md, wiring): a non-RT thread opens the serial port
 // (termios 19200 8N1, raw), parses blocks and publishes {current A, voltage V,
-// ppv W, stamp} through a LatestValue for the control thread
+// ppv W, stamp} through a SeqLock for the control thread
 // (Inputs::VictronCurrent/VictronVoltage/solarPowerW; BatteryCurrentSource = 3
 // and solar energy). Unplug (read error/EOF/hang-up) closes the port and
 // re-opens it every `reopenPeriod`.
@@ -10,8 +10,8 @@
 #include <string>
 #include <thread>
 
+#include "core/seqlock.h"
 #include "core/time.h"
-#include "drivers/onewire/latest_value.h"
 #include "drivers/vedirect/vedirect_parser.h"
 
 namespace xr {
@@ -41,7 +41,7 @@ class VeDirectReader {
   void start();
   void stop() noexcept;
   // RT-safe: the newest published sample.
-  VeDirectSample latest() const noexcept { return out_.read(); }
+  VeDirectSample latest() const noexcept { return out_.load(); }
   std::uint64_t version() const noexcept { return out_.version(); }
 
  private:
@@ -52,7 +52,7 @@ class VeDirectReader {
   TimeNs reopenPeriod_;
   vedirect::Parser parser_;
   VeDirectSample state_;
-  LatestValue<VeDirectSample> out_;
+  SeqLock<VeDirectSample> out_;
   std::atomic<bool> stop_{false};
   int wakeFd_[2] = {-1, -1};
   std::thread thread_;

@@ -7,7 +7,6 @@
 #include <thread>
 
 #include "drivers/onewire/ds18b20_reader.h"
-#include "drivers/onewire/latest_value.h"
 #include "drivers/onewire/w1_therm.h"
 #include "runtime/ds18b20_handoff.h"
 #include "temp_dir.h"
@@ -151,73 +150,6 @@ TEST_F(Ds18b20ReaderTest, BatterySampleBecomesAHandoffInCelsiusNamingItsSource) 
   const rt::BatteryTempHandoff h = batteryTempHandoff(bat.latest());
   EXPECT_NEAR(h.tempC, 18.75, 1e-9);
   EXPECT_EQ(h.stamp, fakeNow);
-}
-
-struct Big {
-  std::uint64_t a, b, c;
-};
-
-TEST(LatestValue, ReadersNeverSeeATornValue) {
-  LatestValue<Big> v;
-  std::atomic<bool> stop{false};
-  std::thread w([&] {
-    for (std::uint64_t i = 1; !stop.load(); ++i) v.publish({i, i * 2, i * 3});
-  });
-  int torn = 0;
-  for (int i = 0; i < 200000; ++i) {
-    Big b{};
-    if (v.tryRead(&b) && (b.b != b.a * 2 || b.c != b.a * 3)) ++torn;
-  }
-  stop = true;
-  w.join();
-  EXPECT_EQ(torn, 0);
-  EXPECT_GT(v.version(), 0u);
-}
-
-}  // namespace
-}  // namespace xr
-
-#include "runtime/slow_inputs.h"
-
-namespace xr {
-namespace {
-
-TEST(SlowInputs, TemperatureFreshOnlyWhenTheStampMoves) {
-  SlowInputsState st;
-  Inputs in;
-  Ds18b20Sample s;
-  s.heartbeat = 10;
-  fillTempInputs(s, st, in);
-  EXPECT_FALSE(in.AlternatorTemperatureF.fresh) << "never read";
-  EXPECT_EQ(in.tempTaskHeartbeat, 10);
-  s.tempF = 150.0;
-  s.stamp = 20;
-  fillTempInputs(s, st, in);
-  EXPECT_TRUE(in.AlternatorTemperatureF.fresh);
-  EXPECT_DOUBLE_EQ(in.AlternatorTemperatureF.value, 150.0);
-  EXPECT_EQ(in.AlternatorTemperatureF.stamp, 20);
-  fillTempInputs(s, st, in);
-  EXPECT_FALSE(in.AlternatorTemperatureF.fresh);
-  EXPECT_EQ(in.AlternatorTemperatureF.stamp, 20);
-}
-
-TEST(SlowInputs, VictronLabelsMapToTheirReadings) {
-  SlowInputsState st;
-  Inputs in;
-  VeDirectSample s;
-  s.currentA = -4.5;
-  s.hasCurrent = true;
-  s.ppvW = 210;
-  s.hasPpv = true;
-  s.stamp = 7;
-  fillVictronInputs(s, st, in);
-  EXPECT_TRUE(in.VictronCurrent.fresh);
-  EXPECT_DOUBLE_EQ(in.VictronCurrent.value, -4.5);
-  EXPECT_TRUE(in.solarPowerW.fresh);
-  EXPECT_FALSE(in.VictronVoltage.fresh);
-  EXPECT_EQ(in.VictronVoltage.stamp, 0) << "never reported";
-  fillVictronInputs(s, st, in);
-  EXPECT_FALSE(in.VictronCurrent.fresh);
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-#include "runtime/seqlock.h"
+#include "core/seqlock.h"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,10 @@
 #pragma once
-// Newest-wins snapshot with one writer and any number of readers: the RT
-// thread publishes the latest telemetry, HTTP/WebSocket, the CSV writer,
-// sd_notify and the statistics logger read it. The writer never waits; a
-// reader retries while a write is in progress.
+// Newest-wins hand-off with one writer and any number of readers, the one
+// seqlock of the daemon: the RT thread publishes the latest telemetry
+// (HTTP/WebSocket, the CSV writer, sd_notify and the statistics logger read
+// it), and the slow sensor threads (DS18B20, VE.Direct) publish their newest
+// sample for the RT thread. The writer never waits; a reader retries while a
+// write is in progress.
 //
 // The payload is stored as atomic words so that concurrent access is well
 // defined (no data race, clean under ThreadSanitizer). Words are stored with
@@ -16,7 +18,7 @@
 #include <cstring>
 #include <type_traits>
 
-namespace xr::rt {
+namespace xr {
 
 template <typename T>
 class SeqLock {
@@ -24,7 +26,7 @@ class SeqLock {
   static constexpr std::size_t kWords = (sizeof(T) + sizeof(std::uint64_t) - 1) / sizeof(std::uint64_t);
 
  public:
-  SeqLock() { store(T{}); }
+  SeqLock() noexcept { store(T{}); }
 
   // Writer (one thread only).
   void store(const T& value) noexcept {
@@ -73,4 +75,4 @@ class SeqLock {
   std::array<std::atomic<std::uint64_t>, kWords> data_{};
 };
 
-}  // namespace xr::rt
+}  // namespace xr
