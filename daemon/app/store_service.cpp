@@ -7,9 +7,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
-#include <ctime>
 #include <map>
 
+#include "core/wall_time_text.h"
 #include "store/param_overrides.h"
 
 namespace xr::app {
@@ -23,14 +23,7 @@ std::int64_t unixMsNow() {
 namespace {
 
 // The owner's calendar day, "YYYY-MM-DD", in the board's time zone.
-std::string localDay(std::int64_t unixMs) {
-  const std::time_t t = static_cast<std::time_t>(unixMs / 1000);
-  std::tm tm{};
-  localtime_r(&t, &tm);
-  char buf[16];
-  std::strftime(buf, sizeof buf, "%Y-%m-%d", &tm);
-  return buf;
-}
+std::string localDay(std::int64_t unixMs) { return wallTimeText(unixMs, "%Y-%m-%d", TimeZone::Local); }
 
 }  // namespace
 

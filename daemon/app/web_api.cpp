@@ -5,13 +5,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <ctime>
 #include <thread>
 
 #include "app/effective_params.h"
 #include "app/param_change_text.h"
 #include "config/config.h"
 #include "core/modes.h"
+#include "core/wall_time_text.h"
 
 namespace xr::app {
 
@@ -249,14 +249,7 @@ std::vector<web::ProbeResult> WebApi::probeResults() {
 }
 
 namespace {
-std::string utcText(std::int64_t unixMs) {
-  const std::time_t t = static_cast<std::time_t>(unixMs / 1000);
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M UTC", &tm);
-  return buf;
-}
+std::string utcText(std::int64_t unixMs) { return wallTimeText(unixMs, "%Y-%m-%d %H:%M UTC", TimeZone::Utc); }
 }  // namespace
 
 web::VersionMap WebApi::versions() {

@@ -2,7 +2,8 @@
 
 #include <boost/json.hpp>
 #include <cmath>
-#include <ctime>
+
+#include "core/wall_time_text.h"
 
 namespace xr::integrations {
 
@@ -116,12 +117,9 @@ std::string signalKMetaDelta(const std::vector<SignalKMeta>& meta) {
 }
 
 std::string isoTimeUtc(long long unixMs) {
-  const std::time_t secs = static_cast<std::time_t>(unixMs / 1000);
-  std::tm tm{};
-  gmtime_r(&secs, &tm);
-  char buf[40];
-  const std::size_t n = std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%S", &tm);
-  return std::string(buf, n) + "." + std::to_string(1000 + unixMs % 1000).substr(1) + "Z";
+  const long long ms = ((unixMs % 1000) + 1000) % 1000;
+  return wallTimeText(unixMs, "%Y-%m-%dT%H:%M:%S", TimeZone::Utc) + "." +
+         std::to_string(1000 + ms).substr(1) + "Z";
 }
 
 }  // namespace xr::integrations

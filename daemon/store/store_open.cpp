@@ -10,12 +10,11 @@
 #include <sqlite3.h>
 
 #include <algorithm>
-#include <ctime>
 #include <filesystem>
 #include <system_error>
 
+#include "core/wall_time_text.h"
 #include "store/backup.h"
-#include "store/floor_div.h"
 #include "store/schema.h"
 #include "store/store.h"
 
@@ -24,15 +23,6 @@ namespace xr {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string utcStamp(std::int64_t unixMs, const char* format) {
-  const std::time_t t = static_cast<std::time_t>(store::floorDiv(unixMs, 1000));
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char buf[40];
-  std::strftime(buf, sizeof buf, format, &tm);
-  return buf;
-}
 
 // Result codes meaning "this file is not a usable database": move it aside.
 // (A newer schema is not one of them: it is found before any of this.)
@@ -73,7 +63,8 @@ OpenResult Store::open(const std::string& path, std::int64_t nowUnixMs) {
   };
   const auto restoredText = [&] {
     return "restored from the verified backup " + bak + " of " +
-           utcStamp(backupCheck().mtimeMs, "%Y-%m-%d %H:%M UTC") + " (changes after it are lost)";
+           wallTimeText(backupCheck().mtimeMs, "%Y-%m-%d %H:%M UTC", TimeZone::Utc) +
+           " (changes after it are lost)";
   };
 
   const bool existed = fs::exists(p, ec);
@@ -112,7 +103,7 @@ OpenResult Store::open(const std::string& path, std::int64_t nowUnixMs) {
   if (!damage.empty()) {
     // A damaged file never stops charging: keep it, bring the data back.
     db_.close();
-    const std::string copy = path + ".corrupt-" + utcStamp(nowUnixMs, "%Y%m%dT%H%M%SZ");
+    const std::string copy = path + ".corrupt-" + wallTimeText(nowUnixMs, "%Y%m%dT%H%M%SZ", TimeZone::Utc);
     fs::rename(p, copy, ec);
     const std::string head = "database " + path + " damaged (" + damage + ")";
     if (!ec) {
@@ -220,7 +211,7 @@ void Store::openNewer(OpenResult& r, int version) {
     r.backupUsed = backupPath();
     r.backupTakenAtMs = b.mtimeMs;
     r.message = head + "; this release cannot read it (" + unreadable + "), so the backup " + backupPath() +
-                " of " + utcStamp(b.mtimeMs, "%Y-%m-%d %H:%M UTC") + " is used";
+                " of " + wallTimeText(b.mtimeMs, "%Y-%m-%d %H:%M UTC", TimeZone::Utc) + " is used";
     return;
   }
   db_.close();
@@ -256,8 +247,8 @@ void Store::openInMemory(OpenResult& r, bool loadFile) {
     if (b.usable && store::copyInto(db_, backupPath(), "mode=ro") == SQLITE_OK) {
       r.backupUsed = backupPath();
       r.backupTakenAtMs = b.mtimeMs;
-      r.message += "; the backup " + backupPath() + " of " + utcStamp(b.mtimeMs, "%Y-%m-%d %H:%M UTC") +
-                   " loaded read-only";
+      r.message += "; the backup " + backupPath() + " of " +
+                   wallTimeText(b.mtimeMs, "%Y-%m-%d %H:%M UTC", TimeZone::Utc) + " loaded read-only";
     } else if (b.usable) {
       rc = db_.open(":memory:");
     }

@@ -77,6 +77,35 @@ double cvIChangeWithSlope(double e, bool rising) {
   return r.cv.cv_I() - before;
 }
 
+// A gap (the thread was not scheduled for 30 s) is not integrated as one
+// step: at most two loop intervals' worth (docs/deviations.md).
+TEST(CvLoop, GapIsNotIntegratedAsOneStep) {
+  CvRig r;  // e = +0.1 V: winds up at VoltageKi x 0.1 per second
+  r.cv.update(r.in, r.p);
+  r.in.now += fromSec(0.2);
+  r.cv.update(r.in, r.p);
+  const double before = r.cv.cv_I();
+  r.in.now += fromSec(30.0);
+  r.cv.update(r.in, r.p);
+  const double step = r.cv.cv_I() - before;
+  EXPECT_GT(step, 0.0);
+  EXPECT_LE(step, r.p.VoltageKi * 0.1 * 2.0 * r.p.VoltageLoopInterval / 1000.0 + 1e-9);
+}
+
+TEST(CvLoop, ReseedRequestSeedsLikeEntry) {
+  CvRig r;
+  r.in.IBV = 14.4;
+  r.in.g_pidI_filtered = 40.0;
+  r.cv.update(r.in, r.p);
+  r.cv.setCvI(0.0);  // a load dump snapped it
+  r.in.g_pidI_filtered = 12.0;
+  r.in.now += fromSec(0.0025);
+  r.cv.requestReseed();
+  const double Icv = r.cv.update(r.in, r.p);
+  EXPECT_NEAR(Icv, 12.0, 1e-9);  // bumpless: Icv == the current flowing
+  EXPECT_DOUBLE_EQ(r.cv.cv_I_aw_cap(), r.p.MaxTableValue);
+}
+
 TEST(CvLoop, NoSlopeBleedFarBelowTarget) {
   // e = 1.0 V >= SlopeBleedProxV (0.5): proxGain = 0.
   EXPECT_NEAR(cvIChangeWithSlope(1.0, true), cvIChangeWithSlope(1.0, false), 1e-9);

@@ -5,18 +5,13 @@
 // forecast. The owner sees the three days, that the alternator is held off
 // and why, and where the position came from; then a cloudy forecast, and
 // the panel says it charges again.
-import { createRequire } from "node:module";
 import fs from "node:fs";
 import http from "node:http";
-import os from "node:os";
 import path from "node:path";
 import assert from "node:assert/strict";
-import { startServer } from "./server.mjs";
+import { parseArgs, runDaemonBrowserTest } from "./server.mjs";
 
-const args = Object.fromEntries(
-  process.argv.slice(2).reduce((acc, a, i, all) => (a.startsWith("--") ? [...acc, [a.slice(2), all[i + 1]]] : acc), []));
-const require = createRequire(path.join(path.resolve(args["web-dir"]), "package.json"));
-const { chromium } = require("playwright-core");
+const args = parseArgs();
 const root = path.resolve(args.root);
 const token = "browser-test-token-0123456789";
 
@@ -33,15 +28,9 @@ await new Promise((r) => forecast.listen(0, "127.0.0.1", r));
 const scenario = fs.readFileSync(path.join(root, "scenarios/weather-gps.toml"), "utf8")
   .replace("127.0.0.1:8099", `127.0.0.1:${forecast.address().port}`);
 
-const stateDir = fs.mkdtempSync(path.join(os.tmpdir(), "xr-weather-"));
-const server = await startServer({ mode: "daemon", args, token, stateDir, scenario,
-  extraConfig: "[modes]\nweatherModeEnabled = true\nUVThresholdHigh = 6.0\n[can]\nn2k_interface = \"can1\"\n" });
-const browser = await chromium.launch({
-  executablePath: "/usr/bin/chromium", headless: true,
-  args: ["--no-sandbox", "--disable-gpu", "--no-first-run", "--disable-background-networking", "--disable-sync"],
-});
-let failed = false;
-try {
+await runDaemonBrowserTest({ args, prefix: "xr-weather-", token, scenario,
+  extraConfig: "[modes]\nweatherModeEnabled = true\nUVThresholdHigh = 6.0\n[can]\nn2k_interface = \"can1\"\n" },
+async ({ server, browser, stateDir }) => {
   const r = await fetch(server.base + "/api/commands", { method: "POST",
     headers: { Authorization: "Bearer " + token, "Content-Type": "application/json" },
     body: JSON.stringify({ command: "set_soc", soc_pct: 80 }) });
@@ -79,14 +68,4 @@ try {
   await verdict(/^Charging as usual: 0 of 3 days above UV 6\.0/);
   assert.notEqual((await (await fetch(server.base + "/api/status")).json()).reason, "REASON_WEATHER_MODE");
   console.log("ok - a cloudy forecast: the panel says it charges as usual");
-} catch (e) {
-  failed = true;
-  console.error(server.log().slice(-3000));
-  console.error(e);
-} finally {
-  await browser.close();
-  await server.stop();
-  forecast.close();
-  fs.rmSync(stateDir, { recursive: true, force: true });
-}
-process.exit(failed ? 1 : 0);
+});
