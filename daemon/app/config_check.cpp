@@ -64,6 +64,19 @@ int printConfigMain(const std::optional<std::string>& configPath, const std::opt
   std::error_code ec;
   if (!db.empty() && std::filesystem::exists(db, ec)) {
     origins.assumeSetUp = setUpBeforeUpgradeReadOnly(db);  // as the daemon will (daemon_start.cpp)
+    // The set-up page's probe and BMS choices, as the next start lays them.
+    const HardwareChoices choices = hardwareChoicesReadOnly(db);
+    if (choices != HardwareChoices{}) {
+      if (const auto bad = checkHardwareChoices(config.settings, choices); !bad.empty())
+        err << "warning: the set-up page's choice of " << bad.front().first
+            << " will not be used: " << bad.front().second << "\n";
+      else
+        config.settings = withHardwareChoices(std::move(config.settings), choices);
+      if (choices.batteryTempSensor)
+        err << "note: battery_temp_sensor below is the set-up page's choice, not the file's\n";
+      if (choices.bmsInterface)
+        err << "note: bms_interface below is the set-up page's choice, not the file's\n";
+    }
     std::string why;
     const auto rows = readOverridesReadOnly(db, &why);
     if (!why.empty()) {

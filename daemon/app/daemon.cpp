@@ -50,6 +50,18 @@ namespace {
 
 double wallSecondsNow() { return static_cast<double>(unixMsNow()) / 1000.0; }
 
+// --can-log's file; false: it cannot be created, said on stderr and in the journal.
+bool openCanLogOrSay(const std::string& path, std::unique_ptr<std::ofstream>& out) {
+  try {
+    out = openCanLog(path);
+    return true;
+  } catch (const std::exception& e) {
+    spdlog::critical("{}", e.what());
+    std::fprintf(stderr, "xregulatord: %s\n", e.what());
+    return false;
+  }
+}
+
 }  // namespace
 
 int Daemon::run() {
@@ -75,15 +87,7 @@ int Daemon::run() {
   // --can-log, opened before anything runs: an output file that cannot be
   // created stops the daemon at start, like --telemetry-csv.
   std::unique_ptr<std::ofstream> canLog;
-  if (cli_.canLog) {
-    try {
-      canLog = openCanLog(*cli_.canLog);
-    } catch (const std::exception& e) {
-      spdlog::critical("{}", e.what());
-      std::fprintf(stderr, "xregulatord: %s\n", e.what());
-      return kExitConfig;
-    }
-  }
+  if (cli_.canLog && !openCanLogOrSay(*cli_.canLog, canLog)) return kExitConfig;
 
   // ---- the rig ----
   std::unique_ptr<SimWiring> simRig;
@@ -184,6 +188,9 @@ int Daemon::run() {
     ctx.lastHeartbeatWallMs = &lastHeartbeatWallMs;
     ctx.fieldSafeFault = &outputsFault;
     ctx.integrations = integrationsView(integrations.get());
+    ctx.fileSettings = config_.settings;
+    ctx.runningSettings = settings;
+    ctx.w1Root = simRig ? simRig->w1Root() : settings.hardware.w1_root;
     api = std::make_unique<WebApi>(ctx);
     auto opts = web::WebServerOptions::fromSettings(settings.web, settings.web.token);
     if (opts.www_root.empty()) {

@@ -9,6 +9,7 @@
 #include "app/effective_params.h"
 #include "app/sim_wiring.h"
 #include "config/battery_profiles.h"
+#include "config/hardware_choices.h"
 #include "config/setup_pending.h"
 
 namespace xr::app {
@@ -34,9 +35,27 @@ bool loadScenario(const CliOptions& cli, Settings& settings, StartState& st) {
   return true;
 }
 
+// The set-up page's hardware choices over the file's settings, before any
+// device opens. A choice the file has since made impossible (the same
+// interface for NMEA 2000, a Victron GX now enabled) is not used: the file's
+// value runs, and the journal says why.
+void applyHardwareChoices(StoreService& store, Settings& settings) {
+  const HardwareChoices c = store.loadHardwareChoices();
+  if (c == HardwareChoices{}) return;
+  if (const auto errors = checkHardwareChoices(settings, c); !errors.empty()) {
+    for (const auto& [key, message] : errors)
+      spdlog::error("set-up: the choice of {} is not used: {}; the file's value runs", key, message);
+    return;
+  }
+  settings = withHardwareChoices(std::move(settings), c);
+  spdlog::info(
+      "set-up: battery temperature probe '{}', BMS on CAN '{}' (the set-up page's choice over the file)",
+      settings.hardware.battery_temp_sensor, settings.can.bms_interface);
+}
+
 // Opens the state database (locked first: one daemon per database), restores
 // the ledger and lays the stored dashboard settings over the file's.
-void openStore(const std::string& dbPath, const Settings& settings, StartState& st) {
+void openStore(const std::string& dbPath, Settings& settings, StartState& st) {
   st.store = std::make_unique<StoreService>(dbPath, settings.store.checkpoint_interval_s);
   const OpenResult& o = st.store->openResult();
   if (const char* code = StoreService::alarmCode(o))
@@ -47,6 +66,7 @@ void openStore(const std::string& dbPath, const Settings& settings, StartState& 
     st.restored = saved->ledger;
     spdlog::info("store: ledger restored (saved for '{}')", saved->reason);
   }
+  applyHardwareChoices(*st.store, settings);
   // An install from before "not set up" existed keeps charging as it did
   // (store/schema.cpp, v4).
   if (st.store->loadValue("set_up_before_upgrade")) st.origins.assumeSetUp = true;

@@ -43,6 +43,7 @@ class SimWiring final : public rt::TickHook {
   rt::MonotonicClock& wall() { return wall_; }
   DriverSensors::StartReport startSensors(double bovlVolts) { return rig_.startSensors(bovlVolts); }
   void attach(rt::Handoffs& h) { rig_.attach(h); }
+  std::string w1Root() const { return rig_.w1Root(); }
   rt::OutputMirror* mirror() { return mirror_.get(); }
 
   // TickHook: the test faults (--test-fault), at their simulated time.

@@ -313,4 +313,24 @@ bool StoreService::eraseDocument(std::string_view key) {
   return static_cast<bool>(store_.eraseBlob(key));
 }
 
+HardwareChoices StoreService::loadHardwareChoices() {
+  std::lock_guard lock(m_);
+  return {store_.getBlob(kChoiceBatteryTempSensor), store_.getBlob(kChoiceBmsInterface)};
+}
+
+std::string StoreService::saveHardwareChoices(const HardwareChoices& c) {
+  std::lock_guard lock(m_);
+  if (std::string why = unwritable(); !why.empty()) return why;
+  auto put = [&](const char* key, const std::optional<std::string>& v) {
+    return v ? store_.putBlob(key, *v) : store_.eraseBlob(key);
+  };
+  const StoreStatus st = store_.inTransaction([&]() -> StoreStatus {
+    if (StoreStatus s = put(kChoiceBatteryTempSensor, c.batteryTempSensor); !s) return s;
+    return put(kChoiceBmsInterface, c.bmsInterface);
+  });
+  if (st) return "";
+  spdlog::error("store: the set-up's hardware choices were not saved: {}", st.error);
+  return st.error;
+}
+
 }  // namespace xr::app

@@ -16,6 +16,7 @@
 
 #include "app/stored_overrides.h"
 #include "battery/ledger.h"
+#include "config/hardware_choices.h"
 #include "params/params.h"
 #include "runtime/handoffs.h"
 #include "store/checkpoint_policy.h"
@@ -78,6 +79,10 @@ class StoreService {
   std::vector<std::pair<std::string, std::string>> documents(std::string_view prefix);
   bool putDocument(std::string_view key, std::string_view value);  // false: not saved
   bool eraseDocument(std::string_view key);
+  // The set-up page's hardware choices (config/hardware_choices.h); saved
+  // whole or not at all: "" when saved, else why not.
+  HardwareChoices loadHardwareChoices();
+  std::string saveHardwareChoices(const HardwareChoices& c);
 
   // The event code of a start that found the database not as it should be
   // (nullptr: a normal start).

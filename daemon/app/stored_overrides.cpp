@@ -141,6 +141,20 @@ std::string readTokenReadOnly(const std::string& dbPath, std::string* error) {
   return st.step() == SQLITE_ROW ? st.colText(0) : std::string();
 }
 
+HardwareChoices hardwareChoicesReadOnly(const std::string& dbPath) {
+  sql::Db db;
+  HardwareChoices c;
+  if (!openReadOnly(db, dbPath, nullptr)) return c;
+  auto read = [&](const char* key) -> std::optional<std::string> {
+    sql::Stmt st(db, "SELECT value FROM kv WHERE key = ?1");
+    if (!st.ok() || st.bind(1, std::string_view(key)).step() != SQLITE_ROW) return std::nullopt;
+    return st.colText(0);
+  };
+  c.batteryTempSensor = read(kChoiceBatteryTempSensor);
+  c.bmsInterface = read(kChoiceBmsInterface);
+  return c;
+}
+
 bool setUpBeforeUpgradeReadOnly(const std::string& dbPath) {
   sql::Db db;
   if (!openReadOnly(db, dbPath, nullptr)) return false;

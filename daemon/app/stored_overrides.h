@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "config/hardware_choices.h"
 #include "params/params.h"
 #include "store/store.h"
 
@@ -46,5 +47,9 @@ std::string readTokenReadOnly(const std::string& dbPath, std::string* error);
 // existed (store/schema.cpp, v4): the flag, or for a database not migrated
 // yet, a saved ledger or a dashboard setting, which the migration will mark.
 bool setUpBeforeUpgradeReadOnly(const std::string& dbPath);
+
+// The set-up page's hardware choices kept in the database (none when it
+// cannot be read), for --print-config.
+HardwareChoices hardwareChoicesReadOnly(const std::string& dbPath);
 
 }  // namespace xr::app

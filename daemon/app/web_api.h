@@ -38,6 +38,13 @@ struct WebApiContext {
   std::chrono::milliseconds commandAckTimeout{1000};
   // The integrations' state (docs/integrations.md); empty when none runs.
   std::function<std::vector<web::IntegrationState>()> integrations;
+  // The set-up page's hardware choices (config/hardware_choices.h): the
+  // file's settings, the ones this run opened its devices with, and where
+  // its 1-Wire probes are (the simulator's own tree in --sim).
+  Settings fileSettings;
+  Settings runningSettings;
+  std::string w1Root;
+  std::string sysClassNet = "/sys/class/net";
 };
 
 class WebApi final : public web::DaemonApi {
@@ -71,6 +78,10 @@ class WebApi final : public web::DaemonApi {
   web::CanState can() override {
     return canStateOf(ctx_.handoffs->canStatus.load(), ctx_.handoffs->acceptedParams().BmsLimitsEnabled);
   }
+
+  web::HardwareSetup hardwareSetup() override;  // web_api_hardware.cpp
+  std::vector<web::FieldError> saveHardwareChoices(const web::HardwareChoiceEdit& edit,
+                                                   const std::string& source) override;
 
   static web::StatusSnapshot toStatus(const rt::RuntimeSnapshot& s, bool sim, double periodUs);
   // Once a second from the supervisor: the summary line of the settings

@@ -11,6 +11,7 @@
 #include "config/battery_profiles.h"
 #include "config/bounded_read.h"
 #include "config/format.h"
+#include "config/hardware_choices.h"
 #include "config/integration_checks.h"
 #include "config/param_values.h"
 #include "config/settings_schema.h"
@@ -257,6 +258,7 @@ class Loader {
     for (auto& [key, message] : checkIntegrations(config_.settings.integrations, config_.settings.can))
       settingError(key, message);
     for (auto& [key, message] : checkCan(config_.settings.can)) settingError(key, message);
+    for (auto& [key, message] : checkBatteryProbe(config_.settings.hardware)) settingError(key, message);
   }
 
   void settingError(const std::string& key, std::string message) {

@@ -95,7 +95,8 @@ const SettingSpec kSchema[] = {
              "DS18B20 id (\"28-...\"); empty = the first one found."),
     XR_S_STR("hardware", hardware.battery_temp_sensor, "battery_temp_sensor", "",
              "Battery DS18B20 id (\"28-...\") on the same 1-Wire bus; empty = no battery temperature sensor "
-             "(docs/batteries.md). Set onewire_sensor_id too when two sensors are wired."),
+             "(docs/batteries.md). Set onewire_sensor_id too when two sensors are wired. The set-up page's "
+             "choice, when one was made, replaces this from the next start (docs/configuration.md)."),
     XR_S_STR("hardware", hardware.vedirect_port, "vedirect_port", "",
              "VE.Direct serial port (e.g. /dev/ttyUSB0); empty = none."),
     // [hardware.frontend]
@@ -155,7 +156,8 @@ const SettingSpec kSchema[] = {
         "can", can.bms_interface, "bms_interface", "",
         "SocketCAN interface of the BMS bus (500 kbit/s, 11-bit frames), e.g. can0; empty = no BMS on CAN. "
         "A BMS set here is obeyed (its CVL, CCL, charge-disable and warnings; stale after BmsStaleS of "
-        "silence); BmsLimitsEnabled = 0 makes it monitor only."),
+        "silence); BmsLimitsEnabled = 0 makes it monitor only. The set-up page's choice, when one was made, "
+        "replaces this from the next start (docs/configuration.md)."),
     XR_S_STR(
         "can", can.bms_protocol, "bms_protocol", "victron,pylontech,rec",
         "What the BMS speaks: victron (the 0x351/0x355/0x356/0x35A/0x35E set most LFP BMSs and Victron GX "

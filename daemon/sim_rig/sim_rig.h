@@ -71,6 +71,8 @@ class SimRig final : public rt::TruthSource {
   // What the CAN service reports (a bus down, bad frames, rate-limited).
   // Without a handler it is printed on stderr.
   void onCanReport(std::function<void(const std::string&)> f) { canReport_ = std::move(f); }
+  // The simulated board's 1-Wire sysfs tree (w1_root on a board).
+  std::string w1Root() const { return scratch_.string(); }
   // The CAN side; null before attach().
   const SimCanRig* can() const noexcept { return can_.get(); }
 

@@ -24,6 +24,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// How the owner reads a backup's age in a message.
+std::string utcMinute(std::int64_t unixMs) {
+  return wallTimeText(unixMs, "%Y-%m-%d %H:%M UTC", TimeZone::Utc);
+}
+
 // Result codes meaning "this file is not a usable database": move it aside.
 // (A newer schema is not one of them: it is found before any of this.)
 bool isCorruption(int rc) {
@@ -62,8 +67,7 @@ OpenResult Store::open(const std::string& path, std::int64_t nowUnixMs) {
     return *checked;
   };
   const auto restoredText = [&] {
-    return "restored from the verified backup " + bak + " of " +
-           wallTimeText(backupCheck().mtimeMs, "%Y-%m-%d %H:%M UTC", TimeZone::Utc) +
+    return "restored from the verified backup " + bak + " of " + utcMinute(backupCheck().mtimeMs) +
            " (changes after it are lost)";
   };
 
@@ -211,7 +215,7 @@ void Store::openNewer(OpenResult& r, int version) {
     r.backupUsed = backupPath();
     r.backupTakenAtMs = b.mtimeMs;
     r.message = head + "; this release cannot read it (" + unreadable + "), so the backup " + backupPath() +
-                " of " + wallTimeText(b.mtimeMs, "%Y-%m-%d %H:%M UTC", TimeZone::Utc) + " is used";
+                " of " + utcMinute(b.mtimeMs) + " is used";
     return;
   }
   db_.close();
@@ -247,8 +251,7 @@ void Store::openInMemory(OpenResult& r, bool loadFile) {
     if (b.usable && store::copyInto(db_, backupPath(), "mode=ro") == SQLITE_OK) {
       r.backupUsed = backupPath();
       r.backupTakenAtMs = b.mtimeMs;
-      r.message += "; the backup " + backupPath() + " of " +
-                   wallTimeText(b.mtimeMs, "%Y-%m-%d %H:%M UTC", TimeZone::Utc) + " loaded read-only";
+      r.message += "; the backup " + backupPath() + " of " + utcMinute(b.mtimeMs) + " loaded read-only";
     } else if (b.usable) {
       rc = db_.open(":memory:");
     }

@@ -1,5 +1,5 @@
 // HTTP routes (docs/dashboard.md "API"): /api/status, /api/params (GET, PATCH), /api/commands,
-// /api/events, /api/history, /api/system, /metrics, /healthz, static files.
+// /api/events, /api/history, /api/system, /api/setup/hardware, /metrics, /healthz, static files.
 // This file routes a request and answers the status, system, metrics, health
 // and static-file reads; the parameter, command and events/history routes
 // live in api_params.cpp, api_commands.cpp and api_history.cpp.
@@ -162,6 +162,16 @@ Response ApiHandler::route(const Request& req) {
     // Every write needs a token, whatever reads_require_token says.
     if (auto code = checkWrite(req[http::field::authorization])) return authError(req, code);
     return isParams ? patchParams(req) : postCommand(req);
+  }
+  if (path == "/api/setup/hardware") {
+    if (isGet) return onlyGet([&] { return getHardwareSetup(req); });
+    if (method != http::verb::put) {
+      auto r = error(req, http::status::method_not_allowed, "method not allowed");
+      r.set(http::field::allow, "GET, HEAD, PUT");
+      return r;
+    }
+    if (auto code = checkWrite(req[http::field::authorization])) return authError(req, code);
+    return putHardwareSetup(req);
   }
   if (path == "/api/pair" || path.starts_with("/api/pair/")) return pairRoutes(req, path);
   if (path == "/ws") return error(req, http::status::upgrade_required, "WebSocket upgrade required");

@@ -55,6 +55,8 @@ class ApiHandler {
   Response getMetrics(const Request& req);
   Response getHealth(const Request& req);
   Response getStatic(const Request& req, std::string_view path);
+  Response getHardwareSetup(const Request& req);  // api_setup.cpp
+  Response putHardwareSetup(const Request& req);
   Response pairRoutes(const Request& req, std::string_view path);
   // Who an authorised write comes from, for the event it makes: the paired
   // device's name, or the static token.

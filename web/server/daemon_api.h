@@ -184,6 +184,36 @@ struct CanState {
   CanN2kState n2k;
 };
 
+// The set-up page's hardware choices (GET/PUT /api/setup/hardware,
+// docs/configuration.md "Set-up"): the battery's 1-Wire probe and the BMS's
+// CAN interface. Each is what the file says, what the set-up page chose
+// (nullopt: nothing; "" = none) and what runs now; a choice runs from the
+// next start.
+struct HardwareChoice {
+  std::string file;
+  std::optional<std::string> chosen;
+  std::string running;
+};
+struct HardwareSetup {
+  bool savable = false;  // a state database keeps the choices
+  HardwareChoice batteryTempSensor;
+  HardwareChoice bmsInterface;
+  std::string alternatorSensor;            // the probe the alternator's temperature is read from
+  std::vector<std::string> probes;         // 1-Wire temperature probes present now
+  std::vector<std::string> canInterfaces;  // CAN interfaces present now
+  bool victronBms = false;                 // the GX gives the BMS limits ([integrations.victron])
+};
+// One field of PUT /api/setup/hardware: absent (not touched), a value, or
+// null (back to the file's).
+struct ChoiceEdit {
+  bool touched = false;
+  std::optional<std::string> value;
+};
+struct HardwareChoiceEdit {
+  ChoiceEdit batteryTempSensor;
+  ChoiceEdit bmsInterface;
+};
+
 // Health for /healthz: ok = the control loop ticks and the outputs are driven.
 struct Health {
   bool ok = false;
@@ -248,6 +278,15 @@ class DaemonApi {
   virtual std::vector<IntegrationState> integrations() { return {}; }
   // The CAN buses; both "off" when the daemon has none.
   virtual CanState can() { return {}; }
+
+  // The set-up page's hardware choices; saving checks them as the file's
+  // settings are checked and keeps them durably, or changes nothing and
+  // says why (FieldError.name: the setting's dotted key).
+  virtual HardwareSetup hardwareSetup() { return {}; }
+  virtual std::vector<FieldError> saveHardwareChoices(const HardwareChoiceEdit& /*edit*/,
+                                                      const std::string& /*source*/) {
+    return {{"setup", "this daemon keeps no hardware choices"}};
+  }
 };
 
 }  // namespace xr::web

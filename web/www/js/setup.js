@@ -5,10 +5,12 @@ import { getJson, toast, write } from "./api.js";
 import { fToC, parseDecimal } from "./format.js";
 import { renderSetupState, tempUnit } from "./live.js";
 import { choicesOf, loadSettings } from "./settings.js";
+import { collectHardware, hardwareRows, renderHardwareStep, restartNeeded } from "./setup_hardware.js";
 import { exportToml, parseParamsToml } from "./toml.js";
 
 const $ = (id) => document.getElementById(id);
 let params = [];
+let hardware = null;  // GET /api/setup/hardware
 const find = (n) => params.find((p) => p.name === n);
 
 // Charge voltages per bank size for the "custom" profile (no chemistry):
@@ -53,6 +55,7 @@ function renderSteps() {
   steps.push(`<h3>${steps.length + 1} · Temperature limit</h3>` +
     field("Alternator temperature limit", "su-templimit", unit === "F" ? Math.round(tLimit) : Math.round(fToC(tLimit)), unit === "F" ? "°F" : "°C",
       "Current is reduced above it; charging stops well above it."));
+  if (hardware) steps.push(renderHardwareStep(hardware, steps.length + 1));
   $("setup-steps").innerHTML = steps.join("");
 }
 
@@ -125,7 +128,7 @@ function renderResult() {
   const rows = [["Bulk", `${v("BulkVoltage")} V`], ["Absorption", `${v("AbsorptionVoltage")} V`],
     ["Float", v("UseFloat") ? `${v("FloatVoltage")} V` : "off (rests after absorption)"],
     ["Battery current limit", `${v("MaximumAllowedBatteryAmps")} A`],
-    ["Alternator limit", `${Math.max(...v("rpmCapCurrentTable"))} A`]];
+    ["Alternator limit", `${Math.max(...v("rpmCapCurrentTable"))} A`], ...(hardware ? hardwareRows(hardware) : [])];
   const pinned = params.filter((p) => p.profile_owned && p.source === "file").map((p) => p.name);
   $("setup-result").innerHTML = `<h3>Now in effect</h3><table class="kv">${rows.map(([k, x]) => `<tr><th>${k}</th><td>${x}</td></tr>`).join("")}</table>` +
     (pinned.length ? `<p class="msg warn">Still set by the configuration file, not by the profile: ${pinned.join(", ")}. Comment them out in xregulator.toml to let the profile decide.</p>` : "");
@@ -136,8 +139,10 @@ async function saveSetup(runCommand) {
   const msg = $("setup-msg");
   let body;
   try { body = collect(); } catch (e) { msg.textContent = e.message; msg.className = "msg bad"; return; }
+  const hwBody = hardware ? collectHardware(hardware) : {};
   try {
     await write("PATCH", "/api/params", body);
+    if (Object.keys(hwBody).length) hardware = await write("PUT", "/api/setup/hardware", hwBody);
   } catch (e) {
     const errs = (e.body && e.body.errors) || {};
     msg.textContent = `${e.message}${Object.keys(errs).length ? ": " + Object.entries(errs).map(([k, v]) => `${k} ${v}`).join("; ") : ""}`;
@@ -148,7 +153,8 @@ async function saveSetup(runCommand) {
   params = after.params;
   renderResult();
   renderSetupState(after);
-  msg.textContent = "Saved. Press “Start charging” when the engine runs.";
+  msg.textContent = "Saved. Press “Start charging” when the engine runs." +
+    (hardware && restartNeeded(hardware) ? " The probe and BMS choices are used from the regulator’s next start (switch it off and on)." : "");
   msg.className = "msg ok";
   $("setup-start").hidden = false;
   $("setup-start").onclick = async () => { if (await runCommand("auto")) location.hash = "#live"; };
@@ -156,6 +162,7 @@ async function saveSetup(runCommand) {
 
 export async function loadSetup() {
   params = (await getJson("/api/params")).params;
+  hardware = await getJson("/api/setup/hardware").catch(() => null);
   renderSteps();
   $("setup-result").hidden = true;
   $("setup-start").hidden = true;

@@ -1,0 +1,47 @@
+#include "config/hardware_choices.h"
+
+#include <cctype>
+
+#include "config/integration_checks.h"
+
+namespace xr {
+
+bool isOneWireId(const std::string& id) {
+  if (id.size() != 15 || id[2] != '-') return false;
+  for (std::size_t i = 0; i < id.size(); ++i)
+    if (i != 2 && !std::isxdigit(static_cast<unsigned char>(id[i]))) return false;
+  return true;
+}
+
+Settings withHardwareChoices(Settings s, const HardwareChoices& c) {
+  if (c.batteryTempSensor) s.hardware.battery_temp_sensor = *c.batteryTempSensor;
+  if (c.bmsInterface) s.can.bms_interface = *c.bmsInterface;
+  return s;
+}
+
+std::vector<std::pair<std::string, std::string>> checkBatteryProbe(const HardwareSettings& h) {
+  std::vector<std::pair<std::string, std::string>> out;
+  const std::string& probe = h.battery_temp_sensor;
+  if (!probe.empty() && !isOneWireId(probe))
+    out.emplace_back("hardware.battery_temp_sensor",
+                     "'" + probe + "' is not a 1-Wire id (e.g. 28-0316a2794aff)");
+  // One probe cannot be both: the alternator's reading would be taken for
+  // the battery's, and a cold battery for a cool alternator.
+  if (!probe.empty() && probe == h.onewire_sensor_id)
+    out.emplace_back("hardware.battery_temp_sensor",
+                     "'" + probe + "' is the alternator's sensor ([hardware] onewire_sensor_id)");
+  return out;
+}
+
+std::vector<std::pair<std::string, std::string>> checkHardwareChoices(const Settings& file,
+                                                                      const HardwareChoices& c) {
+  const Settings s = withHardwareChoices(file, c);
+  std::vector<std::pair<std::string, std::string>> out;
+  for (auto& e : checkBatteryProbe(s.hardware)) out.push_back(std::move(e));
+  for (auto& e : checkCan(s.can)) out.push_back(std::move(e));
+  for (auto& e : checkIntegrations(s.integrations, s.can))
+    if (e.first == "integrations.victron.enabled") out.push_back(std::move(e));  // the one rule across tables
+  return out;
+}
+
+}  // namespace xr

@@ -1,0 +1,50 @@
+// The battery probe and BMS bus an owner picks on the set-up page
+// (config/hardware_choices.h), and the file's battery probe id, which passes
+// the same check (docs/configuration.md "Set-up").
+#include "config/hardware_choices.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "config/config.h"
+
+namespace xr {
+namespace {
+
+using ::testing::HasSubstr;
+
+TEST(HardwareChoices, AOneWireIdIsFamilyDashTwelveHexDigits) {
+  EXPECT_TRUE(isOneWireId("28-0316a2794aff"));
+  EXPECT_TRUE(isOneWireId("10-0000ABCDEF01"));
+  EXPECT_FALSE(isOneWireId("28-0316a2794af"));    // 11 digits
+  EXPECT_FALSE(isOneWireId("28-0316a2794aff0"));  // 13
+  EXPECT_FALSE(isOneWireId("28_0316a2794aff"));
+  EXPECT_FALSE(isOneWireId("28-0316a2794afg"));
+  EXPECT_FALSE(isOneWireId("../../etc/passwd"));
+  EXPECT_FALSE(isOneWireId(""));
+}
+
+TEST(HardwareChoices, AChoiceLiesOverTheFileAndUnsetKeepsTheFiles) {
+  Settings file;
+  file.hardware.battery_temp_sensor = "28-000000000001";
+  file.can.bms_interface = "can0";
+  const Settings s = withHardwareChoices(file, {std::nullopt, std::string("")});
+  EXPECT_EQ(s.hardware.battery_temp_sensor, "28-000000000001");
+  EXPECT_EQ(s.can.bms_interface, "") << "\"\" is none, whatever the file says";
+}
+
+TEST(HardwareChoices, TheFilesBatteryProbeIsCheckedToo) {
+  const auto bad = loadConfigString("[hardware]\nbattery_temp_sensor = \"28-abc\"\n", "test.toml");
+  ASSERT_EQ(bad.errors.size(), 1u);
+  EXPECT_THAT(bad.errors[0].toString(), HasSubstr("not a 1-Wire id"));
+  const auto same = loadConfigString(
+      "[hardware]\nonewire_sensor_id = \"28-000000000001\"\nbattery_temp_sensor = \"28-000000000001\"\n",
+      "test.toml");
+  ASSERT_EQ(same.errors.size(), 1u);
+  EXPECT_THAT(same.errors[0].toString(), HasSubstr("alternator's sensor"));
+  EXPECT_TRUE(
+      loadConfigString("[hardware]\nbattery_temp_sensor = \"28-000000000002\"\n", "t").errors.empty());
+}
+
+}  // namespace
+}  // namespace xr

@@ -1,0 +1,96 @@
+// The set-up page's hardware step (docs/configuration.md "Set-up"), in
+// Debian's Chromium at phone size against the real daemon in --sim, on the
+// shipped config/xregulator.toml. The simulated board has two DS18B20s: the
+// alternator's and one on the battery. The owner picks the battery's probe;
+// the page says it is used from the next start, the choice is an event, and
+// after a restart the daemon runs with it. Bad choices are refused with the
+// setting's name and nothing saved; null gives the decision back to the file.
+import assert from "node:assert/strict";
+import { parseArgs, runDaemonBrowserTest, startServer } from "./server.mjs";
+
+const args = parseArgs();
+const token = "browser-test-token-0123456789";
+const batteryProbe = "28-00000b0a77e1";  // daemon/sim_rig/sim_rig.h kSimBatteryW1Id
+
+const scenario = `name = "12 V AGM with a probe on the battery"
+duration_s = 3600
+seed = 11
+[battery]
+chemistry = "agm"
+capacity_ah = 200
+nominal_v = 12
+soc_pct = 60
+temp_c = 20
+temp_sensor = true
+[engine]
+rpm = 1500
+`;
+
+const put = (server, body, auth = token) => fetch(server.base + "/api/setup/hardware", {
+  method: "PUT", headers: { "Content-Type": "application/json", ...(auth ? { Authorization: "Bearer " + auth } : {}) },
+  body: JSON.stringify(body) });
+
+await runDaemonBrowserTest({ args, token, scenario, shipped: true, prefix: "xr-setup-hw-" },
+  async ({ server, browser, stateDir, get }) => {
+  const before = await get("/api/setup/hardware");
+  assert.equal(before.savable, true);
+  assert.ok(before.probes.includes(batteryProbe), JSON.stringify(before));
+  assert.notEqual(before.alternator_sensor, batteryProbe, "the alternator keeps its own probe");
+  assert.equal(before.battery_temp_sensor.running, "", "the shipped file names no battery probe");
+
+  const ctx = await browser.newContext({ viewport: { width: 390, height: 844 }, locale: "en-GB" });
+  const page = await ctx.newPage();
+  page.setDefaultTimeout(30000);
+  await page.goto(server.base + "/#live");
+  await page.evaluate((t) => localStorage.setItem("xregulator.token", t), token);
+  await page.goto(server.base + "/#setup");
+  await page.waitForSelector("#page-setup:not([hidden]) #su-battprobe");
+  const offered = await page.$$eval("#su-battprobe option", (os) => os.map((o) => o.value));
+  assert.deepEqual(offered, ["", batteryProbe], "no probe, or the battery's; never the alternator's");
+  await page.selectOption("#su-profile", { label: "agm" });
+  await page.selectOption("#su-battprobe", batteryProbe);
+  await page.click("#setup-save");
+  await page.waitForSelector("#setup-result:not([hidden])");
+  assert.match(await page.textContent("#setup-msg"), /^Saved\..*next start/);
+  assert.match(await page.textContent("#setup-result"),
+    new RegExp(`Battery temperature probenone → ${batteryProbe} from the next start`));
+  const saved = await get("/api/setup/hardware");
+  assert.equal(saved.battery_temp_sensor.chosen, batteryProbe);
+  assert.equal(saved.battery_temp_sensor.restart_needed, true);
+  const events = (await get("/api/events?limit=50")).events.map((e) => e.text).join("\n");
+  assert.match(events, new RegExp(`Set-up by .*: battery temperature probe ${batteryProbe}; used from the next start`), events);
+  assert.doesNotMatch(events, /BMS on CAN/, "only what changed is named");
+  console.log("ok - the battery's probe chosen on the set-up page: saved, an event, 'from the next start'");
+
+  // Refused with the setting's name, nothing saved.
+  assert.equal((await put(server, { battery_temp_sensor: "" }, null)).status, 401);
+  for (const [body, key] of [[{ battery_temp_sensor: "28-nothex" }, "hardware.battery_temp_sensor"],
+    [{ battery_temp_sensor: before.alternator_sensor }, "hardware.battery_temp_sensor"],
+    [{ bms_interface: "can0/x" }, "can.bms_interface"]]) {
+    const r = await put(server, body);
+    assert.equal(r.status, 400, JSON.stringify(body));
+    assert.ok(key in (await r.json()).errors, `${JSON.stringify(body)} names ${key}`);
+  }
+  assert.equal((await put(server, { volume: 3 })).status, 400, "an unknown setting");
+  assert.equal((await get("/api/setup/hardware")).battery_temp_sensor.chosen, batteryProbe, "nothing saved");
+  console.log("ok - a malformed probe id, the alternator's probe and a bad interface name are refused, nothing saved");
+
+  // The next start runs with the choice.
+  await server.stop();
+  const again = await startServer({ mode: "daemon", args, token, stateDir, scenario, shipped: true });
+  try {
+    const hw = await (await fetch(again.base + "/api/setup/hardware")).json();
+    assert.equal(hw.battery_temp_sensor.running, batteryProbe);
+    assert.equal(hw.battery_temp_sensor.restart_needed, false);
+    assert.match(again.log(), new RegExp(`set-up: battery temperature probe '${batteryProbe}'`));
+    console.log("ok - after a restart the daemon reads the battery's probe the owner chose");
+    // null: the file decides again, from the next start.
+    const back = await (await put(again, { battery_temp_sensor: null })).json();
+    assert.equal(back.battery_temp_sensor.chosen, null);
+    assert.equal(back.battery_temp_sensor.next, "");
+    assert.equal(back.battery_temp_sensor.restart_needed, true);
+    console.log("ok - null gives the choice back to the file");
+  } finally {
+    await again.stop();
+  }
+});

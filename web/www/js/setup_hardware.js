@@ -1,0 +1,48 @@
+// The set-up's hardware step: which 1-Wire probe is on the battery and which
+// CAN interface the BMS is on (docs/configuration.md "Set-up"). The daemon
+// opens these devices at start, so a choice is used from its next start and
+// the page says so; it lists what is present on the board now.
+const esc = (s) => String(s).replace(/[&<>"]/g, (c) => ({ "&": "&amp;", "<": "&lt;", ">": "&gt;", '"': "&quot;" })[c]);
+
+function options(current, found, noneLabel, label) {
+  const list = [["", noneLabel], ...found.map((v) => [v, label(v)])];
+  if (current && !found.includes(current)) list.push([current, `${label(current)} (not found now)`]);
+  return list.map(([v, l]) => `<option value="${esc(v)}" ${v === current ? "selected" : ""}>${esc(l)}</option>`).join("");
+}
+
+export function renderHardwareStep(hw, n) {
+  const probes = hw.probes.filter((p) => p !== hw.alternator_sensor);
+  const lock = hw.savable ? "" : "disabled";
+  const gx = hw.victron_bms;
+  return `<h3>${n} · Battery temperature and BMS</h3>` +
+    `<label class="field"><span>Battery temperature probe</span><select id="su-battprobe" ${lock}>` +
+    options(hw.battery_temp_sensor.next, probes, "No probe on the battery", (p) => p) + `</select>` +
+    `<small>A DS18B20 taped to a battery case. ${probes.length ? `${probes.length} probe(s) found besides the alternator's` : "No probe found besides the alternator's"}` +
+    `${hw.alternator_sensor ? ` (${esc(hw.alternator_sensor)})` : ""}.</small></label>` +
+    `<label class="field"><span>BMS</span><select id="su-bms" ${lock || (gx ? "disabled" : "")}>` +
+    options(hw.bms_interface.next, hw.can_interfaces, "No BMS on CAN", (i) => `BMS on CAN ${i}`) + `</select>` +
+    `<small>${gx ? "The BMS's limits come from the Victron GX ([integrations.victron] in the file): one source only." :
+      hw.can_interfaces.length ? "The regulator obeys the BMS's charge limits." : "No CAN interface found on this board (a CAN HAT shows as can0)."}</small></label>` +
+    (hw.savable ? "" : `<p class="msg warn">No state database: set these in the configuration file.</p>`);
+}
+
+// The PUT body for what changed ({} when nothing did): a choice equal to the
+// file's value is sent as null, so the file decides again.
+export function collectHardware(hw) {
+  const body = {};
+  for (const [key, id] of [["battery_temp_sensor", "su-battprobe"], ["bms_interface", "su-bms"]]) {
+    const el = document.getElementById(id);
+    if (!el || el.disabled || el.value === hw[key].next) continue;
+    body[key] = el.value === hw[key].file ? null : el.value;
+  }
+  return body;
+}
+
+// Result rows: what runs now and what the next start will use.
+export function hardwareRows(hw) {
+  const word = (v, none) => (v ? v : none);
+  const row = (c, none) => word(c.running, none) + (c.restart_needed ? ` → ${word(c.next, none)} from the next start` : "");
+  return [["Battery temperature probe", row(hw.battery_temp_sensor, "none")], ["BMS on CAN", row(hw.bms_interface, "none")]];
+}
+
+export const restartNeeded = (hw) => hw.battery_temp_sensor.restart_needed || hw.bms_interface.restart_needed;
