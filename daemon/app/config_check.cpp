@@ -74,6 +74,10 @@ int printConfigMain(const std::optional<std::string>& configPath, const std::opt
         config.settings = withHardwareChoices(std::move(config.settings), choices);
       if (choices.batteryTempSensor)
         err << "note: battery_temp_sensor below is the set-up page's choice, not the file's\n";
+      if (choices.pulleyRatio)
+        err << "note: pulley_ratio below is the set-up page's choice, not the file's\n";
+      if (choices.pulleyRatio)
+        err << "note: pulley_ratio below is the set-up page's choice, not the file's\n";
       if (choices.bmsInterface)
         err << "note: bms_interface below is the set-up page's choice, not the file's\n";
     }

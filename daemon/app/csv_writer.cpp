@@ -1,13 +1,13 @@
 #include "app/csv_writer.h"
 
+#include <fmt/format.h>
+
 #include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
 #include <variant>
-
-#include <fmt/format.h>
 
 #include "app/thread_names.h"
 

@@ -98,7 +98,8 @@ int Daemon::run() {
   std::function<TimeNs(TimeNs)> wallDeadlineOf;
   try {
     if (cli_.sim) {
-      simRig = std::make_unique<SimWiring>(*scenario, settings, cli_, std::move(canLog));
+      simRig = std::make_unique<SimWiring>(*scenario, settings, cli_, std::move(canLog),
+                                           config_.settings.hardware.frontend.pulley_ratio);
       simRig->attach(*handoffs);
       devices = simRig->devices();
       loopClock = &simRig->loopClock();

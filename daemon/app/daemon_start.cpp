@@ -49,8 +49,11 @@ void applyHardwareChoices(StoreService& store, Settings& settings) {
   }
   settings = withHardwareChoices(std::move(settings), c);
   spdlog::info(
-      "set-up: battery temperature probe '{}', BMS on CAN '{}' (the set-up page's choice over the file)",
-      settings.hardware.battery_temp_sensor, settings.can.bms_interface);
+      "set-up: battery temperature probe '{}', BMS on CAN '{}', pulley ratio {} (the set-up page's choices "
+      "over "
+      "the file)",
+      settings.hardware.battery_temp_sensor, settings.can.bms_interface,
+      settings.hardware.frontend.pulley_ratio);
 }
 
 // Opens the state database (locked first: one daemon per database), restores

@@ -13,9 +13,11 @@
 namespace xr::app {
 
 namespace {
-sim::SimRigOptions rigOptions(const CliOptions& cli, std::ostream* canLog) {
+sim::SimRigOptions rigOptions(const CliOptions& cli, std::ostream* canLog,
+                              std::optional<double> tachPulleyRatio) {
   sim::SimRigOptions o;
   o.canLog = canLog;
+  o.tachPulleyRatio = tachPulleyRatio;
   if (cli.seed) o.seed = *cli.seed;
   o.speed = 0.0;  // pacing is ours (PacedClock) so the period error is measured
   return o;
@@ -42,8 +44,10 @@ void applyScenarioWeather(const sim::Scenario& scenario, WeatherSettings& weathe
 }
 
 SimWiring::SimWiring(const sim::Scenario& scenario, const Settings& settings, const CliOptions& cli,
-                     std::unique_ptr<std::ofstream> canLog)
-    : cli_(cli), canLog_(std::move(canLog)), rig_(scenario, settings, rigOptions(cli, canLog_.get())) {
+                     std::unique_ptr<std::ofstream> canLog, std::optional<double> tachPulleyRatio)
+    : cli_(cli),
+      canLog_(std::move(canLog)),
+      rig_(scenario, settings, rigOptions(cli, canLog_.get(), tachPulleyRatio)) {
   rig_.onCanReport([](const std::string& what) { spdlog::warn("{}", what); });
   rig_.onScenarioProblem(
       [](int line, const std::string& what) { spdlog::error("scenario line {}: {}", line, what); });

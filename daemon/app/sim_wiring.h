@@ -32,8 +32,10 @@ class SimWiring final : public rt::TickHook {
  public:
   // Throws std::runtime_error (with a clear message) on setup errors.
   // `canLog`: --can-log, already open (null = none).
+  // `tachPulleyRatio`: the file's, when the set-up page chose another
+  // (sim_rig.h SimRigOptions).
   SimWiring(const sim::Scenario& scenario, const Settings& settings, const CliOptions& cli,
-            std::unique_ptr<std::ofstream> canLog);
+            std::unique_ptr<std::ofstream> canLog, std::optional<double> tachPulleyRatio = {});
 
   // The rig's devices, outputs mirrored to --sim-outputs when given.
   rt::CycleDevices devices();

@@ -315,7 +315,8 @@ bool StoreService::eraseDocument(std::string_view key) {
 
 HardwareChoices StoreService::loadHardwareChoices() {
   std::lock_guard lock(m_);
-  return {store_.getBlob(kChoiceBatteryTempSensor), store_.getBlob(kChoiceBmsInterface)};
+  return {store_.getBlob(kChoiceBatteryTempSensor), store_.getBlob(kChoiceBmsInterface),
+          parseChoiceNumber(store_.getBlob(kChoicePulleyRatio))};
 }
 
 std::string StoreService::saveHardwareChoices(const HardwareChoices& c) {
@@ -326,7 +327,8 @@ std::string StoreService::saveHardwareChoices(const HardwareChoices& c) {
   };
   const StoreStatus st = store_.inTransaction([&]() -> StoreStatus {
     if (StoreStatus s = put(kChoiceBatteryTempSensor, c.batteryTempSensor); !s) return s;
-    return put(kChoiceBmsInterface, c.bmsInterface);
+    if (StoreStatus s = put(kChoiceBmsInterface, c.bmsInterface); !s) return s;
+    return put(kChoicePulleyRatio, choiceNumberText(c.pulleyRatio));
   });
   if (st) return "";
   spdlog::error("store: the set-up's hardware choices were not saved: {}", st.error);

@@ -152,6 +152,7 @@ HardwareChoices hardwareChoicesReadOnly(const std::string& dbPath) {
   };
   c.batteryTempSensor = read(kChoiceBatteryTempSensor);
   c.bmsInterface = read(kChoiceBmsInterface);
+  c.pulleyRatio = parseChoiceNumber(read(kChoicePulleyRatio));
   return c;
 }
 

@@ -37,7 +37,8 @@ std::string alternatorProbe(const HardwareSettings& h, const std::vector<std::st
   return "";
 }
 
-std::optional<std::string> edited(const web::ChoiceEdit& e, const std::optional<std::string>& saved) {
+template <class Edit, class T>
+std::optional<T> edited(const Edit& e, const std::optional<T>& saved) {
   return e.touched ? e.value : saved;
 }
 
@@ -56,6 +57,8 @@ web::HardwareSetup WebApi::hardwareSetup() {
                          ctx_.runningSettings.hardware.battery_temp_sensor};
   h.bmsInterface = {ctx_.fileSettings.can.bms_interface, saved.bmsInterface,
                     ctx_.runningSettings.can.bms_interface};
+  h.pulleyRatio = {ctx_.fileSettings.hardware.frontend.pulley_ratio, saved.pulleyRatio,
+                   ctx_.runningSettings.hardware.frontend.pulley_ratio};
   h.probes = w1::listDs18b20(ctx_.w1Root);
   h.alternatorSensor = alternatorProbe(ctx_.runningSettings.hardware, h.probes);
   h.canInterfaces = canInterfaces(ctx_.sysClassNet);
@@ -70,7 +73,8 @@ std::vector<web::FieldError> WebApi::saveHardwareChoices(const web::HardwareChoi
   std::lock_guard lock(patchMutex_);
   const HardwareChoices saved = ctx_.store->loadHardwareChoices();
   const HardwareChoices next{edited(edit.batteryTempSensor, saved.batteryTempSensor),
-                             edited(edit.bmsInterface, saved.bmsInterface)};
+                             edited(edit.bmsInterface, saved.bmsInterface),
+                             edited(edit.pulleyRatio, saved.pulleyRatio)};
   std::vector<web::FieldError> errors;
   for (auto& [key, message] : checkHardwareChoices(ctx_.fileSettings, next)) errors.push_back({key, message});
   // With no onewire_sensor_id the alternator reads the first probe found:
@@ -91,6 +95,12 @@ std::vector<web::FieldError> WebApi::saveHardwareChoices(const web::HardwareChoi
             ";";
   if (next.bmsInterface != saved.bmsInterface)
     text += " " + describe("BMS on CAN", next.bmsInterface, ctx_.fileSettings.can.bms_interface) + ";";
+  if (next.pulleyRatio != saved.pulleyRatio)
+    text += " pulley ratio " +
+            (next.pulleyRatio ? fmt::format("{:g}", *next.pulleyRatio)
+                              : fmt::format("back to the file's ({:g})",
+                                            ctx_.fileSettings.hardware.frontend.pulley_ratio)) +
+            ";";
   text += " used from the next start of the regulator.";
   spdlog::info("{}", text);
   recordEvent("SetupHardware", text);

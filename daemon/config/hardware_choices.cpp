@@ -1,10 +1,28 @@
 #include "config/hardware_choices.h"
 
 #include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 #include "config/integration_checks.h"
 
 namespace xr {
+
+std::optional<std::string> choiceNumberText(std::optional<double> v) {
+  if (!v) return std::nullopt;
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", *v);
+  return std::string(buf);
+}
+
+std::optional<double> parseChoiceNumber(const std::optional<std::string>& text) {
+  if (!text || text->empty()) return std::nullopt;
+  char* end = nullptr;
+  const double v = std::strtod(text->c_str(), &end);
+  if (end != text->c_str() + text->size() || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
 
 bool isOneWireId(const std::string& id) {
   if (id.size() != 15 || id[2] != '-') return false;
@@ -16,6 +34,7 @@ bool isOneWireId(const std::string& id) {
 Settings withHardwareChoices(Settings s, const HardwareChoices& c) {
   if (c.batteryTempSensor) s.hardware.battery_temp_sensor = *c.batteryTempSensor;
   if (c.bmsInterface) s.can.bms_interface = *c.bmsInterface;
+  if (c.pulleyRatio) s.hardware.frontend.pulley_ratio = *c.pulleyRatio;
   return s;
 }
 
@@ -38,6 +57,11 @@ std::vector<std::pair<std::string, std::string>> checkHardwareChoices(const Sett
   const Settings s = withHardwareChoices(file, c);
   std::vector<std::pair<std::string, std::string>> out;
   for (auto& e : checkBatteryProbe(s.hardware)) out.push_back(std::move(e));
+  // The file's range for the key (settings_schema.cpp); NaN fails both sides.
+  const double ratio = s.hardware.frontend.pulley_ratio;
+  if (!(ratio >= 0.01 && ratio <= 100.0))
+    out.emplace_back("hardware.frontend.pulley_ratio",
+                     "must be from 0.01 to 100 (alternator turns per engine turn)");
   for (auto& e : checkCan(s.can)) out.push_back(std::move(e));
   for (auto& e : checkIntegrations(s.integrations, s.can))
     if (e.first == "integrations.victron.enabled") out.push_back(std::move(e));  // the one rule across tables

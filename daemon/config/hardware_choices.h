@@ -18,12 +18,21 @@ struct HardwareChoices {
   // Unset: the file's value. Set to "": none, whatever the file says.
   std::optional<std::string> batteryTempSensor;
   std::optional<std::string> bmsInterface;
+  // Alternator turns per engine turn: the tach reads the alternator, the RPM
+  // tables are in engine RPM ([hardware.frontend] pulley_ratio).
+  std::optional<double> pulleyRatio;
   bool operator==(const HardwareChoices&) const = default;
 };
 
 // The state database's keys (one small document each).
 inline constexpr const char* kChoiceBatteryTempSensor = "setup.battery_temp_sensor";
 inline constexpr const char* kChoiceBmsInterface = "setup.bms_interface";
+inline constexpr const char* kChoicePulleyRatio = "setup.pulley_ratio";
+
+// A number kept as text in the state database, exactly (%.17g), and read
+// back; text that is not a number reads as no choice.
+std::optional<std::string> choiceNumberText(std::optional<double> v);
+std::optional<double> parseChoiceNumber(const std::optional<std::string>& text);
 
 // A 1-Wire device id as sysfs names it: two hex digits of family, '-', twelve
 // hex digits of serial ("28-0316a2794aff").

@@ -28,6 +28,12 @@ std::string batteryW1IdOf(const Scenario& s, const Settings& settings) {
   return s.plant.battery.temp_sensor ? std::string(kSimBatteryW1Id) : std::string();
 }
 
+// The board's analog front end as wired: the tach as calibrated (SimRigOptions).
+HardwareSettings tachWiring(HardwareSettings h, const SimRigOptions& o) {
+  if (o.tachPulleyRatio) h.frontend.pulley_ratio = *o.tachPulleyRatio;
+  return h;
+}
+
 WorldConfig worldConfigOf(const Scenario& s, const Settings& settings, const SimRigOptions& o,
                           const std::filesystem::path& w1) {
   WorldConfig c;
@@ -45,7 +51,7 @@ WorldConfig worldConfigOf(const Scenario& s, const Settings& settings, const Sim
 SimRig::SimRig(Scenario scenario, const Settings& settings, SimRigOptions options)
     : scenario_(std::move(scenario)),
       scratch_(makeW1Dir()),
-      world_(worldConfigOf(scenario_, settings, options, scratch_), settings.hardware),
+      world_(worldConfigOf(scenario_, settings, options, scratch_), tachWiring(settings.hardware, options)),
       simClock_(world_, options.speed),
       clock_(*this),
       // The simulated board has ALERT/RDY wired: ready-edge pacing when the

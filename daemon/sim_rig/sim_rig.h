@@ -44,6 +44,11 @@ struct SimRigOptions {
   TimeNs poweredBefore = fromMs(100);
   // --can-log: every CAN frame of the run, candump format (may be null).
   std::ostream* canLog = nullptr;
+  // The pulley ratio the simulated board's tach was calibrated with (the
+  // file's): the world makes the tach voltage from the engine speed with it,
+  // so a different ratio chosen on the set-up page reads as a real board
+  // would. Unset: the settings' own (the reading matches the engine).
+  std::optional<double> tachPulleyRatio;
 };
 
 class SimRig final : public rt::TruthSource {

@@ -25,6 +25,27 @@ json::object choiceToJson(const HardwareChoice& c) {
   return o;
 }
 
+json::object numberToJson(const NumberChoice& c) {
+  json::object o;
+  o["file"] = c.file;
+  o["chosen"] = c.chosen ? json::value(*c.chosen) : json::value(nullptr);
+  o["running"] = c.running;
+  const double next = c.chosen.value_or(c.file);
+  o["next"] = next;
+  o["restart_needed"] = next != c.running;
+  return o;
+}
+
+// A number or null. false: neither.
+bool readNumber(const json::object& body, std::string_view key, NumberEdit& out) {
+  const auto* v = body.if_contains(key);
+  if (!v) return true;
+  out.touched = true;
+  if (v->is_null()) return true;
+  out.value = jsonNumber(*v);
+  return out.value.has_value();
+}
+
 json::array stringsToJson(const std::vector<std::string>& v) {
   json::array a;
   for (const auto& s : v) a.push_back(json::string(s));
@@ -50,6 +71,7 @@ Response ApiHandler::getHardwareSetup(const Request& req) {
   o["savable"] = h.savable;
   o["battery_temp_sensor"] = choiceToJson(h.batteryTempSensor);
   o["bms_interface"] = choiceToJson(h.bmsInterface);
+  o["pulley_ratio"] = numberToJson(h.pulleyRatio);
   o["alternator_sensor"] = h.alternatorSensor;
   o["probes"] = stringsToJson(h.probes);
   o["can_interfaces"] = stringsToJson(h.canInterfaces);
@@ -64,13 +86,15 @@ Response ApiHandler::putHardwareSetup(const Request& req) {
   if (!body->is_object()) return error(req, http::status::bad_request, "expected a JSON object");
   const auto& obj = body->get_object();
   for (const auto& kv : obj)
-    if (kv.key() != "battery_temp_sensor" && kv.key() != "bms_interface")
+    if (kv.key() != "battery_temp_sensor" && kv.key() != "bms_interface" && kv.key() != "pulley_ratio")
       return error(req, http::status::bad_request, "unknown setting " + std::string(kv.key()));
   HardwareChoiceEdit edit;
   if (!readEdit(obj, "battery_temp_sensor", edit.batteryTempSensor) ||
       !readEdit(obj, "bms_interface", edit.bmsInterface))
     return error(req, http::status::bad_request, "each setting is a string (at most 64 characters) or null");
-  if (!edit.batteryTempSensor.touched && !edit.bmsInterface.touched)
+  if (!readNumber(obj, "pulley_ratio", edit.pulleyRatio))
+    return error(req, http::status::bad_request, "pulley_ratio is a number or null");
+  if (!edit.batteryTempSensor.touched && !edit.bmsInterface.touched && !edit.pulleyRatio.touched)
     return error(req, http::status::bad_request, "no setting given");
   const auto errors = api_.saveHardwareChoices(edit, writerName(req[http::field::authorization]));
   if (!errors.empty()) {

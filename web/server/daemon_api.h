@@ -194,10 +194,16 @@ struct HardwareChoice {
   std::optional<std::string> chosen;
   std::string running;
 };
+struct NumberChoice {
+  double file = 0.0;
+  std::optional<double> chosen;
+  double running = 0.0;
+};
 struct HardwareSetup {
   bool savable = false;  // a state database keeps the choices
   HardwareChoice batteryTempSensor;
   HardwareChoice bmsInterface;
+  NumberChoice pulleyRatio;                // alternator turns per engine turn
   std::string alternatorSensor;            // the probe the alternator's temperature is read from
   std::vector<std::string> probes;         // 1-Wire temperature probes present now
   std::vector<std::string> canInterfaces;  // CAN interfaces present now
@@ -209,9 +215,14 @@ struct ChoiceEdit {
   bool touched = false;
   std::optional<std::string> value;
 };
+struct NumberEdit {
+  bool touched = false;
+  std::optional<double> value;
+};
 struct HardwareChoiceEdit {
   ChoiceEdit batteryTempSensor;
   ChoiceEdit bmsInterface;
+  NumberEdit pulleyRatio;
 };
 
 // Health for /healthz: ok = the control loop ticks and the outputs are driven.

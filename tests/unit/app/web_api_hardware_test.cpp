@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -61,8 +62,9 @@ struct HardwareRig {
   }
 };
 
-web::HardwareChoiceEdit battery(std::optional<std::string> v) { return {{true, std::move(v)}, {}}; }
-web::HardwareChoiceEdit bms(std::optional<std::string> v) { return {{}, {true, std::move(v)}}; }
+web::HardwareChoiceEdit battery(std::optional<std::string> v) { return {{true, std::move(v)}, {}, {}}; }
+web::HardwareChoiceEdit bms(std::optional<std::string> v) { return {{}, {true, std::move(v)}, {}}; }
+web::HardwareChoiceEdit pulley(std::optional<double> v) { return {{}, {}, {true, v}}; }
 
 TEST(HardwareSetup, ListsTheProbesAndOnlyTheCanInterfaces) {
   HardwareRig r;
@@ -100,6 +102,22 @@ TEST(HardwareSetup, PrintConfigShowsWhatTheNextStartRuns) {
   EXPECT_THAT(out.str(), HasSubstr(std::string("battery_temp_sensor = \"") + kBat + "\""));
 }
 
+// The tach reads the alternator; the RPM tables are in engine RPM. A pulley
+// ratio is kept exactly and reaches the front end at the next start.
+TEST(HardwareSetup, APulleyRatioIsKeptExactlyAndRunsFromTheNextStart) {
+  HardwareRig r;
+  auto api = r.api();
+  ASSERT_TRUE(api->saveHardwareChoices(pulley(0.01), "the phone").empty()) << "the edge of the range";
+  ASSERT_TRUE(api->saveHardwareChoices(pulley(2.7), "the phone").empty());
+  EXPECT_EQ(r.store->queryEvents(1, std::nullopt).front().message,
+            "Set-up by the phone: pulley ratio 2.7; used from the next start of the regulator.");
+  EXPECT_DOUBLE_EQ(api->hardwareSetup().pulleyRatio.running, 1.0);
+  r.restart();
+  const web::HardwareSetup h = r.api()->hardwareSetup();
+  EXPECT_EQ(h.pulleyRatio.chosen, std::optional<double>(2.7));
+  EXPECT_EQ(h.pulleyRatio.running, 2.7);
+}
+
 TEST(HardwareSetup, NullGivesTheChoiceBackToTheFile) {
   HardwareRig r;
   r.file.can.bms_interface = "can0";
@@ -126,6 +144,9 @@ TEST(HardwareSetup, RefusalsSaveNothing) {
       {battery(kAlt), "hardware.battery_temp_sensor", "alternator's sensor"},
       {bms("can1"), "can.n2k_interface", "must not be the BMS bus"},
       {bms("can0/x"), "can.bms_interface", "not a network interface name"},
+      {pulley(0.009), "hardware.frontend.pulley_ratio", "from 0.01 to 100"},
+      {pulley(100.5), "hardware.frontend.pulley_ratio", "from 0.01 to 100"},
+      {pulley(std::nan("")), "hardware.frontend.pulley_ratio", "from 0.01 to 100"},
   };
   for (const Case& c : cases) {
     const auto errors = api->saveHardwareChoices(c.edit, "the phone");

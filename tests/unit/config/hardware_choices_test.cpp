@@ -28,9 +28,19 @@ TEST(HardwareChoices, AChoiceLiesOverTheFileAndUnsetKeepsTheFiles) {
   Settings file;
   file.hardware.battery_temp_sensor = "28-000000000001";
   file.can.bms_interface = "can0";
-  const Settings s = withHardwareChoices(file, {std::nullopt, std::string("")});
+  const Settings s = withHardwareChoices(file, {std::nullopt, std::string(""), 2.5});
   EXPECT_EQ(s.hardware.battery_temp_sensor, "28-000000000001");
   EXPECT_EQ(s.can.bms_interface, "") << "\"\" is none, whatever the file says";
+  EXPECT_EQ(s.hardware.frontend.pulley_ratio, 2.5);
+}
+
+TEST(HardwareChoices, ANumberIsKeptAsExactText) {
+  for (double v : {2.7, 0.01, 1.0 / 3.0, 100.0})
+    EXPECT_EQ(parseChoiceNumber(choiceNumberText(v)), std::optional<double>(v));
+  EXPECT_FALSE(parseChoiceNumber(std::string("2.5x")).has_value());
+  EXPECT_FALSE(parseChoiceNumber(std::string("inf")).has_value());
+  EXPECT_FALSE(parseChoiceNumber(std::string("")).has_value());
+  EXPECT_FALSE(choiceNumberText(std::nullopt).has_value());
 }
 
 TEST(HardwareChoices, TheFilesBatteryProbeIsCheckedToo) {

@@ -49,6 +49,10 @@ await runDaemonBrowserTest({ args, token, scenario, shipped: true, prefix: "xr-s
   assert.deepEqual(offered, ["", batteryProbe], "no probe, or the battery's; never the alternator's");
   await page.selectOption("#su-profile", { label: "agm" });
   await page.selectOption("#su-battprobe", batteryProbe);
+  // The tach reads 1500 rpm (the scenario's engine, ratio 1 in the shipped
+  // file); the hint shows what 2.5 would read, to compare with the engine.
+  await page.fill("#su-pulley", "2,5");
+  assert.match(await page.textContent("#su-pulley-hint"), /Engine speed read now: 1\d{3} rpm; with 2\.5: \d{3} rpm/);
   await page.click("#setup-save");
   await page.waitForSelector("#setup-result:not([hidden])");
   assert.match(await page.textContent("#setup-msg"), /^Saved\..*next start/);
@@ -57,8 +61,10 @@ await runDaemonBrowserTest({ args, token, scenario, shipped: true, prefix: "xr-s
   const saved = await get("/api/setup/hardware");
   assert.equal(saved.battery_temp_sensor.chosen, batteryProbe);
   assert.equal(saved.battery_temp_sensor.restart_needed, true);
+  assert.equal(saved.pulley_ratio.chosen, 2.5);
+  assert.match(await page.textContent("#setup-result"), /Pulley ratio1 : 1 → 2\.5 : 1 from the next start/);
   const events = (await get("/api/events?limit=50")).events.map((e) => e.text).join("\n");
-  assert.match(events, new RegExp(`Set-up by .*: battery temperature probe ${batteryProbe}; used from the next start`), events);
+  assert.match(events, new RegExp(`Set-up by .*: battery temperature probe ${batteryProbe}; pulley ratio 2\\.5; used from the next start`), events);
   assert.doesNotMatch(events, /BMS on CAN/, "only what changed is named");
   console.log("ok - the battery's probe chosen on the set-up page: saved, an event, 'from the next start'");
 
@@ -66,7 +72,7 @@ await runDaemonBrowserTest({ args, token, scenario, shipped: true, prefix: "xr-s
   assert.equal((await put(server, { battery_temp_sensor: "" }, null)).status, 401);
   for (const [body, key] of [[{ battery_temp_sensor: "28-nothex" }, "hardware.battery_temp_sensor"],
     [{ battery_temp_sensor: before.alternator_sensor }, "hardware.battery_temp_sensor"],
-    [{ bms_interface: "can0/x" }, "can.bms_interface"]]) {
+    [{ bms_interface: "can0/x" }, "can.bms_interface"], [{ pulley_ratio: 0 }, "hardware.frontend.pulley_ratio"]]) {
     const r = await put(server, body);
     assert.equal(r.status, 400, JSON.stringify(body));
     assert.ok(key in (await r.json()).errors, `${JSON.stringify(body)} names ${key}`);
@@ -82,6 +88,10 @@ await runDaemonBrowserTest({ args, token, scenario, shipped: true, prefix: "xr-s
     const hw = await (await fetch(again.base + "/api/setup/hardware")).json();
     assert.equal(hw.battery_temp_sensor.running, batteryProbe);
     assert.equal(hw.battery_temp_sensor.restart_needed, false);
+    assert.equal(hw.pulley_ratio.running, 2.5);
+    // The same alternator speed now reads as 2.5 times less engine speed.
+    const rpm = (await (await fetch(again.base + "/api/status")).json()).rpm;
+    assert.ok(rpm > 450 && rpm < 750, `engine speed with ratio 2.5: ${rpm} rpm (1500 / 2.5 = 600)`);
     assert.match(again.log(), new RegExp(`set-up: battery temperature probe '${batteryProbe}'`));
     console.log("ok - after a restart the daemon reads the battery's probe the owner chose");
     // null: the file decides again, from the next start.

@@ -5,12 +5,13 @@ import { getJson, toast, write } from "./api.js";
 import { fToC, parseDecimal } from "./format.js";
 import { renderSetupState, tempUnit } from "./live.js";
 import { choicesOf, loadSettings } from "./settings.js";
-import { collectHardware, hardwareRows, renderHardwareStep, restartNeeded } from "./setup_hardware.js";
+import { collectHardware, hardwareRows, renderHardwareStep, restartNeeded, rpmHint } from "./setup_hardware.js";
 import { exportToml, parseParamsToml } from "./toml.js";
 
 const $ = (id) => document.getElementById(id);
 let params = [];
 let hardware = null;  // GET /api/setup/hardware
+let rpmNow = null;  // the engine speed read when the page opened
 const find = (n) => params.find((p) => p.name === n);
 
 // Charge voltages per bank size for the "custom" profile (no chemistry):
@@ -55,8 +56,10 @@ function renderSteps() {
   steps.push(`<h3>${steps.length + 1} · Temperature limit</h3>` +
     field("Alternator temperature limit", "su-templimit", unit === "F" ? Math.round(tLimit) : Math.round(fToC(tLimit)), unit === "F" ? "°F" : "°C",
       "Current is reduced above it; charging stops well above it."));
-  if (hardware) steps.push(renderHardwareStep(hardware, steps.length + 1));
+  if (hardware) steps.push(renderHardwareStep(hardware, steps.length + 1, rpmNow));
   $("setup-steps").innerHTML = steps.join("");
+  const pulley = $("su-pulley");
+  if (pulley) pulley.addEventListener("input", () => { $("su-pulley-hint").textContent = rpmHint(hardware, rpmNow, pulley.value); });
 }
 
 function read(id, label, min, max) {
@@ -137,9 +140,11 @@ function renderResult() {
 
 async function saveSetup(runCommand) {
   const msg = $("setup-msg");
-  let body;
-  try { body = collect(); } catch (e) { msg.textContent = e.message; msg.className = "msg bad"; return; }
-  const hwBody = hardware ? collectHardware(hardware) : {};
+  let body, hwBody;
+  try {
+    body = collect();
+    hwBody = hardware ? collectHardware(hardware) : {};
+  } catch (e) { msg.textContent = e.message; msg.className = "msg bad"; return; }
   try {
     await write("PATCH", "/api/params", body);
     if (Object.keys(hwBody).length) hardware = await write("PUT", "/api/setup/hardware", hwBody);
@@ -163,6 +168,7 @@ async function saveSetup(runCommand) {
 export async function loadSetup() {
   params = (await getJson("/api/params")).params;
   hardware = await getJson("/api/setup/hardware").catch(() => null);
+  rpmNow = (await getJson("/api/status").catch(() => ({}))).rpm ?? null;
   renderSteps();
   $("setup-result").hidden = true;
   $("setup-start").hidden = true;

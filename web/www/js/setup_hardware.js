@@ -10,7 +10,18 @@ function options(current, found, noneLabel, label) {
   return list.map(([v, l]) => `<option value="${esc(v)}" ${v === current ? "selected" : ""}>${esc(l)}</option>`).join("");
 }
 
-export function renderHardwareStep(hw, n) {
+// The pulley ratio scales the tach: the page shows the engine speed read now
+// and what it would read with the ratio typed, to compare with the engine's
+// own tachometer.
+export function rpmHint(hw, rpmNow, typed) {
+  if (!(rpmNow > 0)) return "Engine stopped: start it to compare the speed read with the engine's tachometer.";
+  const r = Number(String(typed).replace(",", "."));
+  const next = r > 0 ? Math.round((rpmNow * hw.pulley_ratio.running) / r) : null;
+  return `Engine speed read now: ${Math.round(rpmNow)} rpm` +
+    (next !== null && r !== hw.pulley_ratio.running ? `; with ${r}: ${next} rpm. Compare with the engine's tachometer.` : ". Compare with the engine's tachometer.");
+}
+
+export function renderHardwareStep(hw, n, rpmNow) {
   const probes = hw.probes.filter((p) => p !== hw.alternator_sensor);
   const lock = hw.savable ? "" : "disabled";
   const gx = hw.victron_bms;
@@ -23,6 +34,9 @@ export function renderHardwareStep(hw, n) {
     options(hw.bms_interface.next, hw.can_interfaces, "No BMS on CAN", (i) => `BMS on CAN ${i}`) + `</select>` +
     `<small>${gx ? "The BMS's limits come from the Victron GX ([integrations.victron] in the file): one source only." :
       hw.can_interfaces.length ? "The regulator obeys the BMS's charge limits." : "No CAN interface found on this board (a CAN HAT shows as can0)."}</small></label>` +
+    `<label class="field"><span>Pulley ratio</span><span class="row"><input id="su-pulley" inputmode="decimal" value="${hw.pulley_ratio.next}" ${lock}>` +
+    `<span class="unit">: 1</span></span><small id="su-pulley-hint">${esc(rpmHint(hw, rpmNow, hw.pulley_ratio.next))}</small>` +
+    `<small>Alternator turns per engine turn: the crank pulley's diameter over the alternator's (1 when the tach is calibrated at the crank).</small></label>` +
     (hw.savable ? "" : `<p class="msg warn">No state database: set these in the configuration file.</p>`);
 }
 
@@ -35,6 +49,12 @@ export function collectHardware(hw) {
     if (!el || el.disabled || el.value === hw[key].next) continue;
     body[key] = el.value === hw[key].file ? null : el.value;
   }
+  const p = document.getElementById("su-pulley");
+  if (p && !p.disabled) {
+    const r = Number(p.value.replace(",", "."));
+    if (!(r >= 0.01 && r <= 100)) throw new Error("Pulley ratio: enter a number from 0.01 to 100");
+    if (r !== hw.pulley_ratio.next) body.pulley_ratio = r === hw.pulley_ratio.file ? null : r;
+  }
   return body;
 }
 
@@ -42,7 +62,9 @@ export function collectHardware(hw) {
 export function hardwareRows(hw) {
   const word = (v, none) => (v ? v : none);
   const row = (c, none) => word(c.running, none) + (c.restart_needed ? ` → ${word(c.next, none)} from the next start` : "");
-  return [["Battery temperature probe", row(hw.battery_temp_sensor, "none")], ["BMS on CAN", row(hw.bms_interface, "none")]];
+  return [["Battery temperature probe", row(hw.battery_temp_sensor, "none")], ["BMS on CAN", row(hw.bms_interface, "none")],
+    ["Pulley ratio", row({ ...hw.pulley_ratio, running: `${hw.pulley_ratio.running} : 1`, next: `${hw.pulley_ratio.next} : 1` }, "")]];
 }
 
-export const restartNeeded = (hw) => hw.battery_temp_sensor.restart_needed || hw.bms_interface.restart_needed;
+export const restartNeeded = (hw) =>
+  hw.battery_temp_sensor.restart_needed || hw.bms_interface.restart_needed || hw.pulley_ratio.restart_needed;
