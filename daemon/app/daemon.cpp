@@ -99,7 +99,7 @@ int Daemon::run() {
   try {
     if (cli_.sim) {
       simRig = std::make_unique<SimWiring>(*scenario, settings, cli_, std::move(canLog),
-                                           config_.settings.hardware.frontend.pulley_ratio);
+                                           start.fileSettings.hardware.frontend.pulley_ratio);
       simRig->attach(*handoffs);
       devices = simRig->devices();
       loopClock = &simRig->loopClock();
@@ -189,7 +189,7 @@ int Daemon::run() {
     ctx.lastHeartbeatWallMs = &lastHeartbeatWallMs;
     ctx.fieldSafeFault = &outputsFault;
     ctx.integrations = integrationsView(integrations.get());
-    ctx.fileSettings = config_.settings;
+    ctx.fileSettings = start.fileSettings;
     ctx.runningSettings = settings;
     ctx.w1Root = simRig ? simRig->w1Root() : settings.hardware.w1_root;
     api = std::make_unique<WebApi>(ctx);

@@ -25,6 +25,10 @@ bool loadScenario(const CliOptions& cli, Settings& settings, StartState& st) {
     for (const auto& c : st.scenario->config) st.origins.file.insert(c.name);
     st.origins.assumeSetUp = cli.scenario.has_value();  // a scenario's boat is set up (param_sources.h)
     applyScenarioWeather(*st.scenario, settings.integrations.weather);
+    // A scenario's probe on the bank is its board's configured battery probe,
+    // as its [config] is its file (the set-up page can then choose none).
+    if (st.scenario->plant.battery.temp_sensor && settings.hardware.battery_temp_sensor.empty())
+      settings.hardware.battery_temp_sensor = sim::kSimBatteryW1Id;
   } catch (const std::exception& e) {
     spdlog::critical("{}", e.what());
     std::fprintf(stderr, "xregulatord: %s\n", e.what());
@@ -99,6 +103,7 @@ StartState loadStartState(const Config& config, const CliOptions& cli, Settings&
     return st;
   }
   st.configured = st.fileParams;
+  st.fileSettings = settings;
   const std::string dbPath = cli.stateDb.value_or(cli.sim ? std::string() : settings.store.path);
   if (!dbPath.empty()) {
     st.stateLock = lockStateDatabase(dbPath);

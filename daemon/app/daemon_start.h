@@ -18,9 +18,10 @@
 namespace xr::app {
 
 struct StartState {
-  Params fileParams;  // file + [config] + profile: what a dropped dashboard value falls back to
-  Params configured;  // + the stored dashboard settings: what a PATCH starts from
-  Params running;     // + the "not set up" limits: what the regulator runs with
+  Params fileParams;      // file + [config] + profile: what a dropped dashboard value falls back to
+  Params configured;      // + the stored dashboard settings: what a PATCH starts from
+  Params running;         // + the "not set up" limits: what the regulator runs with
+  Settings fileSettings;  // the file's (and a scenario's board): what a set-up choice lies over
   ParamOrigins origins;
   std::optional<sim::Scenario> scenario;  // --sim only
   std::unique_ptr<StateLock> stateLock;   // held until exit (store/state_lock.h)

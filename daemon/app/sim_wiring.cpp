@@ -18,6 +18,7 @@ sim::SimRigOptions rigOptions(const CliOptions& cli, std::ostream* canLog,
   sim::SimRigOptions o;
   o.canLog = canLog;
   o.tachPulleyRatio = tachPulleyRatio;
+  o.batteryProbeAsConfigured = true;
   if (cli.seed) o.seed = *cli.seed;
   o.speed = 0.0;  // pacing is ours (PacedClock) so the period error is measured
   return o;

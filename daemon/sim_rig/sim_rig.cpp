@@ -66,7 +66,8 @@ SimRig::SimRig(Scenario scenario, const Settings& settings, SimRigOptions option
   nextTempRead_ = start_;
   ds18b20_ = std::make_unique<Ds18b20Reader>(scratch_.string(), settings.hardware.onewire_sensor_id,
                                              fromSec(1.0), [this] { return world_.now(); });
-  const std::string batteryId = batteryW1IdOf(scenario_, settings);
+  const std::string batteryId = options.batteryProbeAsConfigured ? settings.hardware.battery_temp_sensor
+                                                                 : batteryW1IdOf(scenario_, settings);
   ds18b20_->excludeId(batteryId);
   if (!batteryId.empty())
     batteryDs18b20_ = std::make_unique<Ds18b20Reader>(scratch_.string(), batteryId, fromSec(1.0),

@@ -49,6 +49,11 @@ struct SimRigOptions {
   // so a different ratio chosen on the set-up page reads as a real board
   // would. Unset: the settings' own (the reading matches the engine).
   std::optional<double> tachPulleyRatio;
+  // true (the daemon): the battery probe is read only when the settings name
+  // it, as on a board, so "none" chosen on the set-up page is none; the
+  // daemon names the scenario's probe in the settings it starts from.
+  // false: a scenario's probe is read without being named.
+  bool batteryProbeAsConfigured = false;
 };
 
 class SimRig final : public rt::TruthSource {
