@@ -85,7 +85,7 @@ bool ChargingStageMachine::rebulkDue(const StageInputs& in, const Params& p) {
   return in.now - rebulkStart_ >= fromMs(p.rebulkDebounceTime);
 }
 
-bool ChargingStageMachine::updateChargingStage(const StageInputs& in, const Params& p) {
+bool ChargingStageMachine::updateChargingStage(const StageInputs& in, const Params& p) noexcept {
   completedOnTail_ = false;
   if (in.suppressed) {
     bulkHoldArmed_ = tailArmed_ = rebulkArmed_ = false;

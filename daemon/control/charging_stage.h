@@ -29,7 +29,8 @@ struct StageInputs {
 class ChargingStageMachine {
  public:
   // Returns true when the stage changed this call.
-  bool updateChargingStage(const StageInputs& in, const Params& p);
+  // Real-time thread, every tick: neither allocates nor blocks (docs/architecture.md "Threads").
+  bool updateChargingStage(const StageInputs& in, const Params& p) noexcept;
   // enter_sys_auto(): BULK, timers reset.
   void resetToBulk(TimeNs now);
   // Back in AUTO after `away` out of it: resume ABSORPTION / FLOAT when the

@@ -74,7 +74,7 @@ void VoltageCvLoop::fire(const CvLoopInputs& in, const Params& p, double dtSec) 
   Icv_ = clampd(p.VoltageKp * e + cv_I_, 0.0, uT);
 }
 
-double VoltageCvLoop::update(const CvLoopInputs& in, const Params& p) {
+double VoltageCvLoop::update(const CvLoopInputs& in, const Params& p) noexcept {
   const double dt = in.dtSec > 0.0 ? in.dtSec : 0.0;
   if (cv_I_aw_cap_ < 0.0) cv_I_aw_cap_ = p.MaxTableValue;
   const double uT = std::max(0.0, in.uTargetAmps);

@@ -23,7 +23,8 @@ struct CvLoopInputs {
 class VoltageCvLoop {
  public:
   // One control tick. Returns Icv.
-  double update(const CvLoopInputs& in, const Params& p);
+  // Real-time thread, every tick: neither allocates nor blocks (docs/architecture.md "Threads").
+  double update(const CvLoopInputs& in, const Params& p) noexcept;
 
   // Protection hooks (Groups 3 / load dump act on cv_I).
   void setCvI(double v);

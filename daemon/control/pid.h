@@ -43,7 +43,8 @@ class Pid {
 
   // Runs one compute with the real elapsed time. Returns false (and changes
   // nothing) in MANUAL or when dtSec <= 0 or the input is not finite.
-  bool Compute(double dtSec) {
+  // Real-time thread, every tick: neither allocates nor blocks (docs/architecture.md "Threads").
+  bool Compute(double dtSec) noexcept {
     if (mode_ != AUTOMATIC || !(dtSec > 0.0) || !std::isfinite(input) || !std::isfinite(setpoint))
       return false;
     const double sign = direction_ == DIRECT ? 1.0 : -1.0;

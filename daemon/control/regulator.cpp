@@ -74,7 +74,7 @@ Regulator::Regulator(const Params& params) : s_(std::make_unique<State>(params))
 }
 Regulator::~Regulator() = default;
 
-void Regulator::setParams(const Params& params) {
+void Regulator::setParams(const Params& params) noexcept {
   s_->p = params;
   s_->prot.setParams(params);
   s_->bat.setParams(params);
@@ -84,7 +84,7 @@ const Outputs& Regulator::outputs() const { return s_->out; }
 BatteryLedger Regulator::ledger() const { return s_->bat.ledger(); }
 void Regulator::restoreLedger(const BatteryLedger& l) { s_->bat.restoreLedger(l); }
 
-bool Regulator::command(const Command& cmd) {
+bool Regulator::command(const Command& cmd) noexcept {
   State& s = *s_;
   bool ok = true;
   switch (cmd.type) {
@@ -146,7 +146,7 @@ bool Regulator::command(const Command& cmd) {
   return ok;
 }
 
-const Outputs& Regulator::step(const Inputs& in) {
+const Outputs& Regulator::step(const Inputs& in) noexcept {
   State& s = *s_;
   const Params& p = s.p;
   Outputs& out = s.out;

@@ -25,15 +25,16 @@ class Regulator {
   Regulator& operator=(const Regulator&) = delete;
 
   // Replace the whole parameter set (between ticks).
-  void setParams(const Params& params);
+  void setParams(const Params& params) noexcept;  // the real-time thread, between ticks
   const Params& params() const;
 
   // Apply an operator command (between ticks). Returns false, and emits a
   // CommandRejected event on the next step, when the command is not legal now.
-  bool command(const Command& cmd);
+  bool command(const Command& cmd) noexcept;  // the real-time thread, between ticks
 
   // One control tick.
-  const Outputs& step(const Inputs& in);
+  // Real-time thread, every tick: neither allocates nor blocks (docs/architecture.md "Threads").
+  const Outputs& step(const Inputs& in) noexcept;
   const Outputs& outputs() const;
 
   // Persistent battery state, for the store.

@@ -18,7 +18,7 @@ ThermalDerate::ThermalDerate() : tempPID_(0, 0, 0, Pid::REVERSE) {}
 
 void ThermalDerate::reset() { *this = ThermalDerate(); }
 
-double ThermalDerate::update(const ThermalInputs& in, const Params& p) {
+double ThermalDerate::update(const ThermalInputs& in, const Params& p) noexcept {
   if (p.IgnoreTemperature) {
     // T0 disabled with T1-T3: no derate at all.
     thermalPenaltyAmps_ = 0.0;

@@ -30,7 +30,8 @@ class ThermalDerate {
  public:
   ThermalDerate();
   // Once per control tick. Returns thermalPenaltyAmps.
-  double update(const ThermalInputs& in, const Params& p);
+  // Real-time thread, every tick: neither allocates nor blocks (docs/architecture.md "Threads").
+  double update(const ThermalInputs& in, const Params& p) noexcept;
   void reset();
 
   double tempFiltered() const { return tempFiltered_; }
