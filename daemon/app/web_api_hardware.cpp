@@ -37,8 +37,8 @@ std::string alternatorProbe(const HardwareSettings& h, const std::vector<std::st
   return "";
 }
 
-template <class Edit, class T>
-std::optional<T> edited(const Edit& e, const std::optional<T>& saved) {
+template <class T>
+std::optional<T> edited(const web::ChoiceEdit<T>& e, const std::optional<T>& saved) {
   return e.touched ? e.value : saved;
 }
 
@@ -79,7 +79,10 @@ std::vector<web::FieldError> WebApi::saveHardwareChoices(const web::HardwareChoi
   for (auto& [key, message] : checkHardwareChoices(ctx_.fileSettings, next)) errors.push_back({key, message});
   // With no onewire_sensor_id the alternator reads the first probe found:
   // giving that one to the battery would swap the two at the next start.
-  const std::string alternator = alternatorProbe(ctx_.runningSettings.hardware, w1::listDs18b20(ctx_.w1Root));
+  // (A named one is checkHardwareChoices's.)
+  const HardwareSettings& running = ctx_.runningSettings.hardware;
+  const std::string alternator =
+      running.onewire_sensor_id.empty() ? alternatorProbe(running, w1::listDs18b20(ctx_.w1Root)) : "";
   if (next.batteryTempSensor && !alternator.empty() && *next.batteryTempSensor == alternator)
     errors.push_back(
         {"hardware.battery_temp_sensor",

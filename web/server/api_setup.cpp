@@ -3,6 +3,7 @@
 // "Set-up"). They are kept by the daemon and run from its next start.
 #include <boost/json.hpp>
 #include <string_view>
+#include <type_traits>
 
 #include "web/server/api_handler.h"
 #include "web/server/api_reply.h"
@@ -13,54 +14,33 @@ using namespace api;
 
 namespace {
 
-json::object choiceToJson(const HardwareChoice& c) {
+template <class T>
+json::object choiceToJson(const HardwareChoice<T>& c) {
   json::object o;
   o["file"] = c.file;
   o["chosen"] = c.chosen ? json::value(*c.chosen) : json::value(nullptr);
   o["running"] = c.running;
   // What the next start will use, and whether that is not what runs now.
-  const std::string next = c.chosen.value_or(c.file);
+  const T next = c.chosen.value_or(c.file);
   o["next"] = next;
   o["restart_needed"] = next != c.running;
   return o;
 }
 
-json::object numberToJson(const NumberChoice& c) {
-  json::object o;
-  o["file"] = c.file;
-  o["chosen"] = c.chosen ? json::value(*c.chosen) : json::value(nullptr);
-  o["running"] = c.running;
-  const double next = c.chosen.value_or(c.file);
-  o["next"] = next;
-  o["restart_needed"] = next != c.running;
-  return o;
-}
-
-// A number or null. false: neither.
-bool readNumber(const json::object& body, std::string_view key, NumberEdit& out) {
+// One field of the body: absent, null, or a value of its kind (a string of
+// at most 64 characters, or a number). false: something else.
+template <class T>
+bool readEdit(const json::object& body, std::string_view key, ChoiceEdit<T>& out) {
   const auto* v = body.if_contains(key);
   if (!v) return true;
   out.touched = true;
   if (v->is_null()) return true;
-  out.value = jsonNumber(*v);
+  if constexpr (std::is_same_v<T, double>) {
+    out.value = jsonNumber(*v);
+  } else if (v->is_string() && v->get_string().size() <= 64) {
+    out.value = std::string(v->get_string());
+  }
   return out.value.has_value();
-}
-
-json::array stringsToJson(const std::vector<std::string>& v) {
-  json::array a;
-  for (const auto& s : v) a.push_back(json::string(s));
-  return a;
-}
-
-// One field of the body: absent, a string, or null. false: neither.
-bool readEdit(const json::object& body, std::string_view key, ChoiceEdit& out) {
-  const auto* v = body.if_contains(key);
-  if (!v) return true;
-  out.touched = true;
-  if (v->is_null()) return true;
-  if (!v->is_string() || v->get_string().size() > 64) return false;
-  out.value = std::string(v->get_string());
-  return true;
 }
 
 }  // namespace
@@ -71,10 +51,10 @@ Response ApiHandler::getHardwareSetup(const Request& req) {
   o["savable"] = h.savable;
   o["battery_temp_sensor"] = choiceToJson(h.batteryTempSensor);
   o["bms_interface"] = choiceToJson(h.bmsInterface);
-  o["pulley_ratio"] = numberToJson(h.pulleyRatio);
+  o["pulley_ratio"] = choiceToJson(h.pulleyRatio);
   o["alternator_sensor"] = h.alternatorSensor;
-  o["probes"] = stringsToJson(h.probes);
-  o["can_interfaces"] = stringsToJson(h.canInterfaces);
+  o["probes"] = json::value_from(h.probes);
+  o["can_interfaces"] = json::value_from(h.canInterfaces);
   o["victron_bms"] = h.victronBms;
   return jsonReply(req, http::status::ok, o);
 }
@@ -92,7 +72,7 @@ Response ApiHandler::putHardwareSetup(const Request& req) {
   if (!readEdit(obj, "battery_temp_sensor", edit.batteryTempSensor) ||
       !readEdit(obj, "bms_interface", edit.bmsInterface))
     return error(req, http::status::bad_request, "each setting is a string (at most 64 characters) or null");
-  if (!readNumber(obj, "pulley_ratio", edit.pulleyRatio))
+  if (!readEdit(obj, "pulley_ratio", edit.pulleyRatio))
     return error(req, http::status::bad_request, "pulley_ratio is a number or null");
   if (!edit.batteryTempSensor.touched && !edit.bmsInterface.touched && !edit.pulleyRatio.touched)
     return error(req, http::status::bad_request, "no setting given");

@@ -189,21 +189,17 @@ struct CanState {
 // CAN interface. Each is what the file says, what the set-up page chose
 // (nullopt: nothing; "" = none) and what runs now; a choice runs from the
 // next start.
+template <class T>
 struct HardwareChoice {
-  std::string file;
-  std::optional<std::string> chosen;
-  std::string running;
-};
-struct NumberChoice {
-  double file = 0.0;
-  std::optional<double> chosen;
-  double running = 0.0;
+  T file{};
+  std::optional<T> chosen;
+  T running{};
 };
 struct HardwareSetup {
   bool savable = false;  // a state database keeps the choices
-  HardwareChoice batteryTempSensor;
-  HardwareChoice bmsInterface;
-  NumberChoice pulleyRatio;                // alternator turns per engine turn
+  HardwareChoice<std::string> batteryTempSensor;
+  HardwareChoice<std::string> bmsInterface;
+  HardwareChoice<double> pulleyRatio;      // alternator turns per engine turn
   std::string alternatorSensor;            // the probe the alternator's temperature is read from
   std::vector<std::string> probes;         // 1-Wire temperature probes present now
   std::vector<std::string> canInterfaces;  // CAN interfaces present now
@@ -211,18 +207,15 @@ struct HardwareSetup {
 };
 // One field of PUT /api/setup/hardware: absent (not touched), a value, or
 // null (back to the file's).
+template <class T>
 struct ChoiceEdit {
   bool touched = false;
-  std::optional<std::string> value;
-};
-struct NumberEdit {
-  bool touched = false;
-  std::optional<double> value;
+  std::optional<T> value;
 };
 struct HardwareChoiceEdit {
-  ChoiceEdit batteryTempSensor;
-  ChoiceEdit bmsInterface;
-  NumberEdit pulleyRatio;
+  ChoiceEdit<std::string> batteryTempSensor;
+  ChoiceEdit<std::string> bmsInterface;
+  ChoiceEdit<double> pulleyRatio;
 };
 
 // Health for /healthz: ok = the control loop ticks and the outputs are driven.

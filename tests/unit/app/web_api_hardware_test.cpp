@@ -157,6 +157,16 @@ TEST(HardwareSetup, RefusalsSaveNothing) {
   }
 }
 
+TEST(HardwareSetup, TheAlternatorsNamedProbeIsRefusedOnce) {
+  HardwareRig r;
+  r.file.hardware.onewire_sensor_id = kBat;  // named: not the first found
+  auto api = r.api();
+  const auto errors = api->saveHardwareChoices(battery(kBat), "the phone");
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_THAT(errors[0].message, HasSubstr("onewire_sensor_id"));
+  EXPECT_TRUE(api->saveHardwareChoices(battery(kAlt), "the phone").empty()) << "the other probe is free";
+}
+
 TEST(HardwareSetup, ABmsOnCanIsRefusedWhileAVictronGxGivesTheLimits) {
   HardwareRig r;
   r.file.integrations.victron.enabled = true;

@@ -143,7 +143,7 @@ async function saveSetup(runCommand) {
   let body, hwBody;
   try {
     body = collect();
-    hwBody = hardware ? collectHardware(hardware) : {};
+    hwBody = hardware ? collectHardware(hardware, read) : {};
   } catch (e) { msg.textContent = e.message; msg.className = "msg bad"; return; }
   try {
     await write("PATCH", "/api/params", body);

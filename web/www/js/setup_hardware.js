@@ -1,7 +1,10 @@
-// The set-up's hardware step: which 1-Wire probe is on the battery and which
-// CAN interface the BMS is on (docs/configuration.md "Set-up"). The daemon
-// opens these devices at start, so a choice is used from its next start and
-// the page says so; it lists what is present on the board now.
+// The set-up's hardware step: which 1-Wire probe is on the battery, which
+// CAN interface the BMS is on, and the pulley ratio (docs/configuration.md
+// "Set-up: hardware choices"). The daemon opens these devices at start, so a
+// choice is used from its next start and the page says so; it lists what is
+// present on the board now.
+import { parseDecimal } from "./format.js";
+
 const esc = (s) => String(s).replace(/[&<>"]/g, (c) => ({ "&": "&amp;", "<": "&lt;", ">": "&gt;", '"': "&quot;" })[c]);
 
 function options(current, found, noneLabel, label) {
@@ -15,7 +18,7 @@ function options(current, found, noneLabel, label) {
 // own tachometer.
 export function rpmHint(hw, rpmNow, typed) {
   if (!(rpmNow > 0)) return "Engine stopped: start it to compare the speed read with the engine's tachometer.";
-  const r = Number(String(typed).replace(",", "."));
+  const r = parseDecimal(typed);
   const next = r > 0 ? Math.round((rpmNow * hw.pulley_ratio.running) / r) : null;
   return `Engine speed read now: ${Math.round(rpmNow)} rpm` +
     (next !== null && r !== hw.pulley_ratio.running ? `; with ${r}: ${next} rpm. Compare with the engine's tachometer.` : ". Compare with the engine's tachometer.");
@@ -41,8 +44,10 @@ export function renderHardwareStep(hw, n, rpmNow) {
 }
 
 // The PUT body for what changed ({} when nothing did): a choice equal to the
-// file's value is sent as null, so the file decides again.
-export function collectHardware(hw) {
+// file's value is sent as null, so the file decides again. `read(id, label,
+// min, max)` is the set-up's reader of a bounded number (it marks the box and
+// throws when the entry is not one).
+export function collectHardware(hw, read) {
   const body = {};
   for (const [key, id] of [["battery_temp_sensor", "su-battprobe"], ["bms_interface", "su-bms"]]) {
     const el = document.getElementById(id);
@@ -51,8 +56,7 @@ export function collectHardware(hw) {
   }
   const p = document.getElementById("su-pulley");
   if (p && !p.disabled) {
-    const r = Number(p.value.replace(",", "."));
-    if (!(r >= 0.01 && r <= 100)) throw new Error("Pulley ratio: enter a number from 0.01 to 100");
+    const r = read("su-pulley", "Pulley ratio", 0.01, 100);
     if (r !== hw.pulley_ratio.next) body.pulley_ratio = r === hw.pulley_ratio.file ? null : r;
   }
   return body;
