@@ -67,19 +67,15 @@ int printConfigMain(const std::optional<std::string>& configPath, const std::opt
     // The set-up page's probe and BMS choices, as the next start lays them.
     const HardwareChoices choices = hardwareChoicesReadOnly(db);
     if (choices != HardwareChoices{}) {
-      if (const auto bad = checkHardwareChoices(config.settings, choices); !bad.empty())
-        err << "warning: the set-up page's choice of " << bad.front().first
-            << " will not be used: " << bad.front().second << "\n";
-      else
-        config.settings = withHardwareChoices(std::move(config.settings), choices);
-      if (choices.batteryTempSensor)
-        err << "note: battery_temp_sensor below is the set-up page's choice, not the file's\n";
-      if (choices.pulleyRatio)
-        err << "note: pulley_ratio below is the set-up page's choice, not the file's\n";
-      if (choices.pulleyRatio)
-        err << "note: pulley_ratio below is the set-up page's choice, not the file's\n";
-      if (choices.bmsInterface)
-        err << "note: bms_interface below is the set-up page's choice, not the file's\n";
+      const auto bad = layHardwareChoices(config.settings, choices);
+      for (const auto& [key, message] : bad)
+        err << "warning: the set-up page's choice of " << key << " will not be used: " << message << "\n";
+      // A choice not used leaves the file's value, which needs no note.
+      for (const auto& [key, made] : {std::pair{"battery_temp_sensor", choices.batteryTempSensor.has_value()},
+                                      std::pair{"bms_interface", choices.bmsInterface.has_value()},
+                                      std::pair{"pulley_ratio", choices.pulleyRatio.has_value()}})
+        if (made && bad.empty())
+          err << "note: " << key << " below is the set-up page's choice, not the file's\n";
     }
     std::string why;
     const auto rows = readOverridesReadOnly(db, &why);

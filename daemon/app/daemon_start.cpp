@@ -43,15 +43,14 @@ bool loadScenario(const CliOptions& cli, Settings& settings, StartState& st) {
 // device opens. A choice the file has since made impossible (the same
 // interface for NMEA 2000, a Victron GX now enabled) is not used: the file's
 // value runs, and the journal says why.
-void applyHardwareChoices(StoreService& store, Settings& settings) {
+void layStoredHardwareChoices(StoreService& store, Settings& settings) {
   const HardwareChoices c = store.loadHardwareChoices();
   if (c == HardwareChoices{}) return;
-  if (const auto errors = checkHardwareChoices(settings, c); !errors.empty()) {
+  if (const auto errors = layHardwareChoices(settings, c); !errors.empty()) {
     for (const auto& [key, message] : errors)
       spdlog::error("set-up: the choice of {} is not used: {}; the file's value runs", key, message);
     return;
   }
-  settings = withHardwareChoices(std::move(settings), c);
   spdlog::info(
       "set-up: battery temperature probe '{}', BMS on CAN '{}', pulley ratio {} (the set-up page's choices "
       "over "
@@ -73,7 +72,7 @@ void openStore(const std::string& dbPath, Settings& settings, StartState& st) {
     st.restored = saved->ledger;
     spdlog::info("store: ledger restored (saved for '{}')", saved->reason);
   }
-  applyHardwareChoices(*st.store, settings);
+  layStoredHardwareChoices(*st.store, settings);
   // An install from before "not set up" existed keeps charging as it did
   // (store/schema.cpp, v4).
   if (st.store->loadValue("set_up_before_upgrade")) st.origins.assumeSetUp = true;

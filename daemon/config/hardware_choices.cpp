@@ -68,4 +68,10 @@ std::vector<std::pair<std::string, std::string>> checkHardwareChoices(const Sett
   return out;
 }
 
+std::vector<std::pair<std::string, std::string>> layHardwareChoices(Settings& s, const HardwareChoices& c) {
+  auto errors = checkHardwareChoices(s, c);
+  if (errors.empty()) s = withHardwareChoices(std::move(s), c);
+  return errors;
+}
+
 }  // namespace xr

@@ -49,4 +49,9 @@ Settings withHardwareChoices(Settings s, const HardwareChoices& c);
 std::vector<std::pair<std::string, std::string>> checkHardwareChoices(const Settings& file,
                                                                       const HardwareChoices& c);
 
+// Lays `c` over `s` when the settings it gives pass checkHardwareChoices;
+// otherwise leaves `s` as it is (the file's values run) and returns why. The
+// daemon's start and --print-config both lay the stored choices this way.
+std::vector<std::pair<std::string, std::string>> layHardwareChoices(Settings& s, const HardwareChoices& c);
+
 }  // namespace xr

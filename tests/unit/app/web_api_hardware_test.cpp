@@ -100,6 +100,8 @@ TEST(HardwareSetup, PrintConfigShowsWhatTheNextStartRuns) {
   std::ostringstream out, err;
   ASSERT_EQ(printConfigMain(std::nullopt, r.dir.file("x.db"), out, err), 0) << err.str();
   EXPECT_THAT(out.str(), HasSubstr(std::string("battery_temp_sensor = \"") + kBat + "\""));
+  // One note per choice made, none for what the file still decides.
+  EXPECT_EQ(err.str(), "note: battery_temp_sensor below is the set-up page's choice, not the file's\n");
 }
 
 // The tach reads the alternator; the RPM tables are in engine RPM. A pulley
