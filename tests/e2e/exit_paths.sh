@@ -192,6 +192,26 @@ case "$case_name" in
     [ $? = 78 ] || fail "--telemetry-csv in a missing directory: not 78"
     grep -q "no-such-dir/t.csv: No such file or directory" "$tmp/log" || fail "--telemetry-csv error not named"
     ;;
+  board_bad_http)
+    # On a board, a bad --http is refused with the command line, before any
+    # device opens: the watchdog (a plain file standing in for
+    # /dev/watchdog) is never opened, so it can neither be armed nor reset
+    # the board. A board whose GPIO is missing stops before the watchdog too.
+    : >"$tmp/wd"
+    printf '[hardware]\nwatchdog_device = "%s"\ngpio_chip = "%s/no-gpiochip"\n' "$tmp/wd" "$tmp" >"$tmp/board.toml"
+    "$bin" --config "$tmp/board.toml" --http 'not-an-address' --state-db "$tmp/s.db" >"$tmp/log" 2>&1
+    rc=$?
+    [ "$rc" = 78 ] || fail "bad --http on a board: exit $rc, not 78"
+    grep -q -- "--http:" "$tmp/log" || fail "the --http error is not named"
+    grep -q "GPIO\|hardware setup" "$tmp/log" && fail "a device was opened before the --http check"
+    [ ! -s "$tmp/wd" ] || fail "the watchdog was written: $(od -c "$tmp/wd" | head -2)"
+    [ ! -e "$tmp/s.db" ] || fail "the state database was created before the --http check"
+    "$bin" --config "$tmp/board.toml" --http 127.0.0.1:0 --state-db "$tmp/s.db" >"$tmp/log" 2>&1
+    rc=$?
+    [ "$rc" = 69 ] || fail "a board without its GPIO: exit $rc, not 69"
+    grep -q "hardware setup failed: GPIO" "$tmp/log" || fail "the missing GPIO is not named"
+    [ ! -s "$tmp/wd" ] || fail "the watchdog was armed by a board that could not start"
+    ;;
   web_cannot_start)
     # 192.0.2.1 (TEST-NET-1) is a valid address no interface
     # has: the server cannot bind it. The regulator runs on, loudly.

@@ -1,0 +1,50 @@
+#include "app/daemon_services.h"
+
+#include "app/integrations_wiring.h"
+#include "logging/logging.h"
+
+namespace xr::app {
+
+namespace {
+
+double wallSecondsNow() { return static_cast<double>(unixMsNow()) / 1000.0; }
+
+}  // namespace
+
+DaemonServices::DaemonServices(const CliOptions& cli, const StartState& start, const Settings& settings,
+                               rt::Handoffs& handoffs, DaemonRig& rig, std::unique_ptr<CsvWriter> csv,
+                               std::unique_ptr<std::ofstream> canLog)
+    : pump_(handoffs.events), csv_(std::move(csv)) {
+  StoreService* store = start.store.get();
+  pump_.addSource(handoffs.sideEvents);  // the CAN thread's events (docs/integrations.md)
+  pump_.addSink([](const Event& e) { logEvent(e); });
+  pump_.addSink([this](const Event& e) { recent_.add(e, wallSecondsNow(), describe(e)); });
+  if (store) pump_.addSink([store](const Event& e) { store->appendEvent(e); });
+  pump_.start();
+  if (csv_) csv_->start();
+
+  // The boat's network (docs/integrations.md): its own thread, reading the snapshot only.
+  integrations_ = startIntegrations(settings, handoffs, store);
+  // CAN (docs/integrations.md): on a board the xr-can thread; the sim rig runs its own.
+  if (BoardRig* board = rig.board())
+    can_ = startCanThread(settings, handoffs, board->loopClock(), std::move(canLog));
+
+  DaemonWebInputs in;
+  in.start = &start;
+  in.settings = &settings;
+  in.handoffs = &handoffs;
+  in.recent = &recent_;
+  in.integrations = integrationsView(integrations_.get());
+  in.w1Root = rig.w1Root(settings);
+  in.lastHeartbeatWallMs = &lastHeartbeatWallMs_;
+  in.fieldSafeFault = &outputsFault_;
+  web_ = startWeb(cli, in);
+}
+
+void DaemonServices::stop() {
+  if (web_.server) web_.server->stop();
+  pump_.stop();
+  if (csv_) csv_->stop();
+}
+
+}  // namespace xr::app

@@ -1,0 +1,55 @@
+#pragma once
+// The daemon's main thread while the control thread runs (docs/operations.md):
+// signals, the systemd watchdog (fed only while the control loop ticks), the
+// status line, the state database's housekeeping, the patch log, and the
+// loop's figures in the journal once a minute.
+#include <chrono>
+#include <cstdint>
+
+#include "app/cli.h"
+#include "app/control_thread.h"
+#include "app/daemon_services.h"
+#include "app/presence_pairing.h"
+#include "app/store_service.h"
+#include "config/settings.h"
+#include "runtime/control_loop.h"
+#include "runtime/handoffs.h"
+
+namespace xr::app {
+
+class Supervisor {
+ public:
+  Supervisor(const CliOptions& cli, const Settings& settings, rt::ControlLoop& loop,
+             const ControlThread& control, rt::Handoffs& handoffs, DaemonServices& services,
+             StoreService* store)
+      : cli_(cli),
+        settings_(settings),
+        loop_(loop),
+        control_(control),
+        handoffs_(handoffs),
+        services_(services),
+        store_(store) {}
+
+  // Until the loop finishes or the control thread fails: the exit code a
+  // signal asked for (0 otherwise). Throws only on a fault of this thread.
+  int run();
+
+ private:
+  void feedWatchdog();
+  void throwTestFault() const;
+  void everySecond();
+  void everyMinute();
+
+  const CliOptions& cli_;
+  const Settings& settings_;
+  rt::ControlLoop& loop_;
+  const ControlThread& control_;
+  rt::Handoffs& handoffs_;
+  DaemonServices& services_;
+  StoreService* store_;
+  PresencePairing presence_;  // the ignition turned off-on-off-on opens pairing (docs/security.md)
+  std::uint64_t lastBeat_ = 0;
+  bool edgeFallbackLogged_ = false;
+};
+
+}  // namespace xr::app
