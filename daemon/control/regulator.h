@@ -42,7 +42,19 @@ class Regulator {
   void restoreLedger(const BatteryLedger& ledger);
 
  private:
-  void fillStateTelemetry();
+  // One step's stages, in order (regulator_step.cpp), on the real-time thread like step().
+  struct Tick;
+  void beginTick(Tick& t) noexcept;
+  void readSensors(Tick& t) noexcept;
+  void runProtections(Tick& t) noexcept;
+  void selectMode(Tick& t) noexcept;
+  void enterMode(Tick& t) noexcept;
+  void decideDuty(Tick& t) noexcept;
+  void runAuto(Tick& t) noexcept;
+  void applyField(Tick& t) noexcept;
+  void updateBattery(Tick& t) noexcept;
+  void fillInputTelemetry(const Tick& t) noexcept;
+  void fillStateTelemetry() noexcept;
 
   struct State;
   std::unique_ptr<State> s_;

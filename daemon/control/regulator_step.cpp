@@ -1,0 +1,317 @@
+// Regulator::step: one control tick, in the order of architecture-legacy.md
+// "Main Loop Architecture" and battery-management.md "Critical ordering note":
+//
+//   auto-zero -> corrected sensors + filters -> protection detectors
+//   (sustained timers) -> charging stage -> TickSnapshot -> mode selection ->
+//   mode transitions (enter_sys_*) -> shutdown path (incl. applyImmediateCut)
+//   or normal control (AUTO with fast-OV supervisors / MANUAL / Limp Home)
+//   -> governor -> outputs -> SoC update -> alarms -> telemetry.
+//
+// CH1 freshness: the control law (filters, CV loop, PID, governor) fires on
+// fresh CH1 samples. On other ticks the protections, the shutdown sequencer,
+// the fast-OV supervisors and MANUAL / Limp Home still run; in AUTO the PID
+// and the duty hold (GOV_HOLD semantics) until the next sample.
+#include <algorithm>
+#include <cmath>
+
+#include "control/regulator.h"
+#include "control/regulator_state.h"
+#include "control/temp_compensation.h"
+#include "core/alternator_temperature.h"
+#include "params/derived.h"
+
+namespace xr {
+
+namespace {
+bool isRampMode(FieldControlMode m) {
+  return m == FieldControlMode::MODE_CRITICAL_RAMP || m == FieldControlMode::MODE_WARNING_RAMP_AND_LOCKOUT ||
+         m == FieldControlMode::MODE_LOCKOUT_RAMP;
+}
+}  // namespace
+
+const Outputs& Regulator::step(const Inputs& in) noexcept {
+  Tick t(in);
+  beginTick(t);
+  readSensors(t);
+  runProtections(t);
+  selectMode(t);
+  enterMode(t);
+  decideDuty(t);
+  applyField(t);
+  updateBattery(t);
+  fillInputTelemetry(t);
+  fillStateTelemetry();
+  return s_->out;
+}
+
+// The events of commands applied since the last step open this step's batch.
+void Regulator::beginTick(Tick& t) noexcept {
+  State& s = *s_;
+  EventBatch& ev = s.out.events;
+  ev.clear();
+  for (std::size_t i = 0; i < s.pendingCount; ++i) ev.push(s.pending[i]);
+  s.pendingCount = 0;
+  s.now = t.in.now;
+}
+
+// 1. Auto-zero BEFORE the control step (it owns GPIO4 while active).
+// 2. Corrected sensors and the CH1 record-path filters.
+void Regulator::readSensors(Tick& t) noexcept {
+  State& s = *s_;
+  const Inputs& in = t.in;
+  const Params& p = s.p;
+  EventBatch& ev = s.out.events;
+  s.bat.checkAutoZeroTriggers(in, ev);
+  t.autoZeroActive = s.bat.processAutoZero(in, ev);
+  t.MeasuredAmps =
+      std::isfinite(in.altCurrentRaw.value) ? s.bat.correctedAltAmps(in.altCurrentRaw.value) : kNoValue;
+  t.Bcur = std::isfinite(in.Bcur.value) ? s.bat.correctedBcur(in.Bcur.value) : kNoValue;
+  t.temp = &alternatorTemperature(in, p.TempSource);
+  ControlSensors& cs = t.cs;
+  cs.now = in.now;
+  cs.ch1Fresh = in.altCurrentRaw.fresh;
+  cs.MeasuredAmps = t.MeasuredAmps;
+  cs.IBV = in.IBV.value;
+  cs.ibvFresh = in.IBV.fresh;
+  cs.Bcur = t.Bcur;
+  cs.rpm = in.rpm.value;
+  cs.TempToUse = t.temp->value;
+  cs.tempStamp = t.temp->stamp;
+  cs.SOC_percent = s.bat.socPercent();
+  cs.socKnown = s.bat.socKnown();
+  s.law.updateFilters(cs, p);
+}
+
+// 3. Protection detectors and sustained timers, the battery's temperature
+// rules; 4. the BMS's limits, then the charging stage.
+void Regulator::runProtections(Tick& t) noexcept {
+  State& s = *s_;
+  const Inputs& in = t.in;
+  const Params& p = s.p;
+  EventBatch& ev = s.out.events;
+  // A resting field (last tick) quiets the tach: the RPM gate must know it is not a stopped engine.
+  s.prot.setFieldResting(s.law.fieldResting());
+  s.prot.updateDetectors(in, t.MeasuredAmps, ev);
+  // Battery temperature (docs/batteries.md): cold/hot orders, current cap, and the
+  // compensated targets the stage machine and the voltage loop see.
+  const BatteryTempDecision& bt = s.batTemp.update(in, p, ev);
+  t.cs.batteryChargeCapA = bt.currentCapA;
+  const double compV = temperatureCompensationV(p, bt.tempC);
+  t.stageParams = &p;
+  if (compV != 0.0) {
+    compensateTargets(p, compV, s.compensated);
+    t.stageParams = &s.compensated;
+  }
+  // The charging stage is suppressed in override modes and manual.
+  s.law.updateBms(in.bms, in.now, t.Bcur, in.IBV.value, p, ev);
+  t.manualMode = p.ManualMode || s.opManual;
+  s.law.updateChargingStage(t.cs, *t.stageParams, t.manualMode, ev);
+}
+
+// 5. Immutable snapshot and mode selection by priority.
+void Regulator::selectMode(Tick& t) noexcept {
+  State& s = *s_;
+  const Params& p = s.p;
+  const BatteryTempDecision& bt = s.batTemp.decision();
+  TickSnapshot& snap = t.snap;
+  snap.now = t.in.now;
+  snap.prot = s.prot.flags();
+  snap.limpHome = s.limpHome;
+  snap.manualMode = t.manualMode;
+  snap.sysOff = s.opOff;
+  snap.ignitionOn = t.in.ignitionOn;
+  snap.OnOff = p.OnOff;
+  snap.bmsChargeEnabled = t.in.bmsChargeEnabled && s.law.bms().chargeAllowed();
+  // A floor the forecast does not get to argue with (docs/deviations.md
+  // "Weather mode's SoC floor"): below it, or with the SoC unknown, charge.
+  snap.weatherModeActive = p.weatherModeEnabled && s.currentWeatherMode && t.cs.socKnown &&
+                           t.cs.SOC_percent >= p.WeatherModeMinSoC;
+  // IDLE rests the field, unless the alternator carries the house loads
+  // while the bank rests (IdleZeroCurrent).
+  snap.idleStage = s.law.stages().inIdleStage() && !s.law.idleZeroCurrentHold(p);
+  snap.batteryCold = bt.cold;
+  snap.batteryHot = bt.hot;
+  snap.autoZeroActive = t.autoZeroActive;
+  t.d = selectFieldMode(snap);
+}
+
+// 6. Mode transitions: bumpless enter_sys_* and the mode-change event.
+void Regulator::enterMode(Tick& t) noexcept {
+  State& s = *s_;
+  const ModeDecision& d = t.d;
+  if (s.firstTick || d.mode != s.lastMode) {
+    switch (d.mode) {
+      case FieldControlMode::MODE_NORMAL_AUTO_PID:
+        s.law.enter_sys_auto(t.cs, s.p);
+        if (!s.firstTick && isRampMode(s.lastMode)) s.law.onProtectionCleared(t.in.now);
+        break;
+      case FieldControlMode::MODE_NORMAL_MANUAL:
+      case FieldControlMode::MODE_LIMP_HOME:
+        s.law.enter_sys_manual();
+        break;
+      case FieldControlMode::MODE_DISABLED_RAMP:
+        s.law.enter_sys_off();
+        break;
+      default:
+        s.law.enter_sys_fault();
+        break;
+    }
+    s.out.events.push(makeEvent(t.in.now, isNormalMode(d.mode) ? EventLevel::Info : EventLevel::Warning,
+                                EventCode::ModeChanged, d.reason, static_cast<double>(s.lastMode), 0.0, 0,
+                                d.mode));
+  }
+  s.firstTick = false;
+  s.lastMode = d.mode;
+  s.lastReason = d.reason;
+}
+
+// 7. The shutdown path every tick (it tracks transitions), else the mode's
+// control; the auto-zero and a non-finite duty leave the field off.
+void Regulator::decideDuty(Tick& t) noexcept {
+  State& s = *s_;
+  const Params& p = s.p;
+  EventBatch& ev = s.out.events;
+  const ShutdownCommand sc = s.prot.runShutdownPath(t.d, s.law.lastAppliedDuty(), s.law.rpmMinDuty(), ev);
+  if (sc.applyImmediateCut) s.law.applyImmediateCut();
+  if (sc.active) {
+    t.duty = sc.dutyPct;  // already slewed by the phase rates (effective minimum 0)
+    t.field = sc.fieldEnable;
+    t.govMode = sc.govMode;
+    s.law.trackShutdown(t.duty, p, t.cs.rpm);
+  } else if (t.d.mode == FieldControlMode::MODE_LIMP_HOME) {
+    t.duty = s.law.runLimpHome(t.cs, p, ev);
+    t.field = true;
+  } else if (t.d.mode == FieldControlMode::MODE_NORMAL_MANUAL) {
+    t.duty = s.law.runManual(t.cs, p, s.opManual ? s.opManualDuty : p.ManualDutyTarget);
+    t.field = true;
+  } else if (t.d.mode == FieldControlMode::MODE_NORMAL_AUTO_PID) {
+    runAuto(t);
+  } else {
+    // A non-normal mode the sequencer did not take: the safe state.
+    t.duty = 0.0;
+    t.field = false;
+    s.law.trackShutdown(0.0, p, t.cs.rpm);
+  }
+  if (t.autoZeroActive) {
+    // The auto-zero owns the field: LOW for the whole measurement.
+    t.field = false;
+    t.duty = 0.0;
+    s.law.trackShutdown(0.0, p, t.cs.rpm);
+  }
+  if (!std::isfinite(t.duty)) {
+    t.duty = 0.0;
+    t.field = false;
+  }
+}
+
+// AUTO: the current target, the fast over-voltage supervisors' say over it,
+// then the inner loop and the governor.
+void Regulator::runAuto(Tick& t) noexcept {
+  State& s = *s_;
+  const Params& p = s.p;
+  const double uTargetRaw = s.law.computeUTarget(t.cs, p);
+  FastOvInputs fi;
+  fi.voltageControlActive = s.law.voltageControlActive();
+  fi.floatStage = s.law.stages().inFloatStage();
+  fi.ChargingVoltageTarget = s.law.ChargingVoltageTarget();
+  fi.uTargetAmps = uTargetRaw;
+  fi.setpointLimited = s.law.setpointLimited();
+  fi.cv_I = s.law.cv_I();
+  fi.MeasuredAmps = t.MeasuredAmps;
+  fi.MeasuredAmps_filtered = s.law.MeasuredAmps_filtered();
+  fi.altCurrentFresh = t.in.altCurrentRaw.fresh;
+  const FastOvAction fa = s.prot.runFastOvSupervisors(fi);
+  FastOvApply apply;
+  apply.fastOvCurrentCap = fa.fastOvCurrentCap;
+  apply.fastOvClampActive = fa.fastOvClampActive;
+  apply.setCvI = fa.cvIAction != CvIAction::None;
+  apply.cv_I = fa.cv_I;
+  apply.zeroSetpointLimited = fa.zeroSetpointLimited;
+  apply.forceBypassSlew = fa.forceBypassSlew;
+  apply.sensorFailureBypass = t.snap.prot.voltageImplausible || t.snap.prot.voltageDisagreeCritical;
+  t.duty = s.law.finishAuto(t.cs, p, apply, s.out.events);
+  t.field = !s.law.fieldResting();  // a full bank at the RPM floor rests the field
+  t.fastOvActive = fa.fastOvClampActive;
+  t.govMode = s.law.govMode();
+}
+
+// The field enable's edges, then the outputs the drivers write.
+void Regulator::applyField(Tick& t) noexcept {
+  State& s = *s_;
+  Outputs& out = s.out;
+  if (t.field && !s.lastField) {
+    s.law.onFieldTurnOn(t.in.now);
+    out.events.push(
+        makeEvent(t.in.now, EventLevel::Info, EventCode::FieldOn, Reason::NONE, 0.0, 0.0, 0, t.d.mode));
+  } else if (!t.field && s.lastField) {
+    out.events.push(
+        makeEvent(t.in.now, EventLevel::Info, EventCode::FieldOff, t.d.reason, 0.0, 0.0, 0, t.d.mode));
+  }
+  s.lastField = t.field;
+  out.dutyPct = t.field ? std::clamp(t.duty, 0.0, 100.0) : 0.0;
+  out.fieldEnable = t.field;
+  out.inaFastMode = t.field;  // fast conversions while the field is on (Group 1 dv/dt, ALERT speed)
+  out.inaBovlVolts = voltageHardwareLimit(s.p);
+}
+
+// 8. SoC and energy; 9. alarms (250 ms cadence inside).
+void Regulator::updateBattery(Tick& t) noexcept {
+  State& s = *s_;
+  EventBatch& ev = s.out.events;
+  s.bat.UpdateBatterySOC(t.in, t.MeasuredAmps, ev);
+  if (s.law.stages().completedOnTail()) s.bat.chargeCompletedOnTail(t.in.now, ev);
+  s.prot.setBmsStale(s.law.bms().stale());
+  s.out.buzzer = s.prot.checkAlarms(false, ev);
+}
+
+// 10. Telemetry: this tick's inputs and decisions (the modules' state after
+// the step is fillStateTelemetry's).
+void Regulator::fillInputTelemetry(const Tick& t) noexcept {
+  State& s = *s_;
+  const Inputs& in = t.in;
+  Telemetry& tm = s.out.telemetry;
+  tm.now = in.now;
+  tm.mode = t.d.mode;
+  // A stale BMS only caps the charge (no mode change): the reason still says so.
+  tm.reason = t.d.reason == Reason::NONE && s.law.bms().stale() ? Reason::REASON_BMS_STALE : t.d.reason;
+  tm.ibv_v = in.IBV.value;
+  tm.battery_v = in.BatteryV.value;
+  tm.bcur_a = t.Bcur;
+  tm.alt_a = t.MeasuredAmps;
+  tm.rpm = in.rpm.value;
+  tm.temp_f = t.temp->value;
+  tm.battery_temp_c = in.batteryTempC.value;
+  tm.duty_pct = s.out.dutyPct;
+  tm.field_enable = s.out.fieldEnable;
+  tm.ignition_on = in.ignitionOn;
+  tm.fast_ov_active = t.fastOvActive;
+  tm.alarm = s.out.buzzer;
+  s.tickGovMode = t.govMode;
+}
+
+// The telemetry that reads the modules' state after this step.
+void Regulator::fillStateTelemetry() noexcept {
+  State& s = *s_;
+  Telemetry& t = s.out.telemetry;
+  s.law.fillTelemetry(t.control);
+  t.control.govMode = s.tickGovMode;
+  t.control.limpHome = s.lastMode == FieldControlMode::MODE_LIMP_HOME;
+  s.prot.fillTelemetry(t.protection);
+  s.bat.updateTelemetry(t.battery);
+  t.stage = s.law.stages().stage();
+  t.setpoint_a = s.law.setpointLimited();
+  t.target_a = s.law.uTargetAmps();
+  t.target_v = s.law.ChargingVoltageTarget();
+  t.thermal_penalty_a = s.law.thermalPenaltyAmps();
+  t.soc_pct = t.battery.SOC_percent;  // the same socPercent(), already in the battery telemetry
+  // chargedEnergyLifetimeWh() and alternatorChargedEnergyLifetimeWh(), as filled just above.
+  t.charged_wh_lifetime = t.battery.ChargedEnergy_AllTime_Wh;
+  t.alt_charged_wh_lifetime = t.battery.AlternatorChargedEnergy_AllTime_Wh;
+  const BmsLimiter& bms = s.law.bms();
+  t.bms_cvl_v = bms.shownCvlV();
+  t.bms_ccl_a = bms.shownCclA();
+  t.bms_soc_pct = bms.shownSocPct();
+  t.bms_state = bms.state();
+}
+
+}  // namespace xr
