@@ -142,6 +142,33 @@ double ControlLaw::governorStep(const Params& p, double request, GovMode mode, d
 
 double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const FastOvApply& fa,
                               EventBatch& ev) {
+  applyFastOv(s, p, fa);
+  if (sysId_.sysIDRunning()) return runSystemIdTick(s, p, ev);
+  // CH1 not fresh: the protections above already acted on the state; the
+  // PID and the duty hold until the next sample (<= one ADS cycle).
+  if (!s.ch1Fresh) return lastAppliedDuty_;
+  const double dt = controlDt_;
+  if (fieldResting_) return holdAtRest();
+
+  const double Icv = slewSetpoint(s, p, dt);
+  runCurrentPid(s, p, dt);
+  const double duty = governorStep(p, dutyRequest_, govMode_, dt);
+  currentPID_.TrackAppliedOutput(duty, dt);
+  lastAppliedDuty_ = duty;
+
+  if (p.TuningMode) tuning_.score(setpointLimited_, MeasuredAmps_, dt);
+  if (p.CVTuningMode && finite(s.IBV)) cvTuning_.score(s.IBV, dt, p);
+  nonThermalCeiling_ = nonThermalCeiling(p, fa, duty, Icv);
+  if (restDue(s, p)) {
+    fieldResting_ = true;
+    return holdAtRest();
+  }
+  return duty;
+}
+
+// The fast over-voltage supervisors' verdict on this tick: their current cap,
+// cv_I and setpoint actions, and what their clearing restarts.
+void ControlLaw::applyFastOv(const ControlSensors& s, const Params& p, const FastOvApply& fa) {
   fastOvClampActive_ = fa.fastOvClampActive;
   if (fa.zeroSetpointLimited && !loadDumpInEpisode_)
     dumpAcceptA_ = emaBcur_.primed() ? emaBcur_.value() : kNoValue;
@@ -164,40 +191,37 @@ double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const Fa
     fieldResting_ = false;  // the field-on edge restarts the startup ramp
     cv_.requestReseed();
   }
+}
 
-  if (sysId_.sysIDRunning()) {
-    // Plant-delay step test: setpoint machinery skipped, inner PID pinned.
-    if (!s.ch1Fresh) return lastAppliedDuty_;
-    bool finished = false;
-    sysIdDutyOut_ = sysId_.systemID_tick(s.now, MeasuredAmps_, p, finished);
-    const double duty = governorStep(p, sysIdDutyOut_, GovMode::GOV_BYPASS_SLEW, controlDt_);
-    dutyRequest_ = sysIdDutyOut_;
-    lastAppliedDuty_ = duty;
-    currentPID_.output = duty;
-    currentPID_.ResetIntegratorTo(duty);
-    if (finished) {
-      const SystemIdSnapshot& pre = sysId_.snapshot();
-      // Legality: still running normally in AUTO with the same CV context.
-      const bool legal = sysMode_ == SysMode::SYS_MODE_AUTO;
-      if (legal && pre.voltageControlActive == voltageControlActive_) {
-        setpointLimited_ = pre.setpointLimited;
-        cv_.restore(pre.cv_I);
-      }
-      configurePid(p);
-      currentPID_.SetMode(Pid::AUTOMATIC);  // re-seeded to lastAppliedDuty (bumpless)
-      const SystemIdResult& r = sysId_.result();
-      ev.push(makeEvent(s.now, EventLevel::Info, EventCode::SystemIdDone, Reason::NONE, r.deadTimeMs,
-                        r.riseTimeMs, r.valid ? 1 : 0));
-    }
-    return duty;
-  }
-
-  // CH1 not fresh: the protections above already acted on the state; the
-  // PID and the duty hold until the next sample (<= one ADS cycle).
+// Plant-delay step test: setpoint machinery skipped, inner PID pinned.
+double ControlLaw::runSystemIdTick(const ControlSensors& s, const Params& p, EventBatch& ev) {
   if (!s.ch1Fresh) return lastAppliedDuty_;
-  const double dt = controlDt_;
-  if (fieldResting_) return holdAtRest();
+  bool finished = false;
+  sysIdDutyOut_ = sysId_.systemID_tick(s.now, MeasuredAmps_, p, finished);
+  const double duty = governorStep(p, sysIdDutyOut_, GovMode::GOV_BYPASS_SLEW, controlDt_);
+  dutyRequest_ = sysIdDutyOut_;
+  lastAppliedDuty_ = duty;
+  currentPID_.output = duty;
+  currentPID_.ResetIntegratorTo(duty);
+  if (!finished) return duty;
+  const SystemIdSnapshot& pre = sysId_.snapshot();
+  // Legality: still running normally in AUTO with the same CV context.
+  const bool legal = sysMode_ == SysMode::SYS_MODE_AUTO;
+  if (legal && pre.voltageControlActive == voltageControlActive_) {
+    setpointLimited_ = pre.setpointLimited;
+    cv_.restore(pre.cv_I);
+  }
+  configurePid(p);
+  currentPID_.SetMode(Pid::AUTOMATIC);  // re-seeded to lastAppliedDuty (bumpless)
+  const SystemIdResult& r = sysId_.result();
+  ev.push(makeEvent(s.now, EventLevel::Info, EventCode::SystemIdDone, Reason::NONE, r.deadTimeMs,
+                    r.riseTimeMs, r.valid ? 1 : 0));
+  return duty;
+}
 
+// The outer loops' command (the voltage loop's current, or the current
+// target) and its slew into setpointLimited_; returns the voltage loop's Icv.
+double ControlLaw::slewSetpoint(const ControlSensors& s, const Params& p, double dt) {
   CvLoopInputs ci;
   ci.now = s.now;
   ci.dtSec = dt;
@@ -228,8 +252,11 @@ double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const Fa
   const double fall = fastOvClampActive_ || bmsCapActive_ ? 1e9 : p.SetpointFallRate;
   setpointLimited_ = slew_limit_f(setpointLimited_, setpointCommand_, rise, fall, dt);
   if (inStartupRamp_ && setpointLimited_ >= setpointCommand_ - 1e-9) inStartupRamp_ = false;
+  return Icv;
+}
 
-  // Inner current PID, every PidSampleDivisor-th fresh CH1, real dt.
+// Inner current PID, every PidSampleDivisor-th fresh CH1, real dt: sets dutyRequest_.
+void ControlLaw::runCurrentPid(const ControlSensors& s, const Params& p, double dt) {
   configurePid(p);
   if (currentPID_.GetMode() != Pid::AUTOMATIC) currentPID_.SetMode(Pid::AUTOMATIC);
   // MaintainMode chases Bcur = 0 (seed), and ours: never with more
@@ -258,15 +285,10 @@ double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const Fa
   }
   bmsAltCapPrev_ = bmsAltCap_;
   dutyRequest_ = currentPID_.output;
+}
 
-  const double duty = governorStep(p, dutyRequest_, govMode_, dt);
-  currentPID_.TrackAppliedOutput(duty, dt);
-  lastAppliedDuty_ = duty;
-
-  if (p.TuningMode) tuning_.score(setpointLimited_, MeasuredAmps_, dt);
-  if (p.CVTuningMode && finite(s.IBV)) cvTuning_.score(s.IBV, dt, p);
-
-  // Non-thermal ceiling for T0's implied-penalty anti-windup (next tick).
+// Non-thermal ceiling for T0's implied-penalty anti-windup (next tick).
+double ControlLaw::nonThermalCeiling(const Params& p, const FastOvApply& fa, double duty, double Icv) const {
   double c = std::min(p.MaxTableValue, p.MaximumAllowedBatteryAmps);
   if (warmupActive_) c = std::min(c, p.WarmupCeilingAmps);
   c = std::min(c, bmsAltCap_);
@@ -278,12 +300,7 @@ double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const Fa
   // parks the integrator at the edge of effect (a 160 A cap on a machine
   // making 140 A hot gave the loop 20 A of dead travel, and the overshoot).
   if (duty >= p.MaxDuty - kFullFieldDutyBand && emaInput_.primed()) c = std::min(c, emaInput_.value());
-  nonThermalCeiling_ = c;
-  if (restDue(s, p)) {
-    fieldResting_ = true;
-    return holdAtRest();
-  }
-  return duty;
+  return c;
 }
 
 }  // namespace xr

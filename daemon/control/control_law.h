@@ -175,6 +175,12 @@ class ControlLaw {
   double holdAtRest();
   void updateGovMode(const ControlSensors& s, const Params& p, const FastOvApply& fa);
   void reseedAfterLoadDump(const ControlSensors& s);
+  // finishAuto's steps (control_law.cpp).
+  void applyFastOv(const ControlSensors& s, const Params& p, const FastOvApply& fa);
+  double runSystemIdTick(const ControlSensors& s, const Params& p, EventBatch& ev);
+  double slewSetpoint(const ControlSensors& s, const Params& p, double dt);
+  void runCurrentPid(const ControlSensors& s, const Params& p, double dt);
+  double nonThermalCeiling(const Params& p, const FastOvApply& fa, double duty, double Icv) const;
 
   // Loops.
   Pid currentPID_;

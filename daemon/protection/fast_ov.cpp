@@ -57,17 +57,50 @@ FastOvAction ProtectionSupervisor::runFastOvSupervisors(const FastOvInputs& x) {
     lastFastOv_ = a;
     return a;
   }
-
-  // Group 3 signal window: every fresh sample since the last reset.
-  const int maN = std::clamp(p_.IExcessMA_N, 1, static_cast<int>(maBuf_.size()));
-  if (x.altCurrentFresh && std::isfinite(x.MeasuredAmps)) {
-    maBuf_[static_cast<std::size_t>(maHead_)] = x.MeasuredAmps;
-    maHead_ = (maHead_ + 1) % static_cast<int>(maBuf_.size());
-    maCount_ = std::min(maCount_ + 1, static_cast<int>(maBuf_.size()));
-  }
-
+  pushGroup3Sample(x);
   double cap = fastOvWasActive_ ? std::min(fastOvCap_, base) : base;
+  cap = std::min(cap, voltageGroupsCap(x, a));
+  const bool loadDump = loadDumpFiredThisSample_ && inaFastModeActive_;
+  if (a.group1 || a.group2 || loadDump) postFastOvGate_ = true;
+  cap = std::min(cap, runGroup3(x, loadDump, prevCall, base, a));
 
+  // Load dump (gated on INA fast mode): everything to zero, AW bleed recovers.
+  if (loadDump) {
+    a.loadDump = true;
+    cap = 0.0;
+    a.zeroSetpointLimited = true;
+    a.cvIAction = CvIAction::Snap;
+    a.cv_I = 0.0;
+  }
+  const bool any = a.group1 || a.group2 || a.group3 || a.loadDump;
+  if (any) {
+    fastOvCap_ = std::clamp(cap, 0.0, base);
+    a.fastOvCurrentCap = fastOvCap_;
+    a.fastOvClampActive = true;
+    govBypassLatched_ = true;
+  } else {
+    fastOvCap_ = base;
+    // CV overshoot bypass latch releases below target + 0.02 V (docs/control.md "Governor").
+    if (IBV_ < target + k::CV_OVERSHOOT_RELEASE_V) govBypassLatched_ = false;
+  }
+  fastOvWasActive_ = any;
+  a.forceBypassSlew = any || govBypassLatched_;
+  lastFastOv_ = a;
+  return a;
+}
+
+// Group 3 signal window: every fresh sample since the last reset.
+void ProtectionSupervisor::pushGroup3Sample(const FastOvInputs& x) {
+  if (!x.altCurrentFresh || !std::isfinite(x.MeasuredAmps)) return;
+  maBuf_[static_cast<std::size_t>(maHead_)] = x.MeasuredAmps;
+  maHead_ = (maHead_ + 1) % static_cast<int>(maBuf_.size());
+  maCount_ = std::min(maCount_ + 1, static_cast<int>(maBuf_.size()));
+}
+
+// Groups 1 and 2, the voltage's: the cap they set (+infinity when neither acts).
+double ProtectionSupervisor::voltageGroupsCap(const FastOvInputs& x, FastOvAction& a) {
+  const double target = x.ChargingVoltageTarget;
+  double cap = std::numeric_limits<double>::infinity();
   // Group 1 — prediction: Vpred = IBV + TdPred * max(0, dvdt).
   Vpred_ = IBV_ + p_.TdPred * std::max(0.0, dvdt_);
   const double vHard = target + p_.OvPredMarginV;
@@ -80,24 +113,28 @@ FastOvAction ProtectionSupervisor::runFastOvSupervisors(const FastOvInputs& x) {
     cap = std::min(cap, x.setpointLimited - p_.KHard * (IBV_ - target - p_.OvMeasMarginV));
     a.group2 = true;
   }
-  const bool loadDump = loadDumpFiredThisSample_ && inaFastModeActive_;
-  if (a.group1 || a.group2 || loadDump) postFastOvGate_ = true;
+  return cap;
+}
 
-  // Group 3 — iExcess.
-  double sig = std::numeric_limits<double>::quiet_NaN();
-  if (p_.IExcessSigSrc == 0) {
-    const int n = std::min(maN, maCount_);
-    if (n > 0) {
-      double sum = 0.0;
-      const int size = static_cast<int>(maBuf_.size());
-      for (int i = 1; i <= n; ++i) sum += maBuf_[static_cast<std::size_t>((maHead_ - i + size) % size)];
-      sig = sum / n;
-    }
-  } else if (p_.IExcessSigSrc == 1) {
-    sig = x.MeasuredAmps_filtered;
-  } else {
-    sig = x.MeasuredAmps;
-  }
+// Group 3's signal (IExcessSigSrc): the window's mean, the filtered or the raw current.
+double ProtectionSupervisor::group3Signal(const FastOvInputs& x) const {
+  if (p_.IExcessSigSrc == 1) return x.MeasuredAmps_filtered;
+  if (p_.IExcessSigSrc != 0) return x.MeasuredAmps;
+  const int maN = std::clamp(p_.IExcessMA_N, 1, static_cast<int>(maBuf_.size()));
+  const int n = std::min(maN, maCount_);
+  if (n <= 0) return std::numeric_limits<double>::quiet_NaN();
+  double sum = 0.0;
+  const int size = static_cast<int>(maBuf_.size());
+  for (int i = 1; i <= n; ++i) sum += maBuf_[static_cast<std::size_t>((maHead_ - i + size) % size)];
+  return sum / n;
+}
+
+// Group 3 — iExcess: current above the setpoint near the voltage target.
+// Sets cv_I's action; returns its cap (+infinity when it does not act).
+double ProtectionSupervisor::runGroup3(const FastOvInputs& x, bool loadDump, TimeNs prevCall, double base,
+                                       FastOvAction& a) {
+  const double target = x.ChargingVoltageTarget;
+  const double sig = group3Signal(x);
   const double thr = x.setpointLimited + p_.IExcessK;
   // Post-fastOV mismatch gate: Group 3 waits until current is back within IExcessK.
   if (postFastOvGate_ && !(a.group1 || a.group2 || loadDump) && std::isfinite(sig) && sig <= thr)
@@ -123,41 +160,15 @@ FastOvAction ProtectionSupervisor::runFastOvSupervisors(const FastOvInputs& x) {
     a.cvIAction = CvIAction::Reseed;
     a.cv_I = preEventCvI_ * p_.IExcessReseedFrac;
   }
-  if (iexActive_) {
-    const double excess = std::max(0.0, sig - x.setpointLimited);
-    if (p_.IExcessKBleed > 0.0) {
-      a.cvIAction = CvIAction::Bleed;
-      const double dt = prevCall >= 0 ? std::clamp(toSec(now_ - prevCall), 0.0, 0.1) : 0.0;
-      a.cv_I = std::max(0.0, x.cv_I - p_.IExcessKBleed * excess * dt);
-    }
-    cap = std::min(cap, std::max(0.0, base - k::K_IE * excess));
-    a.group3 = true;
+  if (!iexActive_) return std::numeric_limits<double>::infinity();
+  const double excess = std::max(0.0, sig - x.setpointLimited);
+  if (p_.IExcessKBleed > 0.0) {
+    a.cvIAction = CvIAction::Bleed;
+    const double dt = prevCall >= 0 ? std::clamp(toSec(now_ - prevCall), 0.0, 0.1) : 0.0;
+    a.cv_I = std::max(0.0, x.cv_I - p_.IExcessKBleed * excess * dt);
   }
-
-  // Load dump (gated on INA fast mode): everything to zero, AW bleed recovers.
-  if (loadDump) {
-    a.loadDump = true;
-    cap = 0.0;
-    a.zeroSetpointLimited = true;
-    a.cvIAction = CvIAction::Snap;
-    a.cv_I = 0.0;
-  }
-
-  const bool any = a.group1 || a.group2 || a.group3 || a.loadDump;
-  if (any) {
-    fastOvCap_ = std::clamp(cap, 0.0, base);
-    a.fastOvCurrentCap = fastOvCap_;
-    a.fastOvClampActive = true;
-    govBypassLatched_ = true;
-  } else {
-    fastOvCap_ = base;
-    // CV overshoot bypass latch releases below target + 0.02 V (field-control.md "Governor").
-    if (IBV_ < target + k::CV_OVERSHOOT_RELEASE_V) govBypassLatched_ = false;
-  }
-  fastOvWasActive_ = any;
-  a.forceBypassSlew = any || govBypassLatched_;
-  lastFastOv_ = a;
-  return a;
+  a.group3 = true;
+  return std::max(0.0, base - k::K_IE * excess);
 }
 
 }  // namespace xr

@@ -172,6 +172,16 @@ class ProtectionSupervisor {
             int detail = 0) const;
   void startLockout(EventBatch& ev);
   void resetFastOv();
+  // runShutdownPath's steps (shutdown_sequencer.cpp).
+  void cutImmediately(Reason reason, double lastAppliedDuty, EventBatch& ev);
+  void latchRamp(const ModeDecision& d, bool faultRamp);
+  GovMode startRamp(FieldControlMode mode, double lastAppliedDuty);
+  void stepRampPhases(double floorDuty, bool faultRamp, Reason reason, EventBatch& ev);
+  // runFastOvSupervisors' steps (fast_ov.cpp).
+  void pushGroup3Sample(const FastOvInputs& x);
+  double voltageGroupsCap(const FastOvInputs& x, FastOvAction& a);
+  double group3Signal(const FastOvInputs& x) const;
+  double runGroup3(const FastOvInputs& x, bool loadDump, TimeNs prevCall, double base, FastOvAction& a);
 
   Params p_;
   ProtectionFlags flags_;

@@ -91,10 +91,7 @@ MAX_FUNCTION_LINES = 80
 # The number is the length it may not exceed.
 LONG_FUNCTION_EXEMPTIONS = {
     "daemon/app/cli.cpp:CliResult parseCommandLine(": 181,
-    "daemon/protection/shutdown_sequencer.cpp:ShutdownCommand ProtectionSupervisor::runShutdownPath(": 146,
-    "daemon/control/control_law.cpp:double ControlLaw::finishAuto(": 145,
     "daemon/core/events.cpp:std::string describe(const Event& e) {": 135,
-    "daemon/protection/fast_ov.cpp:FastOvAction ProtectionSupervisor::runFastOvSupervisors(": 131,
     "daemon/store/store_open.cpp:OpenResult Store::open(": 124,
     "drivers/sim/scenario.cpp:ScenarioEvent parseEvent(": 98,
     "daemon/integrations/signalk_client.cpp:asio::awaitable<void> SignalKClient::session() {": 97,
