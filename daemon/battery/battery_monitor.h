@@ -174,6 +174,8 @@ class BatteryMonitor {
     double lifetimeFraction_Wh = 0.0;
   };
   void runSocBody(TimeNs now, double elapsed_s, EventBatch& ev);
+  void countCoulombs(double elapsed_s);
+  void countFuel();
   void applySocGainCorrection(TimeNs now, EventBatch& ev);
   void declareFullCharge(TimeNs now, EventBatch& ev);
   void setSocSource(SocSource s) {

@@ -104,11 +104,10 @@ void BatteryMonitor::commitEnergy(Energy& e, double& lifetimeWhole, double delta
   }
 }
 
-void BatteryMonitor::runSocBody(TimeNs now, double elapsed_s, EventBatch& ev) {
-  telemetryStale_ = true;
+// Coulomb counting: the interval's amp-hours, charge efficiency in, Peukert
+// out, committed in whole hundredths (nothing tiny is lost).
+void BatteryMonitor::countCoulombs(double elapsed_s) {
   const double cap = p_.BatteryCapacity_Ah;
-
-  // ---- coulomb counting
   const double deltaAh = intAh_;
   double batteryDeltaAh = 0.0;
   if (deltaAh > 0.0) {
@@ -131,16 +130,10 @@ void BatteryMonitor::runSocBody(TimeNs now, double elapsed_s, EventBatch& ev) {
     ledger_.coulombAccumulator_Ah -= committed;
   }
   ledger_.CoulombCount_Ah = std::clamp(ledger_.CoulombCount_Ah, 0.0, cap);
+}
 
-  // ---- energy
-  commitEnergy(charged_, ledger_.ChargedEnergy_AllTime_Wh, intChargeWh_);
-  commitEnergy(discharged_, ledger_.DischargedEnergy_AllTime_Wh, intDischargeWh_);
-  commitEnergy(altCharged_, ledger_.AlternatorChargedEnergy_AllTime_Wh, intAltWh_);
-  commitEnergy(solar_, ledger_.SolarChargedEnergy_AllTime_Wh, intSolarWh_);
-  AlternatorOnTime_s_ += intAltOn_s_;
-  ledger_.AlternatorOnTime_AllTime_s += intAltOn_s_;
-
-  // ---- fuel (alternator only; the seed's 30 % x 50 % chain)
+// Fuel (alternator only; the seed's 30 % x 50 % chain).
+void BatteryMonitor::countFuel() {
   if (intAltWh_ > 0.0) {
     const double energyJoules = intAltWh_ * 3600.0;
     const double fuelEnergyUsed_J =
@@ -155,6 +148,23 @@ void BatteryMonitor::runSocBody(TimeNs now, double elapsed_s, EventBatch& ev) {
       fuelFraction_L_ -= hundredths;
     }
   }
+}
+
+void BatteryMonitor::runSocBody(TimeNs now, double elapsed_s, EventBatch& ev) {
+  telemetryStale_ = true;
+  const double cap = p_.BatteryCapacity_Ah;
+
+  countCoulombs(elapsed_s);
+
+  // ---- energy
+  commitEnergy(charged_, ledger_.ChargedEnergy_AllTime_Wh, intChargeWh_);
+  commitEnergy(discharged_, ledger_.DischargedEnergy_AllTime_Wh, intDischargeWh_);
+  commitEnergy(altCharged_, ledger_.AlternatorChargedEnergy_AllTime_Wh, intAltWh_);
+  commitEnergy(solar_, ledger_.SolarChargedEnergy_AllTime_Wh, intSolarWh_);
+  AlternatorOnTime_s_ += intAltOn_s_;
+  ledger_.AlternatorOnTime_AllTime_s += intAltOn_s_;
+
+  countFuel();
 
   // ---- system class and cycles
   if (lastValidVoltage_ > 4.0)

@@ -96,6 +96,39 @@ BmsFrameResult BmsDecoder::reject(const CanFrame& f, BmsReject why) {
   return BmsFrameResult::Rejected;
 }
 
+// 0x355: SoC and SoH. REC: bytes 4-5 carry the SoC at 0.01 %; the finer
+// value is used when it agrees with the whole percent (within its rounding).
+BmsFrameResult BmsDecoder::feedSoc(const CanFrame& f) {
+  if (f.dlc < 4) return reject(f, BmsReject::ShortDlc);
+  const auto d = payload(f);
+  const double soc = getU16(d, 0), soh = getU16(d, 2);
+  if (soc > 100.0 || soh > 100.0) return reject(f, BmsReject::SocRange);
+  double fine = soc;
+  if (protocol_ == BmsProtocol::Rec && f.dlc >= 6) {
+    fine = getU16(d, 4) * 0.01;
+    if (fine > 100.0 || std::abs(fine - soc) > 1.0) return reject(f, BmsReject::SocRange);
+  }
+  limits_.socPct = fine;
+  limits_.sohPct = soh;
+  return BmsFrameResult::Accepted;
+}
+
+// 0x373 (REC only): the lowest and highest cell voltage and temperature.
+BmsFrameResult BmsDecoder::feedCells(const CanFrame& f) {
+  if (protocol_ != BmsProtocol::Rec) return BmsFrameResult::Ignored;
+  if (f.dlc < 8) return reject(f, BmsReject::ShortDlc);
+  const auto d = payload(f);
+  const double vMin = getU16(d, 0) * 0.001, vMax = getU16(d, 2) * 0.001;
+  const double tMin = getU16(d, 4) - 273.0, tMax = getU16(d, 6) - 273.0;
+  if (vMin < kMinCellV || vMax > kMaxCellV || vMin > vMax) return reject(f, BmsReject::CellVoltageRange);
+  if (tMin < kMinTempC || tMax > kMaxTempC || tMin > tMax) return reject(f, BmsReject::TempRange);
+  limits_.cellMinV = vMin;
+  limits_.cellMaxV = vMax;
+  limits_.cellTempMinC = tMin;
+  limits_.cellTempMaxC = tMax;
+  return BmsFrameResult::Accepted;
+}
+
 BmsFrameResult BmsDecoder::feed(const CanFrame& f, TimeNs now) {
   if (f.error || f.extended) return BmsFrameResult::Ignored;
   const auto d = payload(f);
@@ -114,34 +147,12 @@ BmsFrameResult BmsDecoder::feed(const CanFrame& f, TimeNs now) {
       limits_.stamp = now;
       break;
     }
-    case 0x355: {
-      if (f.dlc < 4) return reject(f, BmsReject::ShortDlc);
-      const double soc = getU16(d, 0), soh = getU16(d, 2);
-      if (soc > 100.0 || soh > 100.0) return reject(f, BmsReject::SocRange);
-      // REC: bytes 4-5 carry the SoC at 0.01 %; the finer value is used
-      // when it agrees with the whole percent (within its rounding).
-      double fine = soc;
-      if (protocol_ == BmsProtocol::Rec && f.dlc >= 6) {
-        fine = getU16(d, 4) * 0.01;
-        if (fine > 100.0 || std::abs(fine - soc) > 1.0) return reject(f, BmsReject::SocRange);
-      }
-      limits_.socPct = fine;
-      limits_.sohPct = soh;
+    case 0x355:
+      if (const auto r = feedSoc(f); r != BmsFrameResult::Accepted) return r;
       break;
-    }
-    case 0x373: {
-      if (protocol_ != BmsProtocol::Rec) return BmsFrameResult::Ignored;
-      if (f.dlc < 8) return reject(f, BmsReject::ShortDlc);
-      const double vMin = getU16(d, 0) * 0.001, vMax = getU16(d, 2) * 0.001;
-      const double tMin = getU16(d, 4) - 273.0, tMax = getU16(d, 6) - 273.0;
-      if (vMin < kMinCellV || vMax > kMaxCellV || vMin > vMax) return reject(f, BmsReject::CellVoltageRange);
-      if (tMin < kMinTempC || tMax > kMaxTempC || tMin > tMax) return reject(f, BmsReject::TempRange);
-      limits_.cellMinV = vMin;
-      limits_.cellMaxV = vMax;
-      limits_.cellTempMinC = tMin;
-      limits_.cellTempMaxC = tMax;
+    case 0x373:
+      if (const auto r = feedCells(f); r != BmsFrameResult::Accepted) return r;
       break;
-    }
     case 0x356: {
       if (f.dlc < 6) return reject(f, BmsReject::ShortDlc);
       const double v = getS16(d, 0) * 0.01, i = getS16(d, 2) * 0.1, t = getS16(d, 4) * 0.1;

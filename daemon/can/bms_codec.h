@@ -78,6 +78,8 @@ class BmsDecoder {
 
  private:
   BmsFrameResult reject(const CanFrame& f, BmsReject why);
+  BmsFrameResult feedSoc(const CanFrame& f);
+  BmsFrameResult feedCells(const CanFrame& f);
   BmsProtocol protocol_;
   BmsLimits limits_;
   std::uint32_t alarms35A_ = 0, warnings35A_ = 0, alarms359_ = 0, warnings359_ = 0;

@@ -169,6 +169,7 @@ class ControlLaw {
   // Field rest (field_rest.cpp): when to start and end one, and the loops'
   // state while it lasts.
   bool restDue(const ControlSensors& s, const Params& p);
+  void applyTargetOverrides(const ControlSensors& s, const Params& p, bool overrideNow);
   // TuningMode, CVTuningMode or a SystemID run: no rest starts or lasts.
   bool tuningActive(const Params& p) const;
   bool restOver(const ControlSensors& s, const Params& p) const;

@@ -44,6 +44,12 @@ void ControlLaw::updateChargingStage(const ControlSensors& s, const Params& p, b
 
   voltageControlActive_ = stages_.voltageControlActive();
   ChargingVoltageTarget_ = stages_.ChargingVoltageTarget(p);
+  applyTargetOverrides(s, p, overrideNow);
+}
+
+// The voltage target and whether the voltage loop runs, after the stage's:
+// the bulk ceiling, the override modes, the idle hold and the BMS's CVL.
+void ControlLaw::applyTargetOverrides(const ControlSensors& s, const Params& p, bool overrideNow) {
   // Bulk voltage ceiling (ours; the legacy seed's "voltage soft limiter (bulk
   // only)" recast as a setpoint ceiling, as that seed's cap chain asks). The
   // newer seed runs BULK as pure CC with the hold timer, so a small or

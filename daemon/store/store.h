@@ -208,6 +208,12 @@ class Store {
   int configureConnection();
   int configure();
   int restoreFromBackup(OpenResult& r, std::int64_t backupTakenAtMs);
+  // open()'s steps (store_open.cpp).
+  struct BackupProbe;
+  int openAndConfigure(const std::string& path);
+  int recoverDamaged(OpenResult& r, const std::string& damage, std::int64_t nowUnixMs, BackupProbe& bak,
+                     bool& mayBackup);
+  void finishOpen(OpenResult& r, int rc, bool existed, bool mayBackup, std::int64_t nowUnixMs);
   void openNewer(OpenResult& r, int version);
   void openInMemory(OpenResult& r, bool existed);
   int seriesId(std::string_view name);

@@ -11,6 +11,8 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <optional>
+#include <string>
 #include <system_error>
 
 #include "core/wall_time_text.h"
@@ -43,6 +45,22 @@ void removeDatabaseFiles(const std::string& path) {
 
 }  // namespace
 
+// The backup beside the database, checked (integrity_check) only when a
+// path needs it.
+struct Store::BackupProbe {
+  explicit BackupProbe(std::string p) : path(std::move(p)) {}
+  const store::BackupCheck& check() {
+    if (!checked) checked = store::checkBackup(path, store::kSchemaVersion);
+    return *checked;
+  }
+  std::string restoredText() {
+    return "restored from the verified backup " + path + " of " + utcMinute(check().mtimeMs) +
+           " (changes after it are lost)";
+  }
+  std::string path;
+  std::optional<store::BackupCheck> checked;
+};
+
 OpenResult Store::open(const std::string& path, std::int64_t nowUnixMs) {
   const std::lock_guard<std::recursive_mutex> lock(mu_);
   close();
@@ -57,20 +75,9 @@ OpenResult Store::open(const std::string& path, std::int64_t nowUnixMs) {
   const fs::path p(path);
   if (p.has_parent_path()) fs::create_directories(p.parent_path(), ec);
 
-  const std::string bak = backupPath();
+  BackupProbe bak(backupPath());
   // A backup written by a newer release is never replaced by ours.
-  bool mayBackup = !fs::exists(bak, ec) || store::peekVersion(bak) <= store::kSchemaVersion;
-  // integrity_check of the backup only when it is needed.
-  std::optional<store::BackupCheck> checked;
-  const auto backupCheck = [&]() -> const store::BackupCheck& {
-    if (!checked) checked = store::checkBackup(bak, store::kSchemaVersion);
-    return *checked;
-  };
-  const auto restoredText = [&] {
-    return "restored from the verified backup " + bak + " of " + utcMinute(backupCheck().mtimeMs) +
-           " (changes after it are lost)";
-  };
-
+  bool mayBackup = !fs::exists(bak.path, ec) || store::peekVersion(bak.path) <= store::kSchemaVersion;
   const bool existed = fs::exists(p, ec);
   const bool empty = existed && fs::is_regular_file(p, ec) && fs::file_size(p, ec) == 0;
   int rc = SQLITE_CANTOPEN;
@@ -83,71 +90,84 @@ OpenResult Store::open(const std::string& path, std::int64_t nowUnixMs) {
       openNewer(r, v);
     } else {
       r.fromVersion = std::max(v, 0);
-      rc = db_.open(path);
-      if (rc == SQLITE_OK) rc = configure();
+      rc = openAndConfigure(path);
       if (rc != SQLITE_OK && isCorruption(rc)) damage = db_.lastError();
     }
-  } else if (backupCheck().usable) {
+  } else if (bak.check().usable) {
     // No database (or an empty file) beside a good backup: the file was lost
     // (a card fault, a stray rm), not a first start. Deleting both starts afresh.
     if (empty)
       damage = "the file is empty";
     else {
-      rc = restoreFromBackup(r, backupCheck().mtimeMs);
+      rc = restoreFromBackup(r, bak.check().mtimeMs);
       r.message =
           "database " + path + " was missing; " +
-          (rc == SQLITE_OK ? restoredText() : "restoring the backup failed (" + db_.lastError() + ")");
+          (rc == SQLITE_OK ? bak.restoredText() : "restoring the backup failed (" + db_.lastError() + ")");
       if (rc != SQLITE_OK) mayBackup = false;
     }
   } else {
-    rc = db_.open(path);
-    if (rc == SQLITE_OK) rc = configure();
+    rc = openAndConfigure(path);
   }
+  if (!damage.empty()) rc = recoverDamaged(r, damage, nowUnixMs, bak, mayBackup);
+  finishOpen(r, rc, existed, mayBackup, nowUnixMs);
+  return r;
+}
 
-  if (!damage.empty()) {
-    // A damaged file never stops charging: keep it, bring the data back.
-    db_.close();
-    const std::string copy = path + ".corrupt-" + wallTimeText(nowUnixMs, "%Y%m%dT%H%M%SZ", TimeZone::Utc);
-    fs::rename(p, copy, ec);
-    const std::string head = "database " + path + " damaged (" + damage + ")";
-    if (!ec) {
-      for (const char* suffix : {"-wal", "-shm"}) {
-        std::error_code e2;
-        if (fs::exists(path + suffix, e2)) fs::rename(path + suffix, copy + suffix, e2);
-      }
-      r.recovered = true;
-      r.corruptCopy = copy;
-      rc = SQLITE_CANTOPEN;
-      std::string restoreWhy = backupCheck().why;
-      if (backupCheck().usable) {
-        rc = restoreFromBackup(r, backupCheck().mtimeMs);
-        if (rc == SQLITE_OK)
-          r.message = head + ", kept as " + copy + "; " + restoredText();
-        else
-          restoreWhy = "restoring it failed: " + db_.lastError();
-        mayBackup = rc == SQLITE_OK;  // a good copy that did not restore stays as it is
-      }
-      if (rc != SQLITE_OK) {
-        rc = db_.open(path);
-        if (rc == SQLITE_OK) rc = configure();
-        r.message = head + ", kept as " + copy + "; no usable backup (" + restoreWhy +
-                    "): started fresh, the dashboard settings, lifetime energy and web token are reset";
-      }
-    } else {
-      rc = SQLITE_CANTOPEN;
-      db_.setError(rc, head + " and could not be moved aside (" + ec.message() + ")");
-      r.message = head + " and could not be moved aside (" + ec.message() + ")";
-    }
+int Store::openAndConfigure(const std::string& path) {
+  int rc = db_.open(path);
+  if (rc == SQLITE_OK) rc = configure();
+  return rc;
+}
+
+// A damaged file never stops charging: keep it aside, bring the data back
+// from the backup, else start fresh and say what was reset.
+int Store::recoverDamaged(OpenResult& r, const std::string& damage, std::int64_t nowUnixMs, BackupProbe& bak,
+                          bool& mayBackup) {
+  db_.close();
+  std::error_code ec;
+  const std::string copy = path_ + ".corrupt-" + wallTimeText(nowUnixMs, "%Y%m%dT%H%M%SZ", TimeZone::Utc);
+  fs::rename(path_, copy, ec);
+  const std::string head = "database " + path_ + " damaged (" + damage + ")";
+  if (ec) {
+    db_.setError(SQLITE_CANTOPEN, head + " and could not be moved aside (" + ec.message() + ")");
+    r.message = head + " and could not be moved aside (" + ec.message() + ")";
+    return SQLITE_CANTOPEN;
   }
+  for (const char* suffix : {"-wal", "-shm"}) {
+    std::error_code e2;
+    if (fs::exists(path_ + suffix, e2)) fs::rename(path_ + suffix, copy + suffix, e2);
+  }
+  r.recovered = true;
+  r.corruptCopy = copy;
+  int rc = SQLITE_CANTOPEN;
+  std::string restoreWhy = bak.check().why;
+  if (bak.check().usable) {
+    rc = restoreFromBackup(r, bak.check().mtimeMs);
+    if (rc == SQLITE_OK)
+      r.message = head + ", kept as " + copy + "; " + bak.restoredText();
+    else
+      restoreWhy = "restoring it failed: " + db_.lastError();
+    mayBackup = rc == SQLITE_OK;  // a good copy that did not restore stays as it is
+  }
+  if (rc != SQLITE_OK) {
+    rc = openAndConfigure(path_);
+    r.message = head + ", kept as " + copy + "; no usable backup (" + restoreWhy +
+                "): started fresh, the dashboard settings, lifetime energy and web token are reset";
+  }
+  return rc;
+}
 
+// The open's outcome: the message, the first backup of the run, or the
+// in-memory database when nothing on disk can be used.
+void Store::finishOpen(OpenResult& r, int rc, bool existed, bool mayBackup, std::int64_t nowUnixMs) {
   if (r.newerSchema) {
     // openNewer() filled r and the in-memory database.
   } else if (rc == SQLITE_OK) {
     r.ok = true;
     if (r.message.empty())
-      r.message = existed ? "database " + path + " opened (schema v" + std::to_string(r.fromVersion) +
+      r.message = existed ? "database " + path_ + " opened (schema v" + std::to_string(r.fromVersion) +
                                 " -> v" + std::to_string(store::kSchemaVersion) + ")"
-                          : "database " + path + " created";
+                          : "database " + path_ + " created";
     backupsAllowed_ = mayBackup;
     if (r.restored) {
       lastBackupMs_ = r.backupTakenAtMs;  // the copy is this data: the next one is due a day after it
@@ -157,7 +177,7 @@ OpenResult Store::open(const std::string& path, std::int64_t nowUnixMs) {
         r.message += "; " + st.error;
       }
     } else {
-      r.message += "; the backup " + bak + " is kept as it is and no new one is written this run";
+      r.message += "; the backup " + backupPath() + " is kept as it is and no new one is written this run";
     }
   } else {
     openInMemory(r, existed && !r.recovered);
@@ -165,7 +185,6 @@ OpenResult Store::open(const std::string& path, std::int64_t nowUnixMs) {
   seriesIds_.clear();
   if (db_.isOpen())
     for (const auto& s : opt_.historySeries) seriesIds_.push_back(seriesId(s));
-  return r;
 }
 
 int Store::restoreFromBackup(OpenResult& r, std::int64_t backupTakenAtMs) {
