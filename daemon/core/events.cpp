@@ -1,6 +1,8 @@
 #include "core/events.h"
 
 #include <cstdio>
+#include <optional>
+#include <string>
 
 #include "core/bms_limits.h"
 #include "core/commands.h"
@@ -198,7 +200,10 @@ const char* alarmRowText(int row) {
 
 }  // namespace
 
-std::string describe(const Event& e) {
+namespace {
+
+// Modes, protections, the lockout and the charging stage.
+std::optional<std::string> describeModeAndStage(const Event& e) {
   char buf[256];
   const std::string reason = shortReason(e.reason);
   switch (e.code) {
@@ -228,6 +233,16 @@ std::string describe(const Event& e) {
                     std::string(toString(static_cast<ChargeStage>(static_cast<int>(e.a)))).c_str(),
                     std::string(toString(static_cast<ChargeStage>(static_cast<int>(e.b)))).c_str());
       return buf;
+    default:
+      return std::nullopt;
+  }
+}
+
+// Sensor faults, alarms, the field enable and limp home.
+std::optional<std::string> describeSensorsAndField(const Event& e) {
+  char buf[256];
+  const std::string reason = shortReason(e.reason);
+  switch (e.code) {
     case EventCode::InaLatchSet:
       std::snprintf(buf, sizeof buf,
                     "INA228 hardware overvoltage alert: IBV=%.2f V (limit %.2f V). Field cut, latched", e.a,
@@ -262,6 +277,16 @@ std::string describe(const Event& e) {
       std::snprintf(buf, sizeof buf, "LIMP HOME active: fixed %.0f %% duty, only the INA228 latch protects",
                     e.a);
       return buf;
+    default:
+      return std::nullopt;
+  }
+}
+
+// Operator commands and the battery's own events.
+std::optional<std::string> describeCommandsAndBattery(const Event& e) {
+  char buf[256];
+  const std::string reason = shortReason(e.reason);
+  switch (e.code) {
     case EventCode::CommandApplied:
     case EventCode::CommandRejected:
     case EventCode::TuningCommitted: {
@@ -296,6 +321,16 @@ std::string describe(const Event& e) {
     case EventCode::BatteryTempBack:
       std::snprintf(buf, sizeof buf, "Battery temperature back: %.1f C", e.a);
       return buf;
+    default:
+      return std::nullopt;
+  }
+}
+
+// The CAN buses, the forecast and the auto-zero's result.
+std::optional<std::string> describeLinks(const Event& e) {
+  char buf[256];
+  const std::string reason = shortReason(e.reason);
+  switch (e.code) {
     case EventCode::BmsBadFrames:
       std::snprintf(buf, sizeof buf, "BMS CAN: %.0f bad frame(s) ignored (last: 0x%03X, %s)", e.a,
                     static_cast<unsigned>(e.b),
@@ -328,10 +363,20 @@ std::string describe(const Event& e) {
                     e.b, e.detail ? " (rejected, offset kept)" : "");
       return buf;
     default:
-      std::snprintf(buf, sizeof buf, "%s %s a=%.3f b=%.3f", std::string(toString(e.code)).c_str(),
-                    reason.c_str(), e.a, e.b);
-      return buf;
+      return std::nullopt;
   }
+}
+
+}  // namespace
+
+std::string describe(const Event& e) {
+  for (const auto part :
+       {describeModeAndStage, describeSensorsAndField, describeCommandsAndBattery, describeLinks})
+    if (auto text = part(e)) return *text;
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "%s %s a=%.3f b=%.3f", std::string(toString(e.code)).c_str(),
+                shortReason(e.reason).c_str(), e.a, e.b);
+  return buf;
 }
 
 }  // namespace xr
