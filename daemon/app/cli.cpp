@@ -4,6 +4,9 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "config/config.h"
 #include "config/web_checks.h"
@@ -66,135 +69,123 @@ std::string usageText() {
          "                         (candump log format; times since the start of the run in --sim)\n";
 }
 
-CliResult parseCommandLine(const std::vector<std::string>& args) {
-  CliResult r;
+namespace {
+
+using Flags = std::map<std::string, std::function<void()>>;
+// An option with a value: an error text, or "" when taken.
+using Setter = std::function<std::string(const std::string&)>;
+using Valued = std::map<std::string, Setter>;
+
+Setter textInto(std::optional<std::string>& field) {
+  return [&field](const std::string& v) {
+    field = v;
+    return std::string();
+  };
+}
+
+Flags flagOptions(CliOptions& o) {
+  return {
+      {"--sim", [&o] { o.sim = true; }},
+      {"--check-config", [&o] { o.checkConfig = true; }},
+      {"--print-token", [&o] { o.printToken = true; }},
+      {"--pair", [&o] { o.pair = true; }},
+      {"--print-default-config", [&o] { o.printDefaultConfig = true; }},
+      {"--print-config", [&o] { o.printConfig = true; }},
+      {"--probe", [&o] { o.probe = true; }},
+      {"--version", [&o] { o.version = true; }},
+      {"--help", [&o] { o.help = true; }},
+      {"-h", [&o] { o.help = true; }},
+  };
+}
+
+// Files, addresses and the log level.
+Valued textOptions(CliResult& r) {
   CliOptions& o = r.options;
-  bool faultAtGiven = false;
-
-  // Flags without a value.
-  const std::map<std::string, std::function<void()>> flags = {
-      {"--sim", [&] { o.sim = true; }},
-      {"--check-config", [&] { o.checkConfig = true; }},
-      {"--print-token", [&] { o.printToken = true; }},
-      {"--pair", [&] { o.pair = true; }},
-      {"--print-default-config", [&] { o.printDefaultConfig = true; }},
-      {"--print-config", [&] { o.printConfig = true; }},
-      {"--probe", [&] { o.probe = true; }},
-      {"--version", [&] { o.version = true; }},
-      {"--help", [&] { o.help = true; }},
-      {"-h", [&] { o.help = true; }},
+  Valued v = {{"--config", textInto(o.config)},
+              {"--scenario", textInto(o.scenario)},
+              {"--telemetry-csv", textInto(o.telemetryCsv)},
+              {"--state-db", textInto(o.stateDb)},
+              {"--log-level", textInto(o.logLevel)},
+              {"--sim-outputs", textInto(o.simOutputs)},
+              {"--can-log", textInto(o.canLog)}};
+  v["--http"] = [&r](const std::string& text) {
+    r.options.http = text;
+    // Checked here, before any device opens, by the check [web] listen
+    // gets: a bad value exits 78, it never runs without the dashboard.
+    if (auto why = checkHttpListenText(text); !why.empty()) {
+      r.exitCode = kExitConfig;
+      return "--http: " + why;
+    }
+    return std::string();
   };
-  // Options with a value: return an error text or "".
-  const std::map<std::string, std::function<std::string(const std::string&)>> valued = {
-      {"--config",
-       [&](const std::string& v) {
-         o.config = v;
-         return std::string();
-       }},
-      {"--scenario",
-       [&](const std::string& v) {
-         o.scenario = v;
-         return std::string();
-       }},
-      {"--telemetry-csv",
-       [&](const std::string& v) {
-         o.telemetryCsv = v;
-         return std::string();
-       }},
-      {"--http",
-       [&](const std::string& v) {
-         o.http = v;
-         // Checked here, before any device opens, by the check [web] listen
-         // gets: a bad value exits 78, it never runs without the dashboard.
-         if (auto why = checkHttpListenText(v); !why.empty()) {
-           r.exitCode = kExitConfig;
-           return "--http: " + why;
-         }
-         return std::string();
-       }},
-      {"--state-db",
-       [&](const std::string& v) {
-         o.stateDb = v;
-         return std::string();
-       }},
-      {"--log-level",
-       [&](const std::string& v) {
-         o.logLevel = v;
-         return std::string();
-       }},
-      {"--sim-outputs",
-       [&](const std::string& v) {
-         o.simOutputs = v;
-         return std::string();
-       }},
-      {"--can-log",
-       [&](const std::string& v) {
-         o.canLog = v;
-         return std::string();
-       }},
-      {"--speed",
-       [&](const std::string& v) {
-         o.speedGiven = true;
-         if (v == "max") {
-           o.speed = 0.0;
-           return std::string();
-         }
-         double d;
-         if (!parseDouble(v, d) || d <= 0.0 || d > 1e6)
-           return "--speed: expected a positive number or 'max', got '" + v + "'";
-         o.speed = d;
-         return std::string();
-       }},
-      {"--duration",
-       [&](const std::string& v) {
-         double d;
-         if (!parseDouble(v, d) || d <= 0.0) return "--duration: expected seconds > 0, got '" + v + "'";
-         o.durationS = d;
-         return std::string();
-       }},
-      {"--telemetry-rate",
-       [&](const std::string& v) {
-         double d;
-         if (!parseDouble(v, d) || d <= 0.0 || d > 400.0)
-           return "--telemetry-rate: expected Hz in (0, 400], got '" + v + "'";
-         o.telemetryRateHz = d;
-         return std::string();
-       }},
-      {"--seed",
-       [&](const std::string& v) {
-         unsigned long long n;
-         if (!parseUnsigned(v, n)) return "--seed: expected a non-negative integer, got '" + v + "'";
-         o.seed = n;
-         return std::string();
-       }},
-      {"--test-fault",
-       [&](const std::string& v) {
-         static const std::map<std::string, TestFault> kinds = {{"segv", TestFault::Segv},
-                                                                {"abort", TestFault::Abort},
-                                                                {"throw", TestFault::Throw},
-                                                                {"terminate", TestFault::Terminate},
-                                                                {"throw-control", TestFault::ThrowInControl}};
-         auto it = kinds.find(v);
-         if (it == kinds.end()) return "--test-fault: unknown kind '" + v + "'";
-         o.testFault = it->second;
-         return std::string();
-       }},
-      {"--test-fault-at",
-       [&](const std::string& v) {
-         double d;
-         if (!parseDouble(v, d) || d < 0.0) return "--test-fault-at: expected seconds >= 0, got '" + v + "'";
-         o.testFaultAtS = d;
-         faultAtGiven = true;
-         return std::string();
-       }},
-  };
+  return v;
+}
 
+// The simulation's pace, length, output rate and seed.
+void addRunOptions(CliOptions& o, Valued& v) {
+  v["--speed"] = [&o](const std::string& text) {
+    o.speedGiven = true;
+    double d = 0.0;
+    if (text == "max") {
+      o.speed = 0.0;
+      return std::string();
+    }
+    if (!parseDouble(text, d) || d <= 0.0 || d > 1e6)
+      return "--speed: expected a positive number or 'max', got '" + text + "'";
+    o.speed = d;
+    return std::string();
+  };
+  v["--duration"] = [&o](const std::string& text) {
+    double d = 0.0;
+    if (!parseDouble(text, d) || d <= 0.0) return "--duration: expected seconds > 0, got '" + text + "'";
+    o.durationS = d;
+    return std::string();
+  };
+  v["--telemetry-rate"] = [&o](const std::string& text) {
+    double d = 0.0;
+    if (!parseDouble(text, d) || d <= 0.0 || d > 400.0)
+      return "--telemetry-rate: expected Hz in (0, 400], got '" + text + "'";
+    o.telemetryRateHz = d;
+    return std::string();
+  };
+  v["--seed"] = [&o](const std::string& text) {
+    unsigned long long n = 0;
+    if (!parseUnsigned(text, n)) return "--seed: expected a non-negative integer, got '" + text + "'";
+    o.seed = n;
+    return std::string();
+  };
+}
+
+// The hidden faults that prove every exit path leaves the field off.
+void addTestFaultOptions(CliOptions& o, bool& faultAtGiven, Valued& v) {
+  v["--test-fault"] = [&o](const std::string& text) {
+    static const std::map<std::string, TestFault> kinds = {{"segv", TestFault::Segv},
+                                                           {"abort", TestFault::Abort},
+                                                           {"throw", TestFault::Throw},
+                                                           {"terminate", TestFault::Terminate},
+                                                           {"throw-control", TestFault::ThrowInControl}};
+    auto it = kinds.find(text);
+    if (it == kinds.end()) return "--test-fault: unknown kind '" + text + "'";
+    o.testFault = it->second;
+    return std::string();
+  };
+  v["--test-fault-at"] = [&o, &faultAtGiven](const std::string& text) {
+    double d = 0.0;
+    if (!parseDouble(text, d) || d < 0.0) return "--test-fault-at: expected seconds >= 0, got '" + text + "'";
+    o.testFaultAtS = d;
+    faultAtGiven = true;
+    return std::string();
+  };
+}
+
+// Reads every argument; the first error ends it (in r.error).
+void readArguments(const std::vector<std::string>& args, const Flags& flags, const Valued& valued,
+                   CliResult& r) {
   for (std::size_t i = 0; i < args.size(); ++i) {
     std::string a = args[i];
     std::optional<std::string> inlineValue;
     if (a.rfind("--", 0) == 0) {
-      const auto eq = a.find('=');
-      if (eq != std::string::npos) {
+      if (const auto eq = a.find('='); eq != std::string::npos) {
         inlineValue = a.substr(eq + 1);
         a = a.substr(0, eq);
       }
@@ -202,49 +193,52 @@ CliResult parseCommandLine(const std::vector<std::string>& args) {
     if (auto f = flags.find(a); f != flags.end()) {
       if (inlineValue) {
         r.error = a + " takes no value";
-        return r;
+        return;
       }
       f->second();
       continue;
     }
-    if (auto v = valued.find(a); v != valued.end()) {
-      std::string value;
-      if (inlineValue) {
-        value = *inlineValue;
-      } else if (i + 1 < args.size()) {
-        value = args[++i];
-      } else {
-        r.error = a + " needs a value";
-        return r;
-      }
-      if (auto err = v->second(value); !err.empty()) {
-        r.error = err;
-        return r;
-      }
-      continue;
+    auto v = valued.find(a);
+    if (v == valued.end()) {
+      r.error = (a.rfind("-", 0) == 0 ? "unknown option '" : "unexpected argument '") + a + "'";
+      return;
     }
-    r.error = (a.rfind("-", 0) == 0 ? "unknown option '" : "unexpected argument '") + a + "'";
-    return r;
+    if (!inlineValue && i + 1 >= args.size()) {
+      r.error = a + " needs a value";
+      return;
+    }
+    if (auto err = v->second(inlineValue ? *inlineValue : args[++i]); !err.empty()) {
+      r.error = err;
+      return;
+    }
   }
+}
 
-  if (o.scenario && !o.sim)
-    r.error = "--scenario needs --sim";
-  else if (o.simOutputs && !o.sim)
-    r.error = "--sim-outputs needs --sim";
-  else if (o.speedGiven && !o.sim)
-    r.error = "--speed needs --sim";
-  else if (o.seed && !o.sim)
-    r.error = "--seed needs --sim";
-  else if (o.testFault != TestFault::None && !o.sim)
-    r.error = "--test-fault needs --sim";
-  else if (faultAtGiven && o.testFault == TestFault::None)
-    r.error = "--test-fault-at needs --test-fault";
-  else if (o.checkConfig && !o.config)
-    r.error = "--check-config needs --config FILE";
-  else if (o.printToken && !o.config && !o.stateDb)
-    r.error = "--print-token needs --state-db FILE or --config FILE";
-  else if (o.pair && !o.config && !(o.http && o.stateDb))
-    r.error = "--pair needs --config FILE (or --http ADDR:PORT and --state-db FILE)";
+// Options that need another: the first missing one, or "".
+std::string combinationError(const CliOptions& o, bool faultAtGiven) {
+  if (o.scenario && !o.sim) return "--scenario needs --sim";
+  if (o.simOutputs && !o.sim) return "--sim-outputs needs --sim";
+  if (o.speedGiven && !o.sim) return "--speed needs --sim";
+  if (o.seed && !o.sim) return "--seed needs --sim";
+  if (o.testFault != TestFault::None && !o.sim) return "--test-fault needs --sim";
+  if (faultAtGiven && o.testFault == TestFault::None) return "--test-fault-at needs --test-fault";
+  if (o.checkConfig && !o.config) return "--check-config needs --config FILE";
+  if (o.printToken && !o.config && !o.stateDb) return "--print-token needs --state-db FILE or --config FILE";
+  if (o.pair && !o.config && !(o.http && o.stateDb))
+    return "--pair needs --config FILE (or --http ADDR:PORT and --state-db FILE)";
+  return {};
+}
+
+}  // namespace
+
+CliResult parseCommandLine(const std::vector<std::string>& args) {
+  CliResult r;
+  bool faultAtGiven = false;
+  Valued valued = textOptions(r);
+  addRunOptions(r.options, valued);
+  addTestFaultOptions(r.options, faultAtGiven, valued);
+  readArguments(args, flagOptions(r.options), valued, r);
+  if (r.error.empty()) r.error = combinationError(r.options, faultAtGiven);
   return r;
 }
 
