@@ -56,6 +56,37 @@ ParamOverride paramOverride(const Ctx& c, const toml::key& k, const toml::node& 
   return o;
 }
 
+// An [[events]] command with its argument (`duty`, `soc_pct` or `active`).
+Command eventCommand(const Ctx& c, CommandType type, const std::string& argName, const toml::node* arg,
+                     int cmdLine) {
+  Command command;
+  command.type = type;
+  if (argName.empty()) return command;
+  if (!arg) c.fail(cmdLine, "command '" + std::string(toString(type)) + "' needs " + argName + " = ...");
+  if (argName == "active") {
+    if (!arg->is_boolean()) c.fail(lineOf(*arg), "'active' must be true or false");
+    command.flag = *arg->value<bool>();
+    return command;
+  }
+  std::optional<double> d;
+  if (arg->is_integer() || arg->is_floating_point()) d = arg->value<double>();
+  if (!d || !(*d >= 0.0 && *d <= 100.0))
+    c.fail(lineOf(*arg), "'" + argName + "' must be a number in [0, 100]");
+  command.value = *d;
+  return command;
+}
+
+// A fault and its value go together, and a fault is injected or cleared, not both.
+void checkEventFault(const Ctx& c, const ScenarioEvent& e, bool haveValue) {
+  if (e.fault && e.clear) c.fail(e.line, "an event cannot both inject and clear a fault");
+  if (e.fault && faultTakesValue(*e.fault) && !haveValue)
+    c.fail(e.line, "fault '" + std::string(toString(*e.fault)) + "' needs value = ...");
+  if (haveValue && !(e.fault && faultTakesValue(*e.fault)))
+    c.fail(e.line, "'value' only goes with a fault that takes one");
+  if (e.fault && *e.fault == Fault::temp_value && (e.value < -60.0 || e.value > 400.0))
+    c.fail(e.line, "temp_value must be within [-60, 400] degF");
+}
+
 ScenarioEvent parseEvent(const Ctx& c, const toml::table& t, double duration) {
   ScenarioEvent e;
   e.line = lineOf(t);
@@ -121,38 +152,31 @@ ScenarioEvent parseEvent(const Ctx& c, const toml::table& t, double duration) {
     }
   }
   if (!haveAt) c.fail(e.line, "event without at_s");
-  if (e.fault && e.clear) c.fail(e.line, "an event cannot both inject and clear a fault");
-  if (e.fault && faultTakesValue(*e.fault) && !haveValue)
-    c.fail(e.line, "fault '" + std::string(toString(*e.fault)) + "' needs value = ...");
-  if (haveValue && !(e.fault && faultTakesValue(*e.fault)))
-    c.fail(e.line, "'value' only goes with a fault that takes one");
-  if (e.fault && *e.fault == Fault::temp_value && (e.value < -60.0 || e.value > 400.0))
-    c.fail(e.line, "temp_value must be within [-60, 400] degF");
-  if (cmd) {
-    Command command;
-    command.type = *cmd;
-    if (!cmdArgName.empty()) {
-      if (!cmdArg)
-        c.fail(cmdLine, "command '" + std::string(toString(*cmd)) + "' needs " + cmdArgName + " = ...");
-      if (cmdArgName == "active") {
-        if (!cmdArg->is_boolean()) c.fail(lineOf(*cmdArg), "'active' must be true or false");
-        command.flag = *cmdArg->value<bool>();
-      } else {
-        const double hi = 100.0;
-        std::optional<double> d;
-        if (cmdArg->is_integer() || cmdArg->is_floating_point()) d = cmdArg->value<double>();
-        if (!d || !(*d >= 0.0 && *d <= hi))
-          c.fail(lineOf(*cmdArg), "'" + cmdArgName + "' must be a number in [0, 100]");
-        command.value = *d;
-      }
-    }
-    e.command = command;
-  }
+  checkEventFault(c, e, haveValue);
+  if (cmd) e.command = eventCommand(c, *cmd, cmdArgName, cmdArg, cmdLine);
   const bool any = e.rpm || e.house_a || e.ambient_f || e.battery_temp_c || e.ignition || e.bms_connected ||
                    e.bms_charge_enabled || e.touchesSimCan() || e.command || !e.set.empty() || e.fault ||
                    e.clear;
   if (!any) c.fail(e.line, "event does nothing");
   return e;
+}
+
+// [[events]], in time order.
+void parseEvents(const Ctx& c, const toml::node& v, Scenario& s) {
+  const toml::array* a = v.as_array();
+  if (!a) c.fail(lineOf(v), "'events' must be an array of tables ([[events]])");
+  double last = 0.0;
+  for (const auto& en : *a) {
+    if (!en.is_table()) c.fail(lineOf(en), "each event must be a table");
+    ScenarioEvent e = parseEvent(c, *en.as_table(), s.duration_s);
+    if (e.at_s < last) {
+      std::ostringstream m;
+      m << "events out of order: at_s = " << e.at_s << " comes after at_s = " << last;
+      c.fail(e.line, m.str());
+    }
+    last = e.at_s;
+    s.events.push_back(std::move(e));
+  }
 }
 
 Scenario parseTable(const Ctx& c, const toml::table& root) {
@@ -214,20 +238,7 @@ Scenario parseTable(const Ctx& c, const toml::table& root) {
     } else if (n == "noise") {
       parseNoise(c, tableOf(c, k, v), s.noise);
     } else if (n == "events") {
-      const toml::array* a = v.as_array();
-      if (!a) c.fail(lineOf(v), "'events' must be an array of tables ([[events]])");
-      double last = 0.0;
-      for (const auto& en : *a) {
-        if (!en.is_table()) c.fail(lineOf(en), "each event must be a table");
-        ScenarioEvent e = parseEvent(c, *en.as_table(), s.duration_s);
-        if (e.at_s < last) {
-          std::ostringstream m;
-          m << "events out of order: at_s = " << e.at_s << " comes after at_s = " << last;
-          c.fail(e.line, m.str());
-        }
-        last = e.at_s;
-        s.events.push_back(std::move(e));
-      }
+      parseEvents(c, v, s);
     } else {
       unknownKey(c, k, "");
     }
