@@ -183,23 +183,10 @@ asio::awaitable<void> SignalKClient::run() {
 
 asio::awaitable<void> SignalKClient::session() {
   auto ex = co_await asio::this_coro::executor;
-  if (token_.empty()) {
-    // A secured signalk-server with read-only access for guests accepts the
-    // upgrade and then drops every delta without a word; its login status
-    // says whether a token is needed. Other servers may not have the route.
-    bool secured = false;
-    try {
-      const json::value st = co_await httpJson(url_, http::verb::get, "/skServer/loginStatus", {});
-      secured = st.is_object() && st.as_object().contains("authenticationRequired") &&
-                st.as_object().at("authenticationRequired") == json::value(true);
-    } catch (const std::exception&) {
-      // No such route, or not JSON: not a signalk-server; the upgrade will tell.
-    }
-    if (secured) throw NeedsToken("server is secured and there is no token yet");
-  }
+  if (token_.empty()) co_await refuseIfSecured();
   tcp::resolver resolver(ex);
   const auto hosts = co_await resolver.async_resolve(url_.host, url_.port, use_awaitable);
-  websocket::stream<beast::tcp_stream> ws(ex);
+  SignalKStream ws(ex);
   beast::get_lowest_layer(ws).expires_after(kIoTimeout);
   co_await beast::get_lowest_layer(ws).async_connect(hosts, use_awaitable);
   const std::string token = token_;
@@ -234,49 +221,66 @@ asio::awaitable<void> SignalKClient::session() {
     co_await ws.async_write(asio::buffer(std::string_view(kPositionSubscription)), use_awaitable);
     health_.sent();
   }
+  co_await (readDeltas(ws) || writeDeltas(ws));
+}
 
-  auto reader = [&]() -> asio::awaitable<void> {
-    for (;;) {
-      beast::flat_buffer buf;
-      co_await ws.async_read(buf, use_awaitable);
-      health_.received();
-      // signalk-server answers a write it does not allow with a 401/403 status.
-      beast::error_code pec;
-      const json::value v = json::parse(beast::buffers_to_string(buf.data()), pec);
-      if (!pec && v.is_object() && v.as_object().contains("statusCode")) {
-        const auto& code = v.as_object().at("statusCode");
-        if (code.is_int64() && (code.as_int64() == 401 || code.as_int64() == 403))
-          throw NeedsToken("server refused a delta: HTTP " + std::to_string(code.as_int64()));
-      }
-      if (!pec && position_)
-        if (auto p = positionFromSignalKDelta(v))
-          position_->post(p->latitudeDeg, p->longitudeDeg, std::chrono::steady_clock::now());
+// A secured signalk-server with read-only access for guests accepts the
+// upgrade and then drops every delta without a word; its login status says
+// whether a token is needed. Other servers may not have the route.
+asio::awaitable<void> SignalKClient::refuseIfSecured() {
+  bool secured = false;
+  try {
+    const json::value st = co_await httpJson(url_, http::verb::get, "/skServer/loginStatus", {});
+    secured = st.is_object() && st.as_object().contains("authenticationRequired") &&
+              st.as_object().at("authenticationRequired") == json::value(true);
+  } catch (const std::exception&) {
+    // No such route, or not JSON: not a signalk-server; the upgrade will tell.
+  }
+  if (secured) throw NeedsToken("server is secured and there is no token yet");
+}
+
+// What the server sends: a refusal of our deltas, and the boat's position.
+asio::awaitable<void> SignalKClient::readDeltas(SignalKStream& ws) {
+  for (;;) {
+    beast::flat_buffer buf;
+    co_await ws.async_read(buf, use_awaitable);
+    health_.received();
+    // signalk-server answers a write it does not allow with a 401/403 status.
+    beast::error_code pec;
+    const json::value v = json::parse(beast::buffers_to_string(buf.data()), pec);
+    if (!pec && v.is_object() && v.as_object().contains("statusCode")) {
+      const auto& code = v.as_object().at("statusCode");
+      if (code.is_int64() && (code.as_int64() == 401 || code.as_int64() == 403))
+        throw NeedsToken("server refused a delta: HTTP " + std::to_string(code.as_int64()));
     }
-  };
-  auto writer = [&]() -> asio::awaitable<void> {
-    asio::steady_timer t(ex);
-    const auto period = std::chrono::duration<double>(1.0 / settings_.rate_hz);
-    auto lastSent = std::chrono::steady_clock::now() - 1h;
-    std::string lastState;
-    for (;;) {
-      const IntegrationSample s = sampleOf(handoffs_.latest());
-      if (s.valid) {
-        const std::string state =
-            std::string(signalKChargingMode(s.stageValue, s.field_on)) + s.stage + s.mode;
-        const auto now = std::chrono::steady_clock::now();
-        if (state != lastState || now - lastSent >= period) {
-          const auto values = signalKValues(s, settings_.alternator_id, settings_.battery_id);
-          co_await ws.async_write(asio::buffer(signalKDelta(values, isoTimeUtc(wallMsNow()))), use_awaitable);
-          health_.sent();
-          lastSent = now;
-          lastState = state;
-        }
+    if (!pec && position_)
+      if (auto p = positionFromSignalKDelta(v))
+        position_->post(p->latitudeDeg, p->longitudeDeg, std::chrono::steady_clock::now());
+  }
+}
+
+// Our deltas: at rate_hz, and at once when the charging state changes.
+asio::awaitable<void> SignalKClient::writeDeltas(SignalKStream& ws) {
+  asio::steady_timer t(co_await asio::this_coro::executor);
+  const auto period = std::chrono::duration<double>(1.0 / settings_.rate_hz);
+  auto lastSent = std::chrono::steady_clock::now() - 1h;
+  std::string lastState;
+  for (;;) {
+    const IntegrationSample s = sampleOf(handoffs_.latest());
+    if (s.valid) {
+      const std::string state = std::string(signalKChargingMode(s.stageValue, s.field_on)) + s.stage + s.mode;
+      const auto now = std::chrono::steady_clock::now();
+      if (state != lastState || now - lastSent >= period) {
+        const auto values = signalKValues(s, settings_.alternator_id, settings_.battery_id);
+        co_await ws.async_write(asio::buffer(signalKDelta(values, isoTimeUtc(wallMsNow()))), use_awaitable);
+        health_.sent();
+        lastSent = now;
+        lastState = state;
       }
-      t.expires_after(kPollPeriod);
-      co_await t.async_wait(use_awaitable);
     }
-  };
-  co_await (reader() || writer());
+    t.expires_after(kPollPeriod);
+    co_await t.async_wait(use_awaitable);
+  }
 }
 
 asio::awaitable<void> SignalKClient::requestAccess() {

@@ -14,6 +14,8 @@
 //     the token it is granted through TokenStore (the state database).
 #include <boost/asio/awaitable.hpp>
 #include <boost/asio/io_context.hpp>
+#include <boost/beast/core/tcp_stream.hpp>
+#include <boost/beast/websocket/stream.hpp>
 #include <functional>
 #include <optional>
 #include <string>
@@ -51,6 +53,11 @@ class SignalKClient {
  private:
   boost::asio::awaitable<void> run();
   boost::asio::awaitable<void> session();
+  // session()'s parts (signalk_client.cpp).
+  using SignalKStream = boost::beast::websocket::stream<boost::beast::tcp_stream>;
+  boost::asio::awaitable<void> refuseIfSecured();
+  boost::asio::awaitable<void> readDeltas(SignalKStream& ws);
+  boost::asio::awaitable<void> writeDeltas(SignalKStream& ws);
   boost::asio::awaitable<void> requestAccess();
 
   boost::asio::io_context& io_;
