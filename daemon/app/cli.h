@@ -1,5 +1,5 @@
 #pragma once
-// xregulatord command line (DESIGN.md "Interfaces other programs rely on"):
+// xregulatord command line (docs/xregulatord.8):
 //   xregulatord [--config FILE] [--sim] [--scenario FILE] [--speed X|max]
 //     [--duration S] [--telemetry-csv FILE] [--telemetry-rate HZ]
 //     [--http ADDR:PORT] [--state-db FILE] [--check-config]

@@ -1,7 +1,7 @@
 #pragma once
 // Telemetry CSV (--telemetry-csv): one header row, then one row per
 // telemetry row the control cycle queued at --telemetry-rate. Columns: the
-// DESIGN.md columns through visitTelemetryColumns(), then in simulation the
+// The CSV columns (docs/operations.md) through visitTelemetryColumns(), then in simulation the
 // plant's truth (sim_*). Written by its own non-RT thread.
 #include <atomic>
 #include <cstdio>

@@ -1,4 +1,4 @@
-// xregulatord: alternator field regulator daemon. See DESIGN.md for the
+// xregulatord: alternator field regulator daemon. See docs/architecture.md for the
 // command line and daemon/app/daemon.h for the exit paths.
 #include <signal.h>
 

@@ -1,4 +1,4 @@
-// BatteryMonitor: alternator current auto-zero (seeds/battery-management.md).
+// BatteryMonitor: alternator current auto-zero (docs/batteries.md).
 #include <algorithm>
 #include <cmath>
 

@@ -1,4 +1,4 @@
-// BatteryMonitor — seeds/battery-management.md. See battery_monitor.h for the
+// BatteryMonitor — docs/batteries.md. See battery_monitor.h for the
 // call order Regulator::step follows. This file holds construction, the
 // sources of truth, commands, the ledger and telemetry; auto-zero and the SoC
 // are in battery_auto_zero.cpp and battery_soc.cpp.
@@ -139,7 +139,7 @@ void BatteryMonitor::updateTelemetry(BatteryTelemetry& t) {
     telemetryStale_ = false;
     return;
   }
-  // The fields UpdateBatterySOC() rewrites on every tick (socKnown turns
+  // The fields updateBatterySoc() rewrites on every tick (socKnown turns
   // true at a detected full charge, which happens inside it).
   t.batteryCurrentForSoC = batteryCurrentForSoC_;
   t.usingVictronCurrent = usingVictron_;

@@ -1,7 +1,7 @@
 #pragma once
 // BatteryMonitor: SoC, energy accounting, full-charge detection, auto shunt
 // gain, alternator-current auto-zero and charge-time prediction
-// (seeds/battery-management.md). Pure core: no I/O, no clock, no allocation
+// (docs/batteries.md). Pure core: no I/O, no clock, no allocation
 // after construction; time comes from Inputs::now.
 //
 // How Regulator::step must call it, every tick, in this order:
@@ -16,7 +16,7 @@
 //      Use these everywhere the seeds use MeasuredAmps / Bcur (the control
 //      loop's MaintainMode path uses Bcur, never getBatteryCurrent()).
 //   3. (control + protections step)
-//   4. mon.UpdateBatterySOC(in, MeasuredAmps, events);   // every tick; it
+//   4. mon.updateBatterySoc(in, MeasuredAmps, events);   // every tick; it
 //      integrates every tick and runs the seed's body each SOCUpdateInterval,
 //      and calculateChargeTimes() each INA_SLOW_INTERVAL_MS.
 //   5. mon.fillTelemetry(outputs.telemetry.battery);
@@ -117,9 +117,9 @@ class BatteryMonitor {
   // ---- SoC and energy (after the control step, every tick) -----------------
   // measuredAltAmps = correctedAltAmps(raw CH1). Integrates current and power
   // every tick (zero-order hold of the latest sample), runs the seed's
-  // UpdateBatterySOC body every SOCUpdateInterval on the interval totals and
+  // updateBatterySoc body every SOCUpdateInterval on the interval totals and
   // calculateChargeTimes() every INA_SLOW_INTERVAL_MS.
-  void UpdateBatterySOC(const Inputs& in, double measuredAltAmps, EventBatch& ev);
+  void updateBatterySoc(const Inputs& in, double measuredAltAmps, EventBatch& ev);
 
   // ---- commands (between ticks) --------------------------------------------
   void resetSocGain();      // handleSocGainReset: DynamicShuntGainFactor = 1.0

@@ -2,7 +2,7 @@
 // "State of charge at first start"). A fresh ledger does not know the SoC;
 // a lead-acid bank's open-circuit voltage tells it within some points, so
 // once the bank has rested the monitor starts counting from that estimate
-// and says it is one. LiFePO4's voltage is flat from 20 % to 90 % (plant-facts
+// and says it is one. LiFePO4's voltage is flat from 20 % to 90 % (docs/sources.md
 // §3.1: 12.85-13.24 V), so a LiFePO4 or custom bank stays unknown until its
 // first full charge or a value set by hand.
 #include <algorithm>
@@ -14,18 +14,19 @@ namespace xr {
 namespace {
 
 // Rested open-circuit voltage of a 12 V (6-cell) lead-acid bank at ~25 degC:
-// Lifeline AGM's table (plant-facts §3.3, LL) from 25 % to 100 %; its 0 %
+// Lifeline AGM's table (docs/sources.md P3.3, LL) from 25 % to 100 %; its 0 %
 // figure (10.50 V) is a loaded cut-off, not a rest voltage, so 0 % is Libre
 // Solar's linear 11.52 V (LSOL, x6).
 struct OcvPoint {
   double volts12, socPct;
 };
-constexpr OcvPoint kLeadAcidOcv[] = {{11.52, 0.0}, {11.75, 25.0}, {12.20, 50.0}, {12.55, 75.0}, {12.80, 100.0}};
+constexpr OcvPoint kLeadAcidOcv[] = {
+    {11.52, 0.0}, {11.75, 25.0}, {12.20, 50.0}, {12.55, 75.0}, {12.80, 100.0}};
 
 // "At rest" for the estimate: at most 2 % of the capacity flowing (a few
 // amps of house load on a 200 Ah bank move the voltage by hundredths), the
 // alternator not charging, for 30 s. A true OCV wants hours of rest
-// (plant-facts §3.5); the figure is shown as an estimate for that reason.
+// (docs/sources.md P3.5); the figure is shown as an estimate for that reason.
 constexpr double kRestCurrentC = 0.02;
 constexpr double kRestSeconds = 30.0;
 
@@ -53,8 +54,8 @@ void BatteryMonitor::estimateSocAtRest(double dt_s, double amps, double volts, d
   }
   const double cap = p_.BatteryCapacity_Ah;
   const bool alternatorOff = !std::isfinite(altAmps) || altAmps <= p_.CurrentThreshold;
-  const bool resting = std::isfinite(amps) && std::isfinite(volts) && std::fabs(amps) <= kRestCurrentC * cap &&
-                       alternatorOff;
+  const bool resting =
+      std::isfinite(amps) && std::isfinite(volts) && std::fabs(amps) <= kRestCurrentC * cap && alternatorOff;
   if (!resting) {
     restTimer_s_ = restVoltSum_ = 0.0;
     return;

@@ -1,5 +1,5 @@
 // BatteryMonitor: state of charge, Peukert, energy counters, shunt gain
-// correction and charge times (seeds/battery-management.md).
+// correction and charge times (docs/batteries.md).
 #include <algorithm>
 #include <cmath>
 
@@ -23,7 +23,7 @@ double BatteryMonitor::peukertFactor(double dischargeCurrent_A, double capacity_
   return clampFinite(f, k::PEUKERT_FACTOR_MIN, k::PEUKERT_FACTOR_MAX, 1.0);
 }
 
-void BatteryMonitor::UpdateBatterySOC(const Inputs& in, double measuredAltAmps, EventBatch& ev) {
+void BatteryMonitor::updateBatterySoc(const Inputs& in, double measuredAltAmps, EventBatch& ev) {
   if (!started_) {
     started_ = true;
     lastTick_ = in.now;

@@ -24,7 +24,7 @@
 //   0x355 bytes 4-5: SoC u16 0.01 % (the high-resolution SoC)
 //   0x373 lowest cell u16 1 mV, highest cell u16 1 mV, lowest cell
 //         temperature u16 1 K, highest cell temperature u16 1 K
-// Sources: docs/integrations.md "CAN" (plant-facts 3.10.2 for 0x351); REC:
+// Sources: docs/integrations.md "CAN" (docs/sources.md P3.10.2 for 0x351); REC:
 // the id list of REC's "UserManual_REC_Victron_BMS" and a candump of a REC Q
 // published by its owner (github.com/natecostello/van_two_point_oh,
 // blog/2021-4-8, which also decodes 0x355 bytes 4-5 and 0x373 in

@@ -10,7 +10,7 @@
 namespace xr {
 namespace {
 
-// Published 12 V values at 25 degC. Source keys are those of plant-facts.md
+// Published 12 V values at 25 degC. Source keys are those of docs/sources.md
 // (§0.2, §0.3); the section each number comes from is named beside it.
 constexpr ProfileTable kTables[] = {
     // LiFePO4: 14.2 V absorption and 13.5 V float (VIC-CHG "Li-ion", VIC-LFP,

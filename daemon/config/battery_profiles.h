@@ -1,7 +1,7 @@
 #pragma once
 // Battery profiles (docs/batteries.md): what a battery type sets.
 //
-// A profile is a table of published 12 V values at 25 degC (plant-facts
+// A profile is a table of published 12 V values at 25 degC (docs/sources.md
 // §3.7-3.8, sources named beside each number in battery_profiles.cpp). A bank
 // of N cells gets each voltage times N / cells-per-12-V, so one profile serves
 // 12, 24 and 48 V. Currents are fractions of BatteryCapacity_Ah.

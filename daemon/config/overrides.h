@@ -1,12 +1,12 @@
 #pragma once
 // Flat parameter overrides from a TOML table: a scenario's [config] table
-// (DESIGN.md "Scenario file") or a [[events]] `set = { ... }` inline table.
+// (docs/simulator.md "Scenario file") or a [[events]] `set = { ... }` inline table.
 // Keys are bare catalogue names (no group prefix). Pulls in toml++, so it
 // lives apart from config.h.
+#include <toml++/toml.h>
+
 #include <string_view>
 #include <vector>
-
-#include <toml++/toml.h>
 
 #include "config/config.h"
 #include "params/params.h"

@@ -112,7 +112,7 @@ std::vector<ConfigError> checkConsistency(const Params& p, std::string_view file
   if (p.RebulkVoltage >= p.FloatVoltage)
     err("RebulkVoltage", v(p.RebulkVoltage, "V") + " must be below FloatVoltage " + v(p.FloatVoltage, "V"));
   // A software trip at or below the charging target would trip in normal
-  // bulk charging (safeties-and-protections.md "Alternator Hard Shutdown").
+  // bulk charging (docs/protections.md "Protections").
   if (p.AlternatorHardShutdownV != 0.0 && p.AlternatorHardShutdownV <= p.BulkVoltage)
     err("AlternatorHardShutdownV", v(p.AlternatorHardShutdownV, "V") + " must be above BulkVoltage " +
                                        v(p.BulkVoltage, "V") +

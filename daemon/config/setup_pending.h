@@ -14,7 +14,7 @@ namespace xr {
 
 // The limits for a 12 V bank, scaled by the bank class of BulkVoltage.
 // 14.0 V is at or below every published absorption voltage (LiFePO4 14.0-
-// 14.6, gel 14.1-14.4, AGM 14.4-14.7, flooded 14.4-14.8; plant-facts §3.7)
+// 14.6, gel 14.1-14.4, AGM 14.4-14.7, flooded 14.4-14.8; docs/sources.md P3.7)
 // and 13.4 V at or below every float but flooded's upper end (LiFePO4 13.5
 // or none, AGM 13.3-13.5, gel 13.5-13.8, flooded 13.2-13.5). A LiFePO4 cell
 // must not be charged below 0 degC, nor any chemistry here above 45 degC

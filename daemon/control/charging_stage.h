@@ -31,7 +31,7 @@ class ChargingStageMachine {
   // Returns true when the stage changed this call.
   // Real-time thread, every tick: neither allocates nor blocks (docs/architecture.md "Threads").
   bool updateChargingStage(const StageInputs& in, const Params& p) noexcept;
-  // enter_sys_auto(): BULK, timers reset.
+  // enterSysAuto(): BULK, timers reset.
   void resetToBulk(TimeNs now);
   // Back in AUTO after `away` out of it: resume ABSORPTION / FLOAT when the
   // absence was short (StageResumeMaxSec), else BULK (docs/deviations.md

@@ -1,4 +1,4 @@
-// ControlLaw, the AUTO command path (field-control.md "Command Path"):
+// ControlLaw, the AUTO command path (docs/control.md "Command path"):
 // filters, uTarget, CV loop, setpoint slew, current PID and governor.
 #include "control/control_law.h"
 
@@ -16,7 +16,7 @@ namespace xr {
 
 ControlLaw::ControlLaw(const Params& p) : currentPID_(p.PidKp, p.PidKi, p.PidKd, Pid::DIRECT) {
   configurePid(p);
-  currentPID_.SetMode(Pid::MANUAL);
+  currentPID_.setMode(Pid::MANUAL);
   ChargingVoltageTarget_ = p.BulkVoltage;
 }
 
@@ -24,9 +24,9 @@ void ControlLaw::configurePid(const Params& p) {
   // Applied on every call: SetOutputLimits also re-clamps output / outputSum,
   // which the MANUAL, shutdown and SystemID paths write unclamped, and the
   // gains follow the Params of this tick.
-  currentPID_.SetOutputLimits(p.MinDuty, std::max(p.MinDuty + 1e-6, p.MaxDuty));
-  currentPID_.SetTunings(p.PidKp, p.PidKi, p.PidKd);
-  currentPID_.SetTrackingGain(p.PIDTrackingGain);
+  currentPID_.setOutputLimits(p.MinDuty, std::max(p.MinDuty + 1e-6, p.MaxDuty));
+  currentPID_.setTunings(p.PidKp, p.PidKi, p.PidKd);
+  currentPID_.setTrackingGain(p.PIDTrackingGain);
 }
 
 void ControlLaw::updateFilters(const ControlSensors& s, const Params& p) {
@@ -114,8 +114,8 @@ void ControlLaw::updateGovMode(const ControlSensors& s, const Params& p, const F
                              s.IBV < ChargingVoltageTarget_ + k::CV_OVERSHOOT_RELEASE_V))
     cvOvershootBypass_ = false;
   if (voltageControlActive_ && fa.fastOvClampActive) cvOvershootBypass_ = true;
-  const bool bypass =
-      majorOV || fa.sensorFailureBypass || cvOvershootBypass_ || fa.forceBypassSlew || sysId_.sysIDRunning();
+  const bool bypass = majorOV || fa.sensorFailureBypass || cvOvershootBypass_ || fa.forceBypassSlew ||
+                      sysId_.systemIdRunning();
   govMode_ = bypass ? GovMode::GOV_BYPASS_SLEW : GovMode::GOV_NORMAL_SLEW;
 }
 
@@ -137,13 +137,13 @@ void ControlLaw::reseedAfterLoadDump(const ControlSensors& s) {
 
 double ControlLaw::governorStep(const Params& p, double request, GovMode mode, double dt) {
   GovernorLimits lim{p.MinDuty, p.MaxDuty, p.DutyRampRate};
-  return governor_apply(lastAppliedDuty_, request, mode, rpmMinDuty_, dt, lim);
+  return governorApply(lastAppliedDuty_, request, mode, rpmMinDuty_, dt, lim);
 }
 
 double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const FastOvApply& fa,
                               EventBatch& ev) {
   applyFastOv(s, p, fa);
-  if (sysId_.sysIDRunning()) return runSystemIdTick(s, p, ev);
+  if (sysId_.systemIdRunning()) return runSystemIdTick(s, p, ev);
   // CH1 not fresh: the protections above already acted on the state; the
   // PID and the duty hold until the next sample (<= one ADS cycle).
   if (!s.ch1Fresh) return lastAppliedDuty_;
@@ -153,7 +153,7 @@ double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const Fa
   const double Icv = slewSetpoint(s, p, dt);
   runCurrentPid(s, p, dt);
   const double duty = governorStep(p, dutyRequest_, govMode_, dt);
-  currentPID_.TrackAppliedOutput(duty, dt);
+  currentPID_.trackAppliedOutput(duty, dt);
   lastAppliedDuty_ = duty;
 
   if (p.TuningMode) tuning_.score(setpointLimited_, MeasuredAmps_, dt);
@@ -197,12 +197,12 @@ void ControlLaw::applyFastOv(const ControlSensors& s, const Params& p, const Fas
 double ControlLaw::runSystemIdTick(const ControlSensors& s, const Params& p, EventBatch& ev) {
   if (!s.ch1Fresh) return lastAppliedDuty_;
   bool finished = false;
-  sysIdDutyOut_ = sysId_.systemID_tick(s.now, MeasuredAmps_, p, finished);
+  sysIdDutyOut_ = sysId_.systemIdTick(s.now, MeasuredAmps_, p, finished);
   const double duty = governorStep(p, sysIdDutyOut_, GovMode::GOV_BYPASS_SLEW, controlDt_);
   dutyRequest_ = sysIdDutyOut_;
   lastAppliedDuty_ = duty;
   currentPID_.output = duty;
-  currentPID_.ResetIntegratorTo(duty);
+  currentPID_.resetIntegratorTo(duty);
   if (!finished) return duty;
   const SystemIdSnapshot& pre = sysId_.snapshot();
   // Legality: still running normally in AUTO with the same CV context.
@@ -212,7 +212,7 @@ double ControlLaw::runSystemIdTick(const ControlSensors& s, const Params& p, Eve
     cv_.restore(pre.cv_I);
   }
   configurePid(p);
-  currentPID_.SetMode(Pid::AUTOMATIC);  // re-seeded to lastAppliedDuty (bumpless)
+  currentPID_.setMode(Pid::AUTOMATIC);  // re-seeded to lastAppliedDuty (bumpless)
   const SystemIdResult& r = sysId_.result();
   ev.push(makeEvent(s.now, EventLevel::Info, EventCode::SystemIdDone, Reason::NONE, r.deadTimeMs,
                     r.riseTimeMs, r.valid ? 1 : 0));
@@ -250,7 +250,7 @@ double ControlLaw::slewSetpoint(const ControlSensors& s, const Params& p, double
   // The BMS's cap is a limit, not a request: the setpoint meets it at once
   // (its own warning ramp is already smooth).
   const double fall = fastOvClampActive_ || bmsCapActive_ ? 1e9 : p.SetpointFallRate;
-  setpointLimited_ = slew_limit_f(setpointLimited_, setpointCommand_, rise, fall, dt);
+  setpointLimited_ = slewLimit(setpointLimited_, setpointCommand_, rise, fall, dt);
   if (inStartupRamp_ && setpointLimited_ >= setpointCommand_ - 1e-9) inStartupRamp_ = false;
   return Icv;
 }
@@ -258,7 +258,7 @@ double ControlLaw::slewSetpoint(const ControlSensors& s, const Params& p, double
 // Inner current PID, every PidSampleDivisor-th fresh CH1, real dt: sets dutyRequest_.
 void ControlLaw::runCurrentPid(const ControlSensors& s, const Params& p, double dt) {
   configurePid(p);
-  if (currentPID_.GetMode() != Pid::AUTOMATIC) currentPID_.SetMode(Pid::AUTOMATIC);
+  if (currentPID_.mode() != Pid::AUTOMATIC) currentPID_.setMode(Pid::AUTOMATIC);
   // MaintainMode chases Bcur = 0 (seed), and ours: never with more
   // alternator current than the RPM cap and the thermal derate allow
   // (I_cmd): a max-selector hands the loop to whichever is over its limit.
@@ -267,7 +267,7 @@ void ControlLaw::runCurrentPid(const ControlSensors& s, const Params& p, double 
   if (++pidSampleCounter_ >= std::max(1, p.PidSampleDivisor)) {
     pidSampleCounter_ = 0;
     const double pdt = lastPidCompute_ < 0 ? dt : toSec(s.now - lastPidCompute_);
-    if (currentPID_.Compute(std::min(pdt, kMaxControlDtSec))) lastPidCompute_ = s.now;
+    if (currentPID_.compute(std::min(pdt, kMaxControlDtSec))) lastPidCompute_ = s.now;
   }
   // A BMS cap that steps down (a lower CCL, or the house load switched off
   // under a binding cap): the duty drops in proportion at once (alternator
@@ -279,7 +279,7 @@ void ControlLaw::runCurrentPid(const ControlSensors& s, const Params& p, double 
       pidSig_ > kBmsSnapStepA) {
     const double scaled = lastAppliedDuty_ * bmsAltCap_ / pidSig_;
     if (scaled < currentPID_.output) {
-      currentPID_.ResetIntegratorTo(scaled);
+      currentPID_.resetIntegratorTo(scaled);
       govMode_ = GovMode::GOV_BYPASS_SLEW;
     }
   }

@@ -1,5 +1,5 @@
 #pragma once
-// ControlLaw: the cascaded loops of field-control.md and their state, as
+// ControlLaw: the cascaded loops of docs/control.md and their state, as
 // plain members (the seeds' globals). Regulator::step drives it; tests drive
 // it directly. No protection or battery types here: the fast-OV supervisors'
 // actions come in as a FastOvApply, so the law is testable on its own.
@@ -11,7 +11,7 @@
 //   (Regulator runs the fast-OV supervisors on uTargetRaw)
 //   finishAuto()      : fastOvCurrentCap clamp => uTargetAmps -> CV (Icv) or
 //                       direct => setpointCommand -> slew => setpointLimited ->
-//                       currentPID -> governor_apply -> TrackAppliedOutput.
+//                       currentPID -> governorApply -> trackAppliedOutput.
 #include "control/bms_limiter.h"
 #include "control/charging_stage.h"
 #include "control/control_telemetry.h"
@@ -86,10 +86,10 @@ class ControlLaw {
   void trackShutdown(double appliedDuty, const Params& p, double rpm);
 
   // ---- mode entry (bumpless wrappers) --------------------------------------
-  void enter_sys_off();
-  void enter_sys_manual();
-  void enter_sys_auto(const ControlSensors& s, const Params& p);
-  void enter_sys_fault();
+  void enterSysOff();
+  void enterSysManual();
+  void enterSysAuto(const ControlSensors& s, const Params& p);
+  void enterSysFault();
   // Control-side effects of the universal immediate cut (protection decides).
   void applyImmediateCut();
   // Field enable rising edge: startup ramp and warm-up ceiling start now.
@@ -130,7 +130,7 @@ class ControlLaw {
   double g_pidI_filtered() const { return emaPid_.value(); }
   double cv_I() const { return cv_.cv_I(); }
   bool fastOvClampActive() const { return fastOvClampActive_; }
-  bool sysIDRunning() const { return sysId_.sysIDRunning(); }
+  bool systemIdRunning() const { return sysId_.systemIdRunning(); }
   const ChargingStageMachine& stages() const { return stages_; }
   const BmsLimiter& bms() const { return bms_; }
   const Pid& currentPID() const { return currentPID_; }

@@ -19,9 +19,9 @@ void ControlLaw::fillLoopTelemetry(ControlTelemetry& t) const {
   t.setpointLimited = setpointLimited_;
   t.pidInput = currentPID_.input;
   t.pidOutput = currentPID_.output;
-  t.innerTermP = currentPID_.GetPterm();
-  t.innerTermI = currentPID_.GetIterm();
-  t.innerTermD = currentPID_.GetDterm();
+  t.innerTermP = currentPID_.pTerm();
+  t.innerTermI = currentPID_.iTerm();
+  t.innerTermD = currentPID_.dTerm();
   t.dutyRequest = dutyRequest_;
   t.lastAppliedDuty = lastAppliedDuty_;
   t.rpmMinDuty = rpmMinDuty_;
@@ -69,7 +69,7 @@ void ControlLaw::fillTuningTelemetry(ControlTelemetry& t) const {
   t.cvTuningScore = cvTuning_.currentScore();
   t.cvTuningSettleSec = cvTuning_.lastSettleSec();
   t.cvTuningLogCount = cvTuning_.logCount();
-  t.sysIDRunning = sysId_.sysIDRunning();
+  t.sysIDRunning = sysId_.systemIdRunning();
   t.sysIDDutyOut = sysIdDutyOut_;
   t.sysIDValid = sysId_.result().valid;
   t.sysIDDeadTimeMs = sysId_.result().deadTimeMs;

@@ -1,6 +1,6 @@
 // ControlLaw outside the AUTO path: MANUAL, Limp Home, the shutdown
 // sequencer's ownership of the duty, and the bumpless mode-entry wrappers
-// (field-control.md "Mode Entry Functions").
+// (docs/control.md "Mode entry functions").
 #include <algorithm>
 
 #include "control/control_law.h"
@@ -15,7 +15,7 @@ double ControlLaw::runManual(const ControlSensors& s, const Params& p, double ma
   dutyRequest_ = manualDuty;
   const double duty = governorStep(p, manualDuty, govMode_, tickDt_);
   lastAppliedDuty_ = duty;
-  currentPID_.ResetIntegratorTo(duty);  // AUTO re-entry is bumpless
+  currentPID_.resetIntegratorTo(duty);  // AUTO re-entry is bumpless
   setpointLimited_ = std::max(0.0, emaPid_.value());
   nonThermalCeiling_ = kNoCeiling;
   return duty;
@@ -28,7 +28,7 @@ double ControlLaw::runLimpHome(const ControlSensors& s, const Params& p, EventBa
   GovernorLimits lim{p.MinDuty, p.MaxDuty, p.DutyRampRate};
   const double duty = limp_.handleLimpHome(s.now, lastAppliedDuty_, rpmMinDuty_, tickDt_, lim, ev);
   lastAppliedDuty_ = duty;
-  currentPID_.ResetIntegratorTo(duty);
+  currentPID_.resetIntegratorTo(duty);
   return duty;
 }
 
@@ -37,7 +37,7 @@ void ControlLaw::trackShutdown(double appliedDuty, const Params& p, double rpm) 
   lastAppliedDuty_ = appliedDuty;
   dutyRequest_ = appliedDuty;
   currentPID_.output = appliedDuty;
-  currentPID_.ResetIntegratorTo(appliedDuty);
+  currentPID_.resetIntegratorTo(appliedDuty);
   limp_.reset();
 }
 
@@ -50,25 +50,25 @@ void ControlLaw::leaveAuto(TimeNs now) {
 void ControlLaw::enterManualLike(SysMode m) {
   leaveAuto(lastTick_);
   sysMode_ = m;
-  currentPID_.SetMode(Pid::MANUAL);
+  currentPID_.setMode(Pid::MANUAL);
   currentPID_.output = lastAppliedDuty_;
-  currentPID_.ResetIntegratorTo(lastAppliedDuty_);
+  currentPID_.resetIntegratorTo(lastAppliedDuty_);
   sysId_.abort();
 }
 
-void ControlLaw::enter_sys_off() {
+void ControlLaw::enterSysOff() {
   enterManualLike(SysMode::SYS_MODE_OFF);
   govMode_ = GovMode::GOV_NORMAL_SLEW;
 }
 
-void ControlLaw::enter_sys_manual() {
+void ControlLaw::enterSysManual() {
   enterManualLike(SysMode::SYS_MODE_MANUAL);
   govMode_ = GovMode::GOV_NORMAL_SLEW;
 }
 
-void ControlLaw::enter_sys_fault() { enterManualLike(SysMode::SYS_MODE_FAULT); }  // govMode left to caller
+void ControlLaw::enterSysFault() { enterManualLike(SysMode::SYS_MODE_FAULT); }  // govMode left to caller
 
-void ControlLaw::enter_sys_auto(const ControlSensors& s, const Params& p) {
+void ControlLaw::enterSysAuto(const ControlSensors& s, const Params& p) {
   sysMode_ = SysMode::SYS_MODE_AUTO;
   govMode_ = GovMode::GOV_NORMAL_SLEW;
   // The seed always restarts in BULK (updateChargingStage fast-forwards);
@@ -77,11 +77,11 @@ void ControlLaw::enter_sys_auto(const ControlSensors& s, const Params& p) {
   stages_.resumeOrBulk(s.now, leftAutoAt_ < 0 ? -1 : s.now - leftAutoAt_, p);
   cv_.requestReseed();  // back from a protection event: seed cv_I afresh
   configurePid(p);
-  currentPID_.SetMode(Pid::MANUAL);
+  currentPID_.setMode(Pid::MANUAL);
   currentPID_.output = lastAppliedDuty_;
-  currentPID_.ResetIntegratorTo(lastAppliedDuty_);
+  currentPID_.resetIntegratorTo(lastAppliedDuty_);
   currentPID_.input = pidSig_;
-  currentPID_.SetMode(Pid::AUTOMATIC);  // integrator -> lastAppliedDuty
+  currentPID_.setMode(Pid::AUTOMATIC);  // integrator -> lastAppliedDuty
   // The seed seeds setpointLimited = max(0, getTargetAmps()); we read that as
   // the current actually flowing, so the PID sees no step and the
   // StartupRiseRate ramp takes it from there.
@@ -93,15 +93,15 @@ void ControlLaw::enter_sys_auto(const ControlSensors& s, const Params& p) {
 }
 
 void ControlLaw::applyImmediateCut() {
-  // field-control.md "Mode Entry Functions": PWM 0, PID reset, FAULT,
+  // docs/control.md "Mode entry functions": PWM 0, PID reset, FAULT,
   // setpointLimited 0, SystemID aborted (GPIO4 and the phase are protection's).
   leaveAuto(lastTick_);
   lastAppliedDuty_ = 0.0;
   dutyRequest_ = 0.0;
   sysMode_ = SysMode::SYS_MODE_FAULT;
-  currentPID_.SetMode(Pid::MANUAL);
+  currentPID_.setMode(Pid::MANUAL);
   currentPID_.output = 0.0;
-  currentPID_.ResetIntegratorTo(0.0);
+  currentPID_.resetIntegratorTo(0.0);
   setpointLimited_ = 0.0;
   inStartupRamp_ = true;
   sysId_.abort();
@@ -120,7 +120,7 @@ bool ControlLaw::startSystemId(TimeNs now, bool autoRunning) {
   pre.cv_I = cv_.cv_I();
   pre.voltageControlActive = voltageControlActive_;
   if (!sysId_.start(now, pre)) return false;
-  currentPID_.SetMode(Pid::MANUAL);
+  currentPID_.setMode(Pid::MANUAL);
   return true;
 }
 

@@ -1,6 +1,6 @@
 // ControlLaw::updateChargingStage(): the stage machine's step and the
 // voltage target / voltageControlActive of this tick, override modes
-// included (field-control.md "Charging-Stage State Machine", "Override Modes").
+// included (docs/control.md "Charging stages", "Override modes").
 #include <algorithm>
 #include <cmath>
 
@@ -33,7 +33,7 @@ void ControlLaw::updateChargingStage(const ControlSensors& s, const Params& p, b
   const ChargeStage before = stages_.stage();
   stages_.updateChargingStage(si, p);
   // Leaving an override: the seed restarts in BULK (TargetVoltageMode exit ->
-  // enter_sys_auto()); ours resumes the stage after a short one.
+  // enterSysAuto()); ours resumes the stage after a short one.
   if (overrideNow && !overrideWasActive_) overrideSince_ = s.now;
   if (overrideWasActive_ && !overrideNow) stages_.resumeOrBulk(s.now, s.now - overrideSince_, p);
   overrideWasActive_ = overrideNow;

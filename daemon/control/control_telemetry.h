@@ -1,5 +1,5 @@
 #pragma once
-// Every variable of field-control.md's diagram and tables, exported per tick.
+// Every variable of docs/control.md, exported per tick.
 // Owned by the control core; fields are added here as they are implemented.
 #include "core/modes.h"
 

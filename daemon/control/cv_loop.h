@@ -1,6 +1,6 @@
 #pragma once
-// The voltage CV loop (field-control.md "Voltage CV Loop (custom
-// position-form PI)"): computes Icv, the current setpoint fed to the inner
+// The voltage CV loop (docs/control.md "Voltage CV loop",
+// a position-form PI): computes Icv, the current setpoint fed to the inner
 // PID while voltageControlActive.
 #include "core/time.h"
 #include "params/params.h"

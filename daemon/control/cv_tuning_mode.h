@@ -1,5 +1,5 @@
 #pragma once
-// CVTuningMode (field-control.md "CVTuningMode (outer voltage loop)"):
+// CVTuningMode (docs/control.md "SystemID, TuningMode and CVTuningMode"):
 // square wave on ChargingVoltageTarget (LOW = the normal target, HIGH =
 // + cvWaveAmplitudeV) with asymmetric ISE/T scoring and a settle time.
 //  HIGH: overshoot beyond CV_HIGH_DEADBAND_V weighted cvKOvershoot,

@@ -1,6 +1,6 @@
 #pragma once
-// Feedback filters on the CH1 record path (field-control.md "Per-tick
-// wiring"): an EMA with a time constant in ms (real dt, so the corner does
+// Feedback filters on the CH1 record path (docs/control.md "Feedback
+// filters"): an EMA with a time constant in ms (real dt, so the corner does
 // not move with the tick rate) and a fixed-capacity moving average.
 #include <array>
 #include <cmath>

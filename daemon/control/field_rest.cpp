@@ -14,7 +14,7 @@ namespace xr {
 
 bool ControlLaw::tuningActive(const Params& p) const {
   // A tuning run owns the field: it must neither start nor keep a rest.
-  return p.TuningMode || p.CVTuningMode || sysId_.sysIDRunning();
+  return p.TuningMode || p.CVTuningMode || sysId_.systemIdRunning();
 }
 
 bool ControlLaw::restDue(const ControlSensors& s, const Params& p) {
@@ -50,7 +50,7 @@ double ControlLaw::holdAtRest() {
   dutyRequest_ = 0.0;
   setpointLimited_ = 0.0;
   setpointCommand_ = 0.0;
-  currentPID_.ResetIntegratorTo(0.0);
+  currentPID_.resetIntegratorTo(0.0);
   cv_.requestReseed();
   return 0.0;
 }

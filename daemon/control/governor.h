@@ -1,6 +1,6 @@
 #pragma once
-// governor_apply(): the single function between every duty request and the
-// PWM (field-control.md "Governor"). Bounds first, then the slew by govMode.
+// governorApply(): the single function between every duty request and the
+// PWM (docs/control.md "Governor"). Bounds first, then the slew by govMode.
 #include <algorithm>
 #include <cmath>
 
@@ -17,8 +17,8 @@ struct GovernorLimits {
 
 // finalMin = max(rpmMinDuty, MinDuty): even GOV_BYPASS_SLEW respects the tach
 // floor and the hard bounds; only the descent speed is unrestricted.
-inline double governor_apply(double lastApplied, double request, GovMode govMode, double rpmMinDuty,
-                             double dtSec, const GovernorLimits& lim) {
+inline double governorApply(double lastApplied, double request, GovMode govMode, double rpmMinDuty,
+                            double dtSec, const GovernorLimits& lim) {
   const double hardMax = std::clamp(lim.MaxDuty, 0.0, 100.0);
   const double finalMin = std::min(std::max(std::max(rpmMinDuty, lim.MinDuty), 0.0), hardMax);
   const double req = std::isfinite(request) ? request : finalMin;  // bad request: safest legal duty
@@ -33,15 +33,15 @@ inline double governor_apply(double lastApplied, double request, GovMode govMode
     default:
       // Bounds are enforced on the result too: coming up from 0 after field
       // turn-on the duty starts at the floor, never below it.
-      return std::clamp(slew_limit_f(last, requestClamped, lim.DutyRampRate, lim.DutyRampRate, dtSec),
-                        finalMin, hardMax);
+      return std::clamp(slewLimit(last, requestClamped, lim.DutyRampRate, lim.DutyRampRate, dtSec), finalMin,
+                        hardMax);
   }
 }
 
 // The shutdown special case (runShutdownPath): effective minimum 0, so the
 // duty can go below MinDuty/rpmMinDuty; ramps toward `target` at `rampRate`
 // (%/s) unless bypass, and never above MaxDuty.
-double governor_apply_shutdown(double lastApplied, double target, GovMode govMode, double rampRate,
-                               double dtSec, double maxDuty);
+double governorApplyShutdown(double lastApplied, double target, GovMode govMode, double rampRate,
+                             double dtSec, double maxDuty);
 
 }  // namespace xr

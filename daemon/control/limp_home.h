@@ -1,5 +1,5 @@
 #pragma once
-// Limp Home (field-control.md "Limp Home"): operator-toggled emergency mode.
+// Limp Home (docs/control.md "Limp Home"): operator-toggled emergency mode.
 // handleLimpHome() ramps the duty to LIMP_HOME_DUTY (30 %) through the normal
 // governor slew; mode selection has already bypassed every protection except
 // the INA228 hardware ALERT latch. One log event per LIMP_HOME_LOG_MS.
@@ -20,7 +20,7 @@ class LimpHome {
       lastLog_ = now;
       logged_ = true;
     }
-    return governor_apply(lastApplied, k::LIMP_HOME_DUTY, GovMode::GOV_NORMAL_SLEW, rpmMinDuty, dtSec, lim);
+    return governorApply(lastApplied, k::LIMP_HOME_DUTY, GovMode::GOV_NORMAL_SLEW, rpmMinDuty, dtSec, lim);
   }
   void reset() { logged_ = false; }
 

@@ -1,15 +1,15 @@
 #pragma once
-// Pid: our own PID with the semantics field-control.md expects of the seed's
+// Pid: our own PID with the semantics docs/control.md expects of the seed's
 // PID_v1_xeng library (Brett Beauregard's PID_v1 plus extensions):
 //  - DIRECT / REVERSE action (REVERSE: rising input raises the output),
 //  - output limits clamp both the output and the integrator (outputSum),
 //  - MANUAL / AUTOMATIC; MANUAL -> AUTOMATIC initialises outputSum from the
 //    current output and lastInput from the current input (bumpless),
 //  - derivative on measurement (no derivative kick on setpoint steps),
-//  - TrackAppliedOutput(): back-calculation anti-windup pulling outputSum
+//  - trackAppliedOutput(): back-calculation anti-windup pulling outputSum
 //    toward the actuator's applied value at `trackingGain` per second,
-//  - ResetIntegratorTo(), and P/I/D term read-back for telemetry.
-// Unlike the library, Compute() takes the real dt of this compute, so the
+//  - resetIntegratorTo(), and P/I/D term read-back for telemetry.
+// Unlike the library, compute() takes the real dt of this compute, so the
 // same gains give the same response at any tick rate (the library assumes its
 // nominal SampleTime). Plain state, no allocation.
 #include <algorithm>
@@ -24,27 +24,27 @@ class Pid {
 
   Pid(double kp, double ki, double kd, Direction dir);
 
-  void SetTunings(double kp, double ki, double kd) {
+  void setTunings(double kp, double ki, double kd) {
     if (kp < 0 || ki < 0 || kd < 0) return;  // library contract: gains are magnitudes
     kp_ = kp;
     ki_ = ki;
     kd_ = kd;
   }
-  void SetOutputLimits(double min, double max) {
+  void setOutputLimits(double min, double max) {
     if (!(min < max)) return;
     outMin_ = min;
     outMax_ = max;
     output = clampOut(output);
     outputSum_ = clampOut(outputSum_);
   }
-  void SetTrackingGain(double perSecond) { trackingGain_ = perSecond; }
-  void SetMode(Mode mode);  // bumpless on MANUAL -> AUTOMATIC
-  Mode GetMode() const { return mode_; }
+  void setTrackingGain(double perSecond) { trackingGain_ = perSecond; }
+  void setMode(Mode mode);  // bumpless on MANUAL -> AUTOMATIC
+  Mode mode() const { return mode_; }
 
   // Runs one compute with the real elapsed time. Returns false (and changes
   // nothing) in MANUAL or when dtSec <= 0 or the input is not finite.
   // Real-time thread, every tick: neither allocates nor blocks (docs/architecture.md "Threads").
-  bool Compute(double dtSec) noexcept {
+  bool compute(double dtSec) noexcept {
     if (mode_ != AUTOMATIC || !(dtSec > 0.0) || !std::isfinite(input) || !std::isfinite(setpoint))
       return false;
     const double sign = direction_ == DIRECT ? 1.0 : -1.0;
@@ -60,7 +60,7 @@ class Pid {
 
   // Anti-windup (back-calculation): outputSum += min(1, Kt*dt) *
   // ((applied - P - D) - outputSum). Neutral while the output is not clamped.
-  void TrackAppliedOutput(double applied, double dtSec) {
+  void trackAppliedOutput(double applied, double dtSec) {
     if (!(dtSec > 0.0) || !std::isfinite(applied)) return;
     // Back-calculation: pulls outputSum toward the value that, with the present
     // P and D terms, reproduces what the actuator actually applied. Zero effect
@@ -73,18 +73,18 @@ class Pid {
   // Parks the integrator itself toward `target` at Kt per second (T0's
   // implied-penalty anti-windup: "parks it near where the constraints already
   // imply", without making the penalty act while the temperature is low).
-  void TrackIntegratorTo(double target, double dtSec);
+  void trackIntegratorTo(double target, double dtSec);
   // Pins the integrator (and the output) to v, e.g. every MANUAL tick.
-  void ResetIntegratorTo(double v) {
+  void resetIntegratorTo(double v) {
     if (!std::isfinite(v)) return;
     outputSum_ = clampOut(v);
     output = outputSum_;
     lastInput_ = std::isfinite(input) ? input : lastInput_;
   }
 
-  double GetPterm() const { return pTerm_; }
-  double GetIterm() const { return outputSum_; }
-  double GetDterm() const { return dTerm_; }
+  double pTerm() const { return pTerm_; }
+  double iTerm() const { return outputSum_; }
+  double dTerm() const { return dTerm_; }
 
   // The library's three bound variables, held here instead of by pointer.
   double input = 0.0;

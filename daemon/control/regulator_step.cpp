@@ -1,9 +1,9 @@
-// Regulator::step: one control tick, in the order of architecture-legacy.md
-// "Main Loop Architecture" and battery-management.md "Critical ordering note":
+// Regulator::step: one control tick, in the order of docs/control.md
+// "Order of one tick" (the battery after the outputs: docs/batteries.md):
 //
 //   auto-zero -> corrected sensors + filters -> protection detectors
 //   (sustained timers) -> charging stage -> TickSnapshot -> mode selection ->
-//   mode transitions (enter_sys_*) -> shutdown path (incl. applyImmediateCut)
+//   mode transitions (enterSys*) -> shutdown path (incl. applyImmediateCut)
 //   or normal control (AUTO with fast-OV supervisors / MANUAL / Limp Home)
 //   -> governor -> outputs -> SoC update -> alarms -> telemetry.
 //
@@ -135,25 +135,25 @@ void Regulator::selectMode(Tick& t) noexcept {
   t.d = selectFieldMode(snap);
 }
 
-// 6. Mode transitions: bumpless enter_sys_* and the mode-change event.
+// 6. Mode transitions: bumpless enterSys* and the mode-change event.
 void Regulator::enterMode(Tick& t) noexcept {
   State& s = *s_;
   const ModeDecision& d = t.d;
   if (s.firstTick || d.mode != s.lastMode) {
     switch (d.mode) {
       case FieldControlMode::MODE_NORMAL_AUTO_PID:
-        s.law.enter_sys_auto(t.cs, s.p);
+        s.law.enterSysAuto(t.cs, s.p);
         if (!s.firstTick && isRampMode(s.lastMode)) s.law.onProtectionCleared(t.in.now);
         break;
       case FieldControlMode::MODE_NORMAL_MANUAL:
       case FieldControlMode::MODE_LIMP_HOME:
-        s.law.enter_sys_manual();
+        s.law.enterSysManual();
         break;
       case FieldControlMode::MODE_DISABLED_RAMP:
-        s.law.enter_sys_off();
+        s.law.enterSysOff();
         break;
       default:
-        s.law.enter_sys_fault();
+        s.law.enterSysFault();
         break;
     }
     s.out.events.push(makeEvent(t.in.now, isNormalMode(d.mode) ? EventLevel::Info : EventLevel::Warning,
@@ -258,7 +258,7 @@ void Regulator::applyField(Tick& t) noexcept {
 void Regulator::updateBattery(Tick& t) noexcept {
   State& s = *s_;
   EventBatch& ev = s.out.events;
-  s.bat.UpdateBatterySOC(t.in, t.MeasuredAmps, ev);
+  s.bat.updateBatterySoc(t.in, t.MeasuredAmps, ev);
   if (s.law.stages().completedOnTail()) s.bat.chargeCompletedOnTail(t.in.now, ev);
   s.prot.setBmsStale(s.law.bms().stale());
   s.out.buzzer = s.prot.checkAlarms(false, ev);

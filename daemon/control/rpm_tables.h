@@ -1,5 +1,5 @@
 #pragma once
-// field-control.md "RPM Tables": 10 breakpoints, linear interpolation, the
+// docs/control.md "RPM tables": 10 breakpoints, linear interpolation, the
 // first entry at or below the first breakpoint, the last entry at or above the
 // last one (no extrapolation either side).
 #include <algorithm>
@@ -44,7 +44,7 @@ inline double getCapCurrentForRPM(const Params& p, double rpm, double ibv) {
   return std::max(0.0, interpolateRpmTable(p.rpmTableRPMPoints, activeCapCurrentTable(p), rpm));
 }
 
-// rpmMinDuty (%), applied inside governor_apply().
+// rpmMinDuty (%), applied inside governorApply().
 inline double getMinDutyForRPM(const Params& p, double rpm) {
   return interpolateRpmTable(p.rpmTableRPMPoints, activeMinDutyTable(p), rpm);
 }

@@ -1,5 +1,5 @@
 #pragma once
-// slew_limit_f(): the seeds' asymmetric rate limiter (field-control.md
+// slewLimit(): the seeds' asymmetric rate limiter (docs/control.md
 // "Slew Rates and Time Constants"). Moves `current` toward `target` by at most
 // riseRate*dt upward and fallRate*dt downward. Rates are per second.
 #include <algorithm>
@@ -7,7 +7,7 @@
 
 namespace xr {
 
-inline double slew_limit_f(double current, double target, double riseRate, double fallRate, double dtSec) {
+inline double slewLimit(double current, double target, double riseRate, double fallRate, double dtSec) {
   if (!std::isfinite(current)) return target;
   if (dtSec <= 0.0) return current;
   const double up = riseRate * dtSec;

@@ -18,7 +18,7 @@ bool SystemId::start(TimeNs now, const SystemIdSnapshot& pre) {
   return true;
 }
 
-double SystemId::systemID_tick(TimeNs now, double measuredAmps, const Params& p, bool& finished) {
+double SystemId::systemIdTick(TimeNs now, double measuredAmps, const Params& p, bool& finished) {
   finished = false;
   if (!running_) return 0.0;
   const TimeNs half = fromMs(p.sysIDDurationMs);

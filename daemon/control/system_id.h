@@ -1,5 +1,5 @@
 #pragma once
-// SystemID (field-control.md "SystemID"): plant-delay step test. The duty is
+// SystemID (docs/control.md "SystemID, TuningMode and CVTuningMode"): plant-delay step test. The duty is
 // held at sysIDBaseDuty for sysIDDurationMs, then stepped to sysIDStepDuty for
 // sysIDDurationMs, with the governor in GOV_BYPASS_SLEW. The alternator
 // current response gives dead time (10 % of the final change), rise time
@@ -31,10 +31,10 @@ class SystemId {
   // Legal only while running normally in AUTO.
   bool start(TimeNs now, const SystemIdSnapshot& pre);
   // While running: returns sysIDDutyOut. Sets `finished` on the falling edge.
-  double systemID_tick(TimeNs now, double measuredAmps, const Params& p, bool& finished);
+  double systemIdTick(TimeNs now, double measuredAmps, const Params& p, bool& finished);
   void abort() { running_ = false; }
 
-  bool sysIDRunning() const { return running_; }
+  bool systemIdRunning() const { return running_; }
   const SystemIdSnapshot& snapshot() const { return pre_; }
   const SystemIdResult& result() const { return result_; }
   bool stepped() const { return stepped_; }

@@ -1,5 +1,5 @@
 #pragma once
-// Telemetry of one tick: the DESIGN.md CSV columns at the top level, then the
+// Telemetry of one tick: the CSV columns of docs/operations.md at the top level, then the
 // per-module detail. Plain data: copied out of the RT thread whole. It lives
 // beside the Regulator, where control, protection and battery meet: the
 // aggregate needs all three, and daemon/core (below them) must not.
@@ -55,7 +55,7 @@ struct Telemetry {
 // A column value: a number, a flag (0/1) or a name (mode, stage, reason).
 using ColumnValue = std::variant<double, bool, std::string_view>;
 
-// Visits the DESIGN.md telemetry columns in a fixed order: f(name, ColumnValue).
+// Visits the telemetry columns of docs/operations.md in a fixed order: f(name, ColumnValue).
 // t_s is seconds since `start`. The CSV writer and /api/status both use this,
 // so the names are spelled once.
 template <typename F>

@@ -1,6 +1,6 @@
 #pragma once
 // Lead-acid charge-voltage temperature compensation (docs/batteries.md,
-// docs/batteries.md; plant-facts §3.7.1: about -4 to -5 mV/degC per cell
+// docs/batteries.md; docs/sources.md P3.7.1: about -4 to -5 mV/degC per cell
 // around 25 degC). Compensation changes the targets the stage machine and the
 // voltage loop see, so telemetry target_v shows the compensated target.
 #include "params/params.h"

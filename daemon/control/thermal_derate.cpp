@@ -22,17 +22,17 @@ double ThermalDerate::update(const ThermalInputs& in, const Params& p) noexcept 
   if (p.IgnoreTemperature) {
     // T0 disabled with T1-T3: no derate at all.
     thermalPenaltyAmps_ = 0.0;
-    tempPID_.ResetIntegratorTo(0.0);
+    tempPID_.resetIntegratorTo(0.0);
     holding_ = false;
     return thermalPenaltyAmps_;
   }
-  tempPID_.SetTunings(p.TempPIDKp, p.TempPIDKi, p.TempPIDKd);
-  tempPID_.SetOutputLimits(0.0, std::max(1.0, p.MaxTableValue));
-  tempPID_.SetTrackingGain(p.PIDTrackingGain);
+  tempPID_.setTunings(p.TempPIDKp, p.TempPIDKi, p.TempPIDKd);
+  tempPID_.setOutputLimits(0.0, std::max(1.0, p.MaxTableValue));
+  tempPID_.setTrackingGain(p.PIDTrackingGain);
   // Regulate with a margin under the limit: T1 warns at the limit +
   // TempWarnExcess (2 degF by default), closer than the loop's own ripple.
   tempPID_.setpoint = p.TemperatureLimitF - p.TempRegulationMarginF;
-  if (tempPID_.GetMode() != Pid::AUTOMATIC) tempPID_.SetMode(Pid::AUTOMATIC);
+  if (tempPID_.mode() != Pid::AUTOMATIC) tempPID_.setMode(Pid::AUTOMATIC);
 
   // Stale or implausible input: the PID halts and the penalty HOLDS its last
   // value (never zeroed); T5 cuts the field if it stays stale.
@@ -74,7 +74,7 @@ double ThermalDerate::update(const ThermalInputs& in, const Params& p) noexcept 
     // A falling projection must not hide a present temperature already
     // over the setpoint (cooling slope while still too hot).
     tempPID_.input = std::max(projectedTempF_, tempFiltered_);
-    tempPID_.Compute(dt);
+    tempPID_.compute(dt);
     lastComputeNs_ = in.now;
     haveCompute_ = true;
   }
@@ -88,11 +88,11 @@ double ThermalDerate::update(const ThermalInputs& in, const Params& p) noexcept 
     // describes is parking the integrator, which is what we do (a
     // back-calculation on the output would wind the integrator far above the
     // implied penalty while the P term is strongly negative).
-    tempPID_.TrackIntegratorTo(trackTarget, in.dtSec);
+    tempPID_.trackIntegratorTo(trackTarget, in.dtSec);
   }
 
-  thermalPenaltyAmps_ = slew_limit_f(thermalPenaltyAmps_, tempPID_.output, p.ThermalPenaltyRiseRate,
-                                     p.ThermalPenaltyFallRate, in.dtSec);
+  thermalPenaltyAmps_ = slewLimit(thermalPenaltyAmps_, tempPID_.output, p.ThermalPenaltyRiseRate,
+                                  p.ThermalPenaltyFallRate, in.dtSec);
   return thermalPenaltyAmps_;
 }
 

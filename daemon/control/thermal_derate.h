@@ -1,6 +1,6 @@
 #pragma once
-// T0: the temperature PID (field-control.md "Temperature PID (tempPID)",
-// safeties-and-protections.md "T0 — Thermal PID"). REVERSE action on the
+// T0: the temperature PID (docs/control.md "Temperature PID (T0)",
+// docs/protections.md "Protections"). REVERSE action on the
 // predictive projectedTempF; output thermalPenaltyAmps, slew-limited.
 // Ours (docs/deviations.md "Thermal loop"): it regulates at
 // TemperatureLimitF - TempRegulationMarginF, on max(projected, present), with
@@ -39,7 +39,7 @@ class ThermalDerate {
   double thermalSlopeFPerSec() const { return thermalSlopeFPerSec_; }
   double thermalPenaltyAmps() const { return thermalPenaltyAmps_; }
   double penaltyTarget() const { return tempPID_.output; }  // thermalPenaltyAmps_d
-  double integrator() const { return tempPID_.GetIterm(); }
+  double integrator() const { return tempPID_.iTerm(); }
   bool holding() const { return holding_; }
 
  private:

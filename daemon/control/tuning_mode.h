@@ -1,5 +1,5 @@
 #pragma once
-// TuningMode (field-control.md "TuningMode (inner current loop)"): square-wave
+// TuningMode (docs/control.md "SystemID, TuningMode and CVTuningMode"): square-wave
 // current setpoint between TUNING_BASE_A and TUNING_BASE_A + waveAmplitude,
 // toggling every wavePeriod/2. The score (ISE/T of setpointLimited -
 // MeasuredAmps) accumulates only while the setpoint slews slower than

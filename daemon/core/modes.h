@@ -6,7 +6,7 @@
 
 namespace xr {
 
-// architecture-legacy.md "Mode Priority Hierarchy" + field-control.md Limp Home.
+// docs/protections.md "Mode priority" + docs/control.md "Limp Home".
 enum class FieldControlMode {
   MODE_CRITICAL_RAMP,
   MODE_WARNING_RAMP_AND_LOCKOUT,
@@ -17,16 +17,16 @@ enum class FieldControlMode {
   MODE_LIMP_HOME,
 };
 
-// field-control.md "Charging-Stage State Machine".
+// docs/control.md "Charging stages".
 enum class ChargeStage { BULK, ABSORPTION, FLOAT, IDLE };
 
-// field-control.md "Mode Entry Functions".
+// docs/control.md "Mode entry functions".
 enum class SysMode { SYS_MODE_OFF, SYS_MODE_MANUAL, SYS_MODE_AUTO, SYS_MODE_FAULT };
 
-// field-control.md "Governor".
+// docs/control.md "Governor".
 enum class GovMode { GOV_NORMAL_SLEW, GOV_BYPASS_SLEW, GOV_HOLD };
 
-// Shutdown phases (safeties-and-protections.md "Three shutdown paths").
+// Shutdown phases (docs/protections.md "Shutdown paths").
 enum class ShutdownPhase { PHASE_NONE, PHASE_1, PHASE_2, PHASE_3, PHASE_4, PHASE_DONE };
 
 // selectFieldEventReason(): what is acting. NONE when nothing is.

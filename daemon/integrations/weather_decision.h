@@ -1,5 +1,5 @@
 #pragma once
-// Weather mode's rule (docs/modes.md "Weather mode", docs/integrations.md
+// Weather mode's rule (docs/integrations.md
 // "Weather"): of the next three days, two or more with a UV index above
 // UVThresholdHigh mean the sun will charge the battery, and the alternator
 // may rest. Pure: the client feeds it the parsed forecast and its age.

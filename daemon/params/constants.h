@@ -5,7 +5,7 @@
 
 namespace xr::k {
 
-// safeties-and-protections.md "Group 1 — Prediction-Based Cap": arming dead-band.
+// docs/protections.md "Protections": arming dead-band.
 inline constexpr double PRED_GUARD = 0.06;  // V
 // "Group 1": dv/dt accepted only when INA samples are 1–100 ms apart.
 inline constexpr double DVDT_MIN_SAMPLE_S = 0.001;
@@ -40,7 +40,7 @@ inline constexpr double TEMP_VALID_MIN_F = -50.0;
 inline constexpr double TEMP_VALID_MAX_F = 400.0;
 // "Hard Overcurrent": HardOCTripAmps = MaxTableValue + this.
 inline constexpr double HARD_OC_OFFSET_A = 10.0;
-// field-control.md "BULK (CC)": two-sided band below BulkVoltage.
+// docs/control.md "Charging stages": two-sided band below BulkVoltage.
 inline constexpr double BULK_V_BAND_ENTER = 0.05;
 inline constexpr double BULK_V_BAND_EXIT = 0.10;
 // "FLOAT": unconditional re-bulk after 12 h in float.
@@ -78,7 +78,7 @@ inline constexpr std::int64_t LIMP_HOME_LOG_MS = 30000;
 inline constexpr std::int64_t ALARM_CHECK_MS = 250;
 inline constexpr std::int64_t ALARM_MESSAGE_THROTTLE_MS = 30000;
 inline constexpr double VOLTAGE_ALARM_LOW_FLOOR_V = 8.0;
-// battery-management.md.
+// docs/batteries.md.
 inline constexpr std::int64_t AUTO_ZERO_INTERVAL = 3600000;  // ms
 inline constexpr double AUTO_ZERO_TEMP_DELTA = 20.0;         // degF
 inline constexpr double AUTO_ZERO_MIN_RPM = 200.0;
@@ -99,7 +99,7 @@ inline constexpr std::int64_t BATTERY_TEMP_STALE_MS = 20000;
 // After start, a configured source has this long to post its first sample;
 // until then a bank that needs its temperature is not charged at all.
 inline constexpr std::int64_t BATTERY_TEMP_FIRST_SAMPLE_MS = 5000;
-// DS18B20 measuring range (datasheet-facts §3); outside it a value is invalid.
+// DS18B20 measuring range (docs/sources.md D3); outside it a value is invalid.
 inline constexpr double BATTERY_TEMP_VALID_MIN_C = -55.0;
 inline constexpr double BATTERY_TEMP_VALID_MAX_C = 125.0;
 // Hot stop resumes this far below ChargeMaxTempC (docs/batteries.md); the cold lockout
@@ -108,7 +108,7 @@ inline constexpr double BATTERY_HOT_HYSTERESIS_C = 3.0;
 inline constexpr double BATTERY_COLD_HYSTERESIS_C = 0.5;
 // Without a temperature, a bank with BatteryTempRequired charges at C/10.
 inline constexpr double BATTERY_NO_TEMP_RATE_C = 0.1;
-// Lead-acid compensation is referred to 25 degC (plant-facts §3.7.1) and never
+// Lead-acid compensation is referred to 25 degC (docs/sources.md P3.7.1) and never
 // raises a target closer than this to the hard-shutdown trip or the INA228
 // limit (the same margin CVTuningMode keeps).
 inline constexpr double TEMP_COMP_REFERENCE_C = 25.0;

@@ -21,7 +21,7 @@ bool isBankVoltage(const ParamSpec& spec, double value) {
 int nominalVoltage(SystemClass c) { return static_cast<int>(c); }
 
 VoltageRange plausibleVoltageRange(const Params& p) {
-  // safeties-and-protections.md "Implausibility": the seed's table, which
+  // docs/protections.md "Protections": the seed's table, which
   // already includes its 0.5 V buffer.
   switch (systemClass(p)) {
     case SystemClass::V12:

@@ -14,7 +14,7 @@ enum class SystemClass { V12 = 12, V24 = 24, V48 = 48 };
 // before 18 V; a 24 V bank equalising reaches ~32.4 V and a 48 V bank is flat
 // at ~40 V (docs/deviations.md "One bank-class rule").
 SystemClass bankClassOfVoltage(double volts);
-// bankClassOfVoltage(BulkVoltage) (architecture-legacy.md "Voltage
+// bankClassOfVoltage(BulkVoltage) (docs/protections.md "Voltage
 // Plausibility Ranges").
 SystemClass systemClass(const Params& p);
 // An absolute battery voltage (a set-point or an alarm: unit V, catalogue

@@ -1,7 +1,7 @@
 #pragma once
 // Params: one immutable value holding every user-settable parameter, generated
 // from catalogue.def. The regulator receives a whole Params between ticks and
-// never sees one mutated mid-tick (DESIGN.md "The core is pure").
+// never sees one mutated mid-tick (docs/architecture.md "One idea: a pure core inside a thin shell").
 #include <array>
 #include <cstddef>
 #include <optional>
@@ -10,7 +10,7 @@
 
 namespace xr {
 
-inline constexpr std::size_t RPM_TABLE_SIZE = 10;  // field-control.md "RPM Tables"
+inline constexpr std::size_t RPM_TABLE_SIZE = 10;  // docs/control.md "RPM tables"
 using RpmTable = std::array<double, RPM_TABLE_SIZE>;
 
 enum class ParamKind { Float, Int, Bool, Table };

@@ -1,6 +1,6 @@
 #pragma once
-// Rows of the seed's buzzer table (safeties-and-protections.md "Alarm Buzzer
-// (GPIO21)"), in order; Event::detail of an AlarmCondition event.
+// Rows of the seed's buzzer table (docs/protections.md "Protections"), in order; Event::detail of an
+// AlarmCondition event.
 #include <cstddef>
 #include <string_view>
 
@@ -16,7 +16,7 @@ enum class AlarmRow {
   InaOvervoltage,      // INA228 hardware OV latch
   TempSensorDead,      // no valid read for > 20 s
   EfficiencyAnomaly,   // effAnomalyAlarmActive
-  FaultMode,           // critical / warning / lockout mode (architecture-legacy.md GPIO21)
+  FaultMode,           // critical / warning / lockout mode (docs/install.md, the buzzer on GPIO21)
   TempTaskHung,        // NOT gated by AlarmActivate
   BmsStale,            // ours: BMS limits silent for BmsStaleS
 };

@@ -1,5 +1,5 @@
-// CheckAlarms(): the GPIO21 buzzer of safeties-and-protections.md "Alarm
-// Buzzer (GPIO21)". Evaluated every ALARM_CHECK_MS (250 ms); holds between.
+// CheckAlarms(): the GPIO21 buzzer of docs/protections.md "Protections". Evaluated every ALARM_CHECK_MS (250
+// ms); holds between.
 #include <cmath>
 
 #include "params/constants.h"

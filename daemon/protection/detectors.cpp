@@ -1,5 +1,5 @@
 // ProtectionSupervisor::updateDetectors(): every trigger of
-// safeties-and-protections.md, with its sustained timer. Flags only: which
+// docs/protections.md, with its sustained timer. Flags only: which
 // mode each flag acts in is decided by selectFieldMode().
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // runFastOvSupervisors(): the voltage OV throttling protections of
-// safeties-and-protections.md — Group 1 (prediction), Group 2 (measured),
+// docs/protections.md — Group 1 (prediction), Group 2 (measured),
 // Group 3 (iExcess) and load dump — all armed by the nearBulk gate and
 // voltageControlActive, all acting through fastOvCurrentCap /
 // fastOvClampActive and GOV_BYPASS_SLEW.

@@ -17,9 +17,9 @@ Reason hardDisableReason(const TickSnapshot& s) {
   return Reason::NONE;
 }
 
-// Every reason charging is disabled (architecture-legacy.md MODE_DISABLED_RAMP:
+// Every reason charging is disabled (docs/protections.md MODE_DISABLED_RAMP:
 // ignition off, OnOff = 0, BMS signal, weather mode; plus operator "off" and
-// the IDLE stage, where field-control.md sets chargingEnabled = false).
+// the IDLE stage, where docs/control.md sets chargingEnabled = false).
 Reason disableReason(const TickSnapshot& s) {
   if (s.sysOff) return Reason::REASON_SYS_OFF;
   if (Reason r = hardDisableReason(s); r != Reason::NONE) return r;

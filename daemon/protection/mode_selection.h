@@ -1,7 +1,7 @@
 #pragma once
 // selectFieldControlMode() / selectFieldEventReason(): the pure priority
-// functions of architecture-legacy.md "Mode Priority Hierarchy" as amended by
-// safeties-and-protections.md ("Mode-by-Mode Active Protections").
+// functions of docs/protections.md "Mode priority" as amended by
+// docs/protections.md "Protections".
 //
 // Priority, highest first (first match wins):
 //   0. INA228 software latch -> MODE_CRITICAL_RAMP, REASON_INA_OVERVOLTAGE

@@ -1,6 +1,6 @@
 #pragma once
 // ProtectionSupervisor: owns ALL protection state of
-// safeties-and-protections.md (detectors, INA228 software latch, shutdown
+// docs/protections.md (detectors, INA228 software latch, shutdown
 // sequencer, cooldown lockout, fast-OV supervisors, alarm buzzer).
 //
 // Pure: no I/O, no clock (time comes from Inputs::now), no allocation after
@@ -29,7 +29,7 @@
 //       - if sc.active: Outputs.dutyPct = sc.dutyPct, Outputs.fieldEnable =
 //         sc.fieldEnable, lastAppliedDuty = sc.dutyPct, govMode = sc.govMode.
 //         The duty is already slewed by the phase rates: do NOT run
-//         governor_apply() on it (effectiveMin is 0 in shutdown). Skip the
+//         governorApply() on it (effectiveMin is 0 in shutdown). Skip the
 //         normal control path (PID tracks lastAppliedDuty as in MANUAL).
 //       - if !sc.active: run the normal path (AUTO PID / MANUAL / Limp Home).
 //         Outputs.fieldEnable may be true.
@@ -74,7 +74,7 @@ struct ShutdownCommand {
   double dutyPct = 0.0;     // duty to apply (already slewed; 0..100)
   bool fieldEnable = true;  // GPIO4; false once cut
   GovMode govMode = GovMode::GOV_NORMAL_SLEW;
-  double effectiveMin = 0.0;       // always 0 during shutdown (field-control.md)
+  double effectiveMin = 0.0;       // always 0 during shutdown (docs/control.md)
   bool applyImmediateCut = false;  // control must run its applyImmediateCut() resets
   ShutdownPhase phase = ShutdownPhase::PHASE_NONE;
   bool faultAlarm = false;  // critical/warning/lockout (not DISABLED): GPIO21 wants ON

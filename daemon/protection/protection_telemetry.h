@@ -17,7 +17,7 @@ struct ProtectionTelemetry {
   bool buzzer = false;
   Reason lastTripReason = Reason::NONE;
   double lastTripTimeS = 0.0;
-  // Fast-OV supervisors (safeties-and-protections.md Groups 1/2/3, load dump).
+  // Fast-OV supervisors (docs/protections.md Groups 1/2/3, load dump).
   bool group1Active = false, group2Active = false, group3Active = false, loadDumpActive = false;
   double Vpred = 0.0;
   double dvdt = 0.0;     // V/s, EMA at DvdtAlpha

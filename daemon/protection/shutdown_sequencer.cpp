@@ -1,4 +1,4 @@
-// runShutdownPath(): the three shutdown paths of safeties-and-protections.md
+// runShutdownPath(): the three shutdown paths of docs/protections.md
 // ("Three shutdown paths", "Cooldown lockout") plus MODE_DISABLED_RAMP.
 //
 //   immediate cut  -> duty 0 and GPIO4 LOW this tick, phase jumps to PHASE_4,
@@ -33,7 +33,7 @@ void ProtectionSupervisor::startLockout(EventBatch& ev) {
 ShutdownCommand ProtectionSupervisor::runShutdownPath(const ModeDecision& d, double lastAppliedDuty,
                                                       double rpmMinDuty, EventBatch& ev) {
   // ModeChanged ("Entering normal mode" / "Exiting normal mode: <reason>") is
-  // emitted by Regulator::step with its enter_sys_* transition, not here, so
+  // emitted by Regulator::step with its enterSys* transition, not here, so
   // the journal gets one line per transition.
   lastMode_ = d.mode;
   lastReason_ = d.reason;

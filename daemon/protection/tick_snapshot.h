@@ -1,6 +1,6 @@
 #pragma once
 // TickSnapshot: the immutable state capture that mode selection reads
-// (architecture-legacy.md "Main Loop Architecture" step 1, "Mode Priority
+// (docs/control.md "Order of one tick" step 1, "Mode Priority
 // Hierarchy"). selectFieldControlMode() / selectFieldEventReason() are pure
 // functions of this struct and nothing else.
 //

@@ -17,7 +17,7 @@ bool ControlCycle::onEvery(int ticks) const noexcept {
 }
 
 void ControlCycle::applyPending() noexcept {
-  // DESIGN.md: Params are swapped whole between ticks, never mid-tick.
+  // docs/architecture.md "Threads": Params are swapped whole between ticks, never mid-tick.
   if (h_.params.update()) {
     core_.setParams(h_.params.current());
     ++health_.paramSwaps;

@@ -1,6 +1,6 @@
 #pragma once
 // ControlCycle: the ONE loop body shared by the board and the simulation
-// (DESIGN.md "One control loop, two clocks"):
+// (docs/architecture.md "Threads"):
 //
 //   commands + Params swap (between ticks) → read INA228 + ADS1115 → merge
 //   slow sensors and discrete inputs into Inputs → Regulator::step → write

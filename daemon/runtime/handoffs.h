@@ -1,6 +1,6 @@
 #pragma once
 // Every lock-free hand-off between the RT control thread and the rest of the
-// daemon, in one place (DESIGN.md thread model):
+// daemon, in one place (docs/architecture.md "Threads"):
 //   in : commands (bounded SPSC), whole Params (triple buffer), slow sensor
 //        samples (seqlocks written by the 1-Wire and VE.Direct threads)
 //   out: newest snapshot (seqlock: telemetry + loop statistics + sim truth),

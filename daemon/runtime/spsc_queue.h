@@ -1,5 +1,5 @@
 #pragma once
-// Bounded single-producer / single-consumer queue (DESIGN.md thread model):
+// Bounded single-producer / single-consumer queue (docs/architecture.md "Threads"):
 // commands in to the RT thread, events and telemetry rows out of it.
 // Wait-free on both sides, no allocation after construction. Exactly one
 // thread may push and exactly one may pop; callers with several producers

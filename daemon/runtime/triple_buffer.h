@@ -2,7 +2,7 @@
 // Whole-value hand-off with one writer and one reader, three preallocated
 // slots, no allocation and no waiting on either side. Used for the whole-
 // Params swap: a non-RT thread writes a validated Params, the RT thread picks
-// it up between ticks (DESIGN.md: "Parameters are one Params value, swapped
+// it up between ticks (docs/architecture.md "Threads": "Parameters are one Params value, swapped
 // whole between ticks, never mutated mid-tick").
 #include <array>
 #include <atomic>

@@ -89,7 +89,7 @@ class SimRunner {
   std::unique_ptr<Impl> d_;
 };
 
-// CSV per DESIGN.md: the telemetry columns, then the sim_* truth columns.
+// CSV per docs/operations.md "Telemetry CSV columns": the telemetry columns, then the sim_* truth columns.
 void writeCsvHeader(std::ostream& os);
 void writeCsvRow(std::ostream& os, const SimRow& row);
 

@@ -4,7 +4,7 @@
 // Each channel sample carries its value (scaled by drivers/frontend), the
 // ADC volts, a timestamp and a freshness flag.
 //
-// The MUX rule (datasheet-facts §2.4): a Config write in continuous mode does
+// The MUX rule (docs/sources.md D2.4): a Config write in continuous mode does
 // not affect the conversion in progress; the first result with the new MUX
 // is the one completing after the NEXT conversion start. Two pacings:
 //  - Timed (no ALERT/RDY wired; also the simulator): after each MUX write a

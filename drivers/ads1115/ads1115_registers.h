@@ -1,5 +1,5 @@
 #pragma once
-// ADS1115 register map and encodings (datasheet-facts §2). Pure constexpr.
+// ADS1115 register map and encodings (docs/sources.md D2). Pure constexpr.
 #include <cstdint>
 
 namespace xr::ads1115 {

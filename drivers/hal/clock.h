@@ -1,5 +1,5 @@
 #pragma once
-// One control loop, two clocks (DESIGN.md): monotonic real time on the board,
+// One control loop, two clocks (docs/architecture.md "Threads"): monotonic real time on the board,
 // virtual time in simulation. Same loop body on both.
 #include "core/time.h"
 

@@ -1,7 +1,7 @@
 #pragma once
 // Register access helpers over the I2cBus seam for chips with an 8-bit
 // register pointer and big-endian (MSB first) registers: INA228 and ADS1115
-// (datasheet-facts §1.6, §2.5). Header-only, no allocation, noexcept.
+// (docs/sources.md D1.6, §2.5). Header-only, no allocation, noexcept.
 #include <cstddef>
 #include <cstdint>
 

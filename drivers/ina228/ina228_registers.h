@@ -1,5 +1,5 @@
 #pragma once
-// INA228 register map and encodings (datasheet-facts §1). Pure constexpr
+// INA228 register map and encodings (docs/sources.md D1). Pure constexpr
 // helpers, tested directly and shared by nothing else: the simulator's chip
 // model is written separately from the same facts so the two check each other.
 #include <cstdint>

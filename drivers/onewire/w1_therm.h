@@ -1,5 +1,5 @@
 #pragma once
-// Linux w1_therm sysfs (datasheet-facts §3): parse the two-line `w1_slave`
+// Linux w1_therm sysfs (docs/sources.md D3): parse the two-line `w1_slave`
 // format and find DS18B20 (family 28) sensors under a configurable root.
 #include <optional>
 #include <string>

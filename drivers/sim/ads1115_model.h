@@ -1,5 +1,5 @@
 #pragma once
-// TI ADS1115 register-level model from datasheet-facts.md §2 (TI SBAS444):
+// TI ADS1115 register-level model from docs/sources.md D2 (TI SBAS444):
 // Config register (OS, MUX, PGA, MODE, DR, COMP_MODE/POL/LAT/QUE), one data
 // period per conversion at the chosen data rate (scaled by the internal
 // oscillator's tolerance, `clockScale`), single-shot and continuous modes,

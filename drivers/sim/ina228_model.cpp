@@ -153,7 +153,7 @@ void Ina228Model::publish(double dt) noexcept {
     }
     chargeAcc_ += double(current_) * dt;
     if (chargeAcc_ >= 0x1.0p39 || chargeAcc_ <= -0x1.0p39 - 1.0) {
-      chargeAcc_ = 0.0;  // rolls over to 0 and flags it (datasheet-facts 1.4)
+      chargeAcc_ = 0.0;  // rolls over to 0 and flags it (docs/sources.md D1.4)
       diag_ |= CHARGEOF;
     }
   }

@@ -1,5 +1,5 @@
 #pragma once
-// TI INA228 register-level model, written from datasheet-facts.md §1 (the TI
+// TI INA228 register-level model, written from docs/sources.md D1 (the TI
 // datasheet SLYS021A), not from our driver, so the two check each other.
 //
 // What it models: the register map with reset values and access rights,
@@ -49,7 +49,7 @@ inline constexpr std::uint16_t ALATCH = 1u << 15, CNVR = 1u << 14, SLOWALERT = 1
                                SHNTOL = 1u << 6, SHNTUL = 1u << 5, BUSOL = 1u << 4, BUSUL = 1u << 3,
                                POL = 1u << 2, CNVRF = 1u << 1, MEMSTAT = 1u << 0;
 inline constexpr std::uint16_t kLimitFlags = TMPOL | SHNTOL | SHNTUL | BUSOL | BUSUL | POL;
-// Conversion time per VBUSCT/VSHCT/VTCT code, µs (datasheet-facts 1.3; code 7 = 4120).
+// Conversion time per VBUSCT/VSHCT/VTCT code, µs (docs/sources.md D1.3; code 7 = 4120).
 inline constexpr int kConvTimeUs[8] = {50, 84, 150, 280, 540, 1052, 2074, 4120};
 inline constexpr int kAvgSamples[8] = {1, 4, 16, 64, 128, 256, 512, 1024};
 // Register size in bytes (0 = reserved address).

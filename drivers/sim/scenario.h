@@ -1,5 +1,5 @@
 #pragma once
-// Scenario files (DESIGN.md "Scenario file"): TOML describing the boat, the
+// Scenario files (docs/simulator.md "Scenario file"): TOML describing the boat, the
 // starting state, parameter overrides and timed events. A bad file (syntax,
 // unknown key, unknown fault, value out of range, events out of order) throws
 // ScenarioError whose message starts with "file:line:"; the daemon prints it

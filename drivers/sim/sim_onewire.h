@@ -1,7 +1,7 @@
 #pragma once
 // A simulated DS18B20 on a simulated Linux w1 sysfs tree, so the real w1
 // reader runs on it unchanged: <root>/28-xxxxxxxxxxxx/w1_slave in the kernel's
-// two-line format (datasheet-facts §3):
+// two-line format (docs/sources.md D3):
 //   "2c 01 4b 46 7f ff 0c 10 61 : crc=61 YES"
 //   "2c 01 4b 46 7f ff 0c 10 61 t=18750"
 // The file is refreshed once per conversion (750 ms at 12 bits) and only

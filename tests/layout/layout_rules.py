@@ -100,6 +100,11 @@ CLOCK_RE = re.compile(r"\b(system_clock|steady_clock|high_resolution_clock|getti
 # A comment says why and points into the repository: an issue tracker's
 # numbers mean nothing to a reader of the code (the developers' guide).
 ISSUE_TAG_RE = re.compile(r"\b[Ii]ssues? #?\d+")
+# ... and points into the repository: the specification and fact files the
+# project started from are not part of it (docs/control.md, docs/protections.md,
+# docs/batteries.md and docs/sources.md say the same in the repository).
+OUTSIDE_REF_RE = re.compile(r"\b(field-control|safeties-and-protections|architecture-legacy|battery-management|"
+                            r"DESIGN)\.md|\b(plant|datasheet)-facts\b")
 SIGNATURE_SKIP = ("#", "//", "namespace", "}", "using", "class", "struct", "enum", "extern", "template", "static_assert")
 
 
@@ -195,6 +200,9 @@ def check(root):
         for m in ISSUE_TAG_RE.finditer(text):
             line = text.count("\n", 0, m.start()) + 1
             problems.append(f"{rel}:{line}: an issue number ({m.group(0)}): say the reason and cite docs/")
+        for m in OUTSIDE_REF_RE.finditer(text):
+            line = text.count("\n", 0, m.start()) + 1
+            problems.append(f"{rel}:{line}: a file outside the repository ({m.group(0)}): cite docs/")
         if here in PURE_FOLDERS:
             for m in CLOCK_RE.finditer(text):
                 line = text.count("\n", 0, m.start()) + 1
@@ -267,6 +275,7 @@ def self_test():
         "daemon/control/f.cpp": "int f() {\n" + "  g();\n" * MAX_FUNCTION_LINES + "}\n",  # a long function
         "daemon/battery/g.cpp": "auto t = std::chrono::system_clock::now();\n",  # a clock in the core
         "daemon/app/h.cpp": "// The retry (issue 12, item 3).\n",  # an issue number instead of a reason
+        "drivers/sim/i.h": "// 1.2 A (plant-facts 2.4).\n",  # a file outside the repository
     }
     failures = []
     with tempfile.TemporaryDirectory() as tmp:

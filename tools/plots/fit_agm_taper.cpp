@@ -1,5 +1,5 @@
 // Fit of the lead-acid end-of-charge constants in drivers/sim/plant/battery.cpp
-// (b, g0, m, eps) to Rod Collins' Lifeline GPL-31T tests (plant-facts MS):
+// (b, g0, m, eps) to Rod Collins' Lifeline GPL-31T tests (docs/sources.md MS):
 // 14.4 V reached at 63.3 % SoC at 0.4C and 77.4 % at 0.2C from 50 %, full
 // (0.5 % C tail) after ~5.5 h at 0.2C; g0 is tied to b, m, eps by a steady
 // current at full of 0.4 % C (below the 0.5 % C "full" criterion).

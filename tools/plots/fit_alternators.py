@@ -4,7 +4,7 @@
 The model is drivers/sim/plant/lundell.h's (same equations). Prints the
 fitted values that drivers/sim/plant/lundell.cpp's presets carry.
 Bosch LiX 180 A (SARA): flux_k, flux_sat_a, stator_l_h, stator_rx_ohm to the
-25 °C full-field curve and the six part-field points of plant-facts §2.7,
+25 °C full-field curve and the six part-field points of docs/sources.md P2.7,
 with a soft pull of the hot/cold ratio at 4000 rpm toward 0.80 (Xantrex:
 "as much as 25 %" less hot). Westerbeke 48 A (WB33): flux_k, flux_sat_a,
 stator_l_h and the (copper) stator resistance to the cold and hot points.

@@ -26,7 +26,7 @@ SARA_FULL = [(2000, 120), (4000, 170), (6000, 180)]  # Bosch LiX 180 A, 25 °C, 
 WB33_COLD = [(1300, 24), (2500, 50)]
 WB33_HOT = [(1300, 16), (2500, 41), (5000, 48)]
 MERC = [(600, 21), (1000, 37), (1500, 44), (2000, 48), (2500, 50), (3000, 51), (4000, 52), (5000, 52)]  # engine rpm, 12.6 V
-# plant-facts §2.7, Ford 130 A (RIVAS), derived minimum field for conduction.
+# docs/sources.md P2.7, Ford 130 A (RIVAS), derived minimum field for conduction.
 FORD_KNEE = [(1200, 3.30), (1500, 2.64), (1800, 2.20), (2000, 1.98), (3000, 1.32), (4000, 0.99), (6000, 0.66)]
 # OCV tables (12 V values / cells).
 LSOL_LFP = [(0, 2.833), (5, 3.132), (10, 3.177), (15, 3.190), (20, 3.213), (25, 3.226), (30, 3.240), (35, 3.252),
@@ -83,7 +83,7 @@ def alternator(d, out):
     for preset, style in (("ford-130", "-"), ("bosch-lix-180", "--")):
         g = [r for r in knee if r["preset"] == preset]
         axes[2].plot(col(g, "rpm"), col(g, "knee_field_a"), style, label=f"model {preset}")
-    axes[2].plot(*zip(*FORD_KNEE), "o", label="Ford 130 A, derived table (plant-facts §2.7)")
+    axes[2].plot(*zip(*FORD_KNEE), "o", label="Ford 130 A, derived table (docs/sources.md P2.7)")
     axes[2].set_title("Knee: field needed before any output (13.5 V)")
     axes[2].set_xlabel("shaft rpm")
     axes[2].set_ylabel("field A")

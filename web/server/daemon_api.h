@@ -28,7 +28,7 @@
 
 namespace xr::web {
 
-// Control-loop timing measured by the runtime (DESIGN.md thread model).
+// Control-loop timing measured by the runtime (docs/architecture.md "Threads").
 struct LoopStats {
   std::uint64_t ticks = 0;     // ticks since start
   std::uint64_t overruns = 0;  // deadlines missed entirely (skipped)
@@ -47,7 +47,7 @@ struct LoopStats {
   std::uint64_t sensor_errors = 0;  // failed I2C reads since start
 };
 
-// The simulator plant's truth (DESIGN.md CSV columns sim_*). Absent on hardware.
+// The simulator plant's truth (CSV columns sim_*, docs/operations.md). Absent on hardware.
 struct SimTruth {
   double battery_v = 0.0;
   double alt_a = 0.0;
@@ -132,7 +132,7 @@ struct EventQuery {
   std::optional<std::int64_t> before;  // only ids < before
 };
 
-// History: numeric telemetry columns (DESIGN.md CSV names) averaged over
+// History: numeric telemetry columns (docs/operations.md "Telemetry CSV columns") averaged over
 // buckets of `step_s` seconds. Times are Unix epoch seconds.
 struct HistoryQuery {
   std::vector<std::string> series;  // e.g. {"battery_v", "alt_a"}; validated by the daemon

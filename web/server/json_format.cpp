@@ -61,7 +61,7 @@ json::object loopToJson(const LoopStats& l) {
   return o;
 }
 
-// The CSV's flags are 0/1 (DESIGN.md); a program reading JSON gets booleans.
+// The CSV's flags are 0/1 (docs/architecture.md "Threads"); a program reading JSON gets booleans.
 json::value columnToJson(std::string_view name, const ColumnValue& v) {
   if (const auto* d = std::get_if<double>(&v)) return statusNumber(name, *d);
   if (const auto* b = std::get_if<bool>(&v)) return *b;
@@ -254,10 +254,9 @@ std::string metricsText(const StatusSnapshot* s, const WebServerStats& st) {
   if (s) {
     visitTelemetryColumns(s->telemetry, s->start, [&](std::string_view name, const ColumnValue& v) {
       if (const auto* d = std::get_if<double>(&v))
-        promLine(out, promName(name), "gauge", "DESIGN.md telemetry column " + std::string(name), *d);
+        promLine(out, promName(name), "gauge", "telemetry column " + std::string(name), *d);
       else if (const auto* b = std::get_if<bool>(&v))
-        promLine(out, promName(name), "gauge", "DESIGN.md telemetry flag " + std::string(name),
-                 *b ? 1.0 : 0.0);
+        promLine(out, promName(name), "gauge", "telemetry flag " + std::string(name), *b ? 1.0 : 0.0);
     });
     // Names (mode, stage, reason) as info-style label sets.
     for (auto [metric, label] : {std::pair{"xregulator_mode_info", toString(s->telemetry.mode)},

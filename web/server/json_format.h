@@ -12,7 +12,7 @@
 
 namespace xr::web {
 
-// /api/status and the /ws frames: every DESIGN.md CSV column at the top level
+// /api/status and the /ws frames: every CSV column (docs/operations.md) at the top level
 // (visitTelemetryColumns, plus sim_* in simulation), then "control",
 // "protection", "battery", "loop", "seq", "wall_time_s" and the extras' sections.
 boost::json::object statusToJson(const StatusSnapshot& s);

@@ -2,7 +2,7 @@
 // The /api/status shape for programs (docs/dashboard.md): one naming style
 // (snake_case) in the nested sections, numbers rounded to what the sensors
 // resolve, whole numbers as integers, null for "no value" sentinels. The
-// DESIGN.md CSV column names stay as they are (they are snake_case already).
+// The CSV column names (docs/operations.md) stay as they are (they are snake_case already).
 #include <boost/json.hpp>
 #include <string>
 #include <string_view>

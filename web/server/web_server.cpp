@@ -1,7 +1,7 @@
 // WebServer: Beast listener, HTTP sessions, WebSocket sessions and the
 // telemetry broadcaster, all on the server's own Asio threads.
 //
-// Per DESIGN.md the control thread is never involved: the broadcaster polls
+// Per docs/architecture.md "Threads" the control thread is never involved: the broadcaster polls
 // DaemonApi::latestStatus() (a lock-free copy) at the WebSocket rate,
 // serialises the snapshot ONCE and hands the same shared string to every
 // client. Each client keeps at most one pending frame (the newest): a slow

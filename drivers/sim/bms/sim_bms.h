@@ -6,7 +6,7 @@
 //        scenario's bms_ccl_a. Taper by SoC after the dbus-serialbattery
 //        table (85 %: 100 %, 90 %: 50 %, 95 %: 20 %, 98 %: 10 %), by
 //        temperature 0 A at <= 0 degC rising to full at 10 degC (CCL 0 at
-//        0 degC in the same driver); plant-facts 3.10.3
+//        0 degC in the same driver); docs/sources.md P3.10.3
 //   warnings: high voltage above CVL + 0.1 V, or forced (bms_warn)
 // If its limits are ignored (charge current above CCL + 5 A, or any charge
 // above 2 A while it warns) for openAfterS, it opens its contactor: the

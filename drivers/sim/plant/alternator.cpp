@@ -85,7 +85,7 @@ void AlternatorModel::setSpeed(double engineRpm) noexcept {
   x_ = we_ * m_.stator_l_h;
   x2_ = x_ * x_;
   // Fan cooling grows with speed; a fifth of it remains at standstill
-  // (convection). The shape is an assumption: plant-facts §2.11 has no
+  // (convection). The shape is an assumption: docs/sources.md P2.11 has no
   // airflow numbers.
   gCaseAir_ = m_.case_air_g_w_k * (0.2 + 0.8 * std::min(2.0, altRpm_ / kFanRefRpm));
 }
@@ -130,7 +130,7 @@ void AlternatorModel::step(double duty, double fieldV, double engineRpm, double 
   // Heat: stator copper and field winding into the winding node, the diode
   // bridge (on the housing) into the case node. Iron, friction and windage
   // are left out: with these alone the Bosch preset runs at ~55 % efficiency
-  // at its rated point, the published figure (plant-facts REMY).
+  // at its rated point, the published figure (docs/sources.md REMY).
   const double iph = amps_ / kIdcPerIph;
   const double pStator = 3.0 * iph * iph * rcu_ + fieldA_ * fieldA_ * rf_;
   const double pCase = 2.0 * m_.diode_v * amps_;

@@ -10,7 +10,7 @@ bool isLead(Chemistry c) { return c != Chemistry::lifepo4; }
 
 // Resistance rise in the cold, Arrhenius-shaped: B chosen so that R(−20 °C)
 // is 2.75 x R(25 °C), the middle of the "+150-200 % at −20 °C" quoted for
-// LiFePO4 (plant-facts §3.4, LOW-AUTH). No lead-acid figure exists there;
+// LiFePO4 (docs/sources.md P3.4, LOW-AUTH). No lead-acid figure exists there;
 // the same law is used for lead.
 constexpr double kArrheniusB = 1697.0;
 double coldFactor(double tC) { return std::exp(kArrheniusB * (1.0 / (tC + 273.15) - 1.0 / 298.15)); }
@@ -37,11 +37,11 @@ Chem chemOf(Chemistry c) {
     // chosen so a 0.5C charge at 14.2 V holds CV 20-60 min (Battle Born >=
     // 20 min, Mastervolt ~30 min) before 0.02C, and a full bank takes no
     // more than ~0.03C at 14.5 V (no gassing in LiFePO4). Hysteresis gap 15 mV/cell,
-    // the middle of ACCURE's 5-25 mV. Efficiency 0.99 (plant-facts §3.9).
+    // the middle of ACCURE's 5-25 mV. Efficiency 0.99 (docs/sources.md P3.9).
     return {3.2, 0.1, 0.5, 0.5, 30.0, 900.0, 0.5, 0.11, 3.0, 1.3, 0.006, 0.015, 0.99, 8.0, 0.0025};
   }
   // Lead-acid (AGM fit; flooded and gel share it, with their OCV tables).
-  // R0 0.5 Ω·Ah per 12 V (UNCONFIRMED: plant-facts has no lead DC figure).
+  // R0 0.5 Ω·Ah per 12 V (UNCONFIRMED: docs/sources.md has no lead DC figure).
   // tau2 2 h: rest 6 h or more before an OCV reading (Trojan, Odyssey).
   // End-of-charge constants fitted (tools/plots/fit_agm_taper.cpp) to Rod
   // Collins' Lifeline GPL-31T at 14.4 V from 50 %: absorption reached at
@@ -76,18 +76,18 @@ std::optional<Chemistry> parseChemistry(std::string_view n) {
 std::vector<OcvPoint> defaultOcvTable(Chemistry c) {
   switch (c) {
     case Chemistry::lifepo4:
-      // Libre Solar BMS firmware table (plant-facts §3.1, LSOL), per cell.
+      // Libre Solar BMS firmware table (docs/sources.md P3.1, LSOL), per cell.
       return {{0.00, 2.833}, {0.05, 3.132}, {0.10, 3.177}, {0.15, 3.190}, {0.20, 3.213}, {0.25, 3.226},
               {0.30, 3.240}, {0.35, 3.252}, {0.40, 3.262}, {0.45, 3.264}, {0.50, 3.265}, {0.55, 3.268},
               {0.60, 3.271}, {0.65, 3.275}, {0.70, 3.283}, {0.75, 3.296}, {0.80, 3.304}, {0.85, 3.308},
               {0.90, 3.309}, {0.95, 3.314}, {1.00, 3.392}};
     case Chemistry::agm:
     case Chemistry::gel:
-      // Lifeline AGM (plant-facts §3.3, LL): 10.50/11.75/12.20/12.55/12.80 V
+      // Lifeline AGM (docs/sources.md P3.3, LL): 10.50/11.75/12.20/12.55/12.80 V
       // per 12 V at 0/25/50/75/100 %. Gel has no table there and uses it.
       return {{0.0, 10.50 / 6}, {0.25, 11.75 / 6}, {0.50, 12.20 / 6}, {0.75, 12.55 / 6}, {1.0, 12.80 / 6}};
     case Chemistry::flooded:
-      // Libre Solar's lead-acid line (plant-facts §3.3, LSOL x 6).
+      // Libre Solar's lead-acid line (docs/sources.md P3.3, LSOL x 6).
       return {{0.0, 11.52 / 6},  {0.25, 11.84 / 6}, {0.35, 11.96 / 6},
               {0.50, 12.15 / 6}, {0.75, 12.47 / 6}, {1.0, 12.78 / 6}};
   }
@@ -126,9 +126,9 @@ BatteryModel::BatteryModel(const BatteryConfig& c)
   eocM_ = k.eocM;
   eocEps_ = k.eocEps;
   hystV_ = 0.5 * k.hystCellV * cells_;
-  eff_ = c.chemistry == Chemistry::flooded ? 0.85 : k.eff;  // flooded: ~85 % (plant-facts §3.9)
+  eff_ = c.chemistry == Chemistry::flooded ? 0.85 : k.eff;  // flooded: ~85 % (docs/sources.md P3.9)
   const double kwh = k.cellNominalV * cells_ * cap_ / 1000.0;
-  // Assumed (not in plant-facts): ~8 kJ/K per kWh for LiFePO4 (~10 kg at
+  // Assumed (not in docs/sources.md): ~8 kJ/K per kWh for LiFePO4 (~10 kg at
   // ~1 kJ/(kg·K) per 1.3 kWh), ~20 kJ/K per kWh for lead; ~2.5 W/K per kWh
   // to still air. Time constants of hours.
   heatC_ = k.heatJPerKWh * 1000.0 * kwh;

@@ -42,7 +42,7 @@ LundellParams presetParams(AlternatorPreset p) {
   LundellParams m;  // defaults: bosch-lix-180
   switch (p) {
     case AlternatorPreset::bosch_lix_180:
-      // Bosch LiX 180 A / 2.4 kW (plant-facts SARA): 8 pole pairs, copper
+      // Bosch LiX 180 A / 2.4 kW (docs/sources.md SARA): 8 pole pairs, copper
       // 30 mΩ at 20 °C, field 5.0 A max at 13.5 V (2.70 Ω at 25 °C: winding
       // 1.90 Ω + brushes and driver), L_f 0.2 H. flux_k, flux_sat_a,
       // stator_l_h and stator_rx_ohm are fitted (tools/plots/fit_alternators.py)
@@ -50,7 +50,7 @@ LundellParams presetParams(AlternatorPreset p) {
       // and the six part-field points of §2.7.
       break;
     case AlternatorPreset::westerbeke_48:
-      // Westerbeke 33A's 48 A alternator (plant-facts WB33): cold 24/50 A and
+      // Westerbeke 33A's 48 A alternator (docs/sources.md WB33): cold 24/50 A and
       // hot 16/41/48 A at 1300/2500/5000 rpm, 13.5 V. Not published, so
       // assumed: 6 pole pairs, the XEN field circuit (12.83 V / 4.2 A =
       // 3.05 Ω), SARA's L_f/R_f (0.105 s). Fitted: flux, L_s and the stator
@@ -65,7 +65,7 @@ LundellParams presetParams(AlternatorPreset p) {
       m.field_l_h = 0.32;
       break;
     case AlternatorPreset::ford_130:
-      // Ford 130 A (plant-facts RIVAS), published parameters only, no fit:
+      // Ford 130 A (docs/sources.md RIVAS), published parameters only, no fit:
       // 6 pole pairs, k_e 3.72 mV·s/A, no saturation data (linear), L_s
       // 120 µH, R_s 37 mΩ, 3.6 A max field (3.75 Ω at 13.5 V, DERIVED),
       // V_d 0.9 V as in the §2.7 knee table. L_f/R_f assumed SARA's 0.105 s.
@@ -80,7 +80,7 @@ LundellParams presetParams(AlternatorPreset p) {
       m.diode_v = 0.9;
       break;
     case AlternatorPreset::mercury_52:
-      // Mercury 150 EFI alternator (plant-facts MERC): 21/37/44/48/50/51/52/
+      // Mercury 150 EFI alternator (docs/sources.md MERC): 21/37/44/48/50/51/52/
       // 52 A at 600-5000 engine rpm into 12.6 V, temperature not stated (taken
       // as 25 °C), belt ratio not given. Assumed 6 pole pairs and the XEN field
       // circuit; fitted (tools/plots/fit_alternators.py) flux, L_s, the

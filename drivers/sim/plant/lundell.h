@@ -1,6 +1,6 @@
 #pragma once
 // The electrical side of a Lundell (claw-pole) alternator, as in the
-// published reduced models (docs/simulator.md "Alternator"; plant-facts §2.1):
+// published reduced models (docs/simulator.md "Alternator"; docs/sources.md P2.1):
 //   field:   v_f = R_f(T)·i_f + L_f·di_f/dt
 //   flux:    λ(i_f) = k·i_sat·tanh(i_f / i_sat)   (saturation, SARA's k_e(i_f))
 //   EMF:     E = ω_e·λ / √2 per phase (rms), ω_e = pole pairs × shaft rad/s
@@ -13,10 +13,10 @@
 // λ/(√2·L_s), a current limit set by the field: the curve flattens.
 namespace xr::sim {
 
-inline constexpr double kCopperAlpha = 0.00393;  // 1/K at 20 °C (plant-facts CU)
+inline constexpr double kCopperAlpha = 0.00393;  // 1/K at 20 °C (docs/sources.md CU)
 inline constexpr double kHotC = 150.0;           // "hot" windings: ARCO's stator at 305 °F in its hot test
 inline constexpr double kRatingV = 13.5;         // test voltage of published curves (SARA, WB33, BALC)
-inline constexpr double kMaxAltRpm = 18000.0;    // highest rated shaft speed (plant-facts HYU, KIA)
+inline constexpr double kMaxAltRpm = 18000.0;    // highest rated shaft speed (docs/sources.md HYU, KIA)
 
 struct LundellParams {
   double pole_pairs = 8.0;
@@ -60,7 +60,7 @@ inline double fullFieldAmps(const LundellParams& m, double fieldV, double tC) {
   return fieldV / (m.field_r_ohm * copperFactor(tC));
 }
 // Lowest shaft rpm at which the machine, cold (25 °C) at full duty from
-// kRatingV, opens to 14 V (the cut-in test: plant-facts §2.6.2).
+// kRatingV, opens to 14 V (the cut-in test: docs/sources.md P2.6.2).
 double cutInRpm(const LundellParams& m);
 
 }  // namespace xr::sim

@@ -86,7 +86,7 @@ TEST(FullCharge, NotDeclaredOnStaleSensor) {
     r.now += fromSec(1.0);
     r.in.now = r.now;
     r.ev.clear();
-    r.mon.UpdateBatterySOC(r.in, 0.0, r.ev);
+    r.mon.updateBatterySoc(r.in, 0.0, r.ev);
   }
   EXPECT_FALSE(r.mon.fullChargeDetected());
   EXPECT_LT(r.mon.socPercent(), 100.0);

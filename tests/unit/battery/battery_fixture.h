@@ -31,7 +31,7 @@ struct BatteryRig {
     ev.clear();
     mon.checkAutoZeroTriggers(in, ev);
     mon.processAutoZero(in, ev);
-    mon.UpdateBatterySOC(in, mon.correctedAltAmps(altRaw), ev);
+    mon.updateBatterySoc(in, mon.correctedAltAmps(altRaw), ev);
   }
   // Runs for `seconds` at `dt` with the current sample.
   void run(double seconds, double dt, double altRaw = 0.0) {

@@ -278,7 +278,7 @@ TEST(BatterySource, StaleInaIsNotIntegrated) {
     r.now += fromSec(1.0);
     r.in.now = r.now;
     r.ev.clear();
-    r.mon.UpdateBatterySOC(r.in, 0.0, r.ev);
+    r.mon.updateBatterySoc(r.in, 0.0, r.ev);
   }
   EXPECT_LT(r.mon.ledger().CoulombCount_Ah, 100.0 + 50.0 * 3.0 / 3600.0);
 }

@@ -264,9 +264,9 @@ TEST(ChargingStage, EnterSysAutoResumesAfterAShortAbsence) {
   rig.start();
   rig.run(2.0);
   ASSERT_EQ(rig.law.stages().stage(), ChargeStage::ABSORPTION);
-  rig.law.enter_sys_off();
+  rig.law.enterSysOff();
   rig.now += fromSec(rig.p.StageResumeMaxSec);  // exactly at the limit: still resumes
-  rig.law.enter_sys_auto(rig.sensors(), rig.p);
+  rig.law.enterSysAuto(rig.sensors(), rig.p);
   EXPECT_EQ(rig.law.stages().stage(), ChargeStage::ABSORPTION);
 }
 
@@ -277,9 +277,9 @@ TEST(ChargingStage, EnterSysAutoStartsInBulkAfterALongAbsence) {
   rig.start();
   rig.run(2.0);
   ASSERT_EQ(rig.law.stages().stage(), ChargeStage::ABSORPTION);
-  rig.law.enter_sys_off();
+  rig.law.enterSysOff();
   rig.now += fromSec(rig.p.StageResumeMaxSec + 0.01);
-  rig.law.enter_sys_auto(rig.sensors(), rig.p);
+  rig.law.enterSysAuto(rig.sensors(), rig.p);
   EXPECT_EQ(rig.law.stages().stage(), ChargeStage::BULK);
   rig.run(2.0);  // and fast-forwards again when the battery is already up
   EXPECT_EQ(rig.law.stages().stage(), ChargeStage::ABSORPTION);
@@ -293,8 +293,8 @@ TEST(ChargingStage, StageResumeZeroKeepsTheSeedsAlwaysBulk) {
   rig.start();
   rig.run(2.0);
   ASSERT_EQ(rig.law.stages().stage(), ChargeStage::ABSORPTION);
-  rig.law.enter_sys_off();
-  rig.law.enter_sys_auto(rig.sensors(), rig.p);
+  rig.law.enterSysOff();
+  rig.law.enterSysAuto(rig.sensors(), rig.p);
   EXPECT_EQ(rig.law.stages().stage(), ChargeStage::BULK);
 }
 

@@ -117,11 +117,11 @@ TEST(CommandPath, PidComputesOnEveryPidSampleDivisorthSample) {
   rig.start();
   rig.run(0.5);
   int changes = 0;
-  double last = rig.law.currentPID().GetPterm();
+  double last = rig.law.currentPID().pTerm();
   for (int i = 0; i < 40; ++i) {
     rig.tick();
-    if (rig.law.currentPID().GetPterm() != last) ++changes;
-    last = rig.law.currentPID().GetPterm();
+    if (rig.law.currentPID().pTerm() != last) ++changes;
+    last = rig.law.currentPID().pTerm();
   }
   EXPECT_EQ(changes, 10);
 }

@@ -122,7 +122,7 @@ TEST(FieldRest, SystemIdEndsARestLikeTheOtherTuningModes) {
   r.tick();
   EXPECT_FALSE(r.law.fieldResting());
   EXPECT_GT(r.duty, 0.0);  // the step test drives the field
-  for (int i = 0; i < 10 * 400 && r.law.sysIDRunning(); ++i) {
+  for (int i = 0; i < 10 * 400 && r.law.systemIdRunning(); ++i) {
     r.tick();
     EXPECT_FALSE(r.law.fieldResting());
   }

@@ -41,7 +41,7 @@ struct LawRig {
   void start() {
     tempStamp = now;
     law.updateFilters(sensors(), p);
-    law.enter_sys_auto(sensors(), p);
+    law.enterSysAuto(sensors(), p);
     law.onFieldTurnOn(now);
   }
 

@@ -202,12 +202,12 @@ TEST(SystemId, MeasuresDeadTimeRiseTimeAndSlopeAndRestores) {
   rig.run(5.0);
   const double spBefore = rig.law.setpointLimited();
   ASSERT_TRUE(rig.law.startSystemId(rig.now, true));
-  EXPECT_TRUE(rig.law.sysIDRunning());
+  EXPECT_TRUE(rig.law.systemIdRunning());
   rig.run(0.5);
   EXPECT_EQ(rig.law.govMode(), GovMode::GOV_BYPASS_SLEW);
   EXPECT_DOUBLE_EQ(rig.duty, rig.p.sysIDBaseDuty);
   rig.run(6.0);
-  ASSERT_FALSE(rig.law.sysIDRunning());
+  ASSERT_FALSE(rig.law.systemIdRunning());
   const SystemIdResult& r = rig.law.systemId().result();
   ASSERT_TRUE(r.valid);
   // Dead time 50 ms + 10 % of a 200 ms first-order rise (21 ms).
@@ -216,23 +216,23 @@ TEST(SystemId, MeasuresDeadTimeRiseTimeAndSlopeAndRestores) {
   EXPECT_NEAR(r.I1 - r.I0, (rig.p.sysIDStepDuty - rig.p.sysIDBaseDuty) * rig.plant.ampsPerPct, 0.5);
   EXPECT_GT(r.slopeAps, 0.0);
   EXPECT_NEAR(rig.law.setpointLimited(), spBefore, 3.0);  // restored (then slewing again)
-  EXPECT_EQ(rig.law.currentPID().GetMode(), Pid::AUTOMATIC);
+  EXPECT_EQ(rig.law.currentPID().mode(), Pid::AUTOMATIC);
 }
 
 TEST(SystemId, IllegalOutsideAutoAndAbortedByImmediateCut) {
   test::LawRig rig;
   rig.start();
-  rig.law.enter_sys_manual();
+  rig.law.enterSysManual();
   EXPECT_FALSE(rig.law.startSystemId(rig.now, true));
-  rig.law.enter_sys_auto(rig.sensors(), rig.p);
+  rig.law.enterSysAuto(rig.sensors(), rig.p);
   EXPECT_FALSE(rig.law.startSystemId(rig.now, false));
   ASSERT_TRUE(rig.law.startSystemId(rig.now, true));
   rig.law.applyImmediateCut();
-  EXPECT_FALSE(rig.law.sysIDRunning());
+  EXPECT_FALSE(rig.law.systemIdRunning());
   EXPECT_EQ(rig.law.sysMode(), SysMode::SYS_MODE_FAULT);
   EXPECT_DOUBLE_EQ(rig.law.setpointLimited(), 0.0);
   EXPECT_DOUBLE_EQ(rig.law.lastAppliedDuty(), 0.0);
-  EXPECT_EQ(rig.law.currentPID().GetMode(), Pid::MANUAL);
+  EXPECT_EQ(rig.law.currentPID().mode(), Pid::MANUAL);
 }
 
 TEST(LimpHome, RampsToThirtyPercentAndLogsEvery30Seconds) {
@@ -243,7 +243,7 @@ TEST(LimpHome, RampsToThirtyPercentAndLogsEvery30Seconds) {
   s.rpm = 2000;
   s.now = fromSec(1);
   law.updateFilters(s, p);
-  law.enter_sys_manual();
+  law.enterSysManual();
   int logs = 0;
   double duty = 0;
   for (int i = 0; i < 40000; ++i) {  // 100 s at 2.5 ms
