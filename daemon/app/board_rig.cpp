@@ -69,10 +69,8 @@ BoardRig::BoardRig(const Settings& settings) {
   }
   ds18b20_ = std::make_unique<Ds18b20Reader>(hw.w1_root, hw.onewire_sensor_id);
   ds18b20_->excludeId(hw.battery_temp_sensor);
-  ds18b20_->start();
   if (!hw.battery_temp_sensor.empty()) {
     batteryDs18b20_ = std::make_unique<Ds18b20Reader>(hw.w1_root, hw.battery_temp_sensor);
-    batteryDs18b20_->start();
   }
   if (!hw.vedirect_port.empty()) {
     vedirect_ = std::make_unique<VeDirectReader>(hw.vedirect_port);
@@ -117,27 +115,25 @@ void BoardRig::registerFatalActions() {
                          &pwmSafe_);
 }
 
+void BoardRig::attach(rt::Handoffs& h) {
+  handoffs_ = &h;
+  // One hand-off per reading: the reader thread stores it where the cycle
+  // reads it (docs/architecture.md "Threads").
+  ds18b20_->onSample([&h](const Ds18b20Sample& s) { h.temperature.store(temperatureHandoff(s)); });
+  ds18b20_->start();
+  if (batteryDs18b20_) {
+    // Source ds18b20 from the start, before the first reading, so the core
+    // knows a probe is expected (docs/batteries.md).
+    h.batteryTemp.store(batteryTempHandoff(Ds18b20Sample{}));
+    batteryDs18b20_->onSample([&h](const Ds18b20Sample& s) { h.batteryTemp.store(batteryTempHandoff(s)); });
+    batteryDs18b20_->start();
+  }
+}
+
 void BoardRig::beforeTick(TimeNs) {
   if (!handoffs_) return;
-  // Relay the slow threads' lock-free samples into the cycle's hand-offs,
-  // only when the reader moved on (about once a second): an unchanged
-  // hand-off costs the control cycle nothing to read.
-  const Ds18b20Sample s = ds18b20_->latest();
-  if (s.heartbeat != lastTempHeartbeat_ || s.stamp != lastTempStamp_) {
-    handoffs_->temperature.store(temperatureHandoff(s));
-    lastTempHeartbeat_ = s.heartbeat;
-    lastTempStamp_ = s.stamp;
-  }
-  if (batteryDs18b20_) {
-    // Posted from the first tick on (source ds18b20 before the first
-    // reading), then whenever the reader completes a cycle.
-    const Ds18b20Sample b = batteryDs18b20_->latest();
-    if (!batteryTempPosted_ || b.heartbeat != lastBatteryHeartbeat_) {
-      handoffs_->batteryTemp.store(batteryTempHandoff(b));
-      batteryTempPosted_ = true;
-      lastBatteryHeartbeat_ = b.heartbeat;
-    }
-  }
+  // Relay VE.Direct's lock-free sample into the cycle's hand-off, only when
+  // the reader moved on: an unchanged hand-off costs the cycle nothing.
   if (vedirect_) {
     const VeDirectSample v = vedirect_->latest();
     if (v.frames != lastVictronFrames_ && v.hasCurrent) {

@@ -26,7 +26,9 @@ class BoardRig final : public rt::TickHook {
   Clock& loopClock() { return clock_; }
   rt::MonotonicClock& wall() { return clock_; }
   DriverSensors::StartReport startSensors(double bovlVolts);
-  void attach(rt::Handoffs& h) { handoffs_ = &h; }
+  // The hand-offs the cycle reads; starts the DS18B20 readers, which write
+  // their temperatures into them from their own thread.
+  void attach(rt::Handoffs& h);
   // Async-signal-safe fatal actions: PWM duty 0 + enable 0 via the
   // pre-opened sysfs descriptors, GPIO4 LOW via its requested line.
   void registerFatalActions();
@@ -48,12 +50,9 @@ class BoardRig final : public rt::TickHook {
   std::string readyLineWarning_;
   std::unique_ptr<Ds18b20Reader> ds18b20_;
   std::unique_ptr<Ds18b20Reader> batteryDs18b20_;  // [hardware] battery_temp_sensor (docs/batteries.md)
-  bool batteryTempPosted_ = false;
-  TimeNs lastBatteryHeartbeat_ = 0;
   std::unique_ptr<VeDirectReader> vedirect_;
   rt::Handoffs* handoffs_ = nullptr;
   std::uint64_t lastVictronFrames_ = 0;
-  TimeNs lastTempHeartbeat_ = -1, lastTempStamp_ = -1;  // -1: nothing relayed yet
 };
 
 }  // namespace xr::app

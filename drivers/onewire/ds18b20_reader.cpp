@@ -111,6 +111,7 @@ void Ds18b20Reader::readOnce() {
   state_.lastError = r.error;
   state_.heartbeat = t;
   out_.store(state_);
+  if (sink_) sink_(state_);
 }
 
 void Ds18b20Reader::run() {

@@ -39,6 +39,12 @@ class Ds18b20Reader {
   // sensor on the same bus).
   void excludeId(std::string id) { exclude_ = std::move(id); }
 
+  // Called on the reader's thread with each cycle's sample, after latest()
+  // has it: the consumer's own hand-off is written once, by this thread.
+  // Set before start().
+  using Sink = std::function<void(const Ds18b20Sample&)>;
+  void onSample(Sink sink) { sink_ = std::move(sink); }
+
   void start();
   void stop() noexcept;
   // One read cycle (what the thread does each period); public for tests.
@@ -61,6 +67,7 @@ class Ds18b20Reader {
   NowFn now_;
   Ds18b20Sample state_;
   SeqLock<Ds18b20Sample> out_;
+  Sink sink_;
   std::atomic<bool> stop_{false};
   std::thread thread_;
 };

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cmath>
 #include <thread>
+#include <vector>
 
 #include "drivers/onewire/ds18b20_reader.h"
 #include "drivers/onewire/w1_therm.h"
@@ -81,6 +82,25 @@ TEST_F(Ds18b20ReaderTest, PublishesFahrenheitStampAndHeartbeat) {
   EXPECT_EQ(s.stamp, fakeNow);
   EXPECT_EQ(s.heartbeat, fakeNow);
   EXPECT_EQ(s.good, 1u);
+}
+
+// The board's hand-off: each cycle's sample reaches the sink once, on the
+// reader's thread, equal to what latest() then returns (good or bad).
+TEST_F(Ds18b20ReaderTest, EachCycleHandsItsSampleToTheSinkOnce) {
+  test::writeFile(d / "28-00000abc/w1_slave", kGood);
+  Ds18b20Reader r(d.path(), "28-00000abc", 1'000'000'000, now());
+  std::vector<Ds18b20Sample> seen;
+  r.onSample([&seen](const Ds18b20Sample& s) { seen.push_back(s); });
+  r.readOnce();
+  fakeNow += 1'000'000'000;
+  test::writeFile(d / "28-00000abc/w1_slave", "garbage\n");
+  r.readOnce();
+  ASSERT_EQ(seen.size(), 2u);
+  EXPECT_EQ(seen[0].stamp, 5'000'000'000);
+  EXPECT_EQ(seen[1].heartbeat, fakeNow) << "a bad read still beats the heart";
+  EXPECT_EQ(seen[1].stamp, 5'000'000'000) << "and keeps the last good stamp";
+  EXPECT_EQ(seen[1].bad, r.latest().bad);
+  EXPECT_EQ(seen[1].heartbeat, r.latest().heartbeat);
 }
 
 TEST_F(Ds18b20ReaderTest, BadReadKeepsTheOldStampButBeatsTheHeart) {
