@@ -13,11 +13,11 @@ using namespace battery_detail;
 
 // ---------------------------------------------------------------- auto-zero
 
-double BatteryMonitor::temperatureF(const Inputs& in) const {
+double BatteryMonitor::temperatureF(const Inputs& in) const noexcept {
   return alternatorTemperature(in, p_.TempSource).value;
 }
 
-void BatteryMonitor::checkAutoZeroTriggers(const Inputs& in, EventBatch& ev) {
+void BatteryMonitor::checkAutoZeroTriggers(const Inputs& in, EventBatch& ev) noexcept {
   const double temp = temperatureF(in);
   if (!started_) {
     started_ = true;
@@ -46,7 +46,7 @@ void BatteryMonitor::checkAutoZeroTriggers(const Inputs& in, EventBatch& ev) {
                     tempShift ? 1 : 0));
 }
 
-bool BatteryMonitor::processActiveAutoZero(const Inputs& in, EventBatch& ev) {
+bool BatteryMonitor::processActiveAutoZero(const Inputs& in, EventBatch& ev) noexcept {
   const TimeNs elapsed = in.now - autoZeroStartTime_;
   if (elapsed < fromMs(battery_k::AUTO_ZERO_DURATION_MS)) {
     // Field is held off by the caller; sample only after the 2 s settle and

@@ -25,7 +25,7 @@ BatteryMonitor::BatteryMonitor(const Params& p) : p_(p) {
   ledger_.valid = true;
 }
 
-void BatteryMonitor::setParams(const Params& p) {
+void BatteryMonitor::setParams(const Params& p) noexcept {
   p_ = p;
   telemetryStale_ = true;
   ledger_.CoulombCount_Ah = std::clamp(ledger_.CoulombCount_Ah, 0.0, p_.BatteryCapacity_Ah);
@@ -33,30 +33,30 @@ void BatteryMonitor::setParams(const Params& p) {
 
 // ---------------------------------------------------------------- sources of truth
 
-double BatteryMonitor::getBatteryVoltage(const Inputs& in) const { return in.IBV.value; }
+double BatteryMonitor::getBatteryVoltage(const Inputs& in) const noexcept { return in.IBV.value; }
 
-bool BatteryMonitor::usingVictronCurrent(const Inputs& in) const {
+bool BatteryMonitor::usingVictronCurrent(const Inputs& in) const noexcept {
   return p_.BatteryCurrentSource == 3 && usable(in.VictronCurrent, in.now, k::VICTRON_STALE_MS);
 }
 
-double BatteryMonitor::getBatteryCurrent(const Inputs& in) const {
+double BatteryMonitor::getBatteryCurrent(const Inputs& in) const noexcept {
   if (usingVictronCurrent(in)) return in.VictronCurrent.value;
   return correctedBcur(in.Bcur.value);
 }
 
 // ---------------------------------------------------------------- commands
 
-void BatteryMonitor::resetSocGain() {
+void BatteryMonitor::resetSocGain() noexcept {
   ledger_.DynamicShuntGainFactor = 1.0;
   telemetryStale_ = true;
 }
 
-void BatteryMonitor::resetAltZero() {
+void BatteryMonitor::resetAltZero() noexcept {
   ledger_.DynamicAltCurrentZero = 0.0;
   telemetryStale_ = true;
 }
 
-bool BatteryMonitor::setSoc(double pct) {
+bool BatteryMonitor::setSoc(double pct) noexcept {
   if (!finite(pct) || pct < 0.0 || pct > 100.0) return false;
   ledger_.CoulombCount_Ah = p_.BatteryCapacity_Ah * pct / 100.0;
   ledger_.coulombAccumulator_Ah = 0.0;
@@ -70,7 +70,7 @@ bool BatteryMonitor::setSoc(double pct) {
 
 // ---------------------------------------------------------------- persistence
 
-BatteryLedger BatteryMonitor::ledger() const {
+BatteryLedger BatteryMonitor::ledger() const noexcept {
   BatteryLedger l = ledger_;
   // Whole + retained fraction: the store keeps the exact total.
   l.ChargedEnergy_AllTime_Wh += charged_.lifetimeFraction_Wh;
@@ -81,7 +81,7 @@ BatteryLedger BatteryMonitor::ledger() const {
   return l;
 }
 
-void BatteryMonitor::restoreLedger(const BatteryLedger& in) {
+void BatteryMonitor::restoreLedger(const BatteryLedger& in) noexcept {
   using namespace battery_k;
   BatteryLedger l = in;
   const double cap = p_.BatteryCapacity_Ah;
@@ -125,15 +125,15 @@ void BatteryMonitor::restoreLedger(const BatteryLedger& in) {
 
 // ---------------------------------------------------------------- outputs
 
-double BatteryMonitor::chargedEnergyLifetimeWh() const {
+double BatteryMonitor::chargedEnergyLifetimeWh() const noexcept {
   return ledger_.ChargedEnergy_AllTime_Wh + charged_.lifetimeFraction_Wh;
 }
 
-double BatteryMonitor::alternatorChargedEnergyLifetimeWh() const {
+double BatteryMonitor::alternatorChargedEnergyLifetimeWh() const noexcept {
   return ledger_.AlternatorChargedEnergy_AllTime_Wh + altCharged_.lifetimeFraction_Wh;
 }
 
-void BatteryMonitor::updateTelemetry(BatteryTelemetry& t) {
+void BatteryMonitor::updateTelemetry(BatteryTelemetry& t) noexcept {
   if (telemetryStale_) {
     fillTelemetry(t);
     telemetryStale_ = false;
@@ -147,7 +147,7 @@ void BatteryMonitor::updateTelemetry(BatteryTelemetry& t) {
   t.socSource = socSource();
 }
 
-void BatteryMonitor::fillTelemetry(BatteryTelemetry& t) const {
+void BatteryMonitor::fillTelemetry(BatteryTelemetry& t) const noexcept {
   t.SOC_percent = socPercent();
   t.socKnown = socKnown();
   t.socSource = socSource();

@@ -86,62 +86,63 @@ enum class GainGuard {
 class BatteryMonitor {
  public:
   explicit BatteryMonitor(const Params& p);
-  void setParams(const Params& p);
+  void setParams(const Params& p) noexcept;
 
   // ---- auto-zero (before the control step) --------------------------------
   // Starts an auto-zero when AutoAltCurrentZero, not running, RPM >= 200 and
   // (hourly interval elapsed or temperature moved >= 20 degF). The hourly
   // timer starts at the first tick; the temperature baseline is the first
   // valid temperature. Emits AutoZeroStarted.
-  void checkAutoZeroTriggers(const Inputs& in, EventBatch& ev);
+  void checkAutoZeroTriggers(const Inputs& in, EventBatch& ev) noexcept;
   // Runs the field-off sampling window. Returns true while active (the caller
   // forces MODE_LOCKOUT_RAMP, field LOW, duty MinDuty). On completion sets
   // DynamicAltCurrentZero = mean raw CH1 after the 2 s settle and emits
   // AutoZeroDone (a = new zero A, detail 0 = ok, 1 = no samples, 2 = rejected
   // as implausible).
-  bool processAutoZero(const Inputs& in, EventBatch& ev) {  // inline idle path: no call on almost every tick
+  bool processAutoZero(const Inputs& in,
+                       EventBatch& ev) noexcept {  // inline idle path: no call on almost every tick
     return autoZeroActive_ && processActiveAutoZero(in, ev);
   }
-  bool autoZeroActive() const { return autoZeroActive_; }
+  bool autoZeroActive() const noexcept { return autoZeroActive_; }
 
   // ---- corrected sensor values ---------------------------------------------
-  double correctedAltAmps(double rawAmps) const { return rawAmps - ledger_.DynamicAltCurrentZero; }
-  double correctedBcur(double raw) const { return raw * ledger_.DynamicShuntGainFactor; }
+  double correctedAltAmps(double rawAmps) const noexcept { return rawAmps - ledger_.DynamicAltCurrentZero; }
+  double correctedBcur(double raw) const noexcept { return raw * ledger_.DynamicShuntGainFactor; }
   // IBV (INA228 bus voltage) always.
-  double getBatteryVoltage(const Inputs& in) const;
+  double getBatteryVoltage(const Inputs& in) const noexcept;
   // INA228 Bcur x gain, or VictronCurrent when BatteryCurrentSource == 3 and
   // its sample is no older than VICTRON_STALE_MS (else falls back to INA228).
-  double getBatteryCurrent(const Inputs& in) const;
-  bool usingVictronCurrent(const Inputs& in) const;
+  double getBatteryCurrent(const Inputs& in) const noexcept;
+  bool usingVictronCurrent(const Inputs& in) const noexcept;
 
   // ---- SoC and energy (after the control step, every tick) -----------------
   // measuredAltAmps = correctedAltAmps(raw CH1). Integrates current and power
   // every tick (zero-order hold of the latest sample), runs the seed's
   // updateBatterySoc body every SOCUpdateInterval on the interval totals and
   // calculateChargeTimes() every INA_SLOW_INTERVAL_MS.
-  void updateBatterySoc(const Inputs& in, double measuredAltAmps, EventBatch& ev);
+  void updateBatterySoc(const Inputs& in, double measuredAltAmps, EventBatch& ev) noexcept;
 
   // ---- commands (between ticks) --------------------------------------------
-  void resetSocGain();      // handleSocGainReset: DynamicShuntGainFactor = 1.0
-  void resetAltZero();      // handleAltZeroReset: DynamicAltCurrentZero = 0
-  bool setSoc(double pct);  // false (unchanged) when pct is outside 0..100 or NaN
+  void resetSocGain() noexcept;      // handleSocGainReset: DynamicShuntGainFactor = 1.0
+  void resetAltZero() noexcept;      // handleAltZeroReset: DynamicAltCurrentZero = 0
+  bool setSoc(double pct) noexcept;  // false (unchanged) when pct is outside 0..100 or NaN
 
   // ---- persistence ---------------------------------------------------------
-  BatteryLedger ledger() const;
+  BatteryLedger ledger() const noexcept;
   // Restores lifetime state; implausible values (NaN, negative energies, gain
   // outside its bounds, count outside 0..capacity) are clamped or reset.
-  void restoreLedger(const BatteryLedger& l);
+  void restoreLedger(const BatteryLedger& l) noexcept;
 
   // ---- outputs -------------------------------------------------------------
-  void fillTelemetry(BatteryTelemetry& t) const;
+  void fillTelemetry(BatteryTelemetry& t) const noexcept;
   // Per-tick telemetry for a struct that lives from tick to tick and that
   // only this call writes (Regulator's Outputs): nearly every field changes
   // only when the SoC body, the charge-time prediction, an auto-zero, a
   // command, setParams or restoreLedger runs, so the whole struct is
   // refilled only then; otherwise only the per-tick fields are written.
   // The result is always equal to fillTelemetry() (battery_test checks it).
-  void updateTelemetry(BatteryTelemetry& t);
-  double socPercent() const {  // inline: read several times per tick
+  void updateTelemetry(BatteryTelemetry& t) noexcept;
+  double socPercent() const noexcept {  // inline: read several times per tick
     const double cap = p_.BatteryCapacity_Ah;
     if (!(cap > 0.0)) return 0.0;
     return ledger_.CoulombCount_Ah / cap * 100.0;
@@ -149,43 +150,44 @@ class BatteryMonitor {
   // False while the SoC is the constructor's guess: no valid ledger restored,
   // no setSoc, no full-charge detection yet. Control may ignore SOC gating
   // (StageInputs::socValid) while this is false.
-  bool socKnown() const { return socSource() == SocSource::Counted; }
-  SocSource socSource() const { return static_cast<SocSource>(static_cast<int>(ledger_.SocSource)); }
-  bool fullChargeDetected() const { return FullChargeDetected_; }
+  bool socKnown() const noexcept { return socSource() == SocSource::Counted; }
+  SocSource socSource() const noexcept { return static_cast<SocSource>(static_cast<int>(ledger_.SocSource)); }
+  bool fullChargeDetected() const noexcept { return FullChargeDetected_; }
   // The charging stage ended absorption on its tail current: the bank is
   // full, a detected full charge like the monitor's own (its voltage and
   // tail thresholds may differ from the stage's, and a bank that rests
   // after absorption never meets them again; docs/batteries.md).
-  void chargeCompletedOnTail(TimeNs now, EventBatch& ev);
-  double chargedEnergyLifetimeWh() const;
-  double alternatorChargedEnergyLifetimeWh() const;
+  void chargeCompletedOnTail(TimeNs now, EventBatch& ev) noexcept;
+  double chargedEnergyLifetimeWh() const noexcept;
+  double alternatorChargedEnergyLifetimeWh() const noexcept;
   // Last applySocGainCorrection outcome (tests, diagnostics).
-  GainGuard lastGainGuard() const { return lastGainGuard_; }
+  GainGuard lastGainGuard() const noexcept { return lastGainGuard_; }
 
   // Peukert factor of the seed, (PeukertRatedCurrent_A / I)^(n-1) clamped to
   // 0.5..2.0, or 1 at or below C/100. Public for tests.
   static double peukertFactor(double dischargeCurrent_A, double capacity_Ah, double ratedCurrent_A,
-                              double exponent);
+                              double exponent) noexcept;
 
  private:
-  bool processActiveAutoZero(const Inputs& in, EventBatch& ev);  // processAutoZero while autoZeroActive_
+  bool processActiveAutoZero(const Inputs& in,
+                             EventBatch& ev) noexcept;  // processAutoZero while autoZeroActive_
   struct Energy {  // one accumulator: session + lifetime (whole Wh + fraction)
     double session_Wh = 0.0;
     double lifetimeFraction_Wh = 0.0;
   };
-  void runSocBody(TimeNs now, double elapsed_s, EventBatch& ev);
-  void countCoulombs(double elapsed_s);
-  void countFuel();
-  void applySocGainCorrection(TimeNs now, EventBatch& ev);
-  void declareFullCharge(TimeNs now, EventBatch& ev);
-  void setSocSource(SocSource s) {
+  void runSocBody(TimeNs now, double elapsed_s, EventBatch& ev) noexcept;
+  void countCoulombs(double elapsed_s) noexcept;
+  void countFuel() noexcept;
+  void applySocGainCorrection(TimeNs now, EventBatch& ev) noexcept;
+  void declareFullCharge(TimeNs now, EventBatch& ev) noexcept;
+  void setSocSource(SocSource s) noexcept {
     ledger_.SocSource = static_cast<double>(s);
     telemetryStale_ = true;
   }
-  void estimateSocAtRest(double dt_s, double amps, double volts, double altAmps);
-  void calculateChargeTimes(const Inputs& in);
-  void commitEnergy(Energy& e, double& lifetimeWhole, double delta_Wh);
-  double temperatureF(const Inputs& in) const;
+  void estimateSocAtRest(double dt_s, double amps, double volts, double altAmps) noexcept;
+  void calculateChargeTimes(const Inputs& in) noexcept;
+  void commitEnergy(Energy& e, double& lifetimeWhole, double delta_Wh) noexcept;
+  double temperatureF(const Inputs& in) const noexcept;
 
   Params p_;
   BatteryLedger ledger_;

@@ -47,7 +47,7 @@ double socFromRestVoltage12(double v) {
 
 }  // namespace
 
-void BatteryMonitor::estimateSocAtRest(double dt_s, double amps, double volts, double altAmps) {
+void BatteryMonitor::estimateSocAtRest(double dt_s, double amps, double volts, double altAmps) noexcept {
   if (socSource() != SocSource::Unknown || !isLeadAcid(p_) || !(dt_s > 0.0)) {
     restTimer_s_ = restVoltSum_ = 0.0;
     return;

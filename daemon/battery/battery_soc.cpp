@@ -15,7 +15,7 @@ using namespace battery_detail;
 // ---------------------------------------------------------------- SoC
 
 double BatteryMonitor::peukertFactor(double dischargeCurrent_A, double capacity_Ah, double ratedCurrent_A,
-                                     double exponent) {
+                                     double exponent) noexcept {
   const double peukertThreshold = capacity_Ah / 100.0;  // C/100
   if (!(dischargeCurrent_A > peukertThreshold) || !(ratedCurrent_A > 0.0)) return 1.0;
   const double currentRatio = ratedCurrent_A / dischargeCurrent_A;
@@ -23,7 +23,7 @@ double BatteryMonitor::peukertFactor(double dischargeCurrent_A, double capacity_
   return clampFinite(f, k::PEUKERT_FACTOR_MIN, k::PEUKERT_FACTOR_MAX, 1.0);
 }
 
-void BatteryMonitor::updateBatterySoc(const Inputs& in, double measuredAltAmps, EventBatch& ev) {
+void BatteryMonitor::updateBatterySoc(const Inputs& in, double measuredAltAmps, EventBatch& ev) noexcept {
   if (!started_) {
     started_ = true;
     lastTick_ = in.now;
@@ -90,7 +90,7 @@ void BatteryMonitor::updateBatterySoc(const Inputs& in, double measuredAltAmps, 
   }
 }
 
-void BatteryMonitor::commitEnergy(Energy& e, double& lifetimeWhole, double delta_Wh) {
+void BatteryMonitor::commitEnergy(Energy& e, double& lifetimeWhole, double delta_Wh) noexcept {
   if (!(delta_Wh > 0.0)) return;
   e.session_Wh += delta_Wh;
   // Float-fraction-retained pattern of the seed: the lifetime total is kept
@@ -106,7 +106,7 @@ void BatteryMonitor::commitEnergy(Energy& e, double& lifetimeWhole, double delta
 
 // Coulomb counting: the interval's amp-hours, charge efficiency in, Peukert
 // out, committed in whole hundredths (nothing tiny is lost).
-void BatteryMonitor::countCoulombs(double elapsed_s) {
+void BatteryMonitor::countCoulombs(double elapsed_s) noexcept {
   const double cap = p_.BatteryCapacity_Ah;
   const double deltaAh = intAh_;
   double batteryDeltaAh = 0.0;
@@ -133,7 +133,7 @@ void BatteryMonitor::countCoulombs(double elapsed_s) {
 }
 
 // Fuel (alternator only; the seed's 30 % x 50 % chain).
-void BatteryMonitor::countFuel() {
+void BatteryMonitor::countFuel() noexcept {
   if (intAltWh_ > 0.0) {
     const double energyJoules = intAltWh_ * 3600.0;
     const double fuelEnergyUsed_J =
@@ -150,7 +150,7 @@ void BatteryMonitor::countFuel() {
   }
 }
 
-void BatteryMonitor::runSocBody(TimeNs now, double elapsed_s, EventBatch& ev) {
+void BatteryMonitor::runSocBody(TimeNs now, double elapsed_s, EventBatch& ev) noexcept {
   telemetryStale_ = true;
   const double cap = p_.BatteryCapacity_Ah;
 
@@ -197,7 +197,7 @@ void BatteryMonitor::runSocBody(TimeNs now, double elapsed_s, EventBatch& ev) {
   intAltOn_s_ = intSoc_s_ = intV_s_ = intVtime_s_ = 0.0;
 }
 
-void BatteryMonitor::declareFullCharge(TimeNs now, EventBatch& ev) {
+void BatteryMonitor::declareFullCharge(TimeNs now, EventBatch& ev) noexcept {
   const double cap = p_.BatteryCapacity_Ah;
   if (!FullChargeDetected_)
     ev.push(makeEvent(now, EventLevel::Info, EventCode::FullChargeDetected, ledger_.CoulombCount_Ah, cap));
@@ -215,12 +215,12 @@ void BatteryMonitor::declareFullCharge(TimeNs now, EventBatch& ev) {
   telemetryStale_ = true;
 }
 
-void BatteryMonitor::chargeCompletedOnTail(TimeNs now, EventBatch& ev) {
+void BatteryMonitor::chargeCompletedOnTail(TimeNs now, EventBatch& ev) noexcept {
   // Only on live samples, as the detector above: the tail was measured.
   if (socInputsValid_) declareFullCharge(now, ev);
 }
 
-void BatteryMonitor::applySocGainCorrection(TimeNs now, EventBatch& ev) {
+void BatteryMonitor::applySocGainCorrection(TimeNs now, EventBatch& ev) noexcept {
   using namespace battery_k;
   if (!p_.AutoShuntGainCorrection) {
     lastGainGuard_ = GainGuard::FeatureOff;
@@ -261,7 +261,7 @@ void BatteryMonitor::applySocGainCorrection(TimeNs now, EventBatch& ev) {
   ev.push(makeEvent(now, EventLevel::Info, EventCode::ShuntGainCorrected, newFactor, currentFactor, 0));
 }
 
-void BatteryMonitor::calculateChargeTimes(const Inputs& in) {
+void BatteryMonitor::calculateChargeTimes(const Inputs& in) noexcept {
   telemetryStale_ = true;
   const double currentAmps = getBatteryCurrent(in);
   const double currentSoC = socPercent();

@@ -22,7 +22,7 @@ std::string_view toString(BmsState s) {
   return "?";
 }
 
-void BmsLimiter::reset() {
+void BmsLimiter::reset() noexcept {
   state_ = BmsState::OFF;
   enabledSince_ = -1;
   cap_ = cvl_ = warnCap_ = kNone;
@@ -33,7 +33,7 @@ void BmsLimiter::reset() {
 }
 
 void BmsLimiter::update(const BmsLimits& b, TimeNs now, double Bcur, double packV, const Params& p,
-                        EventBatch& ev) {
+                        EventBatch& ev) noexcept {
   const double dt = lastNow_ < 0 ? 0.0 : std::max(0.0, toSec(now - lastNow_));
   lastNow_ = now;
   // No source configured (source None): nothing to follow. A configured one
@@ -100,7 +100,7 @@ void BmsLimiter::update(const BmsLimits& b, TimeNs now, double Bcur, double pack
 
 // Cells in series: the configured count, else the pack over its mean cell
 // (a custom profile leaves BatteryCells at 0).
-double BmsLimiter::cellsInSeries(const BmsLimits& b, double packV, const Params& p) {
+double BmsLimiter::cellsInSeries(const BmsLimits& b, double packV, const Params& p) noexcept {
   if (p.BatteryCells > 0) return p.BatteryCells;
   const double meanCell =
       std::isfinite(b.cellMinV) && b.cellMinV > 0.0 ? (b.cellMaxV + b.cellMinV) / 2.0 : b.cellMaxV;
@@ -114,7 +114,7 @@ double BmsLimiter::cellsInSeries(const BmsLimits& b, double packV, const Params&
 // of the moment the cell first reaches the limit (no step) and ends once
 // the ceiling has risen kCellReleaseV above the pack: nothing holds it then
 // (docs/integrations.md "Cell voltages").
-void BmsLimiter::updateCellCeiling(const BmsLimits& b, double packV, double dt, const Params& p) {
+void BmsLimiter::updateCellCeiling(const BmsLimits& b, double packV, double dt, const Params& p) noexcept {
   if (p.BmsCellHighV <= 0.0 || !std::isfinite(b.cellMaxV) || b.cellMaxV <= 0.0) {
     cellCeiling_ = kNone;
     cellHigh_ = false;

@@ -44,23 +44,24 @@ class BmsLimiter {
   // Once per tick, before the charging stage. Bcur = the corrected INA228
   // battery current (NaN when unknown): where a warning ramp starts; packV =
   // IBV (NaN when unknown): where the highest cell's ceiling starts.
-  void update(const BmsLimits& b, TimeNs now, double Bcur, double packV, const Params& p, EventBatch& ev);
+  void update(const BmsLimits& b, TimeNs now, double Bcur, double packV, const Params& p,
+              EventBatch& ev) noexcept;
 
-  double batteryCapA() const { return cap_; }  // kNone when nothing caps
-  double cvlCeilingV() const { return cvl_; }  // kNone when nothing caps
-  bool chargeAllowed() const { return chargeAllowed_; }
-  bool stale() const { return state_ == BmsState::STALE; }
-  bool cellHigh() const { return cellHigh_; }
-  BmsState state() const { return state_; }
+  double batteryCapA() const noexcept { return cap_; }  // kNone when nothing caps
+  double cvlCeilingV() const noexcept { return cvl_; }  // kNone when nothing caps
+  bool chargeAllowed() const noexcept { return chargeAllowed_; }
+  bool stale() const noexcept { return state_ == BmsState::STALE; }
+  bool cellHigh() const noexcept { return cellHigh_; }
+  BmsState state() const noexcept { return state_; }
   // The last BMS values for telemetry (NaN when none or stale).
-  double shownCvlV() const { return shownCvl_; }
-  double shownCclA() const { return shownCcl_; }
-  double shownSocPct() const { return shownSoc_; }
+  double shownCvlV() const noexcept { return shownCvl_; }
+  double shownCclA() const noexcept { return shownCcl_; }
+  double shownSocPct() const noexcept { return shownSoc_; }
 
  private:
-  void reset();
-  void updateCellCeiling(const BmsLimits& b, double packV, double dt, const Params& p);
-  static double cellsInSeries(const BmsLimits& b, double packV, const Params& p);
+  void reset() noexcept;
+  void updateCellCeiling(const BmsLimits& b, double packV, double dt, const Params& p) noexcept;
+  static double cellsInSeries(const BmsLimits& b, double packV, const Params& p) noexcept;
 
   BmsState state_ = BmsState::OFF;
   TimeNs enabledSince_ = -1;

@@ -7,7 +7,7 @@
 
 namespace xr {
 
-void ChargingStageMachine::enter(ChargeStage s, TimeNs now) {
+void ChargingStageMachine::enter(ChargeStage s, TimeNs now) noexcept {
   previous_ = stage_;
   stage_ = s;
   stageStart_ = now;
@@ -18,7 +18,7 @@ void ChargingStageMachine::enter(ChargeStage s, TimeNs now) {
   if (s == ChargeStage::ABSORPTION) absorptionStartTime_ = now;
 }
 
-void ChargingStageMachine::resetToBulk(TimeNs now) {
+void ChargingStageMachine::resetToBulk(TimeNs now) noexcept {
   previous_ = stage_;
   stage_ = ChargeStage::BULK;
   stageStart_ = now;
@@ -27,7 +27,7 @@ void ChargingStageMachine::resetToBulk(TimeNs now) {
   restOutAh_ = 0.0;
 }
 
-bool ChargingStageMachine::resumeOrBulk(TimeNs now, TimeNs away, const Params& p) {
+bool ChargingStageMachine::resumeOrBulk(TimeNs now, TimeNs away, const Params& p) noexcept {
   // IDLE resumes too: a bank resting after its charge (IdleZeroCurrent) is
   // still full after an engine restart, and its counted discharge goes on.
   const bool resumable =
@@ -44,7 +44,7 @@ bool ChargingStageMachine::resumeOrBulk(TimeNs now, TimeNs away, const Params& p
 
 // Net amp-hours taken out of the bank since float/idle began (charge counts
 // back, never below zero): what RebulkDischarge_percent compares.
-void ChargingStageMachine::countRestDischarge(const StageInputs& in) {
+void ChargingStageMachine::countRestDischarge(const StageInputs& in) noexcept {
   const double dtS = lastNow_ < 0 ? 0.0 : toSec(in.now - lastNow_);
   if (dtS > 0.0 && dtS < kMaxCountGapS && std::isfinite(in.Bcur))
     restOutAh_ = std::max(0.0, restOutAh_ - in.Bcur * dtS / 3600.0);
@@ -56,7 +56,7 @@ void ChargingStageMachine::countRestDischarge(const StageInputs& in) {
 // RebulkDischarge_percent set, that share of the bank counted out: a house
 // load the alternator carries, or a short one it cannot, is not a discharge
 // (docs/batteries.md "After absorption").
-bool ChargingStageMachine::rebulkDue(const StageInputs& in, const Params& p) {
+bool ChargingStageMachine::rebulkDue(const StageInputs& in, const Params& p) noexcept {
   const bool discharged = p.RebulkDischarge_percent > 0.0
                               ? restOutAh_ >= p.RebulkDischarge_percent * p.BatteryCapacity_Ah / 100.0
                               : in.Bcur < -p.RebulkCurrent_A;

@@ -32,23 +32,23 @@ class ChargingStageMachine {
   // Real-time thread, every tick: neither allocates nor blocks (docs/architecture.md "Threads").
   bool updateChargingStage(const StageInputs& in, const Params& p) noexcept;
   // enterSysAuto(): BULK, timers reset.
-  void resetToBulk(TimeNs now);
+  void resetToBulk(TimeNs now) noexcept;
   // Back in AUTO after `away` out of it: resume ABSORPTION / FLOAT when the
   // absence was short (StageResumeMaxSec), else BULK (docs/deviations.md
   // "Return to AUTO"). Returns true when the stage was kept.
-  bool resumeOrBulk(TimeNs now, TimeNs away, const Params& p);
+  bool resumeOrBulk(TimeNs now, TimeNs away, const Params& p) noexcept;
 
-  ChargeStage stage() const { return stage_; }
-  bool inBulkStage() const { return stage_ == ChargeStage::BULK; }
-  bool inAbsorptionStage() const { return stage_ == ChargeStage::ABSORPTION; }
-  bool inFloatStage() const { return stage_ == ChargeStage::FLOAT; }
-  bool inIdleStage() const { return stage_ == ChargeStage::IDLE; }
+  ChargeStage stage() const noexcept { return stage_; }
+  bool inBulkStage() const noexcept { return stage_ == ChargeStage::BULK; }
+  bool inAbsorptionStage() const noexcept { return stage_ == ChargeStage::ABSORPTION; }
+  bool inFloatStage() const noexcept { return stage_ == ChargeStage::FLOAT; }
+  bool inIdleStage() const noexcept { return stage_ == ChargeStage::IDLE; }
   // chargingEnabled is false in IDLE (folded into the tick snapshot).
-  bool chargingEnabled() const { return stage_ != ChargeStage::IDLE; }
-  bool voltageControlActive() const {
+  bool chargingEnabled() const noexcept { return stage_ != ChargeStage::IDLE; }
+  bool voltageControlActive() const noexcept {
     return stage_ == ChargeStage::ABSORPTION || stage_ == ChargeStage::FLOAT;
   }
-  double ChargingVoltageTarget(const Params& p) const {
+  double ChargingVoltageTarget(const Params& p) const noexcept {
     switch (stage_) {
       case ChargeStage::ABSORPTION:
         return p.AbsorptionVoltage;
@@ -60,22 +60,22 @@ class ChargingStageMachine {
         return p.BulkVoltage;
     }
   }
-  bool tailSuppressedByThermal() const { return tailThermalSuppressed_; }
+  bool tailSuppressedByThermal() const noexcept { return tailThermalSuppressed_; }
   // True on the call where absorption ended on its tail current: the bank is
   // full (the battery monitor takes it as a detected full charge).
-  bool completedOnTail() const { return completedOnTail_; }
+  bool completedOnTail() const noexcept { return completedOnTail_; }
   // Net Ah out of the bank since float/idle began (RebulkDischarge_percent).
-  double restDischargedAh() const { return restOutAh_; }
-  bool rebulkBlockedBySoc() const { return rebulkBlockedBySoc_; }
+  double restDischargedAh() const noexcept { return restOutAh_; }
+  bool rebulkBlockedBySoc() const noexcept { return rebulkBlockedBySoc_; }
 
  private:
   // A gap longer than this between calls (the machine was suppressed) is
   // not counted: the battery current then is not known to have flowed.
   static constexpr double kMaxCountGapS = 1.0;
 
-  void enter(ChargeStage s, TimeNs now);
-  void countRestDischarge(const StageInputs& in);
-  bool rebulkDue(const StageInputs& in, const Params& p);
+  void enter(ChargeStage s, TimeNs now) noexcept;
+  void countRestDischarge(const StageInputs& in) noexcept;
+  bool rebulkDue(const StageInputs& in, const Params& p) noexcept;
 
   ChargeStage stage_ = ChargeStage::BULK;
   ChargeStage previous_ = ChargeStage::BULK;

@@ -20,7 +20,7 @@ ControlLaw::ControlLaw(const Params& p) : currentPID_(p.PidKp, p.PidKi, p.PidKd,
   ChargingVoltageTarget_ = p.BulkVoltage;
 }
 
-void ControlLaw::configurePid(const Params& p) {
+void ControlLaw::configurePid(const Params& p) noexcept {
   // Applied on every call: SetOutputLimits also re-clamps output / outputSum,
   // which the MANUAL, shutdown and SystemID paths write unclamped, and the
   // gains follow the Params of this tick.
@@ -29,7 +29,7 @@ void ControlLaw::configurePid(const Params& p) {
   currentPID_.setTrackingGain(p.PIDTrackingGain);
 }
 
-void ControlLaw::updateFilters(const ControlSensors& s, const Params& p) {
+void ControlLaw::updateFilters(const ControlSensors& s, const Params& p) noexcept {
   tickDt_ = lastTick_ < 0 ? 0.0 : std::clamp(toSec(s.now - lastTick_), 0.0, kMaxControlDtSec);
   lastTick_ = s.now;
   if (s.ch1Fresh) {
@@ -58,7 +58,7 @@ void ControlLaw::updateFilters(const ControlSensors& s, const Params& p) {
       p.OutputPIDSigSrc == 2 ? MeasuredAmps_ : (p.OutputPIDSigSrc == 1 ? maPid_.value() : emaPid_.value());
 }
 
-double ControlLaw::computeUTarget(const ControlSensors& s, const Params& p) {
+double ControlLaw::computeUTarget(const ControlSensors& s, const Params& p) noexcept {
   rpmMinDuty_ = getMinDutyForRPM(p, s.rpm);
   I_cap_ = getCapCurrentForRPM(p, s.rpm, s.IBV);
 
@@ -106,7 +106,7 @@ double ControlLaw::computeUTarget(const ControlSensors& s, const Params& p) {
   return uTargetRaw_;
 }
 
-void ControlLaw::updateGovMode(const ControlSensors& s, const Params& p, const FastOvApply& fa) {
+void ControlLaw::updateGovMode(const ControlSensors& s, const Params& p, const FastOvApply& fa) noexcept {
   const bool majorOV = finite(s.IBV) && s.IBV > alternatorHardShutdownV(p) + k::HARD_SHUTDOWN_BYPASS_OFFSET_V;
   // CV overshoot latch: set when fast-OV fires in CV, released once IBV is
   // back under target + 20 mV (hysteresis stops chatter as the field collapses).
@@ -119,7 +119,7 @@ void ControlLaw::updateGovMode(const ControlSensors& s, const Params& p, const F
   govMode_ = bypass ? GovMode::GOV_BYPASS_SLEW : GovMode::GOV_NORMAL_SLEW;
 }
 
-void ControlLaw::reseedAfterLoadDump(const ControlSensors& s) {
+void ControlLaw::reseedAfterLoadDump(const ControlSensors& s) noexcept {
   // The bank at its target accepted dumpAcceptA_ before the load went; what
   // is still drawn beside it is the alternator current less the battery's,
   // now. Their sum holds the target. The inner loop's filtered current
@@ -135,13 +135,13 @@ void ControlLaw::reseedAfterLoadDump(const ControlSensors& s) {
   dumpAcceptA_ = kNoValue;
 }
 
-double ControlLaw::governorStep(const Params& p, double request, GovMode mode, double dt) {
+double ControlLaw::governorStep(const Params& p, double request, GovMode mode, double dt) noexcept {
   GovernorLimits lim{p.MinDuty, p.MaxDuty, p.DutyRampRate};
   return governorApply(lastAppliedDuty_, request, mode, rpmMinDuty_, dt, lim);
 }
 
 double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const FastOvApply& fa,
-                              EventBatch& ev) {
+                              EventBatch& ev) noexcept {
   applyFastOv(s, p, fa);
   if (sysId_.systemIdRunning()) return runSystemIdTick(s, p, ev);
   // CH1 not fresh: the protections above already acted on the state; the
@@ -168,7 +168,7 @@ double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const Fa
 
 // The fast over-voltage supervisors' verdict on this tick: their current cap,
 // cv_I and setpoint actions, and what their clearing restarts.
-void ControlLaw::applyFastOv(const ControlSensors& s, const Params& p, const FastOvApply& fa) {
+void ControlLaw::applyFastOv(const ControlSensors& s, const Params& p, const FastOvApply& fa) noexcept {
   fastOvClampActive_ = fa.fastOvClampActive;
   if (fa.zeroSetpointLimited && !loadDumpInEpisode_)
     dumpAcceptA_ = emaBcur_.primed() ? emaBcur_.value() : kNoValue;
@@ -194,7 +194,7 @@ void ControlLaw::applyFastOv(const ControlSensors& s, const Params& p, const Fas
 }
 
 // Plant-delay step test: setpoint machinery skipped, inner PID pinned.
-double ControlLaw::runSystemIdTick(const ControlSensors& s, const Params& p, EventBatch& ev) {
+double ControlLaw::runSystemIdTick(const ControlSensors& s, const Params& p, EventBatch& ev) noexcept {
   if (!s.ch1Fresh) return lastAppliedDuty_;
   bool finished = false;
   sysIdDutyOut_ = sysId_.systemIdTick(s.now, MeasuredAmps_, p, finished);
@@ -221,7 +221,7 @@ double ControlLaw::runSystemIdTick(const ControlSensors& s, const Params& p, Eve
 
 // The outer loops' command (the voltage loop's current, or the current
 // target) and its slew into setpointLimited_; returns the voltage loop's Icv.
-double ControlLaw::slewSetpoint(const ControlSensors& s, const Params& p, double dt) {
+double ControlLaw::slewSetpoint(const ControlSensors& s, const Params& p, double dt) noexcept {
   CvLoopInputs ci;
   ci.now = s.now;
   ci.dtSec = dt;
@@ -256,7 +256,7 @@ double ControlLaw::slewSetpoint(const ControlSensors& s, const Params& p, double
 }
 
 // Inner current PID, every PidSampleDivisor-th fresh CH1, real dt: sets dutyRequest_.
-void ControlLaw::runCurrentPid(const ControlSensors& s, const Params& p, double dt) {
+void ControlLaw::runCurrentPid(const ControlSensors& s, const Params& p, double dt) noexcept {
   configurePid(p);
   if (currentPID_.mode() != Pid::AUTOMATIC) currentPID_.setMode(Pid::AUTOMATIC);
   // MaintainMode chases Bcur = 0 (seed), and ours: never with more
@@ -288,7 +288,8 @@ void ControlLaw::runCurrentPid(const ControlSensors& s, const Params& p, double 
 }
 
 // Non-thermal ceiling for T0's implied-penalty anti-windup (next tick).
-double ControlLaw::nonThermalCeiling(const Params& p, const FastOvApply& fa, double duty, double Icv) const {
+double ControlLaw::nonThermalCeiling(const Params& p, const FastOvApply& fa, double duty,
+                                     double Icv) const noexcept {
   double c = std::min(p.MaxTableValue, p.MaximumAllowedBatteryAmps);
   if (warmupActive_) c = std::min(c, p.WarmupCeilingAmps);
   c = std::min(c, bmsAltCap_);

@@ -64,85 +64,89 @@ class ControlLaw {
   explicit ControlLaw(const Params& p);
 
   // Every tick, first: filters on fresh CH1 / IBV, control dt bookkeeping.
-  void updateFilters(const ControlSensors& s, const Params& p);
+  void updateFilters(const ControlSensors& s, const Params& p) noexcept;
   // Before the charging stage: the BMS's limits of this tick (bms_limiter.h).
-  void updateBms(const BmsLimits& b, TimeNs now, double Bcur, double packV, const Params& p, EventBatch& ev) {
+  void updateBms(const BmsLimits& b, TimeNs now, double Bcur, double packV, const Params& p,
+                 EventBatch& ev) noexcept {
     bms_.update(b, now, Bcur, packV, p, ev);
   }
   // Step 3 (before mode selection): stage machine and override targets.
   // Returns true when the stage changed (event pushed).
-  void updateChargingStage(const ControlSensors& s, const Params& p, bool manualMode, EventBatch& ev);
+  void updateChargingStage(const ControlSensors& s, const Params& p, bool manualMode,
+                           EventBatch& ev) noexcept;
 
   // ---- AUTO path -----------------------------------------------------------
-  double computeUTarget(const ControlSensors& s, const Params& p);  // returns uTargetRaw
+  double computeUTarget(const ControlSensors& s, const Params& p) noexcept;  // returns uTargetRaw
   // Returns the applied duty (after governor). Holds the PID and the duty when
   // CH1 is not fresh (the protections' state actions still apply).
-  double finishAuto(const ControlSensors& s, const Params& p, const FastOvApply& fa, EventBatch& ev);
+  double finishAuto(const ControlSensors& s, const Params& p, const FastOvApply& fa, EventBatch& ev) noexcept;
 
   // ---- MANUAL / Limp Home / shutdown --------------------------------------
-  double runManual(const ControlSensors& s, const Params& p, double manualDuty);
-  double runLimpHome(const ControlSensors& s, const Params& p, EventBatch& ev);
+  double runManual(const ControlSensors& s, const Params& p, double manualDuty) noexcept;
+  double runLimpHome(const ControlSensors& s, const Params& p, EventBatch& ev) noexcept;
   // The sequencer owns the duty: track it bumplessly (PID in MANUAL).
-  void trackShutdown(double appliedDuty, const Params& p, double rpm);
+  void trackShutdown(double appliedDuty, const Params& p, double rpm) noexcept;
 
   // ---- mode entry (bumpless wrappers) --------------------------------------
-  void enterSysOff();
-  void enterSysManual();
-  void enterSysAuto(const ControlSensors& s, const Params& p);
-  void enterSysFault();
+  void enterSysOff() noexcept;
+  void enterSysManual() noexcept;
+  void enterSysAuto(const ControlSensors& s, const Params& p) noexcept;
+  void enterSysFault() noexcept;
   // Control-side effects of the universal immediate cut (protection decides).
-  void applyImmediateCut();
+  void applyImmediateCut() noexcept;
   // Field enable rising edge: startup ramp and warm-up ceiling start now.
-  void onFieldTurnOn(TimeNs now);
+  void onFieldTurnOn(TimeNs now) noexcept;
   // A protection cleared: opens the FastSetpointRiseRate window.
-  void onProtectionCleared(TimeNs now) {
+  void onProtectionCleared(TimeNs now) noexcept {
     protectionClearedAt_ = now;
     haveProtectionCleared_ = true;
   }
 
   // ---- commands ----------------------------------------------------------
-  bool startSystemId(TimeNs now, bool autoRunning);
-  bool commitTuning(TimeNs now, const Params& p) { return tuning_.commit(now, p); }
-  bool commitCvTuning(TimeNs now, const Params& p) { return cvTuning_.commit(now, p); }
+  bool startSystemId(TimeNs now, bool autoRunning) noexcept;
+  bool commitTuning(TimeNs now, const Params& p) noexcept { return tuning_.commit(now, p); }
+  bool commitCvTuning(TimeNs now, const Params& p) noexcept { return cvTuning_.commit(now, p); }
 
   // ---- read-back -----------------------------------------------------------
-  SysMode sysMode() const { return sysMode_; }
-  double lastAppliedDuty() const { return lastAppliedDuty_; }
-  double rpmMinDuty() const { return rpmMinDuty_; }
-  double setpointLimited() const { return setpointLimited_; }
-  double uTargetAmps() const { return uTargetAmps_; }
-  double ChargingVoltageTarget() const { return ChargingVoltageTarget_; }
-  bool voltageControlActive() const { return voltageControlActive_; }
+  SysMode sysMode() const noexcept { return sysMode_; }
+  double lastAppliedDuty() const noexcept { return lastAppliedDuty_; }
+  double rpmMinDuty() const noexcept { return rpmMinDuty_; }
+  double setpointLimited() const noexcept { return setpointLimited_; }
+  double uTargetAmps() const noexcept { return uTargetAmps_; }
+  double ChargingVoltageTarget() const noexcept { return ChargingVoltageTarget_; }
+  bool voltageControlActive() const noexcept { return voltageControlActive_; }
   // Full bank at the RPM duty floor: the field rests (enable LOW) in AUTO
   // (docs/deviations.md "Full bank at light load").
-  bool fieldResting() const { return fieldResting_; }
+  bool fieldResting() const noexcept { return fieldResting_; }
   // IDLE with IdleZeroCurrent: the bank rests while the alternator carries
   // the house loads (docs/batteries.md "After absorption"). Not an override:
   // the stage machine keeps its re-bulk watch.
-  bool idleZeroCurrentHold(const Params& p) const {
+  bool idleZeroCurrentHold(const Params& p) const noexcept {
     return p.IdleZeroCurrent && stages_.inIdleStage() && !p.MaintainMode && !p.TargetVoltageMode &&
            !p.CVTuningMode;
   }
   // MaintainMode or the idle hold: the current loop chases Bcur = 0.
-  bool holdsZeroBatteryCurrent(const Params& p) const { return p.MaintainMode || idleZeroCurrentHold(p); }
-  double thermalPenaltyAmps() const { return thermal_.thermalPenaltyAmps(); }
-  double MeasuredAmps_filtered() const { return emaInput_.value(); }
-  double g_pidI_filtered() const { return emaPid_.value(); }
-  double cv_I() const { return cv_.cv_I(); }
-  bool fastOvClampActive() const { return fastOvClampActive_; }
-  bool systemIdRunning() const { return sysId_.systemIdRunning(); }
-  const ChargingStageMachine& stages() const { return stages_; }
-  const BmsLimiter& bms() const { return bms_; }
-  const Pid& currentPID() const { return currentPID_; }
-  const ThermalDerate& thermal() const { return thermal_; }
-  const TuningModeRunner& tuning() const { return tuning_; }
-  const CvTuningModeRunner& cvTuning() const { return cvTuning_; }
-  const SystemId& systemId() const { return sysId_; }
-  bool bulkVoltageLimitActive() const { return bulkVoltageLimitActive_; }
-  GovMode govMode() const { return govMode_; }
-  double dutyRequest() const { return dutyRequest_; }
-  double setpointCommand() const { return setpointCommand_; }
-  void fillTelemetry(ControlTelemetry& t) const;
+  bool holdsZeroBatteryCurrent(const Params& p) const noexcept {
+    return p.MaintainMode || idleZeroCurrentHold(p);
+  }
+  double thermalPenaltyAmps() const noexcept { return thermal_.thermalPenaltyAmps(); }
+  double MeasuredAmps_filtered() const noexcept { return emaInput_.value(); }
+  double g_pidI_filtered() const noexcept { return emaPid_.value(); }
+  double cv_I() const noexcept { return cv_.cv_I(); }
+  bool fastOvClampActive() const noexcept { return fastOvClampActive_; }
+  bool systemIdRunning() const noexcept { return sysId_.systemIdRunning(); }
+  const ChargingStageMachine& stages() const noexcept { return stages_; }
+  const BmsLimiter& bms() const noexcept { return bms_; }
+  const Pid& currentPID() const noexcept { return currentPID_; }
+  const ThermalDerate& thermal() const noexcept { return thermal_; }
+  const TuningModeRunner& tuning() const noexcept { return tuning_; }
+  const CvTuningModeRunner& cvTuning() const noexcept { return cvTuning_; }
+  const SystemId& systemId() const noexcept { return sysId_; }
+  bool bulkVoltageLimitActive() const noexcept { return bulkVoltageLimitActive_; }
+  GovMode govMode() const noexcept { return govMode_; }
+  double dutyRequest() const noexcept { return dutyRequest_; }
+  double setpointCommand() const noexcept { return setpointCommand_; }
+  void fillTelemetry(ControlTelemetry& t) const noexcept;
 
  private:
   // A control dt longer than this is not integrated as-is: such a gap means
@@ -160,28 +164,28 @@ class ControlLaw {
   // step (snap the duty); slower falls are followed by the PID.
   static constexpr double kBmsSnapStepA = 3.0;
 
-  void configurePid(const Params& p);
-  double governorStep(const Params& p, double request, GovMode mode, double dt);
-  void enterManualLike(SysMode m);
-  void leaveAuto(TimeNs now);
-  void fillLoopTelemetry(ControlTelemetry& t) const;
-  void fillTuningTelemetry(ControlTelemetry& t) const;
+  void configurePid(const Params& p) noexcept;
+  double governorStep(const Params& p, double request, GovMode mode, double dt) noexcept;
+  void enterManualLike(SysMode m) noexcept;
+  void leaveAuto(TimeNs now) noexcept;
+  void fillLoopTelemetry(ControlTelemetry& t) const noexcept;
+  void fillTuningTelemetry(ControlTelemetry& t) const noexcept;
   // Field rest (field_rest.cpp): when to start and end one, and the loops'
   // state while it lasts.
-  bool restDue(const ControlSensors& s, const Params& p);
-  void applyTargetOverrides(const ControlSensors& s, const Params& p, bool overrideNow);
+  bool restDue(const ControlSensors& s, const Params& p) noexcept;
+  void applyTargetOverrides(const ControlSensors& s, const Params& p, bool overrideNow) noexcept;
   // TuningMode, CVTuningMode or a SystemID run: no rest starts or lasts.
-  bool tuningActive(const Params& p) const;
-  bool restOver(const ControlSensors& s, const Params& p) const;
-  double holdAtRest();
-  void updateGovMode(const ControlSensors& s, const Params& p, const FastOvApply& fa);
-  void reseedAfterLoadDump(const ControlSensors& s);
+  bool tuningActive(const Params& p) const noexcept;
+  bool restOver(const ControlSensors& s, const Params& p) const noexcept;
+  double holdAtRest() noexcept;
+  void updateGovMode(const ControlSensors& s, const Params& p, const FastOvApply& fa) noexcept;
+  void reseedAfterLoadDump(const ControlSensors& s) noexcept;
   // finishAuto's steps (control_law.cpp).
-  void applyFastOv(const ControlSensors& s, const Params& p, const FastOvApply& fa);
-  double runSystemIdTick(const ControlSensors& s, const Params& p, EventBatch& ev);
-  double slewSetpoint(const ControlSensors& s, const Params& p, double dt);
-  void runCurrentPid(const ControlSensors& s, const Params& p, double dt);
-  double nonThermalCeiling(const Params& p, const FastOvApply& fa, double duty, double Icv) const;
+  void applyFastOv(const ControlSensors& s, const Params& p, const FastOvApply& fa) noexcept;
+  double runSystemIdTick(const ControlSensors& s, const Params& p, EventBatch& ev) noexcept;
+  double slewSetpoint(const ControlSensors& s, const Params& p, double dt) noexcept;
+  void runCurrentPid(const ControlSensors& s, const Params& p, double dt) noexcept;
+  double nonThermalCeiling(const Params& p, const FastOvApply& fa, double duty, double Icv) const noexcept;
 
   // Loops.
   Pid currentPID_;

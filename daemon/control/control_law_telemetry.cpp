@@ -3,12 +3,12 @@
 
 namespace xr {
 
-void ControlLaw::fillTelemetry(ControlTelemetry& t) const {
+void ControlLaw::fillTelemetry(ControlTelemetry& t) const noexcept {
   fillLoopTelemetry(t);
   fillTuningTelemetry(t);
 }
 
-void ControlLaw::fillLoopTelemetry(ControlTelemetry& t) const {
+void ControlLaw::fillLoopTelemetry(ControlTelemetry& t) const noexcept {
   t.sysMode = sysMode_;
   t.govMode = govMode_;
   t.I_cap = I_cap_;
@@ -60,7 +60,7 @@ void ControlLaw::fillLoopTelemetry(ControlTelemetry& t) const {
   t.rebulkBlockedBySoc = stages_.rebulkBlockedBySoc();
 }
 
-void ControlLaw::fillTuningTelemetry(ControlTelemetry& t) const {
+void ControlLaw::fillTuningTelemetry(ControlTelemetry& t) const noexcept {
   t.tuningRunning = tuning_.running();
   t.tuningHighPhase = tuning_.highPhase();
   t.tuningScore = tuning_.currentScore();

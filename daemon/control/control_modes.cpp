@@ -9,7 +9,7 @@
 
 namespace xr {
 
-double ControlLaw::runManual(const ControlSensors& s, const Params& p, double manualDuty) {
+double ControlLaw::runManual(const ControlSensors& s, const Params& p, double manualDuty) noexcept {
   rpmMinDuty_ = getMinDutyForRPM(p, s.rpm);
   govMode_ = GovMode::GOV_NORMAL_SLEW;  // manual still respects the tach floor
   dutyRequest_ = manualDuty;
@@ -21,7 +21,7 @@ double ControlLaw::runManual(const ControlSensors& s, const Params& p, double ma
   return duty;
 }
 
-double ControlLaw::runLimpHome(const ControlSensors& s, const Params& p, EventBatch& ev) {
+double ControlLaw::runLimpHome(const ControlSensors& s, const Params& p, EventBatch& ev) noexcept {
   rpmMinDuty_ = getMinDutyForRPM(p, s.rpm);
   govMode_ = GovMode::GOV_NORMAL_SLEW;
   dutyRequest_ = k::LIMP_HOME_DUTY;
@@ -32,7 +32,7 @@ double ControlLaw::runLimpHome(const ControlSensors& s, const Params& p, EventBa
   return duty;
 }
 
-void ControlLaw::trackShutdown(double appliedDuty, const Params& p, double rpm) {
+void ControlLaw::trackShutdown(double appliedDuty, const Params& p, double rpm) noexcept {
   rpmMinDuty_ = getMinDutyForRPM(p, rpm);
   lastAppliedDuty_ = appliedDuty;
   dutyRequest_ = appliedDuty;
@@ -41,13 +41,13 @@ void ControlLaw::trackShutdown(double appliedDuty, const Params& p, double rpm) 
   limp_.reset();
 }
 
-void ControlLaw::leaveAuto(TimeNs now) {
+void ControlLaw::leaveAuto(TimeNs now) noexcept {
   if (sysMode_ == SysMode::SYS_MODE_AUTO) leftAutoAt_ = now;
   fieldResting_ = false;
   restArmedAt_ = -1;
 }
 
-void ControlLaw::enterManualLike(SysMode m) {
+void ControlLaw::enterManualLike(SysMode m) noexcept {
   leaveAuto(lastTick_);
   sysMode_ = m;
   currentPID_.setMode(Pid::MANUAL);
@@ -56,19 +56,21 @@ void ControlLaw::enterManualLike(SysMode m) {
   sysId_.abort();
 }
 
-void ControlLaw::enterSysOff() {
+void ControlLaw::enterSysOff() noexcept {
   enterManualLike(SysMode::SYS_MODE_OFF);
   govMode_ = GovMode::GOV_NORMAL_SLEW;
 }
 
-void ControlLaw::enterSysManual() {
+void ControlLaw::enterSysManual() noexcept {
   enterManualLike(SysMode::SYS_MODE_MANUAL);
   govMode_ = GovMode::GOV_NORMAL_SLEW;
 }
 
-void ControlLaw::enterSysFault() { enterManualLike(SysMode::SYS_MODE_FAULT); }  // govMode left to caller
+void ControlLaw::enterSysFault() noexcept {
+  enterManualLike(SysMode::SYS_MODE_FAULT);
+}  // govMode left to caller
 
-void ControlLaw::enterSysAuto(const ControlSensors& s, const Params& p) {
+void ControlLaw::enterSysAuto(const ControlSensors& s, const Params& p) noexcept {
   sysMode_ = SysMode::SYS_MODE_AUTO;
   govMode_ = GovMode::GOV_NORMAL_SLEW;
   // The seed always restarts in BULK (updateChargingStage fast-forwards);
@@ -92,7 +94,7 @@ void ControlLaw::enterSysAuto(const ControlSensors& s, const Params& p) {
   cvOvershootBypass_ = false;
 }
 
-void ControlLaw::applyImmediateCut() {
+void ControlLaw::applyImmediateCut() noexcept {
   // docs/control.md "Mode entry functions": PWM 0, PID reset, FAULT,
   // setpointLimited 0, SystemID aborted (GPIO4 and the phase are protection's).
   leaveAuto(lastTick_);
@@ -107,12 +109,12 @@ void ControlLaw::applyImmediateCut() {
   sysId_.abort();
 }
 
-void ControlLaw::onFieldTurnOn(TimeNs now) {
+void ControlLaw::onFieldTurnOn(TimeNs now) noexcept {
   fieldOnAt_ = now;
   inStartupRamp_ = true;
 }
 
-bool ControlLaw::startSystemId(TimeNs now, bool autoRunning) {
+bool ControlLaw::startSystemId(TimeNs now, bool autoRunning) noexcept {
   SystemIdSnapshot pre;
   pre.autoRunning = autoRunning && sysMode_ == SysMode::SYS_MODE_AUTO;
   pre.setpointLimited = setpointLimited_;

@@ -11,7 +11,7 @@
 namespace xr {
 
 void ControlLaw::updateChargingStage(const ControlSensors& s, const Params& p, bool manualMode,
-                                     EventBatch& ev) {
+                                     EventBatch& ev) noexcept {
   const bool overrideNow = p.MaintainMode || p.TargetVoltageMode || p.CVTuningMode;
   // The stage machine only advances while charging in AUTO (IDLE keeps its
   // re-bulk watch while the field is off); override modes and manual hold it.
@@ -49,7 +49,7 @@ void ControlLaw::updateChargingStage(const ControlSensors& s, const Params& p, b
 
 // The voltage target and whether the voltage loop runs, after the stage's:
 // the bulk ceiling, the override modes, the idle hold and the BMS's CVL.
-void ControlLaw::applyTargetOverrides(const ControlSensors& s, const Params& p, bool overrideNow) {
+void ControlLaw::applyTargetOverrides(const ControlSensors& s, const Params& p, bool overrideNow) noexcept {
   // Bulk voltage ceiling (ours; the legacy seed's "voltage soft limiter (bulk
   // only)" recast as a setpoint ceiling, as that seed's cap chain asks). The
   // newer seed runs BULK as pure CC with the hold timer, so a small or

@@ -8,25 +8,25 @@
 
 namespace xr {
 
-void VoltageCvLoop::reset() { *this = VoltageCvLoop{}; }
+void VoltageCvLoop::reset() noexcept { *this = VoltageCvLoop{}; }
 
-void VoltageCvLoop::setCvI(double v) {
+void VoltageCvLoop::setCvI(double v) noexcept {
   if (!std::isfinite(v)) return;
   cv_I_ = std::max(0.0, v);
   cv_I_track_ = cv_I_;
 }
 
-void VoltageCvLoop::restore(double v) { setCvI(v); }
+void VoltageCvLoop::restore(double v) noexcept { setCvI(v); }
 
 // voltageTargetSlewed: rises only as fast as cv_I can support given
 // uTargetAmps; falls instantly (memoryless min()).
-double VoltageCvLoop::slewedTarget(const CvLoopInputs& in, const Params& p) const {
+double VoltageCvLoop::slewedTarget(const CvLoopInputs& in, const Params& p) const noexcept {
   double e_needed = p.VoltageKp > 0.0 ? (in.uTargetAmps - cv_I_) / p.VoltageKp : 1e9;
   e_needed = std::max(e_needed, k::CV_E_NEEDED_MIN_V);
   return std::min(in.ChargingVoltageTarget, in.IBV + e_needed);
 }
 
-void VoltageCvLoop::seedOnEntry(const CvLoopInputs& in, const Params& p) {
+void VoltageCvLoop::seedOnEntry(const CvLoopInputs& in, const Params& p) noexcept {
   // Bumpless: Icv == g_pidI_filtered immediately, so setpointCommand continues
   // from wherever the current was.
   voltageTargetSlewed_ = slewedTarget(in, p);
@@ -43,7 +43,7 @@ void VoltageCvLoop::seedOnEntry(const CvLoopInputs& in, const Params& p) {
   lastVoltageLoopNs_ = in.now;  // the entering edge is this tick's fire (no integration, dt = 0)
 }
 
-void VoltageCvLoop::fire(const CvLoopInputs& in, const Params& p, double dtSec) {
+void VoltageCvLoop::fire(const CvLoopInputs& in, const Params& p, double dtSec) noexcept {
   voltageTargetSlewed_ = slewedTarget(in, p);
   const double e = voltageTargetSlewed_ - in.IBV;
   e_ = e;

@@ -27,36 +27,36 @@ class VoltageCvLoop {
   double update(const CvLoopInputs& in, const Params& p) noexcept;
 
   // Protection hooks (Groups 3 / load dump act on cv_I).
-  void setCvI(double v);
-  double cv_I() const { return cv_I_; }
+  void setCvI(double v) noexcept;
+  double cv_I() const noexcept { return cv_I_; }
   // Bumpless restore (SystemID): integrator and tracker to v.
-  void restore(double v);
+  void restore(double v) noexcept;
   // After a protection event (fast-OV clamp cleared, back in AUTO): the next
   // active update seeds cv_I as on CV entry (bumpless, AW cap cleared)
   // instead of crawling back from the event's state.
-  void requestReseed() { reseedPending_ = true; }
+  void requestReseed() noexcept { reseedPending_ = true; }
   // The same, with the current the alternator should make now (instead of
   // the inner loop's filtered feedback, which still holds the pre-event
   // current for a while): Icv starts at `amps`.
-  void requestReseedAt(double amps) {
+  void requestReseedAt(double amps) noexcept {
     reseedPending_ = true;
     reseedAmps_ = amps;
   }
-  void reset();
+  void reset() noexcept;
 
-  double Icv() const { return Icv_; }
-  double cv_I_track() const { return cv_I_track_; }
-  double cv_I_aw_cap() const { return cv_I_aw_cap_; }
-  double voltageTargetSlewed() const { return voltageTargetSlewed_; }
-  int g_awState() const { return g_awState_; }
-  double cvDSlope() const { return cvDSlope_; }
-  double g_voltLoopActualIntervalMs() const { return g_voltLoopActualIntervalMs_; }
-  double lastError() const { return e_; }
+  double Icv() const noexcept { return Icv_; }
+  double cv_I_track() const noexcept { return cv_I_track_; }
+  double cv_I_aw_cap() const noexcept { return cv_I_aw_cap_; }
+  double voltageTargetSlewed() const noexcept { return voltageTargetSlewed_; }
+  int g_awState() const noexcept { return g_awState_; }
+  double cvDSlope() const noexcept { return cvDSlope_; }
+  double g_voltLoopActualIntervalMs() const noexcept { return g_voltLoopActualIntervalMs_; }
+  double lastError() const noexcept { return e_; }
 
  private:
-  void seedOnEntry(const CvLoopInputs& in, const Params& p);
-  void fire(const CvLoopInputs& in, const Params& p, double dtSec);
-  double slewedTarget(const CvLoopInputs& in, const Params& p) const;
+  void seedOnEntry(const CvLoopInputs& in, const Params& p) noexcept;
+  void fire(const CvLoopInputs& in, const Params& p, double dtSec) noexcept;
+  double slewedTarget(const CvLoopInputs& in, const Params& p) const noexcept;
 
   bool wasActive_ = false;
   TimeNs lastVoltageLoopNs_ = 0;  // 0: fires on the enteringCV edge

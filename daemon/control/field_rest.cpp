@@ -12,12 +12,12 @@
 
 namespace xr {
 
-bool ControlLaw::tuningActive(const Params& p) const {
+bool ControlLaw::tuningActive(const Params& p) const noexcept {
   // A tuning run owns the field: it must neither start nor keep a rest.
   return p.TuningMode || p.CVTuningMode || sysId_.systemIdRunning();
 }
 
-bool ControlLaw::restDue(const ControlSensors& s, const Params& p) {
+bool ControlLaw::restDue(const ControlSensors& s, const Params& p) noexcept {
   // Nothing for the field to do: the duty is down at the RPM floor, or the
   // voltage loop asks for no current at all (a bank relaxing from absorption
   // sits above the float target by itself; the PID then parks the duty at the
@@ -36,14 +36,14 @@ bool ControlLaw::restDue(const ControlSensors& s, const Params& p) {
   return true;
 }
 
-bool ControlLaw::restOver(const ControlSensors& s, const Params& p) const {
+bool ControlLaw::restOver(const ControlSensors& s, const Params& p) const noexcept {
   // The stage or an override changed what the loop holds, the voltage is
   // unknown, or the bank has come down under its target: the field works again.
   return !voltageControlActive_ || tuningActive(p) || !finite(s.IBV) ||
          s.IBV < ChargingVoltageTarget_ - p.FieldRestWakeV;
 }
 
-double ControlLaw::holdAtRest() {
+double ControlLaw::holdAtRest() noexcept {
   // Everything waits at zero, so the field-on edge starts from the floor
   // with the startup ramp, and the CV integrator is seeded afresh then.
   lastAppliedDuty_ = 0.0;

@@ -7,7 +7,7 @@ namespace xr {
 
 Pid::Pid(double kp, double ki, double kd, Direction dir) : kp_(kp), ki_(ki), kd_(kd), direction_(dir) {}
 
-void Pid::setMode(Mode mode) {
+void Pid::setMode(Mode mode) noexcept {
   if (mode == AUTOMATIC && mode_ == MANUAL) {
     // Bumpless initialisation (PID_v1 Initialize()).
     outputSum_ = clampOut(std::isfinite(output) ? output : outMin_);
@@ -16,7 +16,7 @@ void Pid::setMode(Mode mode) {
   mode_ = mode;
 }
 
-void Pid::trackIntegratorTo(double target, double dtSec) {
+void Pid::trackIntegratorTo(double target, double dtSec) noexcept {
   if (!(dtSec > 0.0) || !std::isfinite(target)) return;
   const double a = std::min(1.0, trackingGain_ * dtSec);
   outputSum_ = clampOut(outputSum_ + a * (target - outputSum_));

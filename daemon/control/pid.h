@@ -24,22 +24,22 @@ class Pid {
 
   Pid(double kp, double ki, double kd, Direction dir);
 
-  void setTunings(double kp, double ki, double kd) {
+  void setTunings(double kp, double ki, double kd) noexcept {
     if (kp < 0 || ki < 0 || kd < 0) return;  // library contract: gains are magnitudes
     kp_ = kp;
     ki_ = ki;
     kd_ = kd;
   }
-  void setOutputLimits(double min, double max) {
+  void setOutputLimits(double min, double max) noexcept {
     if (!(min < max)) return;
     outMin_ = min;
     outMax_ = max;
     output = clampOut(output);
     outputSum_ = clampOut(outputSum_);
   }
-  void setTrackingGain(double perSecond) { trackingGain_ = perSecond; }
-  void setMode(Mode mode);  // bumpless on MANUAL -> AUTOMATIC
-  Mode mode() const { return mode_; }
+  void setTrackingGain(double perSecond) noexcept { trackingGain_ = perSecond; }
+  void setMode(Mode mode) noexcept;  // bumpless on MANUAL -> AUTOMATIC
+  Mode mode() const noexcept { return mode_; }
 
   // Runs one compute with the real elapsed time. Returns false (and changes
   // nothing) in MANUAL or when dtSec <= 0 or the input is not finite.
@@ -60,7 +60,7 @@ class Pid {
 
   // Anti-windup (back-calculation): outputSum += min(1, Kt*dt) *
   // ((applied - P - D) - outputSum). Neutral while the output is not clamped.
-  void trackAppliedOutput(double applied, double dtSec) {
+  void trackAppliedOutput(double applied, double dtSec) noexcept {
     if (!(dtSec > 0.0) || !std::isfinite(applied)) return;
     // Back-calculation: pulls outputSum toward the value that, with the present
     // P and D terms, reproduces what the actuator actually applied. Zero effect
@@ -73,18 +73,18 @@ class Pid {
   // Parks the integrator itself toward `target` at Kt per second (T0's
   // implied-penalty anti-windup: "parks it near where the constraints already
   // imply", without making the penalty act while the temperature is low).
-  void trackIntegratorTo(double target, double dtSec);
+  void trackIntegratorTo(double target, double dtSec) noexcept;
   // Pins the integrator (and the output) to v, e.g. every MANUAL tick.
-  void resetIntegratorTo(double v) {
+  void resetIntegratorTo(double v) noexcept {
     if (!std::isfinite(v)) return;
     outputSum_ = clampOut(v);
     output = outputSum_;
     lastInput_ = std::isfinite(input) ? input : lastInput_;
   }
 
-  double pTerm() const { return pTerm_; }
-  double iTerm() const { return outputSum_; }
-  double dTerm() const { return dTerm_; }
+  double pTerm() const noexcept { return pTerm_; }
+  double iTerm() const noexcept { return outputSum_; }
+  double dTerm() const noexcept { return dTerm_; }
 
   // The library's three bound variables, held here instead of by pointer.
   double input = 0.0;
@@ -92,7 +92,7 @@ class Pid {
   double setpoint = 0.0;
 
  private:
-  double clampOut(double v) const { return std::clamp(v, outMin_, outMax_); }
+  double clampOut(double v) const noexcept { return std::clamp(v, outMin_, outMax_); }
   double kp_, ki_, kd_;
   Direction direction_;
   Mode mode_ = MANUAL;

@@ -5,7 +5,7 @@
 
 namespace xr {
 
-bool SystemId::start(TimeNs now, const SystemIdSnapshot& pre) {
+bool SystemId::start(TimeNs now, const SystemIdSnapshot& pre) noexcept {
   if (running_ || !pre.autoRunning) return false;
   running_ = true;
   stepped_ = false;
@@ -18,7 +18,7 @@ bool SystemId::start(TimeNs now, const SystemIdSnapshot& pre) {
   return true;
 }
 
-double SystemId::systemIdTick(TimeNs now, double measuredAmps, const Params& p, bool& finished) {
+double SystemId::systemIdTick(TimeNs now, double measuredAmps, const Params& p, bool& finished) noexcept {
   finished = false;
   if (!running_) return 0.0;
   const TimeNs half = fromMs(p.sysIDDurationMs);
@@ -53,7 +53,7 @@ double SystemId::systemIdTick(TimeNs now, double measuredAmps, const Params& p, 
   return p.sysIDStepDuty;
 }
 
-void SystemId::analyse() {
+void SystemId::analyse() noexcept {
   result_ = SystemIdResult{};
   if (baseCount_ == 0 || n_ < 10) return;
   const double I0 = baseSum_ / baseCount_;

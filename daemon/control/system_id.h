@@ -29,18 +29,18 @@ struct SystemIdResult {
 class SystemId {
  public:
   // Legal only while running normally in AUTO.
-  bool start(TimeNs now, const SystemIdSnapshot& pre);
+  bool start(TimeNs now, const SystemIdSnapshot& pre) noexcept;
   // While running: returns sysIDDutyOut. Sets `finished` on the falling edge.
-  double systemIdTick(TimeNs now, double measuredAmps, const Params& p, bool& finished);
-  void abort() { running_ = false; }
+  double systemIdTick(TimeNs now, double measuredAmps, const Params& p, bool& finished) noexcept;
+  void abort() noexcept { running_ = false; }
 
-  bool systemIdRunning() const { return running_; }
-  const SystemIdSnapshot& snapshot() const { return pre_; }
-  const SystemIdResult& result() const { return result_; }
-  bool stepped() const { return stepped_; }
+  bool systemIdRunning() const noexcept { return running_; }
+  const SystemIdSnapshot& snapshot() const noexcept { return pre_; }
+  const SystemIdResult& result() const noexcept { return result_; }
+  bool stepped() const noexcept { return stepped_; }
 
  private:
-  void analyse();
+  void analyse() noexcept;
   static constexpr int kSamples = 1024;
   bool running_ = false, stepped_ = false;
   TimeNs start_ = 0, stepAt_ = 0, lastSample_ = 0;

@@ -16,7 +16,7 @@ constexpr double kMaxPlausibleSlopeFPerSec = 1.0;
 
 ThermalDerate::ThermalDerate() : tempPID_(0, 0, 0, Pid::REVERSE) {}
 
-void ThermalDerate::reset() { *this = ThermalDerate(); }
+void ThermalDerate::reset() noexcept { *this = ThermalDerate(); }
 
 double ThermalDerate::update(const ThermalInputs& in, const Params& p) noexcept {
   if (p.IgnoreTemperature) {

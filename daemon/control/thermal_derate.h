@@ -32,15 +32,15 @@ class ThermalDerate {
   // Once per control tick. Returns thermalPenaltyAmps.
   // Real-time thread, every tick: neither allocates nor blocks (docs/architecture.md "Threads").
   double update(const ThermalInputs& in, const Params& p) noexcept;
-  void reset();
+  void reset() noexcept;
 
-  double tempFiltered() const { return tempFiltered_; }
-  double projectedTempF() const { return projectedTempF_; }
-  double thermalSlopeFPerSec() const { return thermalSlopeFPerSec_; }
-  double thermalPenaltyAmps() const { return thermalPenaltyAmps_; }
-  double penaltyTarget() const { return tempPID_.output; }  // thermalPenaltyAmps_d
-  double integrator() const { return tempPID_.iTerm(); }
-  bool holding() const { return holding_; }
+  double tempFiltered() const noexcept { return tempFiltered_; }
+  double projectedTempF() const noexcept { return projectedTempF_; }
+  double thermalSlopeFPerSec() const noexcept { return thermalSlopeFPerSec_; }
+  double thermalPenaltyAmps() const noexcept { return thermalPenaltyAmps_; }
+  double penaltyTarget() const noexcept { return tempPID_.output; }  // thermalPenaltyAmps_d
+  double integrator() const noexcept { return tempPID_.iTerm(); }
+  bool holding() const noexcept { return holding_; }
 
  private:
   Pid tempPID_;

@@ -9,7 +9,7 @@
 
 namespace xr {
 
-bool ProtectionSupervisor::checkAlarms(bool effAnomalyAlarmActive, EventBatch& ev) {
+bool ProtectionSupervisor::checkAlarms(bool effAnomalyAlarmActive, EventBatch& ev) noexcept {
   if (now_ < nextAlarmCheck_) return buzzer_;
   nextAlarmCheck_ = now_ + fromMs(k::ALARM_CHECK_MS);
 

@@ -19,7 +19,7 @@ bool sampleKnown(const Inputs& in) {
 }  // namespace
 
 const BatteryTempDecision& BatteryTemperatureGuard::update(const Inputs& in, const Params& p,
-                                                           EventBatch& ev) {
+                                                           EventBatch& ev) noexcept {
   if (firstTick_ < 0) firstTick_ = in.now;
   const bool known = sampleKnown(in);
   const double t = known ? in.batteryTempC.value : kNoValue;

@@ -31,8 +31,8 @@ struct BatteryTempDecision {
 
 class BatteryTemperatureGuard {
  public:
-  const BatteryTempDecision& update(const Inputs& in, const Params& p, EventBatch& ev);
-  const BatteryTempDecision& decision() const { return d_; }
+  const BatteryTempDecision& update(const Inputs& in, const Params& p, EventBatch& ev) noexcept;
+  const BatteryTempDecision& decision() const noexcept { return d_; }
 
  private:
   BatteryTempDecision d_;

@@ -26,7 +26,7 @@ constexpr std::int64_t kBankMismatchHoldMs = 5000;
 
 }  // namespace
 
-bool ProtectionSupervisor::sustained(TimerState& t, bool cond, TimeNs hold) const {
+bool ProtectionSupervisor::sustained(TimerState& t, bool cond, TimeNs hold) const noexcept {
   if (!cond) {
     t.since = -1;
     return false;
@@ -35,7 +35,7 @@ bool ProtectionSupervisor::sustained(TimerState& t, bool cond, TimeNs hold) cons
   return now_ - t.since >= hold;
 }
 
-void ProtectionSupervisor::updateDetectors(const Inputs& in, double MeasuredAmps, EventBatch& ev) {
+void ProtectionSupervisor::updateDetectors(const Inputs& in, double MeasuredAmps, EventBatch& ev) noexcept {
   if (boot_ < 0) {
     boot_ = in.now;
     now_ = in.now;
@@ -70,7 +70,7 @@ void ProtectionSupervisor::updateDetectors(const Inputs& in, double MeasuredAmps
 // release check 3 s after latching, then a definitive recheck every 10 s.
 // The seed's 5 s new-event poll is tightened to every 250 ms check (the
 // hardware has already cut GPIO4; the sooner the software agrees the better).
-void ProtectionSupervisor::updateInaLatch(const Inputs& in, EventBatch& ev) {
+void ProtectionSupervisor::updateInaLatch(const Inputs& in, EventBatch& ev) noexcept {
   flags_.inaAbsent = p_.INADisconnected;
   if (p_.INADisconnected) {
     flags_.inaOvervoltageLatched = false;
@@ -102,7 +102,7 @@ void ProtectionSupervisor::updateInaLatch(const Inputs& in, EventBatch& ev) {
 }
 
 // Alternator hard shutdown, disagreement warning/critical, implausibility.
-void ProtectionSupervisor::updateVoltageSensors(const Inputs& in, EventBatch& ev) {
+void ProtectionSupervisor::updateVoltageSensors(const Inputs& in, EventBatch& ev) noexcept {
   // Alternator Hard Shutdown: IBV > AlternatorHardShutdownV.
   const double hs = alternatorHardShutdownV(p_);
   flags_.altHardShutdown = finite(IBV_) && IBV_ > hs;
@@ -154,7 +154,7 @@ void ProtectionSupervisor::updateVoltageSensors(const Inputs& in, EventBatch& ev
 // BatteryV) reads a bank size other than BulkVoltage's (the one 18/36 V
 // rule, params/derived.h). A dead sensor (< SENSOR_DEAD_V) is left to the
 // disagreement and implausibility detectors.
-void ProtectionSupervisor::updateBankMismatch(EventBatch& ev) {
+void ProtectionSupervisor::updateBankMismatch(EventBatch& ev) noexcept {
   const SystemClass configured = systemClass(p_);
   int live = 0, other = 0;
   double shown = 0.0;
@@ -174,7 +174,7 @@ void ProtectionSupervisor::updateBankMismatch(EventBatch& ev) {
 }
 
 // T1, T2, T3 (IgnoreTemperature), T4 and T5 (not ignorable, see docs).
-void ProtectionSupervisor::updateTemperature(const Inputs& in, EventBatch& ev) {
+void ProtectionSupervisor::updateTemperature(const Inputs& in, EventBatch& ev) noexcept {
   const Reading& tr = alternatorTemperature(in, p_.TempSource);
   TempToUse_ = tr.value;
   const bool fresh = temperatureFresh(tr.value, tr.stamp, now_);
@@ -242,7 +242,7 @@ void ProtectionSupervisor::updateTemperature(const Inputs& in, EventBatch& ev) {
 
 // The RPM gate. Before the temperature detectors, which need to know
 // whether the engine turns this tick (the heat-soak rule).
-void ProtectionSupervisor::updateRpmGate(EventBatch& ev) {
+void ProtectionSupervisor::updateRpmGate(EventBatch& ev) noexcept {
   // RPM < MinRPMForField; an unknown RPM counts as below (field stays off).
   // Ours: a resting field (control's full-bank rest) quiets a stator tach;
   // during the rest and RPM_REST_GRACE_MS after, an RPM that was fine when
@@ -259,7 +259,7 @@ void ProtectionSupervisor::updateRpmGate(EventBatch& ev) {
 }
 
 // Hard overcurrent, current data stale.
-void ProtectionSupervisor::updateCurrent(const Inputs& in, double MeasuredAmps, EventBatch& ev) {
+void ProtectionSupervisor::updateCurrent(const Inputs& in, double MeasuredAmps, EventBatch& ev) noexcept {
   const double trip = hardOCTripAmps(p_);
   flags_.hardOvercurrent =
       sustained(hardOcT_, finite(MeasuredAmps) && MeasuredAmps > trip, fromMs(p_.HardOCDebounceMs));
@@ -285,7 +285,7 @@ void ProtectionSupervisor::updateCurrent(const Inputs& in, double MeasuredAmps, 
 // Fresh INA228 samples feed the Group 1 dv/dt EMA and the load-dump dBcur/dt.
 // "dvdt sample window: 1–100 ms between INA samples ... slow mode rejected —
 // dvdt holds last value."
-void ProtectionSupervisor::updateFastSamples(const Inputs& in) {
+void ProtectionSupervisor::updateFastSamples(const Inputs& in) noexcept {
   if (in.IBV.fresh && in.IBV.stamp != lastIbvStamp_ && finite(in.IBV.value)) {
     if (lastIbvStamp_ != 0 && finite(lastIbvSample_)) {
       const double dt = toSec(in.IBV.stamp - lastIbvStamp_);

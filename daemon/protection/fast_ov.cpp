@@ -17,7 +17,7 @@ namespace {
 constexpr TimeNs kFastOvGap = fromMs(100);
 }  // namespace
 
-void ProtectionSupervisor::resetFastOv() {
+void ProtectionSupervisor::resetFastOv() noexcept {
   iexCount_ = 0;
   iexActive_ = false;
   preEventCvI_ = 0.0;
@@ -28,7 +28,7 @@ void ProtectionSupervisor::resetFastOv() {
   maHead_ = 0;
 }
 
-FastOvAction ProtectionSupervisor::runFastOvSupervisors(const FastOvInputs& x) {
+FastOvAction ProtectionSupervisor::runFastOvSupervisors(const FastOvInputs& x) noexcept {
   if (lastFastOvCall_ < 0 || now_ - lastFastOvCall_ > kFastOvGap || now_ < lastFastOvCall_) resetFastOv();
   // The step since the last call is needed only by the Group 3 bleed; it is
   // computed there from this (the same value as computing it here).
@@ -90,7 +90,7 @@ FastOvAction ProtectionSupervisor::runFastOvSupervisors(const FastOvInputs& x) {
 }
 
 // Group 3 signal window: every fresh sample since the last reset.
-void ProtectionSupervisor::pushGroup3Sample(const FastOvInputs& x) {
+void ProtectionSupervisor::pushGroup3Sample(const FastOvInputs& x) noexcept {
   if (!x.altCurrentFresh || !std::isfinite(x.MeasuredAmps)) return;
   maBuf_[static_cast<std::size_t>(maHead_)] = x.MeasuredAmps;
   maHead_ = (maHead_ + 1) % static_cast<int>(maBuf_.size());
@@ -98,7 +98,7 @@ void ProtectionSupervisor::pushGroup3Sample(const FastOvInputs& x) {
 }
 
 // Groups 1 and 2, the voltage's: the cap they set (+infinity when neither acts).
-double ProtectionSupervisor::voltageGroupsCap(const FastOvInputs& x, FastOvAction& a) {
+double ProtectionSupervisor::voltageGroupsCap(const FastOvInputs& x, FastOvAction& a) noexcept {
   const double target = x.ChargingVoltageTarget;
   double cap = std::numeric_limits<double>::infinity();
   // Group 1 — prediction: Vpred = IBV + TdPred * max(0, dvdt).
@@ -117,7 +117,7 @@ double ProtectionSupervisor::voltageGroupsCap(const FastOvInputs& x, FastOvActio
 }
 
 // Group 3's signal (IExcessSigSrc): the window's mean, the filtered or the raw current.
-double ProtectionSupervisor::group3Signal(const FastOvInputs& x) const {
+double ProtectionSupervisor::group3Signal(const FastOvInputs& x) const noexcept {
   if (p_.IExcessSigSrc == 1) return x.MeasuredAmps_filtered;
   if (p_.IExcessSigSrc != 0) return x.MeasuredAmps;
   const int maN = std::clamp(p_.IExcessMA_N, 1, static_cast<int>(maBuf_.size()));
@@ -132,7 +132,7 @@ double ProtectionSupervisor::group3Signal(const FastOvInputs& x) const {
 // Group 3 — iExcess: current above the setpoint near the voltage target.
 // Sets cv_I's action; returns its cap (+infinity when it does not act).
 double ProtectionSupervisor::runGroup3(const FastOvInputs& x, bool loadDump, TimeNs prevCall, double base,
-                                       FastOvAction& a) {
+                                       FastOvAction& a) noexcept {
   const double target = x.ChargingVoltageTarget;
   const double sig = group3Signal(x);
   const double thr = x.setpointLimited + p_.IExcessK;

@@ -12,10 +12,10 @@ namespace xr {
 
 ProtectionSupervisor::ProtectionSupervisor(const Params& p) : p_(p) { alarmMsgAt_.fill(-1); }
 
-void ProtectionSupervisor::setParams(const Params& p) { p_ = p; }
+void ProtectionSupervisor::setParams(const Params& p) noexcept { p_ = p; }
 
 void ProtectionSupervisor::push(EventBatch& ev, EventCode c, EventLevel l, Reason r, double a, double b,
-                                int detail) const {
+                                int detail) const noexcept {
   ev.push(makeEvent(now_, l, c, r, a, b, detail, lastMode_));
 }
 
@@ -23,7 +23,7 @@ void ProtectionSupervisor::push(EventBatch& ev, EventCode c, EventLevel l, Reaso
 // clear once the condition has stayed false for kEventClearHold (a re-trip
 // inside that window is the same event, not a new one).
 void ProtectionSupervisor::edge(EventEdge& e, bool now, Reason r, double a, double b, EventBatch& ev,
-                                EventLevel level, bool logTrip) {
+                                EventLevel level, bool logTrip) noexcept {
   if (now) {
     e.falseSince = -1;
     if (e.logged) return;
@@ -42,22 +42,22 @@ void ProtectionSupervisor::edge(EventEdge& e, bool now, Reason r, double a, doub
 }
 
 // "T2 ... No auto-restart — field stays off until manual re-enable or reboot."
-void ProtectionSupervisor::reenableField() {
+void ProtectionSupervisor::reenableField() noexcept {
   flags_.tempSustained = false;
   t1T_.since = -1;  // the sustained timer restarts from the re-enable
   if (flags_.rampLatched && flags_.rampLatchedReason == Reason::REASON_TEMP_SUSTAINED)
     flags_.rampLatched = false;
 }
 
-void ProtectionSupervisor::resetAlarmLatch() { alarmLatched_ = false; }
+void ProtectionSupervisor::resetAlarmLatch() noexcept { alarmLatched_ = false; }
 
-ProtectionTelemetry ProtectionSupervisor::telemetry() const {
+ProtectionTelemetry ProtectionSupervisor::telemetry() const noexcept {
   ProtectionTelemetry t;
   fillTelemetry(t);
   return t;
 }
 
-void ProtectionSupervisor::fillTelemetry(ProtectionTelemetry& t) const {
+void ProtectionSupervisor::fillTelemetry(ProtectionTelemetry& t) const noexcept {
   t.shutdownPhase = phase_;
   t.nearBulk = lastFastOv_.nearBulk;
   t.fastOvCurrentCap = lastFastOv_.fastOvCurrentCap;

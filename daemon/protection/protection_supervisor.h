@@ -110,52 +110,52 @@ struct FastOvAction {
 class ProtectionSupervisor {
  public:
   explicit ProtectionSupervisor(const Params& p);
-  void setParams(const Params& p);
+  void setParams(const Params& p) noexcept;
 
   // Step 2: sustained timers and every detector. MeasuredAmps is the
   // zero-corrected alternator current (NaN when unknown). Also: INA228 latch
   // (250 ms cadence, release check 3 s, recheck 10 s), dv/dt EMA and
   // dBcur/dt on fresh INA samples, lockout expiry.
-  void updateDetectors(const Inputs& in, double MeasuredAmps, EventBatch& ev);
+  void updateDetectors(const Inputs& in, double MeasuredAmps, EventBatch& ev) noexcept;
   // Control's field rest (AUTO, full bank) of the last tick: while it lasts,
   // and RPM_REST_GRACE_MS after, the RPM gate trusts the RPM seen before it.
-  void setFieldResting(bool resting) { fieldResting_ = resting; }
+  void setFieldResting(bool resting) noexcept { fieldResting_ = resting; }
   // The BMS limits went stale (BmsLimiter): an alarm row of its own.
-  void setBmsStale(bool stale) { bmsStale_ = stale; }
-  const ProtectionFlags& flags() const { return flags_; }
+  void setBmsStale(bool stale) noexcept { bmsStale_ = stale; }
+  const ProtectionFlags& flags() const noexcept { return flags_; }
 
   // Step 7: the shutdown sequencer (three paths + lockout + disabled ramp).
   // Call every tick with this tick's decision.
   ShutdownCommand runShutdownPath(const ModeDecision& d, double lastAppliedDuty, double rpmMinDuty,
-                                  EventBatch& ev);
+                                  EventBatch& ev) noexcept;
 
   // Groups 1/2/3 and load dump (AUTO path, see (g) above).
-  FastOvAction runFastOvSupervisors(const FastOvInputs& x);
+  FastOvAction runFastOvSupervisors(const FastOvInputs& x) noexcept;
 
   // CheckAlarms(): evaluates every 250 ms, returns the GPIO21 level.
-  bool checkAlarms(bool effAnomalyAlarmActive, EventBatch& ev);
+  bool checkAlarms(bool effAnomalyAlarmActive, EventBatch& ev) noexcept;
 
   // Commands.
-  void reenableField();    // clears the T2 latch (and restarts its timer)
-  void resetAlarmLatch();  // ResetAlarmLatch
+  void reenableField() noexcept;    // clears the T2 latch (and restarts its timer)
+  void resetAlarmLatch() noexcept;  // ResetAlarmLatch
 
-  ProtectionTelemetry telemetry() const;
+  ProtectionTelemetry telemetry() const noexcept;
   // Same, written in place (Regulator::step fills its persistent Outputs
   // without building and copying a temporary every tick).
-  void fillTelemetry(ProtectionTelemetry& t) const;
+  void fillTelemetry(ProtectionTelemetry& t) const noexcept;
 
  private:
   struct TimerState {
     TimeNs since = -1;  // first instant the condition held, -1 = not holding
   };
-  bool sustained(TimerState& t, bool cond, TimeNs hold) const;
-  void updateInaLatch(const Inputs& in, EventBatch& ev);
-  void updateVoltageSensors(const Inputs& in, EventBatch& ev);
-  void updateBankMismatch(EventBatch& ev);
-  void updateRpmGate(EventBatch& ev);
-  void updateTemperature(const Inputs& in, EventBatch& ev);
-  void updateCurrent(const Inputs& in, double MeasuredAmps, EventBatch& ev);
-  void updateFastSamples(const Inputs& in);
+  bool sustained(TimerState& t, bool cond, TimeNs hold) const noexcept;
+  void updateInaLatch(const Inputs& in, EventBatch& ev) noexcept;
+  void updateVoltageSensors(const Inputs& in, EventBatch& ev) noexcept;
+  void updateBankMismatch(EventBatch& ev) noexcept;
+  void updateRpmGate(EventBatch& ev) noexcept;
+  void updateTemperature(const Inputs& in, EventBatch& ev) noexcept;
+  void updateCurrent(const Inputs& in, double MeasuredAmps, EventBatch& ev) noexcept;
+  void updateFastSamples(const Inputs& in) noexcept;
   // logTrip = false when a dedicated event (seed wording) already reports the trip.
   // Trip/clear logging memory of one detector. A detector sitting on its
   // threshold (noise, or a ramp that brings the value back to exactly the
@@ -167,21 +167,22 @@ class ProtectionSupervisor {
   };
   static constexpr TimeNs kEventClearHold = 1'000'000'000;
   void edge(EventEdge& e, bool now, Reason r, double a, double b, EventBatch& ev,
-            EventLevel level = EventLevel::Warning, bool logTrip = true);
+            EventLevel level = EventLevel::Warning, bool logTrip = true) noexcept;
   void push(EventBatch& ev, EventCode c, EventLevel l, Reason r, double a = 0.0, double b = 0.0,
-            int detail = 0) const;
-  void startLockout(EventBatch& ev);
-  void resetFastOv();
+            int detail = 0) const noexcept;
+  void startLockout(EventBatch& ev) noexcept;
+  void resetFastOv() noexcept;
   // runShutdownPath's steps (shutdown_sequencer.cpp).
-  void cutImmediately(Reason reason, double lastAppliedDuty, EventBatch& ev);
-  void latchRamp(const ModeDecision& d, bool faultRamp);
-  GovMode startRamp(FieldControlMode mode, double lastAppliedDuty);
-  void stepRampPhases(double floorDuty, bool faultRamp, Reason reason, EventBatch& ev);
+  void cutImmediately(Reason reason, double lastAppliedDuty, EventBatch& ev) noexcept;
+  void latchRamp(const ModeDecision& d, bool faultRamp) noexcept;
+  GovMode startRamp(FieldControlMode mode, double lastAppliedDuty) noexcept;
+  void stepRampPhases(double floorDuty, bool faultRamp, Reason reason, EventBatch& ev) noexcept;
   // runFastOvSupervisors' steps (fast_ov.cpp).
-  void pushGroup3Sample(const FastOvInputs& x);
-  double voltageGroupsCap(const FastOvInputs& x, FastOvAction& a);
-  double group3Signal(const FastOvInputs& x) const;
-  double runGroup3(const FastOvInputs& x, bool loadDump, TimeNs prevCall, double base, FastOvAction& a);
+  void pushGroup3Sample(const FastOvInputs& x) noexcept;
+  double voltageGroupsCap(const FastOvInputs& x, FastOvAction& a) noexcept;
+  double group3Signal(const FastOvInputs& x) const noexcept;
+  double runGroup3(const FastOvInputs& x, bool loadDump, TimeNs prevCall, double base,
+                   FastOvAction& a) noexcept;
 
   Params p_;
   ProtectionFlags flags_;
@@ -190,7 +191,7 @@ class ProtectionSupervisor {
   // The previous tick's now_: the sequencer's ramp step dtSec() is computed
   // from it only on the ticks that ramp, not on every tick.
   TimeNs prevNow_ = 0;
-  double dtSec() const { return std::clamp(toSec(now_ - prevNow_), 0.0, 1.0); }
+  double dtSec() const noexcept { return std::clamp(toSec(now_ - prevNow_), 0.0, 1.0); }
 
   // Latest values seen by the detectors (telemetry, alarms, accelerator).
   double IBV_ = kNoValue, BatteryV_ = kNoValue, Bcur_ = kNoValue, MeasuredAmps_ = kNoValue;

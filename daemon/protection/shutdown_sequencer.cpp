@@ -23,7 +23,7 @@ namespace {
 using M = FieldControlMode;
 }
 
-void ProtectionSupervisor::startLockout(EventBatch& ev) {
+void ProtectionSupervisor::startLockout(EventBatch& ev) noexcept {
   lockoutUntil_ = now_ + fromMs(p_.FIELD_COLLAPSE_DELAY);
   flags_.lockoutActive = true;
   flags_.rampLatched = false;
@@ -31,7 +31,7 @@ void ProtectionSupervisor::startLockout(EventBatch& ev) {
 }
 
 ShutdownCommand ProtectionSupervisor::runShutdownPath(const ModeDecision& d, double lastAppliedDuty,
-                                                      double rpmMinDuty, EventBatch& ev) {
+                                                      double rpmMinDuty, EventBatch& ev) noexcept {
   // ModeChanged ("Entering normal mode" / "Exiting normal mode: <reason>") is
   // emitted by Regulator::step with its enterSys* transition, not here, so
   // the journal gets one line per transition.
@@ -89,7 +89,7 @@ ShutdownCommand ProtectionSupervisor::runShutdownPath(const ModeDecision& d, dou
 }
 
 // The immediate-cut reasons: GPIO4 LOW this tick, no ramp.
-void ProtectionSupervisor::cutImmediately(Reason reason, double lastAppliedDuty, EventBatch& ev) {
+void ProtectionSupervisor::cutImmediately(Reason reason, double lastAppliedDuty, EventBatch& ev) noexcept {
   // Duplicate logging suppressed when already cut; the INA228 alert has
   // already pulled GPIO4 LOW in hardware, its InaLatchSet line is the log.
   if (!fieldCut_ && reason != Reason::REASON_INA_OVERVOLTAGE)
@@ -103,7 +103,7 @@ void ProtectionSupervisor::cutImmediately(Reason reason, double lastAppliedDuty,
 }
 
 // A warning/critical ramp runs to its cut even if its trigger clears.
-void ProtectionSupervisor::latchRamp(const ModeDecision& d, bool faultRamp) {
+void ProtectionSupervisor::latchRamp(const ModeDecision& d, bool faultRamp) noexcept {
   if (faultRamp && !fieldCut_ && !flags_.rampLatched) {
     flags_.rampLatched = true;
     flags_.rampLatchedMode = d.mode;
@@ -117,7 +117,7 @@ void ProtectionSupervisor::latchRamp(const ModeDecision& d, bool faultRamp) {
 // Ramp phases (GPIO4 still HIGH): the first tick of a ramp starts phase 1
 // from the applied duty; a critical ramp goes straight to phase 4 with the
 // slew limiter off. Returns the governor mode of the ramp.
-GovMode ProtectionSupervisor::startRamp(FieldControlMode mode, double lastAppliedDuty) {
+GovMode ProtectionSupervisor::startRamp(FieldControlMode mode, double lastAppliedDuty) noexcept {
   if (phase_ == ShutdownPhase::PHASE_NONE || phase_ == ShutdownPhase::PHASE_DONE) {
     phase_ = ShutdownPhase::PHASE_1;
     phaseStart_ = now_;
@@ -136,7 +136,8 @@ GovMode ProtectionSupervisor::startRamp(FieldControlMode mode, double lastApplie
 // Phases 1-4 (docs/protections.md "Shutdown paths"): down to the RPM floor at
 // DutyRampRate, a hold, down to 0 at DutySlowRampRate, the settle, then the
 // cut. At most one ramp step per tick; a phase that ends passes on at once.
-void ProtectionSupervisor::stepRampPhases(double floorDuty, bool faultRamp, Reason reason, EventBatch& ev) {
+void ProtectionSupervisor::stepRampPhases(double floorDuty, bool faultRamp, Reason reason,
+                                          EventBatch& ev) noexcept {
   bool rampedThisTick = false;
   if (phase_ == ShutdownPhase::PHASE_1) {
     if (duty_ > floorDuty) {
