@@ -38,8 +38,10 @@ deps:
 	@$(MAKE) --no-print-directory -C tests/integrations/signalk deps
 	@$(MAKE) --no-print-directory -C tests/integrations/n2k deps
 
+# The development tree builds what the tests need; the benchmarks have their
+# own optimised tree (make bench, below), so they are not linked here too.
 $(BUILD)/CMakeCache.txt:
-	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo
+	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DXR_BUILD_BENCH=OFF
 
 build: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS)
