@@ -50,18 +50,17 @@ struct Regulator::State {
 struct Regulator::Tick {
   explicit Tick(const Inputs& inputs) : in(inputs) {}
   const Inputs& in;
-  ControlSensors cs;                    // the control law's view of the sensors
-  const Reading* temp = nullptr;        // the alternator temperature the TempSource names
-  double MeasuredAmps = kNoValue;       // alternator current, auto-zero corrected
-  double Bcur = kNoValue;               // battery current, corrected
-  bool autoZeroActive = false;          // the auto-zero owns the field this tick
-  const Params* stageParams = nullptr;  // the parameters, temperature-compensated when compensating
-  bool manualMode = false;              // ManualMode or the operator's manual command
-  TickSnapshot snap;                    // what mode selection saw
-  ModeDecision d;                       // the mode and its reason
-  double duty = 0.0;                    // the duty decided, before the field gate
-  bool field = false;                   // the field enable decided
-  bool fastOvActive = false;            // a fast-OV supervisor clamps this tick
+  ControlSensors cs;               // the control law's view of the sensors
+  const Reading* temp = nullptr;   // the alternator temperature the TempSource names
+  double MeasuredAmps = kNoValue;  // alternator current, auto-zero corrected
+  double Bcur = kNoValue;          // battery current, corrected
+  bool autoZeroActive = false;     // the auto-zero owns the field this tick
+  bool manualMode = false;         // ManualMode or the operator's manual command
+  TickSnapshot snap;               // what mode selection saw
+  ModeDecision d;                  // the mode and its reason
+  double duty = 0.0;               // the duty decided, before the field gate
+  bool field = false;              // the field enable decided
+  bool fastOvActive = false;       // a fast-OV supervisor clamps this tick
   GovMode govMode = GovMode::GOV_NORMAL_SLEW;
 };
 

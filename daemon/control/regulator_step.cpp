@@ -97,15 +97,15 @@ void Regulator::runProtections(Tick& t) noexcept {
   const BatteryTempDecision& bt = s.batTemp.update(in, p, ev);
   t.cs.batteryChargeCapA = bt.currentCapA;
   const double compV = temperatureCompensationV(p, bt.tempC);
-  t.stageParams = &p;
+  const Params* stageParams = &p;
   if (compV != 0.0) {
     compensateTargets(p, compV, s.compensated);
-    t.stageParams = &s.compensated;
+    stageParams = &s.compensated;
   }
   // The charging stage is suppressed in override modes and manual.
   s.law.updateBms(in.bms, in.now, t.Bcur, in.IBV.value, p, ev);
   t.manualMode = p.ManualMode || s.opManual;
-  s.law.updateChargingStage(t.cs, *t.stageParams, t.manualMode, ev);
+  s.law.updateChargingStage(t.cs, *stageParams, t.manualMode, ev);
 }
 
 // 5. Immutable snapshot and mode selection by priority.

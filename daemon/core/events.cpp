@@ -241,7 +241,6 @@ std::optional<std::string> describeModeAndStage(const Event& e) {
 // Sensor faults, alarms, the field enable and limp home.
 std::optional<std::string> describeSensorsAndField(const Event& e) {
   char buf[256];
-  const std::string reason = shortReason(e.reason);
   switch (e.code) {
     case EventCode::InaLatchSet:
       std::snprintf(buf, sizeof buf,
@@ -272,7 +271,7 @@ std::optional<std::string> describeSensorsAndField(const Event& e) {
       return "Field enabled (GPIO4 HIGH)";
     case EventCode::FieldOff:
       return e.reason == Reason::NONE ? std::string("Field disabled (GPIO4 LOW)")
-                                      : "Field disabled (GPIO4 LOW): " + reason;
+                                      : "Field disabled (GPIO4 LOW): " + shortReason(e.reason);
     case EventCode::LimpHomeActive:
       std::snprintf(buf, sizeof buf, "LIMP HOME active: fixed %.0f %% duty, only the INA228 latch protects",
                     e.a);
@@ -285,7 +284,6 @@ std::optional<std::string> describeSensorsAndField(const Event& e) {
 // Operator commands and the battery's own events.
 std::optional<std::string> describeCommandsAndBattery(const Event& e) {
   char buf[256];
-  const std::string reason = shortReason(e.reason);
   switch (e.code) {
     case EventCode::CommandApplied:
     case EventCode::CommandRejected:
@@ -329,7 +327,6 @@ std::optional<std::string> describeCommandsAndBattery(const Event& e) {
 // The CAN buses, the forecast and the auto-zero's result.
 std::optional<std::string> describeLinks(const Event& e) {
   char buf[256];
-  const std::string reason = shortReason(e.reason);
   switch (e.code) {
     case EventCode::BmsBadFrames:
       std::snprintf(buf, sizeof buf, "BMS CAN: %.0f bad frame(s) ignored (last: 0x%03X, %s)", e.a,
