@@ -77,6 +77,8 @@ BatteryLedger BatteryMonitor::ledger() const noexcept {
   l.DischargedEnergy_AllTime_Wh += discharged_.lifetimeFraction_Wh;
   l.AlternatorChargedEnergy_AllTime_Wh += altCharged_.lifetimeFraction_Wh;
   l.SolarChargedEnergy_AllTime_Wh += solar_.lifetimeFraction_Wh;
+  l.capacity = capacity_.ledger();
+  l.resistance = resistance_.ledger();
   l.valid = true;
   return l;
 }
@@ -117,6 +119,8 @@ void BatteryMonitor::restoreLedger(const BatteryLedger& in) noexcept {
   split(l.DischargedEnergy_AllTime_Wh, discharged_);
   split(l.AlternatorChargedEnergy_AllTime_Wh, altCharged_);
   split(l.SolarChargedEnergy_AllTime_Wh, solar_);
+  capacity_.restore(l.capacity);
+  resistance_.restore(l.resistance);
   l.valid = true;
   ledger_ = l;
   telemetryStale_ = true;
@@ -183,6 +187,11 @@ void BatteryMonitor::fillTelemetry(BatteryTelemetry& t) const noexcept {
   t.AlternatorOnTime_AllTime_s = ledger_.AlternatorOnTime_AllTime_s;
   t.nominalVoltage = nominalVoltage_;
   t.usingVictronCurrent = usingVictron_;
+  t.capacity_measured_ah = capacity_.measuredAh();
+  t.capacity_cycles = capacity_.cycles();
+  t.battery_r_mohm = resistance_.medianMohm();
+  t.battery_r_spread_mohm = resistance_.spreadMohm();
+  t.battery_r_samples = resistance_.samples();
 }
 
 }  // namespace xr

@@ -28,7 +28,9 @@
 #include <cstdint>
 
 #include "battery/battery_telemetry.h"
+#include "battery/capacity_tracker.h"
 #include "battery/ledger.h"
+#include "battery/resistance_estimator.h"
 #include "core/events.h"
 #include "core/inputs.h"
 #include "core/time.h"
@@ -160,6 +162,11 @@ class BatteryMonitor {
   void chargeCompletedOnTail(TimeNs now, EventBatch& ev) noexcept;
   double chargedEnergyLifetimeWh() const noexcept;
   double alternatorChargedEnergyLifetimeWh() const noexcept;
+  // The bank's measured capacity (NaN until measured) and resistance at 25 degC
+  // (NaN until enough steps were seen): battery_health.cpp.
+  double capacityMeasuredAh() const noexcept { return capacity_.measuredAh(); }
+  int capacityCycles() const noexcept { return capacity_.cycles(); }
+  double batteryResistanceMohm() const noexcept { return resistance_.medianMohm(); }
   // Last applySocGainCorrection outcome (tests, diagnostics).
   GainGuard lastGainGuard() const noexcept { return lastGainGuard_; }
 
@@ -186,6 +193,10 @@ class BatteryMonitor {
   }
   void estimateSocAtRest(double dt_s, double amps, double volts, double altAmps) noexcept;
   void calculateChargeTimes(const Inputs& in) noexcept;
+  // battery_health.cpp: the measured capacity's points, the resistance.
+  void trackHealth(const Inputs& in, double dt_s, double amps, double volts, double altAmps) noexcept;
+  void restedVoltagePoint(double dt_s, double amps, double volts, double tempC, bool resting) noexcept;
+  void capacityPoint(TimeNs now, double socPct, bool full, EventBatch& ev) noexcept;
   void commitEnergy(Energy& e, double& lifetimeWhole, double delta_Wh) noexcept;
   double temperatureF(const Inputs& in) const noexcept;
 
@@ -245,6 +256,15 @@ class BatteryMonitor {
   double lastAutoZeroTemp_ = 0.0;
   double autoZeroAccumulator_ = 0.0;
   long autoZeroSampleCount_ = 0;
+
+  // Health (battery_health.cpp).
+  CapacityTracker capacity_;
+  ResistanceEstimator resistance_;
+  double bmsSocPct_ = kNoValue;  // a fresh SoC from a BMS, this interval
+  double healthRest_s_ = 0.0;    // lead-acid rest towards a rested-voltage point
+  double healthRestV_s_ = 0.0, healthRestA_s_ = 0.0, healthRestAvg_s_ = 0.0;
+  bool healthRestTaken_ = false;         // this rest gave its point
+  double pendingRestSocPct_ = kNoValue;  // a rested-voltage point for the next SoC body
 
   // Predictions.
   double timeToFullChargeMin_ = -999.0;

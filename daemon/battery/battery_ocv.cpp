@@ -30,6 +30,10 @@ constexpr OcvPoint kLeadAcidOcv[] = {
 constexpr double kRestCurrentC = 0.02;
 constexpr double kRestSeconds = 30.0;
 
+}  // namespace
+
+namespace battery_detail {
+
 bool isLeadAcid(const Params& p) {
   // BatteryProfile: 0 lifepo4, 1 agm, 2 flooded, 3 gel, 4 custom.
   return p.BatteryProfile >= 1 && p.BatteryProfile <= 3;
@@ -45,7 +49,9 @@ double socFromRestVoltage12(double v) {
   return 100.0;
 }
 
-}  // namespace
+}  // namespace battery_detail
+
+using namespace battery_detail;
 
 void BatteryMonitor::estimateSocAtRest(double dt_s, double amps, double volts, double altAmps) noexcept {
   if (socSource() != SocSource::Unknown || !isLeadAcid(p_) || !(dt_s > 0.0)) {

@@ -84,6 +84,7 @@ void BatteryMonitor::updateBatterySoc(const Inputs& in, double measuredAltAmps, 
     runSocBody(in.now, elapsed, ev);
   }
   estimateSocAtRest(dt, iOk ? I : NAN, vOk ? V : NAN, measuredAltAmps);
+  trackHealth(in, dt, iOk ? I : NAN, vOk ? V : NAN, measuredAltAmps);
   if (in.now - lastChargeTimes_ >= fromMs(k::INA_SLOW_INTERVAL_MS)) {
     lastChargeTimes_ = in.now;
     calculateChargeTimes(in);
@@ -120,6 +121,7 @@ void BatteryMonitor::countCoulombs(double elapsed_s) noexcept {
     batteryDeltaAh =
         deltaAh / peukertFactor(dischargeCurrent_A, cap, p_.PeukertRatedCurrent_A, p_.PeukertExponent);
   }
+  capacity_.addAh(batteryDeltaAh, elapsed_s);
   ledger_.coulombAccumulator_Ah += batteryDeltaAh;
   if (gainReferenceValid_) unclampedCount_Ah_ += batteryDeltaAh;
   if (std::fabs(ledger_.coulombAccumulator_Ah) >= battery_k::COULOMB_COMMIT_AH) {
@@ -155,6 +157,10 @@ void BatteryMonitor::runSocBody(TimeNs now, double elapsed_s, EventBatch& ev) no
   const double cap = p_.BatteryCapacity_Ah;
 
   countCoulombs(elapsed_s);
+  // Points of known SoC for the measured capacity, in step with the count.
+  if (finite(pendingRestSocPct_)) capacityPoint(now, pendingRestSocPct_, false, ev);
+  pendingRestSocPct_ = kNoValue;
+  if (finite(bmsSocPct_)) capacityPoint(now, bmsSocPct_, false, ev);
 
   // ---- energy
   commitEnergy(charged_, ledger_.ChargedEnergy_AllTime_Wh, intChargeWh_);
@@ -206,6 +212,7 @@ void BatteryMonitor::declareFullCharge(TimeNs now, EventBatch& ev) noexcept {
     applySocGainCorrection(now, ev);
   else
     lastGainGuard_ = GainGuard::FeatureOff;
+  capacityPoint(now, 100.0, true, ev);
   ledger_.CoulombCount_Ah = cap;
   ledger_.coulombAccumulator_Ah = 0.0;
   FullChargeDetected_ = true;

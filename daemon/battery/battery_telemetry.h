@@ -1,6 +1,10 @@
 #pragma once
 // SoC and energy figures exported per tick. Owned by daemon/battery.
+#include <limits>
+
 namespace xr {
+
+inline constexpr double kNoHealthValue = std::numeric_limits<double>::quiet_NaN();
 
 // Where the SoC figure comes from (docs/batteries.md "State of charge at
 // first start"): the dashboard shows no number while it is Unknown, and "≈"
@@ -31,6 +35,13 @@ struct BatteryTelemetry {
   double AlternatorOnTime_AllTime_s = 0.0;
   int nominalVoltage = 12;           // 12 / 24 / 48 from the battery voltage (cycle counter)
   bool usingVictronCurrent = false;  // BatteryCurrentSource = 3 and VE.Direct fresh
+  // Health (docs/batteries.md "Measured capacity", "Internal resistance"):
+  // NaN until there is enough data for a figure.
+  double capacity_measured_ah = kNoHealthValue;
+  int capacity_cycles = 0;                        // swings of >= 30 % the figure rests on
+  double battery_r_mohm = kNoHealthValue;         // median, corrected to 25 degC
+  double battery_r_spread_mohm = kNoHealthValue;  // standard deviation of the samples
+  int battery_r_samples = 0;
 };
 
 // Visits every field as f("name", value) — the one list the status JSON
@@ -66,6 +77,11 @@ void visitBatteryTelemetry(T& t, F&& f) {
   f("AlternatorOnTime_AllTime_s", t.AlternatorOnTime_AllTime_s);
   f("nominalVoltage", t.nominalVoltage);
   f("usingVictronCurrent", t.usingVictronCurrent);
+  f("capacity_measured_ah", t.capacity_measured_ah);
+  f("capacity_cycles", t.capacity_cycles);
+  f("battery_r_mohm", t.battery_r_mohm);
+  f("battery_r_spread_mohm", t.battery_r_spread_mohm);
+  f("battery_r_samples", t.battery_r_samples);
 }
 
 }  // namespace xr

@@ -21,8 +21,15 @@ void Regulator::setParams(const Params& params) noexcept {
 }
 const Params& Regulator::params() const { return s_->p; }
 const Outputs& Regulator::outputs() const { return s_->out; }
-BatteryLedger Regulator::ledger() const { return s_->bat.ledger(); }
-void Regulator::restoreLedger(const BatteryLedger& l) { s_->bat.restoreLedger(l); }
+BatteryLedger Regulator::ledger() const {
+  BatteryLedger l = s_->bat.ledger();
+  l.wear = s_->wear.ledger();
+  return l;
+}
+void Regulator::restoreLedger(const BatteryLedger& l) {
+  s_->bat.restoreLedger(l);
+  s_->wear.restore(l.wear);
+}
 
 bool Regulator::command(const Command& cmd) noexcept {
   State& s = *s_;

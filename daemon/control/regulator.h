@@ -53,6 +53,7 @@ class Regulator {
   void runAuto(Tick& t) noexcept;
   void applyField(Tick& t) noexcept;
   void updateBattery(Tick& t) noexcept;
+  void updateHealth(Tick& t) noexcept;
   void fillInputTelemetry(const Tick& t) noexcept;
   void fillStateTelemetry() noexcept;
 

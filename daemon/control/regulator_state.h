@@ -7,6 +7,8 @@
 #include "battery/battery_monitor.h"
 #include "control/control_law.h"
 #include "control/regulator.h"
+#include "health/alternator_wear.h"
+#include "health/belt_slip.h"
 #include "protection/battery_temperature.h"
 #include "protection/mode_selection.h"
 #include "protection/protection_supervisor.h"
@@ -21,7 +23,10 @@ struct Regulator::State {
   ProtectionSupervisor prot;
   BatteryMonitor bat;
   BatteryTemperatureGuard batTemp;  // docs/batteries.md "Temperature rules"
-  Params compensated;               // p with temperature-compensated targets (when compensating)
+  AlternatorWear wear;              // docs/operations.md "Alternator wear"
+  BeltSlipDetector belt;            // docs/operations.md "Belt slip"
+  TimeNs lastHealthTick = 0;
+  Params compensated;  // p with temperature-compensated targets (when compensating)
   Outputs out;
 
   // Operator state (commands).

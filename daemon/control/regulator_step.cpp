@@ -39,6 +39,7 @@ const Outputs& Regulator::step(const Inputs& in) noexcept {
   decideDuty(t);
   applyField(t);
   updateBattery(t);
+  updateHealth(t);
   fillInputTelemetry(t);
   fillStateTelemetry();
   return s_->out;
@@ -264,6 +265,29 @@ void Regulator::updateBattery(Tick& t) noexcept {
   s.out.buzzer = s.prot.checkAlarms(false, ev);
 }
 
+// 9b. What the regulator learns about the alternator: wear and belt slip
+// (docs/operations.md "Alternator wear", "Belt slip").
+void Regulator::updateHealth(Tick& t) noexcept {
+  State& s = *s_;
+  const Inputs& in = t.in;
+  const double dt =
+      s.lastHealthTick != 0 && in.now > s.lastHealthTick ? toSec(in.now - s.lastHealthTick) : 0.0;
+  s.lastHealthTick = in.now;
+  const bool turning = (std::isfinite(in.rpm.value) && in.rpm.value >= wear_k::kRunningRpm) ||
+                       (std::isfinite(t.MeasuredAmps) && t.MeasuredAmps > s.p.CurrentThreshold);
+  const bool tempKnown = t.temp->stamp != 0 && in.now - t.temp->stamp <= fromSec(60.0);
+  s.wear.update(dt, turning, tempKnown ? t.temp->value : kNoValue, t.MeasuredAmps, s.p);
+  BeltSample b;
+  b.rpm = in.rpm.value;
+  const bool engineFresh = in.engineRpm.stamp != 0 && in.now - in.engineRpm.stamp <= fromSec(belt_k::kFreshS);
+  b.engineRpm = engineFresh ? in.engineRpm.value : kNoValue;
+  b.altAmps = t.MeasuredAmps;
+  b.dutyPct = s.out.dutyPct;
+  b.targetAmps = s.law.uTargetAmps();
+  b.fieldOn = s.out.fieldEnable && t.d.mode == FieldControlMode::MODE_NORMAL_AUTO_PID;
+  if (s.belt.update(in.now, dt, b, s.out.events)) s.wear.countBeltSlip();
+}
+
 // 10. Telemetry: this tick's inputs and decisions (the modules' state after
 // the step is fillStateTelemetry's).
 void Regulator::fillInputTelemetry(const Tick& t) noexcept {
@@ -298,6 +322,8 @@ void Regulator::fillStateTelemetry() noexcept {
   t.control.limpHome = s.lastMode == FieldControlMode::MODE_LIMP_HOME;
   s.prot.fillTelemetry(t.protection);
   s.bat.updateTelemetry(t.battery);
+  s.wear.fillTelemetry(t.wear);
+  t.wear.belt_slipping = s.belt.slipping();
   t.stage = s.law.stages().stage();
   t.setpoint_a = s.law.setpointLimited();
   t.target_a = s.law.uTargetAmps();

@@ -12,6 +12,7 @@
 #include "core/inputs.h"
 #include "core/modes.h"
 #include "core/time.h"
+#include "health/alternator_wear.h"
 #include "protection/protection_telemetry.h"
 
 namespace xr {
@@ -50,6 +51,7 @@ struct Telemetry {
   ControlTelemetry control;
   ProtectionTelemetry protection;
   BatteryTelemetry battery;
+  WearTelemetry wear;
 };
 
 // A column value: a number, a flag (0/1) or a name (mode, stage, reason).
@@ -86,6 +88,18 @@ void visitTelemetryColumns(const Telemetry& t, TimeNs start, F&& f) {
   f("bms_soc_pct", ColumnValue{t.bms_soc_pct});
   f("bms_state", ColumnValue{toString(t.bms_state)});
   f("battery_temp_c", ColumnValue{t.battery_temp_c});
+  // What the regulator learns (docs/batteries.md, docs/operations.md "Alternator wear").
+  f("capacity_measured_ah", ColumnValue{t.battery.capacity_measured_ah});
+  f("capacity_cycles", ColumnValue{static_cast<double>(t.battery.capacity_cycles)});
+  f("battery_r_mohm", ColumnValue{t.battery.battery_r_mohm});
+  f("battery_r_spread_mohm", ColumnValue{t.battery.battery_r_spread_mohm});
+  f("alt_run_hours", ColumnValue{t.wear.alt_run_hours});
+  f("alt_hours_above_150f", ColumnValue{t.wear.alt_hours_above[0]});
+  f("alt_hours_above_175f", ColumnValue{t.wear.alt_hours_above[1]});
+  f("alt_hours_above_200f", ColumnValue{t.wear.alt_hours_above[2]});
+  f("alt_hours_above_225f", ColumnValue{t.wear.alt_hours_above[3]});
+  f("alt_life_used_pct", ColumnValue{t.wear.alt_life_used_pct});
+  f("belt_slip_events", ColumnValue{t.wear.belt_slip_events});
 }
 
 }  // namespace xr

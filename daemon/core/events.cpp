@@ -1,6 +1,8 @@
 #include "core/events.h"
 
+#include <cstddef>
 #include <cstdio>
+#include <iterator>
 #include <optional>
 #include <string>
 
@@ -25,82 +27,52 @@ std::string_view toString(EventLevel l) {
   return "?";
 }
 
+// The names, in the order of EventCode (the static_assert keeps them in step).
+constexpr std::string_view kEventCodeNames[] = {
+    "ModeChanged",
+    "ProtectionTrip",
+    "ProtectionClear",
+    "ImmediateCut",
+    "CutAfterSettle",
+    "LockoutStarted",
+    "LockoutExpired",
+    "StageChanged",
+    "FieldOn",
+    "FieldOff",
+    "InaLatchSet",
+    "InaLatchCleared",
+    "VoltageDisagreement",
+    "TempSensorStale",
+    "TempTaskHung",
+    "AlarmOn",
+    "AlarmOff",
+    "LimpHomeActive",
+    "FullChargeDetected",
+    "ShuntGainCorrected",
+    "AutoZeroStarted",
+    "AutoZeroDone",
+    "SystemIdDone",
+    "TuningCommitted",
+    "CommandApplied",
+    "CommandRejected",
+    "Message",
+    "AlarmCondition",
+    "BatteryTempMissing",
+    "BatteryTempBack",
+    "BmsBadFrames",
+    "CanBusDown",
+    "CanBusBack",
+    "CanErrorFrames",
+    "WeatherForecastMissing",
+    "WeatherForecastBack",
+    "CapacityMeasured",
+    "BeltSlip",
+};
+static_assert(std::size(kEventCodeNames) == static_cast<std::size_t>(kEventCodeCount));
+
 std::string_view toString(EventCode c) {
-  switch (c) {
-    case EventCode::ModeChanged:
-      return "ModeChanged";
-    case EventCode::ProtectionTrip:
-      return "ProtectionTrip";
-    case EventCode::ProtectionClear:
-      return "ProtectionClear";
-    case EventCode::ImmediateCut:
-      return "ImmediateCut";
-    case EventCode::CutAfterSettle:
-      return "CutAfterSettle";
-    case EventCode::LockoutStarted:
-      return "LockoutStarted";
-    case EventCode::LockoutExpired:
-      return "LockoutExpired";
-    case EventCode::StageChanged:
-      return "StageChanged";
-    case EventCode::FieldOn:
-      return "FieldOn";
-    case EventCode::FieldOff:
-      return "FieldOff";
-    case EventCode::InaLatchSet:
-      return "InaLatchSet";
-    case EventCode::InaLatchCleared:
-      return "InaLatchCleared";
-    case EventCode::VoltageDisagreement:
-      return "VoltageDisagreement";
-    case EventCode::TempSensorStale:
-      return "TempSensorStale";
-    case EventCode::TempTaskHung:
-      return "TempTaskHung";
-    case EventCode::AlarmOn:
-      return "AlarmOn";
-    case EventCode::AlarmOff:
-      return "AlarmOff";
-    case EventCode::LimpHomeActive:
-      return "LimpHomeActive";
-    case EventCode::FullChargeDetected:
-      return "FullChargeDetected";
-    case EventCode::ShuntGainCorrected:
-      return "ShuntGainCorrected";
-    case EventCode::AutoZeroStarted:
-      return "AutoZeroStarted";
-    case EventCode::AutoZeroDone:
-      return "AutoZeroDone";
-    case EventCode::SystemIdDone:
-      return "SystemIdDone";
-    case EventCode::TuningCommitted:
-      return "TuningCommitted";
-    case EventCode::CommandApplied:
-      return "CommandApplied";
-    case EventCode::CommandRejected:
-      return "CommandRejected";
-    case EventCode::Message:
-      return "Message";
-    case EventCode::AlarmCondition:
-      return "AlarmCondition";
-    case EventCode::BatteryTempMissing:
-      return "BatteryTempMissing";
-    case EventCode::BatteryTempBack:
-      return "BatteryTempBack";
-    case EventCode::BmsBadFrames:
-      return "BmsBadFrames";
-    case EventCode::CanBusDown:
-      return "CanBusDown";
-    case EventCode::CanBusBack:
-      return "CanBusBack";
-    case EventCode::CanErrorFrames:
-      return "CanErrorFrames";
-    case EventCode::WeatherForecastMissing:
-      return "WeatherForecastMissing";
-    case EventCode::WeatherForecastBack:
-      return "WeatherForecastBack";
-  }
-  return "?";
+  const auto i = static_cast<std::size_t>(c);
+  return i < std::size(kEventCodeNames) ? kEventCodeNames[i] : "?";
 }
 
 namespace {
@@ -318,6 +290,24 @@ std::optional<std::string> describeCommandsAndBattery(const Event& e) {
       return "Battery temperature missing or stale: charging without temperature compensation";
     case EventCode::BatteryTempBack:
       std::snprintf(buf, sizeof buf, "Battery temperature back: %.1f C", e.a);
+      return buf;
+    case EventCode::CapacityMeasured:
+      std::snprintf(buf, sizeof buf, "Battery capacity measured: %.0f Ah over a %.0f %% swing (%d so far)",
+                    e.a, e.b, e.detail);
+      return buf;
+    case EventCode::BeltSlip:
+      if (e.detail == 1)
+        std::snprintf(
+            buf, sizeof buf,
+            "Alternator belt slipping: the alternator turns %.0f %% slower than the engine (%.0f rpm). "
+            "Check the belt's tension, wear and glazing, and the pulleys' alignment",
+            e.a, e.b);
+      else
+        std::snprintf(
+            buf, sizeof buf,
+            "Alternator belt slipping: current fell %.0f A while the field rose %.0f points at steady "
+            "speed. Check the belt's tension, wear and glazing, and the pulleys' alignment",
+            e.a, e.b);
       return buf;
     default:
       return std::nullopt;

@@ -57,12 +57,17 @@ enum class EventCode {
   // integrations thread through SideEvents, once per outage.
   WeatherForecastMissing,  // cannot be read (detail: WeatherMissing; a = HTTP status or 0, b = next try in s)
   WeatherForecastBack,     // read again after an outage
+  // What the regulator learns (docs/batteries.md, docs/operations.md "Alternator wear").
+  CapacityMeasured,  // a swing measured the capacity (a = this swing's Ah, b = swing %, detail = swings so
+                     // far)
+  BeltSlip,          // the belt slips (detail 1: tach against engine speed, a = slip %, b = engine rpm;
+                     // detail 2: current falling while the duty rises, a = current drop A, b = duty rise %)
 };
 // Why the weather forecast cannot be read (WeatherForecastMissing's detail).
 enum class WeatherMissing { NoPosition = 0, ServerError = 1, NoAnswer = 2, AnswerRefused = 3 };
 // How many codes there are (keep it after the last one): parsing a stored
 // code name tries each.
-inline constexpr int kEventCodeCount = static_cast<int>(EventCode::WeatherForecastBack) + 1;
+inline constexpr int kEventCodeCount = static_cast<int>(EventCode::BeltSlip) + 1;
 
 struct Event {
   TimeNs t = 0;

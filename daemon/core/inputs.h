@@ -41,7 +41,7 @@ struct Inputs {
   // ADS1115 channels, already scaled by the analog front end.
   Reading BatteryV;       // CH0, V
   Reading altCurrentRaw;  // CH1, A, before DynamicAltCurrentZero is subtracted
-  Reading rpm;            // CH2, RPM
+  Reading rpm;            // CH2, RPM (or the engine's speed for RpmSource = n2k)
   Reading thermistorF;    // CH3, degF
 
   // DS18B20 over 1-Wire (slow thread).
@@ -61,6 +61,10 @@ struct Inputs {
   // Discrete inputs (already polarity-corrected).
   bool ignitionOn = true;
   bool bmsChargeEnabled = true;
+
+  // The engine's speed from NMEA 2000 (127488) whenever a bus hears it, for
+  // the belt-slip check against the tach (docs/operations.md "Belt slip").
+  Reading engineRpm;
 
   // A BMS's charge limits (CAN or another source, slow thread); see bms_limits.h.
   BmsLimits bms;

@@ -19,7 +19,8 @@ struct SensorDef {
 };
 
 // What an owner watches (docs/integrations.md): battery V, battery A, alternator A, alternator degC, SoC,
-// field %, power W, stage, mode, charged kWh.
+// field %, power W, stage, mode, charged kWh; the measured capacity and resistance, the
+// alternator's hours, insulation life used and belt slips.
 constexpr SensorDef kSensors[] = {
     {"battery_voltage", "Battery voltage", "V", "voltage", "measurement", ""},
     {"battery_current", "Battery current", "A", "current", "measurement", ""},
@@ -31,6 +32,13 @@ constexpr SensorDef kSensors[] = {
     {"stage", "Charging stage", "", "", "", "mdi:battery-charging"},
     {"mode", "Regulator mode", "", "", "", "mdi:state-machine"},
     {"charged_energy", "Charged energy", "kWh", "energy", "total_increasing", ""},
+    // What the regulator learns (docs/batteries.md, docs/operations.md "Alternator wear").
+    {"capacity_measured", "Battery capacity measured", "Ah", "", "measurement", "mdi:battery-heart-variant"},
+    {"battery_resistance", "Battery resistance (25 °C)", "mΩ", "", "measurement", "mdi:omega"},
+    {"alternator_run_hours", "Alternator running hours", "h", "duration", "total_increasing", ""},
+    {"alternator_life_used", "Alternator insulation life used", "%", "", "total_increasing",
+     "mdi:timer-sand"},
+    {"belt_slips", "Alternator belt slips", "", "", "total_increasing", "mdi:car-tire-alert"},
 };
 
 struct BinaryDef {
@@ -131,6 +139,11 @@ std::string stateJson(const IntegrationSample& s) {
   o["mode"] = s.mode;
   o["reason"] = s.reason;
   o["charged_energy"] = number(s.charged_kwh, 3);
+  o["capacity_measured"] = number(s.capacity_measured_ah, 0);
+  o["battery_resistance"] = number(s.battery_r_mohm, 2);
+  o["alternator_run_hours"] = number(s.alt_run_hours, 2);
+  o["alternator_life_used"] = number(s.alt_life_used_pct, 4);
+  o["belt_slips"] = number(s.belt_slip_events, 0);
   o["field"] = s.field_on ? "ON" : "OFF";
   o["alarm"] = s.alarm ? "ON" : "OFF";
   o["weather_mode"] = s.reason == "REASON_WEATHER_MODE" ? "ON" : "OFF";

@@ -34,6 +34,12 @@ IntegrationSample sampleOf(const rt::RuntimeSnapshot& s) {
   o.time_to_empty_s = !socUnknown && std::isfinite(minutes) && minutes > 0 ? minutes * 60.0 : -1.0;
   o.power_w = o.battery_v * o.alt_a;
   o.charged_kwh = finiteOr(t.charged_wh_lifetime, 0.0) / 1000.0;
+  o.capacity_measured_ah = t.battery.capacity_measured_ah;
+  o.nominal_v = t.battery.nominalVoltage;
+  o.battery_r_mohm = t.battery.battery_r_mohm;
+  o.alt_run_hours = t.wear.alt_run_hours;
+  o.alt_life_used_pct = t.wear.alt_life_used_pct;
+  o.belt_slip_events = t.wear.belt_slip_events;
   o.mode = std::string(toString(t.mode));
   o.stage = std::string(toString(t.stage));
   o.reason = std::string(toString(t.reason));

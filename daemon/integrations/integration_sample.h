@@ -4,6 +4,7 @@
 // Each integration converts to its own units from here: Signal K wants SI
 // (K, Hz, ratio 0-1, s), Home Assistant wants what a boat owner reads
 // (degC, %, kWh).
+#include <limits>
 #include <string>
 #include <string_view>
 
@@ -27,6 +28,11 @@ struct IntegrationSample {
   double time_to_empty_s = -1;  // < 0: unknown
   double power_w = 0;           // alternator output: battery voltage x alternator current
   double charged_kwh = 0;       // lifetime energy into the battery
+  // What the regulator learns (NaN until measured; docs/batteries.md, docs/operations.md).
+  double capacity_measured_ah = std::numeric_limits<double>::quiet_NaN();
+  double nominal_v = 12;  // the bank's class, for energies
+  double battery_r_mohm = std::numeric_limits<double>::quiet_NaN();
+  double alt_run_hours = 0, alt_life_used_pct = 0, belt_slip_events = 0;
   std::string mode, stage, reason;
   ChargeStage stageValue = ChargeStage::BULK;
   bool operatorOff = false;  // sysMode SYS_MODE_OFF: switched off by a command

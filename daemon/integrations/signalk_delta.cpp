@@ -30,6 +30,10 @@ constexpr PathDef kAlternator[] = {
     {"setpointVoltage", "V", "Voltage target", "Charging voltage target"},
     {"setpointCurrent", "A", "Current target", "Alternator current target"},
     {"weatherMode", "", "Weather mode", "1 while weather mode rests the alternator for the sun, else 0"},
+    {"runTime", "s", "Alternator running time", "Time the alternator has turned, lifetime"},
+    {"insulationLifeUsed", "ratio", "Insulation life used",
+     "Share of the windings' insulation life used (0-1)"},
+    {"beltSlips", "", "Belt slips", "Belt-slip episodes seen, lifetime"},
 };
 constexpr PathDef kBattery[] = {
     {"voltage", "V", "Battery voltage", "Battery voltage"},
@@ -37,6 +41,8 @@ constexpr PathDef kBattery[] = {
     {"temperature", "K", "Battery temperature", "Battery temperature"},
     {"capacity.stateOfCharge", "ratio", "State of charge", "State of charge (0-1)"},
     {"capacity.timeRemaining", "s", "Time remaining", "Time to empty at the present discharge"},
+    {"capacity.actual", "J", "Measured capacity", "Capacity measured between points of known charge"},
+    {"internalResistance", "ohm", "Internal resistance", "DC resistance from load steps, at 25 degC"},
 };
 
 }  // namespace
@@ -63,6 +69,12 @@ std::vector<SignalKValue> signalKValues(const IntegrationSample& s, const std::s
   if (std::isfinite(s.battery_temp_c)) num(bat + "temperature", s.battery_temp_c + kZeroCelsiusK);
   if (std::isfinite(s.soc_pct)) num(bat + "capacity.stateOfCharge", s.soc_pct / 100.0);
   if (s.time_to_empty_s >= 0) num(bat + "capacity.timeRemaining", s.time_to_empty_s);
+  // Signal K's capacities are energies: Ah x the bank's nominal volts x 3600.
+  num(bat + "capacity.actual", s.capacity_measured_ah * s.nominal_v * 3600.0);
+  num(bat + "internalResistance", s.battery_r_mohm / 1000.0);
+  num(alt + "runTime", s.alt_run_hours * 3600.0);
+  num(alt + "insulationLifeUsed", s.alt_life_used_pct / 100.0);
+  num(alt + "beltSlips", s.belt_slip_events);
   return v;
 }
 

@@ -37,7 +37,7 @@ void ControlCycle::mergeSlowInputs() noexcept {
   mergeTemperature();
   mergeBatteryTemp();
   mergeVictron();
-  if (cfg_.rpmFromN2k) mergeEngineRpm();
+  mergeEngineRpm();
   // A BMS's limits: copied whole when posted; their stamp carries staleness.
   h_.bms.load(in_.bms);
 }
@@ -81,9 +81,13 @@ void ControlCycle::mergeVictron() noexcept {
 void ControlCycle::mergeEngineRpm() noexcept {
   EngineRpmHandoff r;
   h_.engineRpm.load(r);
-  const bool heard = r.stamp != 0 && in_.now - r.stamp <= fromSec(CycleConfig::kEngineRpmStaleS);
-  // A silent ECU reads like a tach with no pulses: 0 rpm, fresh each tick.
-  in_.rpm = heard ? Reading{r.rpm, r.stamp, r.stamp != lastEngineRpmStamp_} : Reading{0.0, in_.now, true};
+  // The engine's speed as last heard, for the belt-slip check; the core judges its age.
+  if (r.stamp != 0) in_.engineRpm = Reading{r.rpm, r.stamp, r.stamp != lastEngineRpmStamp_};
+  if (cfg_.rpmFromN2k) {
+    const bool heard = r.stamp != 0 && in_.now - r.stamp <= fromSec(CycleConfig::kEngineRpmStaleS);
+    // A silent ECU reads like a tach with no pulses: 0 rpm, fresh each tick.
+    in_.rpm = heard ? Reading{r.rpm, r.stamp, r.stamp != lastEngineRpmStamp_} : Reading{0.0, in_.now, true};
+  }
   lastEngineRpmStamp_ = r.stamp;
 }
 

@@ -20,6 +20,7 @@ constexpr std::array<FaultName, kFaultCount> kFaults{{
     {Fault::temp_value, "temp_value", true},
     {Fault::rpm_signal_loss, "rpm_signal_loss", false},
     {Fault::field_open, "field_open", false},
+    {Fault::belt_slip, "belt_slip", true},
 }};
 }  // namespace
 

@@ -17,8 +17,9 @@ enum class Fault {
   temp_value,              // temperature sensors read this fixed value, degF
   rpm_signal_loss,         // LM2907 input lost: output decays with its 2 s coupling
   field_open,              // field winding open: no field current whatever the duty
+  belt_slip,               // the belt slips: value = the alternator's speed loss at rated output (0..0.9)
 };
-inline constexpr int kFaultCount = 10;
+inline constexpr int kFaultCount = 11;
 
 std::string_view toString(Fault f);
 std::optional<Fault> parseFault(std::string_view name);

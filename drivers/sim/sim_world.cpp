@@ -62,6 +62,9 @@ void SimWorld::setFault(Fault f, bool active, double value) {
     case Fault::field_open:
       plant_.setFieldOpen(active);
       break;
+    case Fault::belt_slip:
+      plant_.setBeltSlip(active ? value : 0.0);
+      break;
     case Fault::temp_sensor_disconnect:
       if (w1_) w1_->setPresent(!active);
       break;
@@ -120,7 +123,8 @@ void SimWorld::refreshAnalog(double dt) noexcept {
   // LM2907: tracks the tach frequency with a short ripple filter; when the
   // signal is lost its output decays through the 2 s coupling time constant.
   const bool lost = faults_[int(Fault::rpm_signal_loss)];
-  const double target = lost ? 0.0 : std::max(0.0, plant_.rpm()) / rpmScale_;
+  // The tach is the alternator's own speed (its W terminal): a slipping belt slows it.
+  const double target = lost ? 0.0 : std::max(0.0, plant_.tachRpm()) / rpmScale_;
   const double tau = lost ? 2.0 : 0.05;
   if (dt > 0.0) {
     if (dt != lagDt_ || tau != lagTau_) {

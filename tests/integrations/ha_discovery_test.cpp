@@ -25,8 +25,10 @@ TEST(HaDiscovery, SensorsAndBinarySensorsWithoutCommands) {
   const auto all = discoveryConfigs(topics(), false, "1.2.3");
   std::set<std::string> names;
   for (const auto& m : all) names.insert(m.topic);
-  EXPECT_EQ(all.size(), 13u);
-  EXPECT_EQ(names.size(), 13u);
+  EXPECT_EQ(all.size(), 18u);
+  EXPECT_EQ(names.size(), 18u);
+  EXPECT_TRUE(names.count("homeassistant/sensor/xregulator_boat1/capacity_measured/config"));
+  EXPECT_TRUE(names.count("homeassistant/sensor/xregulator_boat1/alternator_life_used/config"));
   EXPECT_TRUE(names.count("homeassistant/sensor/xregulator_boat1/battery_voltage/config"));
   EXPECT_TRUE(names.count("homeassistant/binary_sensor/xregulator_boat1/alarm/config"));
   EXPECT_FALSE(names.count("homeassistant/select/xregulator_boat1/regulator_mode/config"));
@@ -35,7 +37,7 @@ TEST(HaDiscovery, SensorsAndBinarySensorsWithoutCommands) {
 
 TEST(HaDiscovery, CommandsAddSelectAndButton) {
   const auto all = discoveryConfigs(topics(), true, "1.2.3");
-  EXPECT_EQ(all.size(), 15u);
+  EXPECT_EQ(all.size(), 20u);
   auto sel = find(all, "homeassistant/select/xregulator_boat1/regulator_mode/config");
   EXPECT_EQ(sel.at("command_topic").as_string(), "xregulator/boat1/set/mode");
   EXPECT_EQ(json::serialize(sel.at("options")), R"(["off","auto"])");
@@ -101,6 +103,24 @@ TEST(HaDiscovery, NonFiniteValuesBecomeNull) {
   s.battery_v = std::numeric_limits<double>::quiet_NaN();
   auto o = json::parse(stateJson(s)).as_object();
   EXPECT_TRUE(o.at("battery_voltage").is_null());
+  // Not measured yet: null, never a made-up 0.
+  EXPECT_TRUE(o.at("capacity_measured").is_null());
+  EXPECT_TRUE(o.at("battery_resistance").is_null());
+}
+
+TEST(HaDiscovery, TheHealthFiguresAreInTheState) {
+  IntegrationSample s;
+  s.capacity_measured_ah = 154.23;
+  s.battery_r_mohm = 3.504;
+  s.alt_run_hours = 12.3456;
+  s.alt_life_used_pct = 0.012345;
+  s.belt_slip_events = 1;
+  auto o = json::parse(stateJson(s)).as_object();
+  EXPECT_DOUBLE_EQ(o.at("capacity_measured").as_double(), 154.0);
+  EXPECT_DOUBLE_EQ(o.at("battery_resistance").as_double(), 3.5);
+  EXPECT_DOUBLE_EQ(o.at("alternator_run_hours").as_double(), 12.35);
+  EXPECT_DOUBLE_EQ(o.at("alternator_life_used").as_double(), 0.0123);
+  EXPECT_DOUBLE_EQ(o.at("belt_slips").as_double(), 1.0);
 }
 
 TEST(SignalKWords, ChargingModeFollowsTheStage) {

@@ -71,6 +71,15 @@ TEST(SignalKDelta, KnownValuesAreSentAndNaNIsLeftOut) {
   EXPECT_DOUBLE_EQ(m.at("electrical.batteries.b1.capacity.timeRemaining").as_double(), 7200.0);
   EXPECT_DOUBLE_EQ(m.at("electrical.batteries.b1.temperature").as_double(), 298.15);
   EXPECT_EQ(m.count("electrical.alternators.a1.current"), 0u);
+  // Not measured yet: no capacity, no resistance.
+  EXPECT_EQ(m.count("electrical.batteries.b1.capacity.actual"), 0u);
+  EXPECT_EQ(m.count("electrical.batteries.b1.internalResistance"), 0u);
+  s.capacity_measured_ah = 154.0;
+  s.nominal_v = 12.0;
+  s.battery_r_mohm = 3.5;
+  m = valuesOf(signalKDelta(signalKValues(s, "a1", "b1"), "t"));
+  EXPECT_DOUBLE_EQ(m.at("electrical.batteries.b1.capacity.actual").as_double(), 154.0 * 12.0 * 3600.0);
+  EXPECT_DOUBLE_EQ(m.at("electrical.batteries.b1.internalResistance").as_double(), 0.0035);
 }
 
 TEST(SignalKDelta, MetaHasUnitsAndNamesForEveryPath) {
@@ -78,7 +87,9 @@ TEST(SignalKDelta, MetaHasUnitsAndNamesForEveryPath) {
   std::map<std::string, json::object> meta;
   for (const auto& m : d.at("updates").as_array()[0].as_object().at("meta").as_array())
     meta[std::string(m.as_object().at("path").as_string())] = m.as_object().at("value").as_object();
-  EXPECT_EQ(meta.size(), 14u);
+  EXPECT_EQ(meta.size(), 19u);
+  EXPECT_EQ(meta.at("electrical.batteries.house.capacity.actual").at("units").as_string(), "J");
+  EXPECT_EQ(meta.at("electrical.alternators.main.insulationLifeUsed").at("units").as_string(), "ratio");
   EXPECT_EQ(meta.at("electrical.alternators.main.temperature").at("units").as_string(), "K");
   EXPECT_EQ(meta.at("electrical.alternators.main.revolutions").at("units").as_string(), "Hz");
   EXPECT_EQ(meta.at("electrical.alternators.main.fieldDrive").at("units").as_string(), "ratio");

@@ -109,7 +109,7 @@ class SignalK:
 
 
 ALTERNATOR_KEYS = ["voltage", "current", "temperature", "revolutions", "fieldDrive", "chargingMode",
-                   "setpointVoltage", "setpointCurrent", "weatherMode"]
+                   "setpointVoltage", "setpointCurrent", "weatherMode", "runTime", "insulationLifeUsed", "beltSlips"]
 
 
 def has_values(d, keys):
@@ -128,7 +128,7 @@ def check_values(c, sk, h):
     for key in ALTERNATOR_KEYS:
         c.check(key in alt, f"electrical.alternators.main.{key} on the server")
     units = {"voltage": "V", "current": "A", "temperature": "K", "revolutions": "Hz", "fieldDrive": "ratio",
-             "setpointVoltage": "V", "setpointCurrent": "A"}
+             "setpointVoltage": "V", "setpointCurrent": "A", "runTime": "s", "insulationLifeUsed": "ratio"}
     for key, unit in units.items():
         got = alt.get(key, {}).get("meta", {}).get("units")
         c.check(got == unit, f"alternators.main.{key} meta units {got!r} == {unit!r}")

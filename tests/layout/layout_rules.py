@@ -35,9 +35,10 @@ LAYERS = [
     ("daemon/core", "shared vocabulary: time, modes, reasons, inputs, outputs, events, commands",
      ["daemon/params"]),
     ("daemon/protection", "detectors, fast over-voltage, mode selection, shutdown sequencer (pure)", CORE),
-    ("daemon/battery", "SoC, Peukert, energy, auto-zero, auto-gain (pure)", CORE),
+    ("daemon/battery", "SoC, Peukert, energy, auto-zero, auto-gain, measured capacity and resistance (pure)", CORE),
+    ("daemon/health", "alternator wear and belt slip (pure)", CORE + ["daemon/battery"]),
     ("daemon/control", "loops, governor, stages, tuning; the Regulator and its telemetry (pure)",
-     CORE + ["daemon/protection", "daemon/battery"]),
+     CORE + ["daemon/protection", "daemon/battery", "daemon/health"]),
     ("daemon/config", "TOML settings: loading and checks", ["daemon/params"]),
     ("daemon/logging", "spdlog / journald", CORE + ["daemon/config"]),
     ("drivers/hal", "small device interfaces: I2C bus, outputs, clock", ["daemon/core"]),
@@ -94,7 +95,8 @@ LONG_FUNCTION_EXEMPTIONS: dict = {}
 # clock): none of them may read a clock, so a wall-clock jump cannot move a
 # stage timer, a protection's debounce or the SoC integration
 # (docs/security.md "The clock").
-PURE_FOLDERS = {"daemon/params", "daemon/core", "daemon/protection", "daemon/battery", "daemon/control"}
+PURE_FOLDERS = {"daemon/params", "daemon/core", "daemon/protection", "daemon/battery", "daemon/health",
+                "daemon/control"}
 CLOCK_RE = re.compile(r"\b(system_clock|steady_clock|high_resolution_clock|gettimeofday|clock_gettime|"
                       r"CLOCK_REALTIME|CLOCK_MONOTONIC|localtime|gmtime)\b|\btime\s*\(\s*(nullptr|NULL|0)?\s*\)")
 # A comment says why and points into the repository: an issue tracker's

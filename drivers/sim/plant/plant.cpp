@@ -41,7 +41,10 @@ void Plant::step(double fieldCmd, double dt) noexcept {
 
 void Plant::subStep(double fieldCmd, double dt) noexcept {
   // The field is fed from the bus (the regulator's supply): duty x bus volts.
-  alt_.step(fieldCmd, busV_, rpm_, ambientF_, dt);
+  // A slipping belt loses speed with the load it carries (the last current).
+  const double rated = std::isnan(cfg_.alternator.rated_a) ? 100.0 : cfg_.alternator.rated_a;
+  slipNow_ = beltSlip_ > 0.0 ? beltSlip_ * std::clamp(alt_.amps() / rated, 0.0, 1.0) : 0.0;
+  alt_.step(fieldCmd, busV_, rpm_ * (1.0 - slipNow_), ambientF_, dt);
   // The alternator sees the bus plus its cable drop at the last current.
   const double cable = alt_.amps() * cfg_.alternator.wiring_ohm;
   if (bmsConnected_) {

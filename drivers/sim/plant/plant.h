@@ -7,6 +7,8 @@
 // rises until the machine's own output falls (its EMF behind the stator
 // impedance, its field decaying or fed by the risen bus) or the TVS clamps;
 // the peak is recorded.
+#include <algorithm>
+
 #include "drivers/sim/plant/alternator.h"
 #include "drivers/sim/plant/battery.h"
 
@@ -54,6 +56,12 @@ class Plant {
   void setBatteryTempC(double c) noexcept { bat_.setTempC(c); }
   void setBmsConnected(bool c) noexcept;
   void setFieldOpen(bool open) noexcept { alt_.setOpen(open); }
+  // A slipping belt (docs/simulator.md "Faults"): the alternator turns
+  // slower than the pulley ratio says, by `s` at its rated output and in
+  // proportion to the current it gives (the belt's load) below that.
+  void setBeltSlip(double s) noexcept { beltSlip_ = std::clamp(s, 0.0, 0.9); }
+  // The engine rpm the alternator's speed corresponds to (what its W-terminal tach shows).
+  double tachRpm() const noexcept { return rpm_ * (1.0 - slipNow_); }
   void setSocPct(double p) noexcept { bat_.setSocPct(p); }
   double tvsClampV() const noexcept { return tvs_; }
   const BatteryModel& battery() const noexcept { return bat_; }
@@ -66,6 +74,7 @@ class Plant {
   BatteryModel bat_;
   AlternatorModel alt_;
   double rpm_;
+  double beltSlip_ = 0.0, slipNow_ = 0.0;
   double ambientF_;
   double houseG_;  // house load conductance, S (0 = no load)
   double tvs_;

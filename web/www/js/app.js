@@ -11,6 +11,7 @@ import { initSettings, loadSettings, setParam } from "./settings.js";
 import { initSetup } from "./setup.js";
 import { loadHistoryPage } from "./history.js";
 import { renderGuardBanner } from "./guards.js";
+import { loadCapacitySetting, renderAlternator, renderHealth, useMeasuredCapacity } from "./health.js";
 
 const $ = (id) => document.getElementById(id);
 
@@ -45,13 +46,14 @@ function connect() {
     drawLive();
     const page = currentPage();
     if (page === "protections") renderProtections(s);
-    else if (page === "battery") renderBattery(s);
+    else if (page === "battery") { renderBattery(s); renderHealth(s); }
+    else if (page === "alternator") renderAlternator(s);
     else if (page === "tuning") renderTuning(s);
   };
 }
 
 // ---------------------------------------------------------------- routing
-const PAGES = ["live", "settings", "protections", "battery", "history", "tuning", "events", "system", "setup"];
+const PAGES = ["live", "settings", "protections", "battery", "alternator", "history", "tuning", "events", "system", "setup"];
 const currentPage = () => { const h = location.hash.slice(1); return PAGES.includes(h) ? h : "live"; };
 function route() {
   const page = currentPage();
@@ -63,11 +65,13 @@ function route() {
   if (page === "history") loadHistoryPage().catch(fail);
   if (page === "system") { loadSystem().catch(fail); loadDevices().catch(fail); }
   if (page === "tuning") loadSettingsFlags().catch(fail);
+  if (page === "battery") loadCapacitySetting().then(() => latestStatus() && renderHealth(latestStatus())).catch(fail);
   if (page === "live") { drawLive(); loadHistory(); }
   const s = latestStatus();
   if (s) {
     if (page === "protections") renderProtections(s);
-    if (page === "battery") renderBattery(s);
+    if (page === "battery") { renderBattery(s); renderHealth(s); }
+    if (page === "alternator") renderAlternator(s);
     if (page === "tuning") renderTuning(s);
   }
 }
@@ -124,6 +128,8 @@ function init() {
     const duty = numberFrom($("duty-input"), "field duty %", 0, 100);
     if (duty !== null) runCommand("manual", { duty });
   });
+  $("capacity-use").addEventListener("click", () =>
+    useMeasuredCapacity().then(() => toast("Battery capacity set")).catch((e) => toast(e.message, true)));
   $("soc-set").addEventListener("click", () => {
     const soc = numberFrom($("soc-input"), "state of charge %", 0, 100);
     if (soc !== null) runCommand("set_soc", { soc_pct: soc });

@@ -1,0 +1,74 @@
+// BatteryMonitor's health figures (docs/batteries.md "Measured capacity",
+// "Internal resistance"): the points of known state of charge the capacity
+// is measured between, and the resistance from the current steps.
+#include <cmath>
+
+#include "battery/battery_monitor.h"
+#include "battery/monitor_helpers.h"
+
+namespace xr {
+
+using namespace battery_detail;
+
+namespace {
+// A rested voltage is a point of known SoC for lead-acid after this long at
+// rest: the slow polarisation decays over hours (docs/sources.md P3.5 asks
+// for 6 h or more; after 4 h what is left is ~1 % of SoC for an AGM bank,
+// docs/batteries.md). The voltage is the mean of the last hour of it.
+constexpr double kHealthRestS = 4.0 * 3600.0;
+constexpr double kHealthRestAverageS = 3600.0;
+// "At rest": at most 2 % of the capacity flowing (a fridge on a 200 Ah bank),
+// the alternator not charging. What flows is corrected with the measured
+// resistance.
+constexpr double kHealthRestCurrentC = 0.02;
+// A BMS's SoC older than this is not a point.
+constexpr std::int64_t kBmsSocStaleMs = 10000;
+}  // namespace
+
+void BatteryMonitor::trackHealth(const Inputs& in, double dt_s, double amps, double volts,
+                                 double altAmps) noexcept {
+  const double tempC = usable(in.batteryTempC, in.now, 300000) ? in.batteryTempC.value : kNoValue;
+  if (resistance_.update(dt_s, amps, volts, tempC, p_.BatteryCapacity_Ah)) telemetryStale_ = true;
+  const bool alternatorOff = !std::isfinite(altAmps) || altAmps <= p_.CurrentThreshold;
+  const bool resting = isLeadAcid(p_) && std::isfinite(amps) && std::isfinite(volts) &&
+                       std::fabs(amps) <= kHealthRestCurrentC * p_.BatteryCapacity_Ah && alternatorOff;
+  restedVoltagePoint(dt_s, amps, volts, tempC, resting);
+  const bool bmsFresh =
+      std::isfinite(in.bms.socPct) && in.bms.stamp != 0 && in.now - in.bms.stamp <= fromMs(kBmsSocStaleMs);
+  bmsSocPct_ = bmsFresh ? in.bms.socPct : kNoValue;
+}
+
+void BatteryMonitor::restedVoltagePoint(double dt_s, double amps, double volts, double tempC,
+                                        bool resting) noexcept {
+  if (!resting) {
+    healthRest_s_ = healthRestV_s_ = healthRestA_s_ = healthRestAvg_s_ = 0.0;
+    healthRestTaken_ = false;
+    return;
+  }
+  if (!(dt_s > 0.0) || healthRestTaken_) return;
+  healthRest_s_ += dt_s;
+  if (healthRest_s_ > kHealthRestS - kHealthRestAverageS) {
+    healthRestV_s_ += volts * dt_s;
+    healthRestA_s_ += amps * dt_s;
+    healthRestAvg_s_ += dt_s;
+  }
+  if (healthRest_s_ < kHealthRestS || !(healthRestAvg_s_ > 0.0)) return;
+  healthRestTaken_ = true;
+  // The open-circuit voltage: the terminal voltage less what the small rest
+  // current drops across the bank (when its resistance is known).
+  const double r = resistance_.ohmsAt(tempC);
+  const double a = healthRestA_s_ / healthRestAvg_s_;
+  const double ocv = healthRestV_s_ / healthRestAvg_s_ - (std::isfinite(r) ? a * r : 0.0);
+  const double cells = p_.BatteryCells > 0 ? p_.BatteryCells : 6.0 * nominalVoltage_ / 12.0;
+  pendingRestSocPct_ = socFromRestVoltage12(ocv * 6.0 / cells);
+}
+
+void BatteryMonitor::capacityPoint(TimeNs now, double socPct, bool full, EventBatch& ev) noexcept {
+  const CapacityPointResult r = capacity_.knownSoc(socPct, full, p_.BatteryCapacity_Ah);
+  if (r != CapacityPointResult::Measured) return;
+  telemetryStale_ = true;
+  ev.push(makeEvent(now, EventLevel::Info, EventCode::CapacityMeasured, capacity_.lastSampleAh(),
+                    capacity_.lastSwingPct(), capacity_.cycles()));
+}
+
+}  // namespace xr

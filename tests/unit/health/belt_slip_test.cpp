@@ -1,0 +1,122 @@
+// BeltSlipDetector on synthetic signals (docs/operations.md "Belt slip").
+#include "health/belt_slip.h"
+
+#include <gtest/gtest.h>
+
+namespace xr {
+namespace {
+
+using namespace belt_k;
+
+struct Drive {
+  BeltSlipDetector d;
+  EventBatch ev;
+  double t = 0.0;
+  int events = 0;
+  int lastDetail = 0;
+  void feed(double seconds, const BeltSample& s) {
+    for (int i = 0; i < static_cast<int>(seconds * 10); ++i) {
+      t += 0.1;
+      ev.clear();
+      if (d.update(fromSec(t), 0.1, s, ev)) {
+        ++events;
+        lastDetail = ev.count ? ev.items[ev.count - 1].detail : -1;
+      }
+    }
+  }
+};
+
+BeltSample grip(double rpm = 1800.0) {
+  BeltSample s;
+  s.rpm = rpm;
+  s.engineRpm = rpm;
+  s.altAmps = 60.0;
+  s.dutyPct = 50.0;
+  s.targetAmps = 60.0;
+  s.fieldOn = true;
+  return s;
+}
+
+TEST(BeltSlipDetector, ARatioFivePercentLowForTenSecondsIsOneEvent) {
+  Drive r;
+  r.feed(60, grip());
+  BeltSample s = grip();
+  s.rpm = 1800.0 * 0.94;  // 6 % slower than learned
+  r.feed(kHoldS + 2, s);
+  EXPECT_EQ(r.events, 1);
+  EXPECT_EQ(r.lastDetail, 1);
+  r.feed(300, s);  // the same episode: no second event
+  EXPECT_EQ(r.events, 1);
+  EXPECT_TRUE(r.d.slipping());
+}
+
+TEST(BeltSlipDetector, FourPercentLowOrTooShortIsNothing) {
+  Drive r;
+  r.feed(60, grip());
+  BeltSample s = grip();
+  s.rpm = 1800.0 * 0.96;
+  r.feed(60, s);
+  EXPECT_EQ(r.events, 0);
+  s.rpm = 1800.0 * 0.90;
+  r.feed(kHoldS - 2, s);
+  r.feed(5, grip());
+  EXPECT_EQ(r.events, 0);
+}
+
+TEST(BeltSlipDetector, AChangingEngineSpeedIsNotASlip) {
+  Drive r;
+  r.feed(60, grip());
+  // The engine accelerates 1800 -> 2400 over 20 s while the tach lags 8 %.
+  for (int i = 0; i < 20; ++i) {
+    BeltSample s = grip(1800.0 + 30.0 * i);
+    s.rpm = s.engineRpm * 0.92;
+    r.feed(1, s);
+  }
+  EXPECT_EQ(r.events, 0);
+}
+
+TEST(BeltSlipDetector, CurrentDownWhileDutyUpAtSteadySpeedIsOneEvent) {
+  Drive r;
+  BeltSample s = grip();
+  s.engineRpm = kNoValue;  // no NMEA 2000
+  r.feed(30, s);
+  for (int i = 0; i < 25; ++i) {  // duty +1 point/s, current -0.5 A/s
+    s.dutyPct = 50.0 + i;
+    s.altAmps = 60.0 - 0.5 * i;
+    r.feed(1, s);
+  }
+  EXPECT_EQ(r.events, 1);
+  EXPECT_EQ(r.lastDetail, 2);
+}
+
+TEST(BeltSlipDetector, CurrentDownWhenTheRegulatorAsksLessIsNothing) {
+  Drive r;
+  BeltSample s = grip();
+  s.engineRpm = kNoValue;
+  r.feed(30, s);
+  for (int i = 0; i < 25; ++i) {
+    s.dutyPct = 50.0 + i;
+    s.altAmps = 60.0 - 0.5 * i;
+    s.targetAmps = s.altAmps + 2.0;  // the current follows its target down
+    r.feed(1, s);
+  }
+  EXPECT_EQ(r.events, 0);
+}
+
+TEST(BeltSlipDetector, ANewEpisodeNeedsTenQuietMinutes) {
+  Drive r;
+  r.feed(60, grip());
+  BeltSample s = grip();
+  s.rpm = 1800.0 * 0.9;
+  r.feed(20, s);
+  EXPECT_EQ(r.events, 1);
+  r.feed(kRearmS - 30, grip());
+  r.feed(20, s);
+  EXPECT_EQ(r.events, 1);
+  r.feed(kRearmS + 5, grip());
+  r.feed(20, s);
+  EXPECT_EQ(r.events, 2);
+}
+
+}  // namespace
+}  // namespace xr

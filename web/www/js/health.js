@@ -1,0 +1,80 @@
+// What the regulator has learned (docs/batteries.md "Measured capacity",
+// "Internal resistance"; docs/operations.md "Alternator wear"): the Battery
+// page's health table with the offer to use a measured capacity, and the
+// Alternator page.
+import { getJson } from "./api.js";
+import { hminFromSeconds, plain } from "./format.js";
+import { setParam } from "./settings.js";
+
+const $ = (id) => document.getElementById(id);
+const isNum = (x) => typeof x === "number" && Number.isFinite(x);
+
+function kvTable(id, rows) {
+  const t = $(id);
+  t.textContent = "";
+  for (const [k, v, cls] of rows) {
+    const tr = t.insertRow();
+    tr.insertCell().textContent = k;
+    const td = tr.insertCell();
+    td.textContent = plain(v);
+    if (cls) td.className = cls;
+  }
+}
+
+// The capacity the owner set (BatteryCapacity_Ah), read when the Battery page opens.
+let configuredAh = null;
+export async function loadCapacitySetting() {
+  const { params } = await getJson("/api/params");
+  const p = params.find((x) => x.name === "BatteryCapacity_Ah");
+  configuredAh = p && isNum(p.value) ? p.value : null;
+}
+
+// A measured capacity more than 10 % away from the setting: say so and offer it.
+export function capacityOffer(measuredAh, setAh) {
+  if (!isNum(measuredAh) || !isNum(setAh) || setAh <= 0) return null;
+  const off = (measuredAh - setAh) / setAh;
+  if (Math.abs(off) <= 0.10) return null;
+  return { useAh: Math.round(measuredAh), pct: Math.round(off * 100) };
+}
+
+export function renderHealth(s) {
+  const b = s.battery || {};
+  const cycles = b.capacity_cycles || 0;
+  const cap = isNum(s.capacity_measured_ah) ? `${plain(s.capacity_measured_ah, 0)} (from ${cycles} swings)`
+    : cycles ? `measuring: ${cycles} swing so far, 2 needed` : "not measured yet: needs two swings of 30 % or more between known points";
+  const r = isNum(s.battery_r_mohm) ? `${plain(s.battery_r_mohm, 2)} ± ${plain(s.battery_r_spread_mohm, 2)}`
+    : `not measured yet (${b.battery_r_samples || 0} of 5 load steps seen)`;
+  kvTable("health-table", [
+    ["measured capacity (Ah)", cap],
+    ["capacity set (Ah)", configuredAh === null ? "—" : plain(configuredAh, 0)],
+    ["internal resistance at 25 °C (mΩ)", r],
+  ]);
+  const offer = capacityOffer(s.capacity_measured_ah, configuredAh);
+  const el = $("capacity-offer");
+  el.hidden = !offer;
+  if (offer) {
+    $("capacity-offer-text").textContent =
+      `The bank measures ${offer.useAh} Ah over ${cycles} swings, ${Math.abs(offer.pct)} % ${offer.pct < 0 ? "less" : "more"} ` +
+      `than the ${plain(configuredAh, 0)} Ah set. The state of charge and the time to empty count from the setting.`;
+    $("capacity-use").textContent = `Use ${offer.useAh} Ah`;
+    $("capacity-use").dataset.ah = offer.useAh;
+  }
+}
+
+export async function useMeasuredCapacity() {
+  const ah = Number($("capacity-use").dataset.ah);
+  if (!isNum(ah)) return;
+  await setParam("BatteryCapacity_Ah", ah);
+  await loadCapacitySetting();
+}
+
+const BANDS = [150, 175, 200, 225];
+export function renderAlternator(s) {
+  const rows = [
+    ["running (h:min)", hminFromSeconds((s.alt_run_hours || 0) * 3600)],
+    ...BANDS.map((f) => [`at or above ${f} °F (h:min)`, hminFromSeconds((s[`alt_hours_above_${f}f`] || 0) * 3600)]),
+    ["insulation life used (%)", plain(s.alt_life_used_pct, 3)],
+    ["belt slips seen", plain(s.belt_slip_events, 0), s.belt_slip_events ? "warn" : ""],
+  ];
+  kvTable("alt-table", rows);
+}
