@@ -88,12 +88,15 @@ export async function until(what, fn, ms = 20000) {
 // Starts the daemon (startServer's options) and Chromium, runs
 // body({ server, browser, stateDir, get }), then stops both and removes the
 // state; exits 1 with the daemon's last log lines when body throws.
-export async function runDaemonBrowserTest({ args, prefix, ...serverOptions }, body) {
+// seedState: a state database from an earlier run, started from (what the
+// regulator had learned before this start).
+export async function runDaemonBrowserTest({ args, prefix, seedState, ...serverOptions }, body) {
   const { createRequire } = await import("node:module");
   const os = await import("node:os");
   const require = createRequire(path.join(path.resolve(args["web-dir"]), "package.json"));
   const { chromium } = require("playwright-core");
   const stateDir = fs.mkdtempSync(path.join(os.tmpdir(), prefix));
+  if (seedState) fs.copyFileSync(seedState, path.join(stateDir, "state.db"));
   const server = await startServer({ mode: "daemon", args, stateDir, ...serverOptions });
   const browser = await chromium.launch({
     executablePath: "/usr/bin/chromium", headless: true,

@@ -71,8 +71,8 @@ export async function useMeasuredCapacity() {
 const BANDS = [150, 175, 200, 225];
 export function renderAlternator(s) {
   const rows = [
-    ["running (h:min)", hminFromSeconds((s.alt_run_hours || 0) * 3600)],
-    ...BANDS.map((f) => [`at or above ${f} °F (h:min)`, hminFromSeconds((s[`alt_hours_above_${f}f`] || 0) * 3600)]),
+    ["running", hminFromSeconds((s.alt_run_hours || 0) * 3600)],
+    ...BANDS.map((f) => [`at or above ${f} °F`, hminFromSeconds((s[`alt_hours_above_${f}f`] || 0) * 3600)]),
     ["insulation life used (%)", plain(s.alt_life_used_pct, 3)],
     ["belt slips seen", plain(s.belt_slip_events, 0), s.belt_slip_events ? "warn" : ""],
   ];
