@@ -88,6 +88,8 @@ dashboard-screenshots: build
 	  --www $(BUILD)/web/www --root . --docs-dir docs/img
 	node tests/web/browser/screenshots.mjs --web-dir web --server $(BUILD)/daemon/app/xregulatord \
 	  --www $(BUILD)/web/www --root . --docs-dir docs/img
+	node tests/web/browser/battery_health.mjs --web-dir web --server $(BUILD)/daemon/app/xregulatord \
+	  --www $(BUILD)/web/www --root . --docs-dir docs/img
 
 # make bench measures its own optimised tree (Release, LTO, profile-guided,
 # for this machine's CPU: tests/bench/build-pgo.sh) so the figures are what the

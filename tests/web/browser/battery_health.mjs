@@ -78,7 +78,7 @@ rpm = 0
 `;
 await runDaemonBrowserTest({ args, token, scenario: quiet, extraConfig: config, prefix: "xr-health-",
                              seedState: path.join(first, "state.db") },
-  async ({ server, browser, get }) => {
+  async ({ server, browser, stateDir, get }) => {
   const st = await get("/api/status");
   assert.ok(st.capacity_measured_ah > 144 && st.capacity_measured_ah < 176, `measured ${st.capacity_measured_ah} Ah`);
   assert.ok(st.battery.capacity_cycles >= 2);
@@ -99,6 +99,9 @@ await runDaemonBrowserTest({ args, token, scenario: quiet, extraConfig: config, 
   const table = await page.textContent("#health-table");
   assert.match(table, new RegExp(`measured capacity \\(Ah\\)${offered} \\(from \\d+ swings\\)`), table);
   console.log(`ok - the Battery page says the bank measures ${offered} Ah and offers to use it`);
+  await page.locator("#capacity-offer").scrollIntoViewIfNeeded();
+  await page.screenshot({ path: path.join(stateDir, "battery-health.png") });
+  if (args["docs-dir"]) fs.copyFileSync(path.join(stateDir, "battery-health.png"), path.join(args["docs-dir"], "battery-health.png"));
 
   await page.click("#capacity-use");
   await until("the setting", async () => {

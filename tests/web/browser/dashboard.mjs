@@ -123,7 +123,7 @@ async function fakeChecks(page) {
   assert.equal(params.find((p) => p.name === "rpmCapCurrentTable").value[4], 42.5);
   console.log("ok - a bool switch and an RPM table cell (comma decimal) apply");
   await page.setViewportSize({ width: 390, height: 844 });
-  for (const p of ["live", "settings", "protections", "battery", "tuning", "events", "system", "setup"]) {
+  for (const p of ["live", "settings", "protections", "battery", "alternator", "tuning", "events", "system", "setup"]) {
     await page.goto(server.base + "/#" + p);
     await page.waitForSelector(`#page-${p}:not([hidden])`);
     await page.screenshot({ path: path.join(artifacts, `phone-${p}-${mode}.png`), fullPage: true });

@@ -9,7 +9,7 @@ import { parseArgs, runDaemonBrowserTest } from "./server.mjs";
 
 const args = parseArgs();
 const token = "browser-test-token-0123456789";
-const PAGES = ["live", "settings", "protections", "battery", "history", "tuning", "events", "system", "setup"];
+const PAGES = ["live", "settings", "protections", "battery", "alternator", "history", "tuning", "events", "system", "setup"];
 
 // An AGM bank that is set up, charging at cruise, with one sensor fault to
 // give the Events page an incident.
