@@ -301,6 +301,10 @@ export async function daemonChecks(t) {
   await page.goto(server.base + "/#battery");
   await page.waitForSelector("#guard-banner:not([hidden])");
   assert.match(await page.textContent("#guard-banner"), /temperature protection is OFF \(IgnoreTemperature\)/);
+  // The settings page keeps its last rendering while it loads the new one: clear it so
+  // the wait below is for the new one (on a loaded machine the old one can be there a
+  // while, then be replaced under the click).
+  await page.evaluate(() => { document.getElementById("param-groups").textContent = ""; });
   await page.goto(server.base + "/#settings");
   await page.waitForSelector(".param");
   await page.evaluate((sel) => { document.querySelector(sel).closest("details").open = true; }, ignoreTemp);
