@@ -23,6 +23,12 @@ DEB_PACKAGES := build-essential cmake pkg-config ninja-build \
 
 all: build
 
+# apt-get update, tried three times: a Debian mirror in the middle of a sync answers
+# "File has unexpected size" for a minute or two. If it still fails, the install
+# goes on with the indexes there are, and fails itself if a package cannot be had.
+APT_UPDATE = for try in 1 2 3; do $$SUDO apt-get update && break; \
+  echo "apt-get update failed (try $$try of 3; a mirror may be syncing)"; [ $$try = 3 ] || sleep 30; done
+
 deps:
 	@missing=""; \
 	for p in $(DEB_PACKAGES); do \
@@ -32,7 +38,7 @@ deps:
 	if [ -n "$$missing" ]; then \
 	  echo "deps: installing$$missing"; \
 	  SUDO=""; [ "$$(id -u)" = 0 ] || SUDO=sudo; \
-	  $$SUDO apt-get update && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y --no-install-recommends $$missing; \
+	  $(APT_UPDATE); DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y --no-install-recommends $$missing; \
 	else echo "deps: all present"; fi
 	@if [ -f web/package.json ]; then $(MAKE) --no-print-directory -C web deps; fi
 	@$(MAKE) --no-print-directory -C tests/integrations/signalk deps
@@ -139,11 +145,16 @@ CROSS_LIBS := $(CROSS_LIBS) pkg-config
 .PHONY: print-cross-libs
 print-cross-libs:
 	@echo $(CROSS_LIBS)
-CROSS_PACKAGES := crossbuild-essential-arm64 crossbuild-essential-armhf qemu-user-static \
-  $(addsuffix :arm64,$(CROSS_LIBS)) $(addsuffix :armhf,$(CROSS_LIBS))
+# CROSS_ARCHES: the arm64 tests need only arm64 (deps-cross-arm64), so a mirror
+# that serves a broken armhf index for a while does not stop them.
+CROSS_ARCHES ?= arm64 armhf
+CROSS_PACKAGES = qemu-user-static $(foreach a,$(CROSS_ARCHES),crossbuild-essential-$(a) $(addsuffix :$(a),$(CROSS_LIBS)))
+.PHONY: deps-cross-arm64
+deps-cross-arm64: deps
+	@$(MAKE) --no-print-directory deps-cross CROSS_ARCHES=arm64
 deps-cross: deps
 	@SUDO=""; [ "$$(id -u)" = 0 ] || SUDO=sudo; \
-	for a in arm64 armhf; do \
+	for a in $(CROSS_ARCHES); do \
 	  dpkg --print-foreign-architectures | grep -qx $$a || { $$SUDO dpkg --add-architecture $$a; echo "deps-cross: added $$a"; }; \
 	done; \
 	missing=""; \
@@ -152,7 +163,7 @@ deps-cross: deps
 	done; \
 	if [ -n "$$missing" ]; then \
 	  echo "deps-cross: installing$$missing"; \
-	  $$SUDO apt-get update && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y --no-install-recommends $$missing; \
+	  $(APT_UPDATE); DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y --no-install-recommends $$missing; \
 	else echo "deps-cross: all present"; fi
 
 # The arm64 build under qemu-user (docs/install.md): its own tree (no LTO,
@@ -178,7 +189,7 @@ ARM64_BUILD ?= build-arm64
 QEMU_AARCH64 ?= qemu-aarch64-static
 ARM_QEMU_GAPS := drivers\.LinuxI2cBus\.(RegularFileIsRejectedByTheIoctl|IoctlErrorOnANonAdapterFdIsReturnedNotRetried)|drivers\.LinuxWatchdog\.(PlainFileIsAcceptedButReported|KeepAliveWritesOneNonMagicBytePerCall|MagicCloseOnlyOnCleanStop|NoKeepAliveMeansNoBytes)
 ARM_CTEST_EXCLUDE := ^(e2e_|web_browser|web_dashboard_units|web_fuzz|package\.|arm\.|config_cli_roundtrip|runtime_tsan|systemd_units_verify|source_rules\.|layout\.|soak_smoke|cruising\.|bms_can\.|integrations\.|$(ARM_QEMU_GAPS))
-test-arm64: deps-cross $(BUILD)/CMakeCache.txt
+test-arm64: deps-cross-arm64 $(BUILD)/CMakeCache.txt
 	cmake -S . -B $(ARM64_BUILD) -G Ninja \
 	  -DCMAKE_TOOLCHAIN_FILE=cmake/toolchain-aarch64.cmake -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -DNDEBUG" -DXR_LTO=OFF -DXR_BUILD_TESTS=ON -DXR_BUILD_BENCH=OFF \
@@ -202,7 +213,7 @@ ARM64_CI_BINS := tests/unit/control/control_test tests/unit/control/control_allo
   tests/unit/protection/protection_test tests/unit/protection/protection_regulator_test \
   tests/unit/params/params_test tests/unit/battery/battery_test tests/sim/xr_sim_closed_loop_tests
 .PHONY: test-arm64-ci
-test-arm64-ci: deps-cross $(BUILD)/CMakeCache.txt
+test-arm64-ci: deps-cross-arm64 $(BUILD)/CMakeCache.txt
 	cmake -S . -B $(ARM64_BUILD) -G Ninja \
 	  -DCMAKE_TOOLCHAIN_FILE=cmake/toolchain-aarch64.cmake -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -DNDEBUG" -DXR_LTO=OFF -DXR_BUILD_TESTS=ON -DXR_BUILD_BENCH=OFF \
@@ -256,7 +267,7 @@ test-kernel: deps-cross
 	@missing=""; for p in $(KERNEL_PACKAGES); do \
 	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "ok installed" || missing="$$missing $$p"; done; \
 	if [ -n "$$missing" ]; then SUDO=""; [ "$$(id -u)" = 0 ] || SUDO=sudo; \
-	  $$SUDO apt-get update && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y --no-install-recommends $$missing; fi
+	  $(APT_UPDATE); DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y --no-install-recommends $$missing; fi
 	cmake -S . -B $(ARM64_BUILD) -G Ninja \
 	  -DCMAKE_TOOLCHAIN_FILE=cmake/toolchain-aarch64.cmake -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -DNDEBUG" -DXR_LTO=OFF -DXR_BUILD_TESTS=ON -DXR_BUILD_BENCH=OFF \
