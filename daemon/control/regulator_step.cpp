@@ -5,7 +5,8 @@
 //   (sustained timers) -> charging stage -> TickSnapshot -> mode selection ->
 //   mode transitions (enterSys*) -> shutdown path (incl. applyImmediateCut)
 //   or normal control (AUTO with fast-OV supervisors / MANUAL / Limp Home)
-//   -> governor -> outputs -> SoC update -> alarms -> telemetry.
+//   -> governor -> outputs -> SoC update -> alarms -> alternator wear and belt
+//   slip -> telemetry.
 //
 // CH1 freshness: the control law (filters, CV loop, PID, governor) fires on
 // fresh CH1 samples. On other ticks the protections, the shutdown sequencer,
