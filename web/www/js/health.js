@@ -3,23 +3,11 @@
 // page's health table with the offer to use a measured capacity, and the
 // Alternator page.
 import { getJson } from "./api.js";
-import { hminFromSeconds, plain } from "./format.js";
+import { hminFromSeconds, isNum, plain } from "./format.js";
+import { kvTable } from "./pages.js";
 import { setParam } from "./settings.js";
 
 const $ = (id) => document.getElementById(id);
-const isNum = (x) => typeof x === "number" && Number.isFinite(x);
-
-function kvTable(id, rows) {
-  const t = $(id);
-  t.textContent = "";
-  for (const [k, v, cls] of rows) {
-    const tr = t.insertRow();
-    tr.insertCell().textContent = k;
-    const td = tr.insertCell();
-    td.textContent = plain(v);
-    if (cls) td.className = cls;
-  }
-}
 
 // The capacity the owner set (BatteryCapacity_Ah), read when the Battery page opens.
 let configuredAh = null;

@@ -6,7 +6,7 @@ import { plainMode, reasonInfo } from "./names.js";
 
 const $ = (id) => document.getElementById(id);
 
-function kvTable(id, rows) {
+export function kvTable(id, rows) {
   const t = $(id);
   t.textContent = "";
   for (const [k, v, cls] of rows) {
