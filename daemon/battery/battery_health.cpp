@@ -5,6 +5,7 @@
 
 #include "battery/battery_monitor.h"
 #include "battery/monitor_helpers.h"
+#include "params/constants.h"
 
 namespace xr {
 
@@ -17,22 +18,19 @@ namespace {
 // docs/batteries.md). The voltage is the mean of the last hour of it.
 constexpr double kHealthRestS = 4.0 * 3600.0;
 constexpr double kHealthRestAverageS = 3600.0;
-// "At rest": at most 2 % of the capacity flowing (a fridge on a 200 Ah bank),
-// the alternator not charging. What flows is corrected with the measured
-// resistance.
-constexpr double kHealthRestCurrentC = 0.02;
 // A BMS's SoC older than this is not a point.
 constexpr std::int64_t kBmsSocStaleMs = 10000;
 }  // namespace
 
 void BatteryMonitor::trackHealth(const Inputs& in, double dt_s, double amps, double volts,
                                  double altAmps) noexcept {
-  const double tempC = usable(in.batteryTempC, in.now, 300000) ? in.batteryTempC.value : kNoValue;
+  // The battery temperature counts while the temperature rules count it (BATTERY_TEMP_STALE_MS).
+  const double tempC =
+      usable(in.batteryTempC, in.now, k::BATTERY_TEMP_STALE_MS) ? in.batteryTempC.value : kNoValue;
   if (resistance_.update(dt_s, amps, volts, tempC, p_.BatteryCapacity_Ah)) telemetryStale_ = true;
-  const bool alternatorOff = !std::isfinite(altAmps) || altAmps <= p_.CurrentThreshold;
-  const bool resting = isLeadAcid(p_) && std::isfinite(amps) && std::isfinite(volts) &&
-                       std::fabs(amps) <= kHealthRestCurrentC * p_.BatteryCapacity_Ah && alternatorOff;
-  restedVoltagePoint(dt_s, amps, volts, tempC, resting);
+  // "At rest" as for the first-start estimate (a fridge on a 200 Ah bank is at
+  // rest); what still flows is corrected with the measured resistance below.
+  restedVoltagePoint(dt_s, amps, volts, tempC, leadAcidAtRest(amps, volts, altAmps));
   const bool bmsFresh =
       std::isfinite(in.bms.socPct) && in.bms.stamp != 0 && in.now - in.bms.stamp <= fromMs(kBmsSocStaleMs);
   bmsSocPct_ = bmsFresh ? in.bms.socPct : kNoValue;
@@ -59,8 +57,7 @@ void BatteryMonitor::restedVoltagePoint(double dt_s, double amps, double volts, 
   const double r = resistance_.ohmsAt(tempC);
   const double a = healthRestA_s_ / healthRestAvg_s_;
   const double ocv = healthRestV_s_ / healthRestAvg_s_ - (std::isfinite(r) ? a * r : 0.0);
-  const double cells = p_.BatteryCells > 0 ? p_.BatteryCells : 6.0 * nominalVoltage_ / 12.0;
-  pendingRestSocPct_ = socFromRestVoltage12(ocv * 6.0 / cells);
+  pendingRestSocPct_ = socFromRestVolts(ocv);
 }
 
 void BatteryMonitor::capacityPoint(TimeNs now, double socPct, bool full, EventBatch& ev) noexcept {

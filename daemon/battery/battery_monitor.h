@@ -192,6 +192,10 @@ class BatteryMonitor {
     telemetryStale_ = true;
   }
   void estimateSocAtRest(double dt_s, double amps, double volts, double altAmps) noexcept;
+  // battery_ocv.cpp: a lead-acid bank at rest (little current, alternator
+  // off), and the SoC its rested voltage says.
+  bool leadAcidAtRest(double amps, double volts, double altAmps) const noexcept;
+  double socFromRestVolts(double volts) const noexcept;
   void calculateChargeTimes(const Inputs& in) noexcept;
   // battery_health.cpp: the measured capacity's points, the resistance.
   void trackHealth(const Inputs& in, double dt_s, double amps, double volts, double altAmps) noexcept;

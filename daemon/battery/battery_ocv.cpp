@@ -30,10 +30,6 @@ constexpr OcvPoint kLeadAcidOcv[] = {
 constexpr double kRestCurrentC = 0.02;
 constexpr double kRestSeconds = 30.0;
 
-}  // namespace
-
-namespace battery_detail {
-
 bool isLeadAcid(const Params& p) {
   // BatteryProfile: 0 lifepo4, 1 agm, 2 flooded, 3 gel, 4 custom.
   return p.BatteryProfile >= 1 && p.BatteryProfile <= 3;
@@ -49,30 +45,33 @@ double socFromRestVoltage12(double v) {
   return 100.0;
 }
 
-}  // namespace battery_detail
+}  // namespace
 
-using namespace battery_detail;
+bool BatteryMonitor::leadAcidAtRest(double amps, double volts, double altAmps) const noexcept {
+  const bool alternatorOff = !std::isfinite(altAmps) || altAmps <= p_.CurrentThreshold;
+  return isLeadAcid(p_) && std::isfinite(amps) && std::isfinite(volts) &&
+         std::fabs(amps) <= kRestCurrentC * p_.BatteryCapacity_Ah && alternatorOff;
+}
+
+double BatteryMonitor::socFromRestVolts(double volts) const noexcept {
+  // Per 12 V of bank: BatteryCells when set, else the bank class's 6 per 12 V.
+  const double cells = p_.BatteryCells > 0 ? p_.BatteryCells : 6.0 * nominalVoltage_ / 12.0;
+  return socFromRestVoltage12(volts * 6.0 / cells);
+}
 
 void BatteryMonitor::estimateSocAtRest(double dt_s, double amps, double volts, double altAmps) noexcept {
   if (socSource() != SocSource::Unknown || !isLeadAcid(p_) || !(dt_s > 0.0)) {
     restTimer_s_ = restVoltSum_ = 0.0;
     return;
   }
-  const double cap = p_.BatteryCapacity_Ah;
-  const bool alternatorOff = !std::isfinite(altAmps) || altAmps <= p_.CurrentThreshold;
-  const bool resting =
-      std::isfinite(amps) && std::isfinite(volts) && std::fabs(amps) <= kRestCurrentC * cap && alternatorOff;
-  if (!resting) {
+  if (!leadAcidAtRest(amps, volts, altAmps)) {
     restTimer_s_ = restVoltSum_ = 0.0;
     return;
   }
   restTimer_s_ += dt_s;
   restVoltSum_ += volts * dt_s;
   if (restTimer_s_ < kRestSeconds) return;
-  // Per 12 V of bank: BatteryCells when set, else the bank class's 6 per 12 V.
-  const double cells = p_.BatteryCells > 0 ? p_.BatteryCells : 6.0 * nominalVoltage_ / 12.0;
-  const double v12 = restVoltSum_ / restTimer_s_ * 6.0 / cells;
-  ledger_.CoulombCount_Ah = cap * socFromRestVoltage12(v12) / 100.0;
+  ledger_.CoulombCount_Ah = p_.BatteryCapacity_Ah * socFromRestVolts(restVoltSum_ / restTimer_s_) / 100.0;
   ledger_.coulombAccumulator_Ah = 0.0;
   setSocSource(SocSource::OcvEstimate);
   restTimer_s_ = restVoltSum_ = 0.0;

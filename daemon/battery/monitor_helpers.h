@@ -7,7 +7,6 @@
 #include "core/events.h"
 #include "core/finite.h"
 #include "core/inputs.h"
-#include "params/params.h"
 
 namespace xr::battery_detail {
 
@@ -26,10 +25,5 @@ inline Event makeEvent(TimeNs t, EventLevel level, EventCode code, double a = 0.
                        int detail = 0) {
   return xr::makeEvent(t, level, code, Reason::NONE, a, b, detail);
 }
-
-// A lead-acid profile (agm, flooded, gel): its rested voltage tells the SoC.
-bool isLeadAcid(const Params& p);
-// SoC % of a rested 12 V (6-cell) lead-acid bank at ~25 degC (battery_ocv.cpp).
-double socFromRestVoltage12(double volts12);
 
 }  // namespace xr::battery_detail
