@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The qemu-user environment of the arm tests (docs/install.md, "the arm64 daemon
+# The qemu-user environment of the arm tests (docs/development.md, "the arm64 daemon
 # hangs"). Under `qemu-aarch64-static -L /usr/aarch64-linux-gnu` the daemon
 # printed its start lines and then spun at 100 % CPU with no system call,
 # deaf to SIGTERM: qemu took the program interpreter from the cross

@@ -1,5 +1,5 @@
 // xr_board_check: the board backends against a real Linux kernel, for the
-// `make test-kernel` rig (docs/install.md). It runs inside the arm64 VM
+// `make test-kernel` rig (docs/development.md). It runs inside the arm64 VM
 // (tests/kernel/init.sh) and drives the project's own drivers — GpioLibgpiod,
 // the runtime's fatal-signal guard, LinuxWatchdog, PwmSysfs — on the
 // kernel's devices. Each command prints what it saw; init.sh judges.

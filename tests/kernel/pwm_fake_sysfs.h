@@ -1,6 +1,6 @@
 #pragma once
 // PwmSysfs against a tmpfs tree shaped like /sys/class/pwm, for the kernel
-// rig (docs/install.md): the Debian arm64 kernel has no software PWM chip, so a
+// rig (docs/development.md): the Debian arm64 kernel has no software PWM chip, so a
 // thread plays the kernel's part (writing N to pwmchip0/export creates pwmN
 // with period, duty_cycle, polarity and enable) and records, with inotify, the
 // order in which the driver writes the attributes.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# `make test-kernel` (docs/install.md): the board backends on a real Linux kernel.
+# `make test-kernel` (docs/development.md): the board backends on a real Linux kernel.
 #
 #   run.sh ARM64_BUILD WORKDIR
 #

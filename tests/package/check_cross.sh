@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Checks a cross-built xregulator package (docs/install.md): `make deb ARCH=arm64`
+# Checks a cross-built xregulator package (docs/development.md): `make deb ARCH=arm64`
 # and `ARCH=armhf` run it on what they built, and so does `make test-arm64`.
 #
 #   check_cross.sh [--no-lintian] ARCH PACKAGE.deb [PACKAGE.changes]

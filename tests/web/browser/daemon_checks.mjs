@@ -73,7 +73,7 @@ export async function daemonChecks(t) {
   assert.equal((await send({ command: "off" })).status, 200);
   await page.waitForFunction(() => document.getElementById("headline").textContent.startsWith("Not set up · Not charging"));
   // Not set up is a state: the limits safe for every battery are named, and in force.
-  assert.match(await page.textContent("#first-run"), /at most 14 V, float 13\.4 V, battery 5-45 degC/);
+  assert.match(await page.textContent("#first-run"), /at most 14 V, float 13\.4 V, battery 5-45 °C/);
   assert.equal(await param("BulkVoltage"), 14);
   assert.equal(await param("ChargeMinTempC"), 5);
   await page.click("#first-run a");
@@ -159,10 +159,18 @@ export async function daemonChecks(t) {
   await page.waitForFunction(() => !document.getElementById("v-soc_pct").textContent.startsWith("≈"));
   console.log("ok - Set SoC asks first, never sends an empty box; the SoC is then shown as known");
 
-  // ---- Item 9: every tab reachable at 390 px, 44 px targets.
-  for (const a of await page.locator("nav a").all()) {
+  // ---- Item 9: every page reachable at 390 px, 44 px targets: the bottom
+  // bar's tabs, and the rest behind "More".
+  for (const a of await page.locator("nav a:not(.more-item), #tab-more").all()) {
     const b = await a.boundingBox();
     assert.ok(b.x >= 0 && b.x + b.width <= PHONE.width && b.height >= 44, `${await a.textContent()} at ${JSON.stringify(b)}`);
+  }
+  for (const a of await page.locator("nav a.more-item").all()) {
+    await page.click("#tab-more");
+    const b = await a.boundingBox();
+    assert.ok(b && b.x >= 0 && b.x + b.width <= PHONE.width && b.height >= 44, `${await a.textContent()} at ${JSON.stringify(b)}`);
+    await a.click();
+    await page.waitForFunction((h) => location.hash === h, await a.getAttribute("href"));
   }
   // Item 14: the theme follows the system, with a switch; °C or °F by choice.
   await page.evaluate(() => localStorage.removeItem("xregulator.theme"));
@@ -180,7 +188,7 @@ export async function daemonChecks(t) {
   await page.goto(server.base + "/#system");
   await page.selectOption("#temp-unit", "C");
   console.log("ok - light theme follows the system and switches; °F and °C by choice");
-  console.log("ok - all tabs visible and at least 44 px at 390 px");
+  console.log("ok - every page reachable at 390 px: four tabs and More at the bottom, each at least 44 px");
 
   // ---- Item 15: paired devices on the System page.
   await pairedDevices({ page, server, send, shot });
@@ -205,7 +213,7 @@ export async function daemonChecks(t) {
   const rows0 = await page.locator("#events-body tr").count();
   await send({ command: "reset_alarm_latch" });
   await page.waitForFunction((n) => document.querySelectorAll("#events-body tr").length > n, rows0);
-  assert.match(await page.locator("#events-body tr").first().textContent(), /Command Reset alarm latch applied/);
+  assert.match(await page.locator("#events-body tr:not(.day-head)").first().textContent(), /Command Reset alarm latch applied/);
   console.log("ok - events: warnings coloured, command arguments and settings changes (old → new, by whom) shown, new events appear live");
   // Item 7: a refused command's answer in words, without the API's command name (TuningMode is off).
   await page.goto(server.base + "/#tuning");
@@ -230,9 +238,11 @@ export async function daemonChecks(t) {
   assert.equal(await param("UseFloat"), false);
   assert.equal((await param("rpmCapCurrentTable"))[3], 45);
   assert.equal(await param("FloatVoltage"), 13.4);
-  // Item 8: the page says which values now differ from the file, and how to make the file say the same.
+  // Item 8: one line says values now differ from the file, with Keep / Drop; which ones fold out in plain labels.
   await page.waitForSelector("#param-file-note:not([hidden])");
-  assert.match(await page.textContent("#param-file-note"), /FloatVoltage 13\.4 \(file: [\d.]+\).*not changed.*export/);
+  assert.match(await page.textContent("#param-file-text"), /^\d+ values? set on the dashboard differs? from the file\.$/);
+  assert.match(await page.textContent("#param-file-list"), /Float voltage: 13\.4 V here, [\d.]+ V in the file/);
+  assert.ok(await page.isVisible("#param-keep") && await page.isVisible("#param-drop"));
   console.log("ok - a bool switch, an RPM table cell and a comma decimal apply; the page lists what differs from the file");
   // A cross-field error next to its field; nothing applied.
   await page.locator('.param[data-name="FloatVoltage"] input').fill("14.9");
@@ -321,15 +331,19 @@ export async function daemonChecks(t) {
   await server.stop();
   await page.waitForSelector("#offline-banner:not([hidden])");
   await page.waitForFunction(() => /s ago/.test(document.getElementById("offline-age").textContent));
+  // The last values stay readable (dimmed, not struck out); the badge says unreachable, never "Off".
   const look = await page.evaluate(() => ({ offline: document.body.classList.contains("offline"),
-    opacity: Number(getComputedStyle(document.getElementById("v-battery_v")).opacity), conn: document.getElementById("conn").textContent }));
-  assert.ok(look.offline && look.opacity <= 0.5 && look.conn === "OFFLINE", JSON.stringify(look));
+    opacity: Number(getComputedStyle(document.getElementById("v-battery_v")).opacity),
+    strike: getComputedStyle(document.getElementById("v-battery_v")).textDecorationLine,
+    value: document.getElementById("v-battery_v").textContent, badge: document.getElementById("hdr-mode").textContent }));
+  assert.ok(look.offline && look.opacity === 1 && look.strike === "none" && /\d/.test(look.value) &&
+    look.badge === "Regulator unreachable", JSON.stringify(look));
   await page.waitForFunction(() => document.getElementById("off-button").disabled);
   const live = await page.evaluate(() => [...document.querySelectorAll("main button, main input, main select")]
     .filter((el) => !el.disabled).map((el) => el.id || el.name || el.outerHTML.slice(0, 40)));
   assert.deepEqual(live, [], "every control is disabled while offline");
   await shot("dashboard-offline");
-  console.log("ok - daemon stopped: offline banner with the age, values greyed, every control disabled");
+  console.log("ok - daemon stopped: offline banner with the age, last values readable, badge unreachable, every control disabled");
 
   // ---- Items 2, 11, 12: a second run (same state database) with a sensor
   // fault: charging, then the banner with what to do; earlier events kept.

@@ -137,13 +137,13 @@ async function fakeChecks(page) {
 async function eventsOnPhone(page) {
   await page.goto(server.base + "/#events");
   await page.waitForSelector("#events-body tr");
-  const lines = await page.evaluate(() => [...document.querySelectorAll("#events-body tr")].slice(0, 40).flatMap((tr) =>
+  const lines = await page.evaluate(() => [...document.querySelectorAll("#events-body tr:not(.day-head)")].slice(0, 40).flatMap((tr) =>
     [0, 1].map((i) => { const r = document.createRange(); r.selectNodeContents(tr.cells[i]); return r.getClientRects().length; })));
   assert.ok(lines.length > 0);
   assert.ok(lines.every((n) => n === 1), "Time/Level cells wrap: " + lines.join(","));
-  const before = await page.locator("#events-body tr:not([hidden])").count();
+  const before = await page.locator("#events-body tr:not([hidden]):not(.day-head)").count();
   await page.selectOption("#events-level", "warning");
-  const shown = await page.$$eval("#events-body tr:not([hidden])", (rows) => rows.map((r) => r.dataset.level));
+  const shown = await page.$$eval("#events-body tr:not([hidden]):not(.day-head)", (rows) => rows.map((r) => r.dataset.level));
   assert.ok(shown.every((l) => ["warning", "error", "critical"].includes(l)), "filter shows " + shown.join(","));
   if (mode === "fake") assert.ok(shown.length > 0 && shown.length < before, `${shown.length} of ${before} rows shown`);
   await page.selectOption("#events-level", "debug");

@@ -244,14 +244,82 @@ await test("pairing refusals in words the owner can act on (item 15)", () => {
   assert.equal(A.guessDeviceName("Mozilla/5.0 (Linux; Android 14; Pixel 8) Mobile Safari"), "Android phone");
 });
 
-await test("the Settings page names every value that differs from the file (item 8)", () => {
-  const ps = [{ name: "FloatVoltage", value: 13.4, file: 13.5, overridden: true, changed: true },
+await test("the Settings notice is one line; which values fold out in plain labels and the display unit", () => {
+  const ps = [{ name: "FloatVoltage", value: 13.4, file: 13.5, unit: "V", overridden: true, changed: true },
     { name: "UseFloat", value: false, file: true, overridden: true, changed: true },
+    { name: "TemperatureLimitF", value: 194, file: 150, unit: "degF", overridden: true, changed: true },
     { name: "BulkVoltage", value: 14.4, file: 14.4, overridden: false, changed: true }];
-  const note = S.fileNotice(ps);
-  assert.match(note, /^2 values set from the dashboard differ from xregulator\.toml: FloatVoltage 13\.4 \(file: 13\.5\), UseFloat off \(file: on\)\./);
-  assert.doesNotMatch(note, /BulkVoltage/);
-  assert.equal(S.fileNotice([ps[2]]), "");
+  assert.equal(S.fileNotice(ps), "3 values set on the dashboard differ from the file.");
+  assert.equal(S.fileNotice([ps[0]]), "1 value set on the dashboard differs from the file.");
+  assert.deepEqual(S.noticeItems(ps, "C"), ["Float voltage: 13.4 V here, 13.5 V in the file",
+    "Float after absorption: off here, on in the file", "Alternator temperature limit: 90 °C here, 65.6 °C in the file"]);
+  assert.match(S.noticeItems(ps, "F")[2], /194 °F here, 150 °F in the file/);
+  assert.equal(S.fileNotice([ps[3]]), "");
+});
+
+await test("Default is the battery profile's value where the server gives one", () => {
+  assert.equal(S.defaultOf({ default: 14.6, effective_default: 28.8 }), 28.8);
+  assert.equal(S.defaultOf({ default: 14.6 }), 14.6);
+  assert.equal(S.labelOf({ name: "AbsorptionVoltage" }), "Absorption voltage");
+  assert.equal(S.labelOf({ name: "VoltageDisagreeThreshold" }), "VoltageDisagreeThreshold");
+});
+
+await test("°F settings show, and are typed, in °C when °C is chosen; margins convert without the offset", async () => {
+  const U = await mod("web/www/js/settings_units.js");
+  const lim = U.unitView({ name: "TemperatureLimitF", unit: "degF" }, "C");
+  assert.equal(lim.unit, "°C");
+  assert.equal(lim.show(194), 90);
+  assert.equal(lim.back(90), 194);
+  const margin = U.unitView({ name: "TempWarnExcess", unit: "degF" }, "C");
+  assert.equal(margin.show(9), 5);
+  assert.equal(margin.back(5), 9);
+  assert.equal(U.unitView({ name: "TemperatureLimitF", unit: "degF" }, "F").unit, "°F");
+  assert.equal(U.unitView({ name: "ChargeMinTempC", unit: "degC" }, "F").unit, "°C");
+  assert.equal(U.plainUnits("resumes 3 degC below; 120 degF"), "resumes 3 °C below; 120 °F");
+});
+
+await test("the Alternator page's bands read in the display unit, °C rounded to 5", async () => {
+  const Hh = await mod("web/www/js/health.js");
+  assert.deepEqual([150, 175, 200, 225].map((f) => Hh.bandLabel(f, "C")), ["65 °C", "80 °C", "95 °C", "105 °C"]);
+  assert.deepEqual([150, 225].map((f) => Hh.bandLabel(f, "F")), ["150 °F", "225 °F"]);
+});
+
+await test("the badge says Off only when someone switched it off; a weather hold reads Solar first", () => {
+  const off = { mode: "MODE_DISABLED_RAMP", control: { sys_mode: "SYS_MODE_OFF" } };
+  assert.equal(N.ownerMode({ ...off, reason: "REASON_SYS_OFF" }), "Off");
+  assert.equal(N.ownerMode({ ...off, reason: "REASON_WEATHER_MODE" }), "Solar first");
+  assert.equal(N.ownerMode({ ...off, reason: "REASON_IDLE_STAGE" }), "Auto");
+  // An engine stop comes before the operator's Off in the regulator's order: it may hide an Off, so it is not "Auto".
+  assert.equal(N.ownerMode({ ...off, reason: "REASON_RPM_LOW" }), "Off");
+});
+
+await test("the weather panel: the decision in force now, a failed fetch as a note with its time", async () => {
+  const W = await mod("web/www/js/weather.js");
+  const w = { last_error: "Connection refused: weather mode off, charging as usual; next try in 60 s",
+    values: { sunny_days: 3, uv_threshold: 6, active: 1, age_s: 2400, failed_s_ago: 120 } };
+  assert.match(W.verdict(w, "REASON_WEATHER_MODE"), /^Holding the alternator off: 3 of 3 days above UV 6\.0/);
+  assert.doesNotMatch(W.verdict(w, "NONE"), /refused/);
+  assert.equal(W.fetchNote(w), "The last forecast fetch failed 2 min ago (Connection refused: weather mode off, charging as usual); " +
+    "the forecast from 40 min ago stays in force.");
+  assert.equal(W.fetchNote({ ...w, values: { ...w.values, failed_s_ago: null } }), "", "a later success clears the note");
+  assert.equal(W.verdict({ values: { age_s: null } }, "NONE"), "Charging as usual: no forecast yet.");
+});
+
+await test("the hero: the regulator's one number when it sends it, else the battery voltage", () => {
+  const s = { mode: "MODE_NORMAL_AUTO_PID", stage: "bulk", field_enable: true, alt_a: 60, battery_v: 13.234, bcur_a: 42 };
+  assert.deepEqual(L.heroOf(s), { value: "13.23", unit: "V", label: "Battery", state: "Charging" });
+  const o = L.heroOf({ ...s, owner: { state: "Bulk", hero: { value: 42.04, unit: "A", label: "into the battery" } } });
+  assert.deepEqual(o, { value: "42.0", unit: "A", label: "into the battery", state: "Bulk" });
+});
+
+await test("events: a date header per day", async () => {
+  const Ev = await mod("web/www/js/events.js");
+  const now = new Date(2026, 11, 6, 12, 0).getTime() / 1000;
+  assert.match(Ev.dayHeader(now - 3600, now), /^Today · /);
+  assert.match(Ev.dayHeader(now - 86400, now), /^Yesterday · /);
+  assert.doesNotMatch(Ev.dayHeader(now - 3 * 86400, now), /Today|Yesterday|2026/);
+  assert.match(Ev.dayHeader(now - 400 * 86400, now), /2025$/);
+  assert.equal(Ev.dayHeader(0, now), "Time since the regulator started");
 });
 
 await test("the headline says Charging only while current goes into the battery", () => {

@@ -51,6 +51,10 @@ async ({ server, browser, stateDir }) => {
     }
   };
   await verdict(/^Holding the alternator off: 3 of 3 days above UV 6\.0/);
+  // The badge says the same as the panel and the headline: nobody pressed Off.
+  await page.waitForFunction(() => document.getElementById("hdr-mode").textContent === "Solar first");
+  assert.match(await page.textContent("#headline"), /solar first/i);
+  assert.equal(await page.isVisible("#weather-note"), false, "no failed fetch, no note");
   const table = await page.textContent("#weather-panel table");
   assert.match(table, /UV index8\.[45]8\.97\.6/, "the three days' UV index");
   assert.match(table, /Radiation MJ\/m²29\.430\.027\.9/, "the three days' radiation");

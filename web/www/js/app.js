@@ -3,7 +3,7 @@ import { command, getJson, toast } from "./api.js";
 import { backfillLive, chartDebug, drawLive, initCharts, loadHistory, pushLive } from "./charts.js";
 import { CONFIRM_TEXT, confirmAction } from "./confirm.js";
 import { parseDecimal } from "./format.js";
-import { latestStatus, renderLive, renderSetupState, tick } from "./live.js";
+import { latestStatus, renderLive, renderSetupState, tempUnit, tick } from "./live.js";
 import { commandAnswer, plainCommand } from "./names.js";
 import { applyEventFilter, loadEvents, loadSystem, renderBattery, renderProtections, renderTuning } from "./pages.js";
 import { initPairing, loadDevices } from "./pairing.js";
@@ -59,6 +59,11 @@ function route() {
   const page = currentPage();
   for (const p of PAGES) $("page-" + p).hidden = p !== page;
   document.querySelectorAll("nav a").forEach((a) => a.classList.toggle("current", a.getAttribute("href") === "#" + page));
+  // On a phone a page behind "More" marks "More"; the list closes on a choice.
+  const behindMore = !!document.querySelector(`nav a.more-item[href="#${page}"]`);
+  $("tab-more").classList.toggle("current", behindMore);
+  $("tabs").classList.remove("open");
+  $("tab-more").setAttribute("aria-expanded", "false");
   const fail = (e) => toast(e.message, true);
   if (page === "settings") loadSettings().catch(fail);
   if (page === "events") loadEvents().catch(fail);
@@ -116,11 +121,11 @@ function init() {
     localStorage.setItem("xregulator.theme", document.documentElement.dataset.theme === "dark" ? "light" : "dark");
     applyTheme();
   });
-  $("temp-unit").value = localStorage.getItem("xregulator.tempUnit") || (/^en-US$/i.test(navigator.language) ? "F" : "C");
+  $("temp-unit").value = tempUnit();  // the unit every page shows (°C unless °F was chosen)
   $("temp-unit").addEventListener("change", (e) => {
     localStorage.setItem("xregulator.tempUnit", e.target.value);
     const s = latestStatus();
-    if (s) renderLive(s);
+    if (s) { renderLive(s); renderAlternator(s); }
     loadHistory();
   });
   document.querySelectorAll("button[data-cmd]").forEach((b) => b.addEventListener("click", () => runCommand(b.dataset.cmd)));
@@ -141,6 +146,10 @@ function init() {
   $("events-more").addEventListener("click", () => loadEvents("more").catch((e) => toast(e.message, true)));
   $("events-level").addEventListener("change", applyEventFilter);
   $("hist-range").addEventListener("change", loadHistory);
+  $("tab-more").addEventListener("click", () => {
+    const open = $("tabs").classList.toggle("open");
+    $("tab-more").setAttribute("aria-expanded", String(open));
+  });
   initPairing();
   initSettings();
   initSetup(runCommand);

@@ -104,10 +104,50 @@ export function summarize(events) {
 // ---------------------------------------------------------------- the list
 const minLevel = () => ($("events-level") ? $("events-level").value : "debug");
 export function applyEventFilter() {
-  for (const tr of $("events-body").rows) tr.hidden = !levelShown(tr.dataset.level, minLevel());
+  // A day header shows while a row under it does.
+  let head = null, any = false;
+  for (const tr of $("events-body").rows) {
+    if (tr.classList.contains("day-head")) {
+      if (head) head.hidden = !any;
+      head = tr;
+      any = false;
+      continue;
+    }
+    tr.hidden = !levelShown(tr.dataset.level, minLevel());
+    any = any || !tr.hidden;
+  }
+  if (head) head.hidden = !any;
+}
+
+function dayRow(text) {
+  const tr = document.createElement("tr");
+  tr.className = "day-head";
+  const th = document.createElement("th");
+  th.colSpan = 3;
+  th.scope = "colgroup";
+  th.textContent = text;
+  tr.appendChild(th);
+  return tr;
 }
 
 const when = (e) => (typeof e.wall_time_s === "number" && e.wall_time_s > 0 ? clock(e.wall_time_s) : `${plain(e.t_s, 0)} s after start`);
+// In the list the day is its header's, so a row says only the time.
+const hm = (e) => (typeof e.wall_time_s === "number" && e.wall_time_s > 0
+  ? new Date(e.wall_time_s * 1000).toLocaleTimeString([], { hour: "2-digit", minute: "2-digit", hour12: false })
+  : when(e));
+
+// The day header of an event: "Today · Sun 6 Dec", "Yesterday · Sat 5 Dec",
+// "Thu 3 Dec 2026"; events stored without a clock go under one header.
+export function dayHeader(wallS, nowS = Date.now() / 1000) {
+  if (typeof wallS !== "number" || !(wallS > 0)) return "Time since the regulator started";
+  const d = new Date(wallS * 1000);
+  const now = new Date(nowS * 1000);
+  const day = d.toLocaleDateString([], { weekday: "short", day: "numeric", month: "short" });
+  const daysAgo = Math.round((new Date(now.toDateString()) - new Date(d.toDateString())) / 86400000);
+  if (daysAgo === 0) return `Today · ${day}`;
+  if (daysAgo === 1) return `Yesterday · ${day}`;
+  return d.getFullYear() === now.getFullYear() ? day : `${day} ${d.getFullYear()}`;
+}
 
 function rowFor(level, time, fill) {
   const tr = document.createElement("tr");
@@ -121,11 +161,11 @@ function rowFor(level, time, fill) {
 }
 
 function eventRow(e) {
-  return rowFor(String(e.level).toLowerCase(), when(e), (td) => { td.textContent = eventText(e); });
+  return rowFor(String(e.level).toLowerCase(), hm(e), (td) => { td.textContent = eventText(e); });
 }
 
 function incidentRow(inc) {
-  return rowFor(inc.level, when(inc.events[0]), (td) => {
+  return rowFor(inc.level, hm(inc.events[0]), (td) => {
     td.className = "incident";
     const head = document.createElement("p");
     const b = document.createElement("b");
@@ -156,7 +196,14 @@ function render() {
   const asc = [...loaded.values()].sort((a, b) => a.id - b.id);
   const tb = $("events-body");
   tb.textContent = "";
-  for (const r of groupIncidents(asc).reverse()) tb.appendChild(r.incident ? incidentRow(r.incident) : eventRow(r.event));
+  let day = null;
+  for (const r of groupIncidents(asc).reverse()) {
+    const first = r.incident ? r.incident.events[0] : r.event;
+    const head = dayHeader(first.wall_time_s);
+    if (head !== day) { tb.appendChild(dayRow(head)); day = head; }
+    tb.appendChild(r.incident ? incidentRow(r.incident) : eventRow(r.event));
+  }
+  applyEventFilter();
 }
 
 export async function loadEvents(mode = "first") {

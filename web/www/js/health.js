@@ -3,7 +3,8 @@
 // page's health table with the offer to use a measured capacity, and the
 // Alternator page.
 import { getJson } from "./api.js";
-import { hminFromSeconds, isNum, plain } from "./format.js";
+import { fToC, hminFromSeconds, isNum, plain } from "./format.js";
+import { tempUnit } from "./live.js";
 import { kvTable } from "./pages.js";
 import { setParam } from "./settings.js";
 
@@ -56,11 +57,15 @@ export async function useMeasuredCapacity() {
   await loadCapacitySetting();
 }
 
+// The regulator counts the bands at these sensor temperatures in °F; in °C
+// they read rounded to 5 (65.6, 79.4, 93.3, 107.2 -> 65, 80, 95, 105), the
+// numbers an owner thinks in (docs/operations.md "Alternator wear").
 const BANDS = [150, 175, 200, 225];
-export function renderAlternator(s) {
+export const bandLabel = (f, unit) => (unit === "F" ? `${f} °F` : `${Math.round(fToC(f) / 5) * 5} °C`);
+export function renderAlternator(s, unit = tempUnit()) {
   const rows = [
     ["running", hminFromSeconds((s.alt_run_hours || 0) * 3600)],
-    ...BANDS.map((f) => [`at or above ${f} °F`, hminFromSeconds((s[`alt_hours_above_${f}f`] || 0) * 3600)]),
+    ...BANDS.map((f) => [`at or above ${bandLabel(f, unit)}`, hminFromSeconds((s[`alt_hours_above_${f}f`] || 0) * 3600)]),
     ["insulation life used (%)", plain(s.alt_life_used_pct, 3)],
     ["belt slips seen", plain(s.belt_slip_events, 0), s.belt_slip_events ? "warn" : ""],
   ];

@@ -139,9 +139,30 @@ export function renderLive(s) {
   setValue("v-alarms", alarms.length ? alarms.join(", ") : "none");
   $("v-alarms").classList.toggle("bad", alarms.length > 0);
   $("headline").textContent = headline(s);
+  renderHero(s);
   renderBanners(s);
   renderHeader(s, alarms.length > 0);
   tick();
+}
+
+// The hero (docs/dashboard.md "At a glance"): the regulator's one number
+// and state word (owner.hero, owner.state); until it sends them, the
+// battery voltage and the headline's first words.
+export function heroOf(s) {
+  const o = s.owner || {};
+  const h = o.hero || {};
+  if (h.value !== undefined && h.value !== null)
+    return { value: typeof h.value === "number" ? num(h.value, Math.abs(h.value) < 100 ? 1 : 0) : String(h.value),
+      unit: String(h.unit || ""), label: String(h.label || ""), state: String(o.state || headline(s).split(" · ")[0]) };
+  return { value: num(s.battery_v, 2), unit: "V", label: "Battery", state: String(o.state || headline(s).split(" · ")[0]) };
+}
+
+function renderHero(s) {
+  const h = heroOf(s);
+  $("hero-value").textContent = h.value;
+  $("hero-unit").textContent = h.unit;
+  $("hero-label").textContent = h.label;
+  $("hero-state").textContent = h.state;
 }
 
 function renderHeader(s, alarm) {
@@ -164,8 +185,18 @@ export function tick() {
   $("offline-age").textContent = lastFrameAt ? ago(age) : "never (no data yet)";
   $("updated").textContent = lastFrameAt ? `last update ${ago(age)}` : "waiting for the regulator…";
   const conn = $("conn");
-  conn.textContent = offline ? "OFFLINE" : "live";
+  conn.textContent = offline ? "offline" : "live";
   conn.className = offline ? "conn off" : "conn on";
+  conn.hidden = offline;
+  // Offline the mode is not known: the badge says the regulator cannot be
+  // reached (never the last frame's "Off"), and the last alarm is not current.
+  const mode = $("hdr-mode");
+  if (offline) {
+    const never = !lastFrameAt && document.body.dataset.ws !== "closed";
+    mode.textContent = never ? "Connecting…" : "Regulator unreachable";
+    mode.dataset.mode = never ? "connecting" : "unreachable";
+    $("hdr-alarm").hidden = true;
+  }
   disableControlsWhileOffline(offline);
 }
 

@@ -212,9 +212,16 @@ export const plainStage = (s) => STAGES[s] || String(s || "—");
 export const plainMode = (m) => MODES[m] || String(m || "—");
 
 // The mode the owner sees in the header: Off / Manual / Auto / Limp home.
+// "Off" only when someone switched it off: a weather hold, a resting bank
+// or a heat soak also park the control law in SYS_MODE_OFF, but the owner's
+// choice is still Auto, waiting (a weather hold reads "Solar first", as its
+// headline). These reasons come after the operator's Off in the regulator's
+// order (docs/protections.md), so they never hide it.
+const AUTO_WAITING = { REASON_WEATHER_MODE: "Solar first", REASON_IDLE_STAGE: "Auto", REASON_TEMP_SOAK: "Auto" };
 export function ownerMode(s) {
   if (s.mode === "MODE_LIMP_HOME") return "Limp home";
   const sys = s.control && s.control.sys_mode;
+  if (AUTO_WAITING[s.reason] && (!sys || sys === "SYS_MODE_OFF" || sys === "SYS_MODE_AUTO")) return AUTO_WAITING[s.reason];
   if (sys && SYS_MODES[sys]) return SYS_MODES[sys];
   return plainMode(s.mode);
 }

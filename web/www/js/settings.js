@@ -2,9 +2,11 @@
 // for booleans, a row of boxes for the RPM tables, choices as choices, where
 // each value comes from, and the server's messages next to each field.
 import { getJson, write } from "./api.js";
-import { parseDecimal } from "./format.js";
+import { clock, parseDecimal } from "./format.js";
 import { confirmUnsafe, renderGuardBanner } from "./guards.js";
+import { tempUnit } from "./live.js";
 import { REASONS } from "./names.js";
+import { plainUnits, shown, unitView } from "./settings_units.js";
 
 let params = [];
 let groups = [];
@@ -47,6 +49,11 @@ export const GROUP_TITLES = {
 };
 
 const kindOf = (p) => String(p.kind).toLowerCase();  // the API says "bool"/"table"/"int"/"float"
+export const labelOf = (p) => LABELS[p.name] || p.name;
+// "Default" is what the regulator would use with nothing written: the battery
+// profile's value where the profile sets it (the server's effective_default),
+// else the firmware's.
+export const defaultOf = (p) => (p.effective_default !== undefined ? p.effective_default : p.default);
 
 // "0 = DS18B20 (1-Wire), 1 = thermistor (ADS1115 CH3)." -> [[0, "DS18B20 (1-Wire)"], [1, ...]]
 export function choicesOf(p) {
@@ -75,6 +82,8 @@ export const plainHelp = (h) => String(h || "").replace(/(No seed default|Not in
   .replace(/\bcv_I\b/g, "the voltage loop's integral")
   .replace(/\bREASON_[A-Z0-9_]+\b/g, (c) => (REASONS[c] ? `“${REASONS[c].title}”` : c)).trim();
 
+const choiceLabel = (choices, v) => (choices.find(([c]) => c === v) || [v, String(v)])[1];
+
 function fmt(v) {
   if (Array.isArray(v)) return "[" + v.join(", ") + "]";
   if (typeof v === "boolean") return v ? "on" : "off";
@@ -91,7 +100,7 @@ function valueOf(p, row) {
   const nums = boxes.map((i) => parseDecimal(i.value));
   const bad = nums.findIndex((n) => n === null);
   if (bad >= 0) return { error: boxes[bad].value.trim() === "" ? "enter a value" : `"${boxes[bad].value}" is not a number` };
-  return { value: kind === "table" ? nums : nums[0] };
+  return { value: kind === "table" ? nums : unitView(p, tempUnit()).back(nums[0]) };
 }
 
 const same = (a, b) => JSON.stringify(a) === JSON.stringify(b);
@@ -104,7 +113,7 @@ function renderRow(p) {
   row.dataset.kind = kind;
   const name = document.createElement("label");
   name.className = "name";
-  name.textContent = LABELS[p.name] || p.name;
+  name.textContent = labelOf(p);
   if (LABELS[p.name]) {
     const code = document.createElement("small");
     code.className = "pname";
@@ -114,6 +123,7 @@ function renderRow(p) {
   const edit = document.createElement("div");
   edit.className = "edit";
   const choices = choicesOf(p);
+  const view = unitView(p, tempUnit());
   if (kind === "bool") {
     const sw = document.createElement("label");
     sw.className = "switch";
@@ -145,16 +155,16 @@ function renderRow(p) {
     const inp = document.createElement("input");
     inp.className = "scalar";
     inp.inputMode = "decimal";
-    inp.value = p.value;
+    inp.value = view.show(p.value);
     inp.setAttribute("aria-label", p.name);
     edit.appendChild(inp);
-    if (p.unit) { const u = document.createElement("span"); u.className = "unit"; u.textContent = p.unit.replace("degF", "°F"); edit.appendChild(u); }
+    if (view.unit) { const u = document.createElement("span"); u.className = "unit"; u.textContent = view.unit; edit.appendChild(u); }
   }
   const reset = document.createElement("button");
   reset.textContent = "Default";
-  reset.title = "back to the default " + fmt(p.default);
-  reset.disabled = same(p.value, p.default);
-  reset.addEventListener("click", () => applyChanges({ [p.name]: p.default }));
+  reset.title = "back to the default " + fmt(shown(view, defaultOf(p)));
+  reset.disabled = same(p.value, defaultOf(p));
+  reset.addEventListener("click", () => applyChanges({ [p.name]: defaultOf(p) }));
   const controls = [reset];
   if (sourceOf(p) === "dashboard") {
     // Forget the dashboard's value: the file's (or the profile's) applies again.
@@ -166,14 +176,15 @@ function renderRow(p) {
   }
   const meta = document.createElement("div");
   meta.className = "meta";
-  const range = kind === "bool" || choices ? "" : `${p.min} … ${p.max} ${p.unit}`.trim();
+  const range = kind === "bool" || choices ? "" : `${shown(view, p.min)} … ${shown(view, p.max)} ${view.unit}`.trim();
   const src = sourceOf(p);
   const from = document.createElement("span");
   from.className = "source source-" + src.replace(/ /g, "-");
   // "not set up": lowered to the limits safe for every battery until the set-up chose one.
   from.textContent = src === "not set up" ? "lowered until set up" : `from ${src}`;
-  meta.append(from, " · " + [range ? "range " + range : "", "default " + fmt(p.default),
-    src === "dashboard" ? "file has " + fmt(p.file) : "", plainHelp(p.help)].filter(Boolean).join(" · "));
+  const def = kind === "table" || kind === "bool" || choices ? fmt(defaultOf(p)) : shown(view, defaultOf(p));
+  meta.append(from, " · " + [range ? "range " + range : "", "default " + (choices ? choiceLabel(choices, defaultOf(p)) : def),
+    src === "dashboard" ? "file has " + fmt(p.file) : "", plainUnits(plainHelp(p.help))].filter(Boolean).join(" · "));
   const err = document.createElement("div");
   err.className = "err";
   err.setAttribute("role", "alert");
@@ -210,7 +221,9 @@ function render() {
   root.textContent = "";
   const filter = $("param-filter").value.trim().toLowerCase();
   const advanced = $("param-advanced").checked;
-  const match = (p) => !filter || p.name.toLowerCase().includes(filter) || String(p.help).toLowerCase().includes(filter);
+  // Search finds the plain label, the parameter's own name and its help.
+  const match = (p) => !filter || [p.name, labelOf(p), plainHelp(p.help)].some((t) => String(t).toLowerCase().includes(filter));
+  root.classList.toggle("show-names", advanced);
   const basic = params.filter((p) => BASIC.includes(p.name) && match(p));
   const sections = [["Basic settings", basic, true]];
   if (advanced || filter)
@@ -231,28 +244,63 @@ function render() {
 
 // Dashboard changes are kept in the regulator's state database and win over
 // xregulator.toml; the file is never rewritten (docs/dashboard.md "Dashboard
-// changes and the file"). So the page says, above everything, which values
-// differ from the file and how to make the file say the same.
+// changes and the file"). The page says so in one line, with the choice:
+// keep them (the line goes until they change) or drop them (the file's
+// values apply again). Which ones is folded under it, in plain labels.
+const KEPT_KEY = "xregulator.keptDashboardValues";
+const dashboardValues = (list) => list.filter((p) => sourceOf(p) === "dashboard");
 export function fileNotice(list) {
-  const dash = list.filter((p) => sourceOf(p) === "dashboard");
-  if (!dash.length) return "";
-  const names = dash.map((p) => `${p.name} ${fmt(p.value)} (file: ${fmt(p.file)})`);
-  return `${dash.length} value${dash.length > 1 ? "s" : ""} set from the dashboard differ${dash.length > 1 ? "" : "s"} ` +
-    `from xregulator.toml: ${names.join(", ")}. The regulator keeps ${dash.length > 1 ? "them" : "it"} in its state ` +
-    "database (kept across restarts, ahead of the file); the file is not changed. To make the file say the same, " +
-    "export below and copy the sections over the unit's file.";
+  const n = dashboardValues(list).length;
+  if (!n) return "";
+  return `${n} value${n > 1 ? "s" : ""} set on the dashboard differ${n > 1 ? "" : "s"} from the file.`;
+}
+export function noticeItems(list, unit = "C") {
+  return dashboardValues(list).map((p) => {
+    const view = unitView(p, unit);
+    const v = (x) => (Array.isArray(x) || typeof x === "boolean" ? fmt(x) : `${shown(view, x)} ${view.unit}`.trim());
+    return `${labelOf(p)}: ${v(p.value)} here, ${v(p.file)} in the file`;
+  });
+}
+const noticeKey = (list) => JSON.stringify(dashboardValues(list).map((p) => [p.name, p.value]));
+function renderNotice() {
+  const text = fileNotice(params);
+  $("param-file-note").hidden = !text || localStorage.getItem(KEPT_KEY) === noticeKey(params);
+  $("param-file-text").textContent = text;
+  $("param-file-list").replaceChildren(...noticeItems(params, tempUnit()).map((t) => {
+    const li = document.createElement("li");
+    li.textContent = t;
+    return li;
+  }));
+}
+
+// The last list read is kept on this device: offline, the page shows it,
+// read-only (every control is disabled while offline), never a blank page.
+const CACHE_KEY = "xregulator.params";
+async function readParams() {
+  try {
+    const body = await getJson("/api/params");
+    try { localStorage.setItem(CACHE_KEY, JSON.stringify({ at: Date.now() / 1000, body })); } catch { /* full: not kept */ }
+    $("param-offline").hidden = true;
+    return body;
+  } catch (e) {
+    let kept = null;
+    try { kept = JSON.parse(localStorage.getItem(CACHE_KEY) || "null"); } catch { kept = null; }
+    if (!kept || !kept.body || !Array.isArray(kept.body.params)) throw e;
+    $("param-offline").textContent = `The regulator cannot be reached: these are the settings read at ${clock(kept.at)}. ` +
+      "Nothing can be changed until it is back.";
+    $("param-offline").hidden = false;
+    return kept.body;
+  }
 }
 
 export async function loadSettings() {
-  const body = await getJson("/api/params");
+  const body = await readParams();
   params = body.params;
   groups = body.groups;
   renderGuardBanner(params);
   pending.clear();
   invalid.clear();
-  const note = fileNotice(params);
-  $("param-file-note").textContent = note;
-  $("param-file-note").hidden = !note;
+  renderNotice();
   render();
   updateButtons();
 }
@@ -307,6 +355,9 @@ export function initSettings() {
   $("param-discard").addEventListener("click", () => { $("param-msg").textContent = ""; loadSettings(); });
   $("param-filter").addEventListener("input", render);
   $("param-advanced").addEventListener("change", render);
+  $("param-keep").addEventListener("click", () => { localStorage.setItem(KEPT_KEY, noticeKey(params)); renderNotice(); });
+  $("param-drop").addEventListener("click", () =>
+    applyChanges(Object.fromEntries(dashboardValues(params).map((p) => [p.name, null]))));
 }
 
 // Sets one parameter (Tuning page toggles, set-up steps).
