@@ -105,25 +105,11 @@ function valueOf(p, row) {
 
 const same = (a, b) => JSON.stringify(a) === JSON.stringify(b);
 
-function renderRow(p) {
-  const kind = kindOf(p);
-  const row = document.createElement("div");
-  row.className = "param";
-  row.dataset.name = p.name;
-  row.dataset.kind = kind;
-  const name = document.createElement("label");
-  name.className = "name";
-  name.textContent = labelOf(p);
-  if (LABELS[p.name]) {
-    const code = document.createElement("small");
-    code.className = "pname";
-    code.textContent = p.name;
-    name.append(" ", code);
-  }
+// The value's control: a switch, a choice, a row of boxes for a table, or
+// a box in the display unit.
+function editorFor(p, kind, choices, view) {
   const edit = document.createElement("div");
   edit.className = "edit";
-  const choices = choicesOf(p);
-  const view = unitView(p, tempUnit());
   if (kind === "bool") {
     const sw = document.createElement("label");
     sw.className = "switch";
@@ -160,6 +146,27 @@ function renderRow(p) {
     edit.appendChild(inp);
     if (view.unit) { const u = document.createElement("span"); u.className = "unit"; u.textContent = view.unit; edit.appendChild(u); }
   }
+  return edit;
+}
+
+function renderRow(p) {
+  const kind = kindOf(p);
+  const row = document.createElement("div");
+  row.className = "param";
+  row.dataset.name = p.name;
+  row.dataset.kind = kind;
+  const name = document.createElement("label");
+  name.className = "name";
+  name.textContent = labelOf(p);
+  if (LABELS[p.name]) {
+    const code = document.createElement("small");
+    code.className = "pname";
+    code.textContent = p.name;
+    name.append(" ", code);
+  }
+  const choices = choicesOf(p);
+  const view = unitView(p, tempUnit());
+  const edit = editorFor(p, kind, choices, view);
   const reset = document.createElement("button");
   reset.textContent = "Default";
   reset.title = "back to the default " + fmt(shown(view, defaultOf(p)));
@@ -184,7 +191,8 @@ function renderRow(p) {
   from.textContent = src === "not set up" ? "lowered until set up" : `from ${src}`;
   const def = kind === "table" || kind === "bool" || choices ? fmt(defaultOf(p)) : shown(view, defaultOf(p));
   meta.append(from, " · " + [range ? "range " + range : "", "default " + (choices ? choiceLabel(choices, defaultOf(p)) : def),
-    src === "dashboard" ? "file has " + fmt(p.file) : "", plainUnits(plainHelp(p.help))].filter(Boolean).join(" · "));
+    src === "dashboard" ? "file has " + (kind === "table" || kind === "bool" || choices ? fmt(p.file) : shown(view, p.file)) : "",
+    plainUnits(plainHelp(p.help))].filter(Boolean).join(" · "));
   const err = document.createElement("div");
   err.className = "err";
   err.setAttribute("role", "alert");
