@@ -55,6 +55,7 @@ class WebApi final : public web::DaemonApi {
   Params fileParams() override { return ctx_.fileParams; }
   std::map<std::string, std::string> paramSources() override;
   std::set<std::string> profileOwned() override;
+  Params effectiveDefaults() override;
   SetupState setupState() override;
   web::PatchResult patchParams(const std::vector<web::ParamChange>& changes,
                                const std::string& source) override;

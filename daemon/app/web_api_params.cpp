@@ -48,6 +48,21 @@ std::map<std::string, std::string> WebApi::paramSources() {
   return out;
 }
 
+// The profile's values for the bank the owner has (its cells and capacity),
+// nothing pinned but the cell count: what "Default" puts back.
+Params WebApi::effectiveDefaults() {
+  const Params cur = currentParams();
+  Params base{};
+  base.BatteryProfile = cur.BatteryProfile;
+  // Cells 0 = from the voltage class of the bulk voltage in force.
+  base.BatteryCells = cur.BatteryCells > 0
+                          ? cur.BatteryCells
+                          : cellsForNominal(static_cast<BatteryProfileId>(cur.BatteryProfile),
+                                            nominalVoltage(systemClass(cur)));
+  base.BatteryCapacity_Ah = cur.BatteryCapacity_Ah;
+  return applyBatteryProfile(base, NameSet{"BatteryCells"}).params;
+}
+
 web::DaemonApi::SetupState WebApi::setupState() {
   std::lock_guard lock(patchMutex_);
   if (ctx_.origins.setUp()) return {};

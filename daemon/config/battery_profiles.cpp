@@ -221,7 +221,14 @@ NameSet namesDifferingFromDefaults(const Params& p) {
 
 std::vector<ProfileProblem> checkProfileLimits(const Params& p) {
   std::vector<ProfileProblem> out;
-  auto v = [](double x, const char* unit) { return formatNumber(x) + " " + unit; };
+  // Owner text: "degC" reads °C (the dashboard shows these messages).
+  auto v = [](double x, const char* unit) {
+    const std::string u(unit);
+    return formatNumber(x) + " " +
+           (u == "degC"           ? std::string("°C")
+            : u == "mV/degC/cell" ? std::string("mV/°C/cell")
+                                  : u);
+  };
   if (p.ChargeMinTempC > p.ChargeFullCurrentTempC)
     out.push_back({"ChargeMinTempC", v(p.ChargeMinTempC, "degC") + " is above ChargeFullCurrentTempC " +
                                          v(p.ChargeFullCurrentTempC, "degC") +
@@ -255,7 +262,7 @@ std::vector<ProfileProblem> checkProfileLimits(const Params& p) {
                                      ": LiFePO4 is charged without temperature compensation (limit 0)"});
     if (p.ChargeMinTempC < 0.0)
       out.push_back({"ChargeMinTempC",
-                     v(p.ChargeMinTempC, "degC") + " is below the LiFePO4 limit 0 degC (lithium plating)"});
+                     v(p.ChargeMinTempC, "degC") + " is below the LiFePO4 limit 0 °C (lithium plating)"});
   }
   return out;
 }

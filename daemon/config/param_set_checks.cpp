@@ -25,7 +25,17 @@ std::string dotted(const char* name) {
 using ErrFn = std::function<void(const char*, std::string)>;
 constexpr double kMinDutyCeiling = 50.0;      // %
 constexpr double kInsulationClassHF = 356.0;  // degF: 180 degC, IEC 60085 class H
-std::string withUnit(double x, const char* unit) { return formatNumber(x) + " " + unit; }
+// A value for the owner's eyes (the dashboard shows these messages): a
+// temperature in °F also in °C, "degC" as °C; a margin ("dF": "+ 2 °F")
+// stays °F only, as a margin does not convert with the offset.
+std::string withUnit(double x, const char* unit) {
+  const std::string u(unit);
+  if (u == "degF")
+    return formatNumber(x) + " °F (" + formatNumber(std::round((x - 32.0) * 5.0 / 9.0)) + " °C)";
+  if (u == "dF") return formatNumber(x) + " °F";
+  if (u == "degC") return formatNumber(x) + " °C";
+  return formatNumber(x) + " " + u;
+}
 
 // Every absolute battery voltage belongs to the bank that BulkVoltage names:
 // a 28.8 V value among 12 V ones would charge, trip or alarm a 12 V bank as
@@ -88,9 +98,9 @@ void checkBankAndAlarmSet(const Params& p, const ErrFn& err) {
   const double t3 = p.TemperatureLimitF + p.TempCritExcess;
   if (t3 > kInsulationClassHF)
     err("TemperatureLimitF", "TemperatureLimitF " + withUnit(p.TemperatureLimitF, "degF") +
-                                 " + TempCritExcess " + withUnit(p.TempCritExcess, "degF") + " = " +
+                                 " + TempCritExcess " + withUnit(p.TempCritExcess, "dF") + " = " +
                                  withUnit(t3, "degF") + " is above " + withUnit(kInsulationClassHF, "degF") +
-                                 " (180 degC, class H insulation): the alternator would burn before the cut");
+                                 ", the class H insulation limit: the alternator would burn before the cut");
 }
 
 }  // namespace
@@ -137,8 +147,8 @@ std::vector<ConfigError> checkConsistency(const Params& p, std::string_view file
   if (p.TempAlarmLow != 0.0 && p.TempAlarmLow >= p.TempAlarm)
     err("TempAlarmLow", v(p.TempAlarmLow, "degF") + " must be below TempAlarm " + v(p.TempAlarm, "degF"));
   if (p.TempWarnExcess >= p.TempCritExcess)
-    err("TempWarnExcess", v(p.TempWarnExcess, "degF") + " must be below TempCritExcess " +
-                              v(p.TempCritExcess, "degF") + " (T1 warning fires before T3 cut)");
+    err("TempWarnExcess", v(p.TempWarnExcess, "dF") + " must be below TempCritExcess " +
+                              v(p.TempCritExcess, "dF") + " (T1 warning fires before T3 cut)");
   if (p.SOC_AllowRebulk_percent > p.SOC_BlockRebulk_percent)
     err("SOC_AllowRebulk_percent", v(p.SOC_AllowRebulk_percent, "%") + " is above SOC_BlockRebulk_percent " +
                                        v(p.SOC_BlockRebulk_percent, "%"));

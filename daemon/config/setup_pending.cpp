@@ -44,7 +44,7 @@ std::string setupPendingLimitsText(const Params& p) {
   const double k = bankScale(p);
   return "at most " + formatNumber(kSetupPendingChargeV12 * k) + " V, float " +
          formatNumber(kSetupPendingFloatV12 * k) + " V, battery " + formatNumber(kSetupPendingMinTempC) +
-         "-" + formatNumber(kSetupPendingMaxTempC) + " degC when a sensor reads it";
+         "-" + formatNumber(kSetupPendingMaxTempC) + " °C when a sensor reads it";
 }
 
 }  // namespace xr

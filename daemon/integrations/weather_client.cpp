@@ -141,6 +141,13 @@ void WeatherClient::report(const std::string& error, WeatherMissing why, int sta
                            std::chrono::steady_clock::duration next) {
   // Events are stamped on the loop's clock, like every other event.
   auto loopNow = [this] { return handoffs_.latest().telemetry.now; };
+  {
+    std::lock_guard lock(m_);
+    if (error.empty())
+      failedAt_.reset();
+    else
+      failedAt_ = std::chrono::steady_clock::now();
+  }
   if (error.empty()) {
     if (outage_)
       handoffs_.sideEvents.post(makeEvent(loopNow(), EventLevel::Info, EventCode::WeatherForecastBack));
@@ -241,6 +248,7 @@ void WeatherClient::publish(const WeatherDecision& d, double ageS) {
   v["longitude"] = asked_ ? asked_->longitudeDeg : std::nan("");
   std::lock_guard lock(m_);
   values_ = std::move(v);
+  if (forecast_) shownForecastAt_ = forecastAt_;
   texts_["position_source"] = asked_ ? asked_->source : "none";
 }
 
@@ -249,6 +257,12 @@ IntegrationStatus WeatherClient::status() const {
   std::lock_guard lock(m_);
   s.values = values_;
   s.texts = texts_;
+  // Ages now, not at the last decision: the dashboard shows how old the
+  // forecast in force is and when a fetch last failed (docs/integrations.md).
+  const auto now = std::chrono::steady_clock::now();
+  if (shownForecastAt_) s.values["age_s"] = std::chrono::duration<double>(now - *shownForecastAt_).count();
+  s.values["failed_s_ago"] =
+      failedAt_ ? std::chrono::duration<double>(now - *failedAt_).count() : std::nan("");
   return s;
 }
 

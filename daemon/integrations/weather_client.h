@@ -82,6 +82,9 @@ class WeatherClient {
   mutable std::mutex m_;      // values_ are read by the web threads
   std::map<std::string, double> values_;
   std::map<std::string, std::string> texts_;
+  // For the ages /api/system reports at the moment it is asked (under m_):
+  // the forecast's arrival and the last failed fetch (cleared by a success).
+  std::optional<std::chrono::steady_clock::time_point> shownForecastAt_, failedAt_;
 };
 
 }  // namespace xr::integrations

@@ -96,6 +96,17 @@ Response patchErrors(const Request& req, const std::vector<FieldError>& errors) 
 Response ApiHandler::getParams(const Request& req) {
   json::object o =
       paramsToJson(api_.currentParams(), api_.fileParams(), api_.paramSources(), api_.profileOwned());
+  // "Default" as the owner means it: the value the battery profile gives
+  // where the profile sets the parameter, else the catalogue's
+  // (docs/dashboard.md "Settings"). Same catalogue order in both lists.
+  const Params eff = api_.effectiveDefaults();
+  const json::object effJson = paramsToJson(eff, eff);
+  auto& list = o["params"].as_array();
+  const auto& effList = effJson.at("params").as_array();
+  for (std::size_t i = 0; i < list.size() && i < effList.size(); ++i) {
+    auto& p = list[i].as_object();
+    p["effective_default"] = p["profile_owned"].as_bool() ? effList[i].as_object().at("value") : p["default"];
+  }
   const DaemonApi::SetupState s = api_.setupState();
   o["set_up"] = s.setUp;
   if (!s.setUp) o["setup_limits"] = s.limits;

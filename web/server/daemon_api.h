@@ -244,6 +244,9 @@ class DaemonApi {
   // The names a battery profile sets when nothing above it does; the set-up
   // page drops the dashboard's values of these when a chemistry is chosen.
   virtual std::set<std::string> profileOwned() { return {}; }
+  // The values the battery profile chosen now gives its names (the rest at
+  // their catalogue defaults): what "Default" means on the Settings page.
+  virtual Params effectiveDefaults() { return Params{}; }
   // Whether a battery type is chosen; until then, the limits in force in
   // words (docs/configuration.md "Not set up").
   struct SetupState {

@@ -210,6 +210,25 @@ TEST(WebApiProfiles, ANullDropsTheDashboardValueSoTheProfileAppliesAgain) {
   EXPECT_FALSE(r.api->profileOwned().contains("PidKp"));
 }
 
+// "Default" on the Settings page is the value the battery profile gives the
+// bank the owner has, not the firmware's and not what the dashboard set.
+TEST(WebApiProfiles, TheEffectiveDefaultIsTheProfilesValueForTheBank) {
+  TempDir d;
+  Rig r(d.file("p.db"));
+  ASSERT_TRUE(
+      r.api->patchParams({change("BatteryProfile", 1), change("FloatVoltage", 13.2)}, "test").errors.empty());
+  Params eff = r.api->effectiveDefaults();
+  EXPECT_DOUBLE_EQ(eff.FloatVoltage, 13.3);  // AGM's 12 V float, not the dashboard's 13.2
+  EXPECT_NE(eff.FloatVoltage, Params{}.FloatVoltage);
+  rt::RuntimeSnapshot snap;
+  snap.tick = 1;
+  snap.telemetry.battery_v = 26.1;
+  r.handoffs.snapshot.store(snap);
+  ASSERT_TRUE(r.api->patchParams({change("BatteryCells", 12)}, "test").errors.empty());
+  eff = r.api->effectiveDefaults();
+  EXPECT_DOUBLE_EQ(eff.FloatVoltage, 26.6);  // the same profile on a 24 V bank
+}
+
 // A set for another bank than the one measured is refused as a whole: the
 // set-up's 24 V LiFePO4 (BatteryCells = 8) on a bank reading 12.9 V, which
 // names no voltage itself.

@@ -162,7 +162,7 @@ TEST(BatteryProfiles, FloatAboveAbsorptionAndInvertedTemperatureRangesAreRefused
   EXPECT_TRUE(names(errorsOf("[battery]\nTempCompMinC = 40\nTempCompMaxC = 30\n"), "battery.TempCompMinC",
                     "inverted"));
   EXPECT_TRUE(names(errorsOf("[battery]\nBatteryProfile = \"lifepo4\"\nChargeMinTempC = -5\n"),
-                    "battery.ChargeMinTempC", "below the LiFePO4 limit 0 degC"));
+                    "battery.ChargeMinTempC", "below the LiFePO4 limit 0 °C"));
   // Just inside: min = full-current temperature is a step, not inverted.
   EXPECT_TRUE(errorsOf("[battery]\nBatteryProfile = \"lifepo4\"\nChargeFullCurrentTempC = 0\n").empty());
 }

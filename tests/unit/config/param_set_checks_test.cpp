@@ -93,7 +93,7 @@ TEST(SetChecks, TheTemperatureCutMayNotLieBeyondClassHInsulation) {
   p.TempAlarm = 100;
   const std::string m = messages(p);
   EXPECT_THAT(m, HasSubstr("TempAlarm"));
-  EXPECT_THAT(m, HasSubstr("is above 356 degF (180 degC, class H insulation)"));
+  EXPECT_THAT(m, HasSubstr("is above 356 °F (180 °C), the class H insulation limit"));
   p = {};
   p.TemperatureLimitF = 346;  // + TempCritExcess 10 = 356: the edge
   p.TempAlarm = 350;
