@@ -224,7 +224,10 @@ TEST(WebApiProfiles, TheEffectiveDefaultIsTheProfilesValueForTheBank) {
   snap.tick = 1;
   snap.telemetry.battery_v = 26.1;
   r.handoffs.snapshot.store(snap);
-  ASSERT_TRUE(r.api->patchParams({change("BatteryCells", 12)}, "test").errors.empty());
+  // The 12 V float the dashboard pinned would not fit a 24 V bank: dropped with it.
+  web::ParamChange drop{findParam("FloatVoltage"), -1, 0.0, true};
+  const auto res = r.api->patchParams({change("BatteryCells", 12), drop}, "test");
+  ASSERT_TRUE(res.errors.empty()) << res.errors[0].message;
   eff = r.api->effectiveDefaults();
   EXPECT_DOUBLE_EQ(eff.FloatVoltage, 26.6);  // the same profile on a 24 V bank
 }
