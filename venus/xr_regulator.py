@@ -53,9 +53,10 @@ STAGE_STATES = {"BULK": STATE_BULK, "ABSORPTION": STATE_ABSORPTION, "FLOAT": STA
 
 
 def number(status, key):
-    """A finite number from the status, or None."""
+    """A finite number of a sane size from the status, or None (a value no
+    regulator can have is no value, never an overflow on the bus)."""
     v = status.get(key)
-    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or abs(v) > 1e6:
         return None
     return float(v)
 
