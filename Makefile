@@ -17,7 +17,8 @@ DEB_PACKAGES := build-essential cmake pkg-config ninja-build \
   libsystemd-dev systemd \
   mosquitto mosquitto-clients libmosquitto-dev \
   chromium wrk curl python3 python3-matplotlib clang libclang-rt-14-dev valgrind clang-format graphviz \
-  debhelper devscripts lintian fakeroot dpkg-dev
+  debhelper devscripts lintian fakeroot dpkg-dev \
+  dbus python3-dbus python3-gi
 
 .PHONY: all deps build run test bench deb clean format deps-cross test-arm64 scenarios dashboard-screenshots soak
 

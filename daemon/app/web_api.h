@@ -9,6 +9,7 @@
 #include <functional>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <vector>
 
 #include "app/can_status.h"
@@ -60,6 +61,7 @@ class WebApi final : public web::DaemonApi {
   web::PatchResult patchParams(const std::vector<web::ParamChange>& changes,
                                const std::string& source) override;
   web::CommandResult command(const Command& cmd) override;
+  web::CommandResult dvccLimits(const web::DvccRequest& req) override;  // web_api_dvcc.cpp
   void securityEvent(const std::string& text) override;
   std::vector<web::EventRecord> events(const web::EventQuery& q) override;
   web::HistoryResult history(const web::HistoryQuery& q) override;
@@ -99,6 +101,9 @@ class WebApi final : public web::DaemonApi {
   std::mutex patchMutex_;  // read-modify-write of the whole Params
   std::mutex logMutex_;
   PatchLogLimiter patchLog_;
+  std::mutex dvccMutex_;  // Handoffs::dvcc has one writer at a time
+  bool dvccFollowing_ = false;
+  std::set<std::string> dvccRefusalsTold_;  // the journal hears each kind of refusal once
 };
 
 }  // namespace xr::app

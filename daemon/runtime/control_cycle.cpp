@@ -4,6 +4,7 @@
 #include <cmath>
 #include <thread>
 
+#include "core/dvcc_limits.h"
 #include "runtime/fatal_guard.h"
 
 namespace xr::rt {
@@ -39,7 +40,11 @@ void ControlCycle::mergeSlowInputs() noexcept {
   mergeVictron();
   mergeEngineRpm();
   // A BMS's limits: copied whole when posted; their stamp carries staleness.
+  // A GX's DVCC limits join them, the lower of each winning (core/dvcc_limits.h).
   h_.bms.load(in_.bms);
+  BmsLimits dvcc;
+  h_.dvcc.load(dvcc);
+  in_.bms = withDvcc(in_.bms, dvcc);
 }
 
 void ControlCycle::mergeTemperature() noexcept {

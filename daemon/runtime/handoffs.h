@@ -165,7 +165,8 @@ class Handoffs {
   SpscQueue<RuntimeSnapshot, 512> rows;  // telemetry rows at --telemetry-rate
   SeqLock<TemperatureHandoff> temperature;
   SeqLock<VictronHandoff> victron;
-  SeqLock<BmsLimits> bms;  // a BMS's limits (CAN link or another source), posted on each change
+  SeqLock<BmsLimits> bms;   // a BMS's limits (CAN link or another source), posted on each change
+  SeqLock<BmsLimits> dvcc;  // a Victron GX's DVCC limits (POST /api/dvcc), beside the BMS's
   SeqLock<EngineRpmHandoff> engineRpm;
   SeqLock<BatteryTempHandoff> batteryTemp;
   SeqLock<CanStatusHandoff> canStatus;   // written by the CAN service's poll

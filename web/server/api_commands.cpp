@@ -1,5 +1,5 @@
 // POST and GET /api/commands: one operator command per request, with its
-// single argument checked before the daemon sees it.
+// single argument checked before the daemon sees it; POST /api/dvcc.
 #include <array>
 #include <boost/json.hpp>
 #include <cmath>
@@ -79,6 +79,45 @@ Response ApiHandler::postCommand(const Request& req) {
   o["message"] = r.message;
   if (!r.accepted) o["error"] = r.message.empty() ? "command refused" : r.message;
   return jsonReply(req, r.accepted ? http::status::ok : http::status::conflict, o);
+}
+
+// POST /api/dvcc {"charge_voltage_v": V|null, "charge_current_a": A|null}:
+// the GX's DVCC limits, relayed by venus/dbus-xregulator. Absent or null =
+// the GX did not send that one. The server reads the body; the daemon checks
+// the values (core/dvcc_limits.h), applies all or nothing, and tells the
+// journal each kind of refusal once, so a body that is not even a number
+// goes to the daemon too, as a refusal.
+Response ApiHandler::postDvcc(const Request& req) {
+  DvccRequest d;
+  d.source = writerName(req[http::field::authorization]);
+  std::string err;
+  auto body = parseBody(req, err);
+  if (!body) {
+    d.refusal = err;
+  } else if (!body->is_object()) {
+    d.refusal = "expected a JSON object";
+  } else {
+    for (const auto& kv : body->get_object()) {
+      const bool isV = kv.key() == "charge_voltage_v";
+      if (!isV && kv.key() != "charge_current_a") {
+        d.refusal = "unknown field '" + std::string(kv.key()) + "'";
+        break;
+      }
+      if (kv.value().is_null()) continue;
+      auto n = jsonNumber(kv.value());
+      if (!n || !std::isfinite(*n)) {
+        d.refusal = "'" + std::string(kv.key()) + "' must be a number or null";
+        break;
+      }
+      (isV ? d.chargeVoltageV : d.chargeCurrentA) = *n;
+    }
+  }
+  CommandResult r = api_.dvccLimits(d);
+  json::object o;
+  o["ok"] = r.accepted;
+  o["message"] = r.message;
+  if (!r.accepted) o["error"] = r.message.empty() ? "DVCC limits refused" : r.message;
+  return jsonReply(req, r.accepted ? http::status::ok : http::status::bad_request, o);
 }
 
 Response ApiHandler::getCommands(const Request& req) {

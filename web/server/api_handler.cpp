@@ -1,4 +1,4 @@
-// HTTP routes (docs/dashboard.md "API"): /api/status, /api/params (GET, PATCH), /api/commands,
+// HTTP routes (docs/dashboard.md "API"): /api/status, /api/params (GET, PATCH), /api/commands, /api/dvcc,
 // /api/events, /api/history, /api/system, /api/setup/hardware, /metrics, /healthz, static files.
 // This file routes a request and answers the status, system, metrics, health
 // and static-file reads; the parameter, command and events/history routes
@@ -162,6 +162,15 @@ Response ApiHandler::route(const Request& req) {
     // Every write needs a token, whatever reads_require_token says.
     if (auto code = checkWrite(req[http::field::authorization])) return authError(req, code);
     return isParams ? patchParams(req) : postCommand(req);
+  }
+  if (path == "/api/dvcc") {
+    if (method != http::verb::post) {
+      auto r = error(req, http::status::method_not_allowed, "method not allowed");
+      r.set(http::field::allow, "POST");
+      return r;
+    }
+    if (auto code = checkWrite(req[http::field::authorization])) return authError(req, code);
+    return postDvcc(req);
   }
   if (path == "/api/setup/hardware") {
     if (isGet) return onlyGet([&] { return getHardwareSetup(req); });

@@ -46,6 +46,7 @@ class ApiHandler {
   Response getParams(const Request& req);
   Response patchParams(const Request& req);
   Response postCommand(const Request& req);
+  Response postDvcc(const Request& req);  // api_commands.cpp
   Response getEvents(const Request& req, std::string_view query);
   Response getHistory(const Request& req, std::string_view query);
   Response getHistoryDays(const Request& req, std::string_view query);

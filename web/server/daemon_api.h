@@ -113,6 +113,16 @@ struct PatchResult {
   std::vector<FieldError> errors;
 };
 
+// A Victron GX's DVCC limits (POST /api/dvcc, core/dvcc_limits.h): NaN = the
+// GX did not send this one. `source` names the writer, for the journal;
+// `refusal` non-empty: the body itself was bad (the daemon refuses and logs).
+struct DvccRequest {
+  double chargeVoltageV = std::numeric_limits<double>::quiet_NaN();
+  double chargeCurrentA = std::numeric_limits<double>::quiet_NaN();
+  std::string source;
+  std::string refusal;
+};
+
 // Result of command(): accepted = queued for the control thread.
 struct CommandResult {
   bool accepted = false;
@@ -270,6 +280,12 @@ class DaemonApi {
 
   // Queue an operator command for the control thread (core/commands.h).
   virtual CommandResult command(const Command& cmd) = 0;
+  // Hand a GX's DVCC limits to the control thread beside the BMS's
+  // (docs/integrations.md "Victron GX"); refused with the reason when a value
+  // is out of range, or when this daemon takes none.
+  virtual CommandResult dvccLimits(const DvccRequest& /*req*/) {
+    return {false, "this daemon takes no DVCC limits"};
+  }
 
   virtual std::vector<EventRecord> events(const EventQuery& q) = 0;
   virtual HistoryResult history(const HistoryQuery& q) = 0;
