@@ -110,7 +110,7 @@ grep -q "^Signed-By: /usr/share/keyrings/xregulator-archive-keyring.gpg" /etc/ap
   fail "keyring package contents"
 ln -s /etc/apt/sources.list.d/xregulator.sources "$parts/xregulator.sources"
 apt_update || { cat "$work/update.log"; die "apt-get update of the signed repository"; }
-apt-get install -y -q xregulator >"$work/install1.log" 2>&1 || { tail -20 "$work/install1.log"; die "apt-get install xregulator"; }
+apt-get install -y -q -o Dpkg::Options::=--force-confold xregulator >"$work/install1.log" 2>&1 || { tail -20 "$work/install1.log"; die "apt-get install xregulator"; }
 [ "$(installed)" = "$v1" ] && ok "apt-get install xregulator: $v1" || fail "installed $(installed), expected $v1"
 /usr/sbin/xregulatord --version | grep -q "package $v1, channel stable, installed 20" &&
   ok "xregulatord --version: $(/usr/sbin/xregulatord --version)" || fail "--version: $(/usr/sbin/xregulatord --version)"
@@ -157,7 +157,7 @@ wait_exit() {  # SECONDS: sets rc to the daemon's exit code, or "running"
 }
 
 step "update to $v2: refused while the engine runs, through once it stops"
-start_daemon 25 "$work/daemon1.log" || die "daemon $v1 did not start: $(tail -5 "$work/daemon1.log")"
+start_daemon 35 "$work/daemon1.log" || die "daemon $v1 did not start: $(tail -5 "$work/daemon1.log")"
 wait_state engine_running 1 10 && ok "daemon $v1 runs the simulated engine (state: rpm $(sed -n 's/^rpm=//p' /run/xregulator/state))" ||
   fail "no engine_running=1 in /run/xregulator/state"
 token=$(/usr/sbin/xregulatord --print-token --state-db "$db" 2>/dev/null)
@@ -168,7 +168,7 @@ echo "# the owner's own line" >>/etc/xregulator/xregulator.toml
 "$repo_src/tools/update/make-repo.sh" --repo "$R" --key "$key" --url "$url" --channel stable "$d2" >>"$work/repo.log" 2>&1 ||
   die "publishing $v2"
 apt_update || die "apt-get update after publishing $v2"
-if apt-get install -y -q xregulator >"$work/install2a.log" 2>&1; then
+if apt-get install -y -q -o Dpkg::Options::=--force-confold xregulator >"$work/install2a.log" 2>&1; then
   fail "apt-get installed $v2 while the engine runs"
 elif grep -q "xregulator-update: update refused: the engine is running" "$work/install2a.log" && [ "$(installed)" = "$v1" ]; then
   ok "refused while the engine runs: $(grep -m1 'update refused' "$work/install2a.log" | cut -c1-150)"
@@ -177,7 +177,7 @@ else
 fi
 kill -0 "$daemon_pid" 2>/dev/null && ok "daemon $v1 still regulating after the refusal" || fail "daemon $v1 died"
 wait_state engine_running 0 40 && wait_state field_on 0 20 && ok "engine stopped, field off" || fail "engine did not stop"
-if apt-get install -y -q xregulator >"$work/install2b.log" 2>&1 && [ "$(installed)" = "$v2" ]; then
+if apt-get install -y -q -o Dpkg::Options::=--force-confold xregulator >"$work/install2b.log" 2>&1 && [ "$(installed)" = "$v2" ]; then
   ok "apt-get install xregulator once the engine stopped: $v2"
 else
   fail "update to $v2 after the engine stopped: $(tail -3 "$work/install2b.log")"
@@ -191,7 +191,7 @@ ls /var/lib/xregulator/packages/xregulator_"$v1"_*.deb >/dev/null 2>&1 && ls /va
   ok "previous package kept for a rollback: $(ls /var/lib/xregulator/packages | tr '\n' ' ')" || fail "package cache: $(ls /var/lib/xregulator/packages)"
 
 step "$v2 runs and is confirmed; $v3 installed under way starts only when the engine stops"
-start_daemon 20 "$work/daemon2.log" || die "daemon $v2 did not start"
+start_daemon 40 "$work/daemon2.log" || die "daemon $v2 did not start"
 /usr/libexec/xregulator/xregulator-update-check --url "$api" --timeout 30 >"$work/check2.log" 2>&1 &&
   grep -q "update to $v2 confirmed" "$work/check2.log" && ok "health check confirmed $v2" || fail "health check of $v2: $(cat "$work/check2.log")"
 curl -s "$api/api/system" | grep -q "\"package\":\"$v2\"" && ok "/api/system: package $v2, channel, install time" ||
@@ -202,7 +202,7 @@ wait_state engine_running 1 10 || fail "engine not running for $v2"
 apt_update || die "apt-get update after publishing $v3"
 # The owner installs by hand, past apt's gate: dpkg installs, the postinst
 # does not restart, the running daemon keeps regulating and says so.
-dpkg -i "$R"/pool/main/x/xregulator/xregulator_"$v3"_*.deb >"$work/install3.log" 2>&1
+dpkg -i --force-confold "$R"/pool/main/x/xregulator/xregulator_"$v3"_*.deb >"$work/install3.log" 2>&1
 grep -q "Update installed; starts when the engine stops" "$work/install3.log" && ok "dpkg -i $v3 under way: $(grep -m1 'Update installed' "$work/install3.log" | cut -c1-120)" ||
   fail "postinst under way: $(cat "$work/install3.log")"
 sleep 2
@@ -232,6 +232,11 @@ got=$(curl -s "$api/api/params" | python3 -c 'import json,sys; print(next(p["val
 [ "$got" = 87 ] || [ "$got" = 87.0 ] && ok "setting kept through the rollback (MaxDuty $got)" || fail "MaxDuty after rollback: $got"
 curl -s "$api/api/system" | grep -q "\"package\":\"$v2\"" && ok "$v2 runs again" || fail "/api/system after rollback"
 kill "$daemon_pid"; wait "$daemon_pid" 2>/dev/null; daemon_pid=""
+
+step "unattended-upgrades: off as shipped, on with its one setting"
+sed 's|^//\( *"origin=xregulator";\)|\1|' /etc/apt/apt.conf.d/52xregulator-unattended-upgrades >"$work/uu-on.conf"
+grep -q '^ *"origin=xregulator";' "$work/uu-on.conf" || fail "the setting line is not in 52xregulator-unattended-upgrades"
+if out=$(/usr/bin/python3 "$here/uu_origin.py" "$work/uu-on.conf" 2>&1); then ok "$out"; else fail "unattended-upgrades origin: $out"; fi
 
 step "repositories apt must refuse"
 O=$work/www/other U=$work/www/unsigned
