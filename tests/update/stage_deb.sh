@@ -25,8 +25,10 @@ trap 'rm -rf "$root"' EXIT
 if [ -n "${XR_UPDATE_TEST_DEB:-}" ]; then
   dpkg-deb -R "$XR_UPDATE_TEST_DEB" "$root"
 else
+  # Stripped as dh_strip would (the build tree's binaries carry their debug information).
   install -D -m 755 "$build/daemon/app/xregulatord" "$root/usr/sbin/xregulatord"
   install -D -m 755 "$build/tools/xregulator-field-off" "$root/usr/libexec/xregulator/xregulator-field-off"
+  strip --strip-unneeded "$root/usr/sbin/xregulatord" "$root/usr/libexec/xregulator/xregulator-field-off"
   for f in xregulator-update-gate xregulator-update-check xregulator-update-record; do
     install -D -m 755 "$repo/tools/update/$f" "$root/usr/libexec/xregulator/$f"
   done

@@ -74,12 +74,16 @@ echo "keepunreferencedfiles" >"$repo/conf/options"
 
 if [ $unsigned = 0 ]; then
   gpg --batch --export "$key" >"$repo/xregulator-archive-keyring.gpg"
-  kdeb=$("$here/build-keyring-deb.sh" --key-file "$repo/xregulator-archive-keyring.gpg" --url "$url" \
-    --out "$repo/.build" --version "$keyring_version")
-  reprepro -b "$repo" includedeb stable "$kdeb"
-  reprepro -b "$repo" includedeb candidate "$kdeb"
-  # A fixed name at the top for the owner's first step (docs/install.md).
-  cp -f "$kdeb" "$repo/xregulator-archive-keyring.deb"
+  # The keyring package once per --keyring-version: a rebuild of the same
+  # version would differ in its file times, which reprepro rightly refuses.
+  if ! reprepro -b "$repo" list stable xregulator-archive-keyring 2>/dev/null | grep -q " $keyring_version\$"; then
+    kdeb=$("$here/build-keyring-deb.sh" --key-file "$repo/xregulator-archive-keyring.gpg" --url "$url" \
+      --out "$repo/.build" --version "$keyring_version")
+    reprepro -b "$repo" includedeb stable "$kdeb"
+    reprepro -b "$repo" includedeb candidate "$kdeb"
+    # A fixed name at the top for the owner's first step (docs/install.md).
+    cp -f "$kdeb" "$repo/xregulator-archive-keyring.deb"
+  fi
 fi
 for deb in "$@"; do
   reprepro -b "$repo" includedeb "$channel" "$deb"
