@@ -41,7 +41,7 @@ work=$(mktemp -d /tmp/xr-update-test.XXXXXX)
 chmod 755 "$work"
 export GNUPGHOME=$work/gnupg
 mkdir -m 700 "$GNUPGHOME"
-daemon_pid="" http_pid=""
+daemon_pid="" http_pid="" port=none
 cleanup() {
   [ -n "$daemon_pid" ] && kill "$daemon_pid" 2>/dev/null && wait "$daemon_pid" 2>/dev/null
   [ -n "$http_pid" ] && kill "$http_pid" 2>/dev/null
@@ -49,7 +49,7 @@ cleanup() {
   rm -f /etc/apt/sources.list.d/xregulator.sources /etc/apt/preferences.d/xregulator.pref \
     /usr/share/keyrings/xregulator-archive-keyring.gpg /etc/apt/apt.conf.d/51xregulator-update-gate \
     /etc/apt/apt.conf.d/52xregulator-unattended-upgrades
-  rm -f /var/lib/apt/lists/127.0.0.1_*
+  rm -f /var/lib/apt/lists/127.0.0.1:"$port"_* /var/lib/apt/lists/partial/127.0.0.1:"$port"_*
   rm -rf /var/lib/xregulator /run/xregulator /etc/xregulator /var/cache/apt/archives/xregulator*_*.deb
   gpgconf --kill all 2>/dev/null
   rm -rf "$work"
@@ -66,6 +66,8 @@ installed() { dpkg-query -W -f='${Version}' xregulator 2>/dev/null; }
 step "build: the daemon and the dashboard assets from $build"
 cmake --build "$build" --target xregulatord xregulator-field-off xr_www >"$work/build.log" 2>&1 ||
   { tail -20 "$work/build.log"; die "build"; }
+ok "build up to date (nothing to do after make test)"
+t_build=$(date +%s)
 base=$(cd "$repo_src" && dpkg-parsechangelog -S Version)
 v1="$base+upd1" v2="$base+upd2" v3="$base+upd3"
 for v in "$v1" "$v2"; do "$here/stage_deb.sh" "$build" "$v" "$work/debs" >/dev/null || die "staging $v"; done
@@ -262,8 +264,9 @@ done
 step "clean up"
 cleanup
 trap - EXIT
-leftover=$(ls -d /var/lib/xregulator /etc/xregulator /etc/apt/sources.list.d/xregulator.sources /usr/share/keyrings/xregulator-archive-keyring.gpg 2>/dev/null)
+leftover=$(ls -d /var/lib/xregulator /etc/xregulator /etc/apt/sources.list.d/xregulator.sources \
+  /usr/share/keyrings/xregulator-archive-keyring.gpg /var/lib/apt/lists/127.0.0.1:"$port"_* 2>/dev/null)
 dpkg -s xregulator >/dev/null 2>&1 && leftover="$leftover xregulator(package)"
 [ -z "$leftover" ] && ok "purged; sources, keyring and state removed" || fail "left behind: $leftover"
-echo "update test: $fails failure(s) in $(($(date +%s) - t0)) s"
+echo "update test: $fails failure(s) in $(($(date +%s) - t0)) s ($(($(date +%s) - t_build)) s after the build step)"
 [ $fails = 0 ]
