@@ -18,7 +18,8 @@ DEB_PACKAGES := build-essential cmake pkg-config ninja-build \
   mosquitto mosquitto-clients libmosquitto-dev \
   chromium wrk curl python3 python3-matplotlib clang libclang-rt-14-dev valgrind clang-format graphviz \
   debhelper devscripts lintian fakeroot dpkg-dev \
-  dbus python3-dbus python3-gi
+  dbus python3-dbus python3-gi \
+  reprepro gnupg unattended-upgrades
 
 .PHONY: all deps build run test bench deb clean format deps-cross test-arm64 scenarios dashboard-screenshots soak
 
@@ -133,6 +134,25 @@ deb: $(DEB_DEPS)
 .PHONY: package-test
 package-test: deps
 	tests/package/run.sh
+
+# The signed apt repository (docs/release.md): reprepro, channels stable and
+# candidate, from the packages of `make deb` (made first when there are none).
+# The signing key comes from GNUPGHOME (never from this tree):
+#   make repo REPO_KEY=<signing subkey id> [REPO_CHANNEL=stable] [REPO_DIR=...]
+REPO_DIR     ?= $(BUILD)/repo
+REPO_CHANNEL ?= candidate
+REPO_URL     ?= https://apt.xregulator.example.org/debian
+REPO_KEY     ?=
+.PHONY: repo update-test
+repo:
+	@ls $(BUILD)/deb/xregulator_*.deb >/dev/null 2>&1 || $(MAKE) --no-print-directory deb
+	tools/update/make-repo.sh --repo $(REPO_DIR) --channel $(REPO_CHANNEL) --key "$(REPO_KEY)" --url $(REPO_URL) \
+	  $(BUILD)/deb/xregulator_*.deb
+
+# The owner's update path end to end, as root on this machine (about two
+# minutes; tests/update/run.sh says what it covers): CI runs it after `make test`.
+update-test: $(BUILD)/CMakeCache.txt
+	tests/update/run.sh $(BUILD)
 
 # Cross-building for the Pi (docs/install.md): Debian 12's cross compilers,
 # qemu-user and the arm64/armhf multiarch libraries. Idempotent like deps.

@@ -40,7 +40,8 @@ std::string usageText() {
          "                   [--http ADDR:PORT] [--state-db FILE] [--check-config]\n"
          "                   [--print-default-config] [--probe] [--version] [--seed N]\n"
          "                   [--log-level L] [--sim-outputs FILE] [--print-token] [--pair]\n"
-         "                   [--print-config] [--can-log FILE]\n"
+         "                   [--print-config] [--can-log FILE] [--update-watch]\n"
+         "                   [--release-file FILE] [--run-dir DIR]\n"
          "\n"
          "  --config FILE          configuration (default: built-in defaults; the service uses\n"
          "                         /etc/xregulator/xregulator.toml)\n"
@@ -66,7 +67,12 @@ std::string usageText() {
          "  --log-level L          trace|debug|info|warn|error|critical|off\n"
          "  --sim-outputs FILE     --sim: mirror the last PWM duty / field enable / buzzer into FILE\n"
          "  --can-log FILE         write every CAN frame sent and received, on both buses, to FILE\n"
-         "                         (candump log format; times since the start of the run in --sim)\n";
+         "                         (candump log format; times since the start of the run in --sim)\n"
+         "  --update-watch         when the package was upgraded under this daemon, stop (field off,\n"
+         "                         exit 75) once the engine is stopped, so systemd starts the new one\n"
+         "  --release-file FILE    the package's release record (default /var/lib/xregulator/release)\n"
+         "  --run-dir DIR          where the quiet state file for the update gate is written, if the\n"
+         "                         directory exists (default /run/xregulator)\n";
 }
 
 namespace {
@@ -93,6 +99,7 @@ Flags flagOptions(CliOptions& o) {
       {"--print-config", [&o] { o.printConfig = true; }},
       {"--probe", [&o] { o.probe = true; }},
       {"--version", [&o] { o.version = true; }},
+      {"--update-watch", [&o] { o.updateWatch = true; }},
       {"--help", [&o] { o.help = true; }},
       {"-h", [&o] { o.help = true; }},
   };
@@ -108,6 +115,14 @@ Valued textOptions(CliResult& r) {
               {"--log-level", textInto(o.logLevel)},
               {"--sim-outputs", textInto(o.simOutputs)},
               {"--can-log", textInto(o.canLog)}};
+  v["--release-file"] = [&o](const std::string& t) {
+    o.releaseFile = t;
+    return std::string();
+  };
+  v["--run-dir"] = [&o](const std::string& t) {
+    o.runDir = t;
+    return std::string();
+  };
   v["--http"] = [&r](const std::string& text) {
     r.options.http = text;
     // Checked here, before any device opens, by the check [web] listen

@@ -47,6 +47,11 @@ struct CliOptions {
   std::optional<std::string> logLevel;
   std::optional<std::string> simOutputs;
   std::optional<std::string> canLog;  // candump log of every CAN frame (docs/integrations.md)
+  // Updates (app/update_watch.h): the package's release record, the quiet
+  // state file's directory, and whether a pending update restarts when quiet.
+  std::string releaseFile = "/var/lib/xregulator/release";
+  std::string runDir = "/run/xregulator";
+  bool updateWatch = false;
   TestFault testFault = TestFault::None;
   double testFaultAtS = 1.0;
 };

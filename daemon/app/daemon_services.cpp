@@ -14,7 +14,7 @@ double wallSecondsNow() { return static_cast<double>(unixMsNow()) / 1000.0; }
 DaemonServices::DaemonServices(const CliOptions& cli, const StartState& start, const Settings& settings,
                                rt::Handoffs& handoffs, DaemonRig& rig, std::unique_ptr<CsvWriter> csv,
                                std::unique_ptr<std::ofstream> canLog)
-    : pump_(handoffs.events), csv_(std::move(csv)) {
+    : pump_(handoffs.events), csv_(std::move(csv)), update_(cli.releaseFile, cli.runDir, cli.updateWatch) {
   StoreService* store = start.store.get();
   pump_.addSource(handoffs.sideEvents);  // the CAN thread's events (docs/integrations.md)
   pump_.addSink([](const Event& e) { logEvent(e); });
@@ -38,6 +38,7 @@ DaemonServices::DaemonServices(const CliOptions& cli, const StartState& start, c
   in.w1Root = rig.w1Root(settings);
   in.lastHeartbeatWallMs = &lastHeartbeatWallMs_;
   in.fieldSafeFault = &outputsFault_;
+  in.update = &update_;
   web_ = startWeb(cli, in);
 }
 

@@ -15,6 +15,7 @@
 #include "app/daemon_start.h"
 #include "app/daemon_web.h"
 #include "app/status_source.h"
+#include "app/update_watch.h"
 #include "integrations/integrations_service.h"
 #include "runtime/event_pump.h"
 
@@ -39,6 +40,7 @@ class DaemonServices {
   // Written by the supervisor, read by the API's health answer.
   std::atomic<std::int64_t>& lastHeartbeatWallMs() { return lastHeartbeatWallMs_; }
   std::atomic<bool>& outputsFault() { return outputsFault_; }
+  UpdateWatch& updateWatch() { return update_; }
 
  private:
   RecentEvents recent_;
@@ -48,6 +50,7 @@ class DaemonServices {
   std::unique_ptr<CanThread> can_;
   std::atomic<std::int64_t> lastHeartbeatWallMs_{0};
   std::atomic<bool> outputsFault_{false};
+  UpdateWatch update_;  // before web_: the API reads it
   DaemonWeb web_;
 };
 

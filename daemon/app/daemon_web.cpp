@@ -31,6 +31,7 @@ WebApiContext apiContext(const CliOptions& cli, const DaemonWebInputs& in) {
   ctx.fileSettings = in.start->fileSettings;
   ctx.runningSettings = *in.settings;
   ctx.w1Root = in.w1Root;
+  ctx.update = in.update;
   return ctx;
 }
 

@@ -9,6 +9,7 @@
 
 #include "app/cli.h"
 #include "app/daemon_start.h"
+#include "app/update_watch.h"
 #include "app/web_api.h"
 #include "web/server/web_server.h"
 
@@ -30,6 +31,7 @@ struct DaemonWebInputs {
   std::string w1Root;
   std::atomic<std::int64_t>* lastHeartbeatWallMs = nullptr;
   std::atomic<bool>* fieldSafeFault = nullptr;
+  const UpdateWatch* update = nullptr;  // version, channel, install time, a pending update
 };
 
 // Empty when --sim runs without --http (a headless run); a board always serves.

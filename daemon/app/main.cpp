@@ -12,6 +12,7 @@
 #include "app/config_check.h"
 #include "app/daemon.h"
 #include "app/pair_cli.h"
+#include "app/update_watch.h"
 #include "config/config.h"
 #include "drivers/probe/probe.h"
 #include "logging/logging.h"
@@ -40,7 +41,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (o.version) {
-    std::cout << "xregulatord " << XR_VERSION_STRING << "\n";
+    std::cout << versionText(XR_VERSION_STRING, readReleaseFile(o.releaseFile)) << "\n";
     return 0;
   }
   if (o.printDefaultConfig) {

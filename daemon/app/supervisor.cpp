@@ -29,7 +29,14 @@ int Supervisor::run() {
     throwTestFault();
     if (now - lastHousekeeping >= std::chrono::seconds(1)) {
       lastHousekeeping = now;
-      everySecond();
+      if (everySecond() && !stopRequested) {
+        // The update watch's stop: the same controlled ramp as SIGTERM, then
+        // exit 75 so that systemd (Restart=on-failure) starts the new version.
+        sd_notify(0, "STOPPING=1\nSTATUS=stopping: an installed update starts now (engine stopped)");
+        loop_.requestStop();
+        stopRequested = true;
+        exitCode = kExitTempFail;
+      }
       if (auto* api = services_.api()) api->flushPatchLog(now);
     }
     if (now - lastStatsLog >= std::chrono::minutes(1)) {
@@ -56,8 +63,9 @@ void Supervisor::throwTestFault() const {
     throw std::runtime_error("test fault: exception on the main thread");
 }
 
-void Supervisor::everySecond() {
+bool Supervisor::everySecond() {
   const rt::RuntimeSnapshot s = handoffs_.latest();
+  const bool updateStop = s.tick > 0 && services_.updateWatch().poll(s.telemetry, s.tick, unixMsNow());
   services_.outputsFault() = s.health.outputWriteErrors > 0 && !s.telemetry.field_enable && s.health.stopping;
   sd_notifyf(0, "STATUS=%s %s SoC %.0f%% duty %.1f%%%s", std::string(toString(s.telemetry.mode)).c_str(),
              std::string(toString(s.telemetry.stage)).c_str(), s.telemetry.soc_pct, s.telemetry.duty_pct,
@@ -70,6 +78,7 @@ void Supervisor::everySecond() {
         "~200 Hz). Wire ALERT/RDY to that line (10 kOhm pull-up) or set ads_alert_rdy_line = -1",
         settings_.hardware.ads_alert_rdy_line);
   }
+  return updateStop;
 }
 
 void Supervisor::everyMinute() {

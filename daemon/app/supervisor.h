@@ -37,7 +37,7 @@ class Supervisor {
  private:
   void feedWatchdog();
   void throwTestFault() const;
-  void everySecond();
+  bool everySecond();  // true: a pending update asks to stop now
   void everyMinute();
 
   const CliOptions& cli_;

@@ -254,6 +254,7 @@ std::string utcText(std::int64_t unixMs) { return wallTimeText(unixMs, "%Y-%m-%d
 
 web::VersionMap WebApi::versions() {
   web::VersionMap v{{"xregulatord", XR_VERSION_STRING}, {"mode", ctx_.sim ? "sim" : "board"}};
+  if (ctx_.update) ctx_.update->addTo(v);
   // The store's state on the System page (docs/security.md): whether changes
   // survive a restart at all.
   if (!ctx_.store) {

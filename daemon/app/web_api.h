@@ -16,6 +16,7 @@
 #include "app/patch_log_limiter.h"
 #include "app/status_source.h"
 #include "app/store_service.h"
+#include "app/update_watch.h"
 #include "config/param_sources.h"
 #include "runtime/handoffs.h"
 #include "web/server/daemon_api.h"
@@ -46,6 +47,7 @@ struct WebApiContext {
   Settings runningSettings;
   std::string w1Root;
   std::string sysClassNet = "/sys/class/net";
+  const UpdateWatch* update = nullptr;  // the package's version, channel and install time
 };
 
 class WebApi final : public web::DaemonApi {

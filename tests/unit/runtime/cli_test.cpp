@@ -135,6 +135,20 @@ TEST(Cli, CheckConfigNeedsAFile) {
   EXPECT_TRUE(parse({"--check-config", "--config", "x.toml"}).ok());
 }
 
+TEST(Cli, UpdateOptionsDefaultToThePackagePathsAndAreOff) {
+  const CliResult d = parse({});
+  ASSERT_TRUE(d.ok());
+  EXPECT_FALSE(d.options.updateWatch);
+  EXPECT_EQ(d.options.releaseFile, "/var/lib/xregulator/release");
+  EXPECT_EQ(d.options.runDir, "/run/xregulator");
+  const CliResult r = parse({"--update-watch", "--release-file", "/tmp/r", "--run-dir=/tmp/run"});
+  ASSERT_TRUE(r.ok()) << r.error;
+  EXPECT_TRUE(r.options.updateWatch);
+  EXPECT_EQ(r.options.releaseFile, "/tmp/r");
+  EXPECT_EQ(r.options.runDir, "/tmp/run");
+  EXPECT_FALSE(parse({"--release-file"}).ok());
+}
+
 TEST(Cli, UsageListsTheDesignOptions) {
   const std::string u = usageText();
   for (const char* o :

@@ -17,7 +17,7 @@ trap 'rm -rf "$root"' EXIT
 # package being installed on this machine.
 mkdir -p "$root/usr/lib/systemd" "$root/etc/systemd/system" "$root/usr/sbin" "$root/usr/libexec/xregulator"
 cp -a /usr/lib/systemd/system "$root/usr/lib/systemd/" 2>/dev/null || cp -a /lib/systemd/system "$root/usr/lib/systemd/"
-for exe in /usr/sbin/xregulatord /usr/libexec/xregulator/xregulator-field-off; do
+for exe in /usr/sbin/xregulatord /usr/libexec/xregulator/xregulator-field-off /usr/libexec/xregulator/xregulator-update-check; do
   printf '#!/bin/sh\nexit 0\n' >"$root$exe"
   chmod 755 "$root$exe"
 done
@@ -50,6 +50,14 @@ else
   fail=1
 fi
 
+# 2b. The post-update health check's unit (docs/operations.md "Updates and the way back").
+if verify "$src/xregulator-update-check.service"; then
+  echo "ok: xregulator-update-check.service verifies clean"
+else
+  echo "FAIL: xregulator-update-check.service has problems (above)"
+  fail=1
+fi
+
 # 3. The unit's properties (docs/install.md) are really there; SIGKILL
 # cannot be caught, so ExecStopPost's xregulator-field-off must run after
 # every end of the main process (ExecStopPost runs after a kill -9 too), and
@@ -58,7 +66,8 @@ for want in '^Type=notify$' '^WatchdogSec=' '^Restart=on-failure$' '^LimitRTPRIO
   '^User=xregulator$' '^SupplementaryGroups=i2c gpio dialout$' '^DeviceAllow=' '^ReadWritePaths=.*/sys/class/pwm' \
   '^ProtectSystem=strict$' '^ProtectHome=yes$' '^NoNewPrivileges=yes$' '^StateDirectory=xregulator$' \
   '^ConfigurationDirectory=xregulator$' '^ExecStopPost=.*xregulator-field-off' \
-  '^RestartPreventExitStatus=64 78$' '^ExecStartPre=.*--state-db .*--check-config$'; do
+  '^RestartPreventExitStatus=64 78$' '^ExecStartPre=.*--state-db .*--check-config$' \
+  '^RuntimeDirectory=xregulator$' '^ExecStart=.* --update-watch$'; do
   grep -q "$want" "$src/xregulatord.service" || { echo "FAIL: xregulatord.service lacks $want"; fail=1; }
 done
 

@@ -15,7 +15,9 @@ const freePort = () => new Promise((resolve, reject) => {
 // daemon sees the first one's events, history and saved parameters.
 // extraConfig: more TOML for the daemon's configuration file. shipped: start
 // from config/xregulator.toml (needs args.root) instead of a minimal file.
-export async function startServer({ mode, args, token, stateDir, scenario, extraConfig = "", shipped = false }) {
+// extraArgs: more daemon command-line arguments.
+export async function startServer({ mode, args, token, stateDir, scenario, extraConfig = "", shipped = false,
+                                    extraArgs = [] }) {
   let port;
   let argv;
   if (mode === "fake") {
@@ -45,6 +47,7 @@ export async function startServer({ mode, args, token, stateDir, scenario, extra
       fs.writeFileSync(file, scenario);
       argv.push("--scenario", file);
     }
+    argv.push(...extraArgs);
   }
   const proc = spawn(argv[0], argv.slice(1), { stdio: ["ignore", "pipe", "pipe"] });
   let out = "";
