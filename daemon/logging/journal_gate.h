@@ -8,6 +8,8 @@
 //     AlarmOff), so a fault gives one alarm line per row, not one a second at
 //     a simulated speed or 120 an hour at speed 1;
 //   - LimpHomeActive, repeated every 30 s: the first until the mode changes.
+//   - AlarmOn, which comes in the tick of the row's first "ALARM:" line;
+//   - the FieldOff that follows an immediate cut for the same reason.
 // Everything else passes. One gate per journal sink, used on the event
 // thread only.
 #include <bitset>
@@ -24,6 +26,7 @@ class JournalGate {
  private:
   std::bitset<kRows> alarmRowsSaid_;
   bool limpHomeSaid_ = false;
+  Reason cutReason_ = Reason::NONE;  // the last immediate cut, until its FieldOff
 };
 
 }  // namespace xr::logging

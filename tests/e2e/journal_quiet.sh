@@ -54,6 +54,8 @@ fi
 start=$(grep -n "control thread:" "$tmp/log" | head -1 | cut -d: -f1)
 [ -n "$start" ] || fail "no start-up line"
 after=$(tail -n +"$((start + 1))" "$tmp/log" | grep -v "stopped cleanly\|control loop:" || true)
+# The fault's lines: from its first one to the stop.
+[ "$case" = thermal ] && after=$(printf '%s\n' "$after" | sed -n '/Temperature/,$p')
 count=$(printf '%s' "$after" | grep -c . || true)
 echo "$case: $count journal lines after start-up"
 printf '%s\n' "$after"

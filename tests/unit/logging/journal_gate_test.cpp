@@ -19,8 +19,8 @@ Event ev(EventCode code, int detail = 0) {
 
 TEST(JournalGate, AHeldAlarmRowIsOneLinePerEpisode) {
   JournalGate g;
-  EXPECT_TRUE(g.pass(ev(EventCode::AlarmOn)));
   EXPECT_TRUE(g.pass(ev(EventCode::AlarmCondition, 0)));  // TempHigh: said
+  EXPECT_FALSE(g.pass(ev(EventCode::AlarmOn)));           // the same tick: the row's line says it
   int repeats = 0;
   for (int i = 0; i < 200; ++i) repeats += g.pass(ev(EventCode::AlarmCondition, 0)) ? 1 : 0;
   EXPECT_EQ(repeats, 0);
@@ -28,8 +28,19 @@ TEST(JournalGate, AHeldAlarmRowIsOneLinePerEpisode) {
   EXPECT_FALSE(g.pass(ev(EventCode::AlarmCondition, 2)));
   EXPECT_TRUE(g.pass(ev(EventCode::AlarmOff)));
   // The next episode names its rows again.
-  EXPECT_TRUE(g.pass(ev(EventCode::AlarmOn)));
   EXPECT_TRUE(g.pass(ev(EventCode::AlarmCondition, 0)));
+}
+
+TEST(JournalGate, TheFieldOffOfAnImmediateCutIsSaidByTheCut) {
+  JournalGate g;
+  Event cut = ev(EventCode::ImmediateCut);
+  cut.reason = Reason::REASON_TEMP_CRITICAL;
+  Event off = ev(EventCode::FieldOff);
+  off.reason = Reason::REASON_TEMP_CRITICAL;
+  EXPECT_TRUE(g.pass(cut));
+  EXPECT_FALSE(g.pass(off));
+  off.reason = Reason::REASON_RPM_LOW;  // an off for another cause is news
+  EXPECT_TRUE(g.pass(off));
 }
 
 TEST(JournalGate, LimpHomeIsSaidOnceUntilTheModeChanges) {
