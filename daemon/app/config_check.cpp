@@ -22,6 +22,7 @@ int checkConfigAndState(const std::string& configPath, const std::optional<std::
     out << "warning: " << w << "\n";
   if (auto n = profileShadowNotice(r.config->params, r.config->fileParamNames); !n.empty())
     out << "warning: " << n << "\n";
+  for (const auto& n : r.config->notices) out << "warning: " << n << "\n";
   // Not an error: the set-up page may still choose the battery.
   if (!r.config->fileParamNames.count("BatteryProfile"))
     out << "note: no BatteryProfile in this file; unless the set-up page chose one, the regulator is not set "

@@ -92,6 +92,14 @@ int Daemon::run() {
   if (start.restored) regulator.restoreLedger(*start.restored);
   rt::RegulatorCore core(regulator);
   auto handoffs = std::make_unique<rt::Handoffs>(params);
+  // One clock (docs/architecture.md): in simulation the store, the events and
+  // the summaries read the simulated time since the loop started.
+  if (cli_.sim)
+    start.clock.followSimulation([&h = *handoffs] {
+      const rt::RuntimeSnapshot s = h.latest();
+      return s.tick > 0 ? s.telemetry.now - s.start : TimeNs{0};
+    });
+  if (start.store) start.store->useClock(start.clock, cli_.speed);
   OutputFiles files;
   if (!openOutputFiles(cli_, *handoffs, files)) return kExitConfig;
   const auto rig = DaemonRig::open(start, settings, cli_, *handoffs, files.canLog);

@@ -9,18 +9,31 @@
 
 namespace xr::app {
 
-void logLoopStats(const rt::LoopStatsSummary& s, const rt::RuntimeHealth& h) {
-  spdlog::info(
-      "control loop: {} ticks, {} overruns ({} own), tick CPU p99/max {:.0f}/{:.0f} us, period error "
-      "p50/p99/max {:.0f}/{:.0f}/{:.0f} us, "
-      "compute "
-      "p50/p99/max {:.0f}/{:.0f}/{:.0f} us, I/O p50/p99/max {:.0f}/{:.0f}/{:.0f} us, "
-      "CH1 {:.0f} Hz (CH0 {:.0f}, CH2 {:.0f}, CH3 {:.0f}), INA {:.0f} Hz, "
-      "sensor errors {}, output errors {}, events dropped {}",
-      s.ticks, s.overruns, s.overrunsOwn, s.tickCpuP99Us, s.tickCpuMaxUs, s.periodErrP50Us, s.periodErrP99Us,
-      s.periodErrMaxUs, s.computeP50Us, s.computeP99Us, s.computeMaxUs, s.ioP50Us, s.ioP99Us, s.ioMaxUs,
-      s.ch1SampleRateHz, s.adsChannelRateHz[0], s.adsChannelRateHz[2], s.adsChannelRateHz[3],
-      s.inaSampleRateHz, h.sensorReadErrors, h.outputWriteErrors, h.eventsDropped);
+bool LoopStatsCadence::atInfo(const rt::LoopStatsSummary& s, const rt::RuntimeHealth& h) noexcept {
+  const bool worse = s.overrunsOwn > overrunsOwn_ || h.sensorReadErrors > sensorErrors_ ||
+                     h.outputWriteErrors > outputErrors_ || h.eventsDropped > eventsDropped_;
+  overrunsOwn_ = s.overrunsOwn;
+  sensorErrors_ = h.sensorReadErrors;
+  outputErrors_ = h.outputWriteErrors;
+  eventsDropped_ = h.eventsDropped;
+  const bool due = minute_ % kHealthyEveryMin == 0;
+  ++minute_;
+  return due || worse;
+}
+
+void logLoopStats(const rt::LoopStatsSummary& s, const rt::RuntimeHealth& h, bool atInfo) {
+  spdlog::log(atInfo ? spdlog::level::info : spdlog::level::debug,
+              "control loop: {} ticks, {} overruns ({} own), tick CPU p99/max {:.0f}/{:.0f} us, period error "
+              "p50/p99/max {:.0f}/{:.0f}/{:.0f} us, "
+              "compute "
+              "p50/p99/max {:.0f}/{:.0f}/{:.0f} us, I/O p50/p99/max {:.0f}/{:.0f}/{:.0f} us, "
+              "CH1 {:.0f} Hz (CH0 {:.0f}, CH2 {:.0f}, CH3 {:.0f}), INA {:.0f} Hz, "
+              "sensor errors {}, output errors {}, events dropped {}",
+              s.ticks, s.overruns, s.overrunsOwn, s.tickCpuP99Us, s.tickCpuMaxUs, s.periodErrP50Us,
+              s.periodErrP99Us, s.periodErrMaxUs, s.computeP50Us, s.computeP99Us, s.computeMaxUs, s.ioP50Us,
+              s.ioP99Us, s.ioMaxUs, s.ch1SampleRateHz, s.adsChannelRateHz[0], s.adsChannelRateHz[2],
+              s.adsChannelRateHz[3], s.inaSampleRateHz, h.sensorReadErrors, h.outputWriteErrors,
+              h.eventsDropped);
 }
 
 void logEveryInterface(const std::string& listen, unsigned port) {

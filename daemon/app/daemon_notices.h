@@ -1,6 +1,7 @@
 #pragma once
 // What the daemon tells the journal at start and stop, apart from its main
 // sequence in daemon.cpp: the control loop's figures and the API token hint.
+#include <cstdint>
 #include <memory>
 #include <string>
 
@@ -11,7 +12,23 @@
 
 namespace xr::app {
 
-void logLoopStats(const rt::LoopStatsSummary& s, const rt::RuntimeHealth& h);
+// atInfo false: at debug (seen with --log-level debug only).
+void logLoopStats(const rt::LoopStatsSummary& s, const rt::RuntimeHealth& h, bool atInfo = true);
+
+// Whether this minute's loop figures go to the journal at info: the first
+// minute, then once an hour while healthy, and at once when a count that
+// means trouble grew (own overruns, sensor or output errors, dropped events).
+// Every other minute they go at debug: the journal says what changed, once
+// (docs/operations.md "The journal").
+class LoopStatsCadence {
+ public:
+  static constexpr int kHealthyEveryMin = 60;
+  bool atInfo(const rt::LoopStatsSummary& s, const rt::RuntimeHealth& h) noexcept;
+
+ private:
+  int minute_ = 0;
+  std::uint64_t overrunsOwn_ = 0, sensorErrors_ = 0, outputErrors_ = 0, eventsDropped_ = 0;
+};
 // Said plainly: "--http :8104" or "0.0.0.0" opens the API to every network
 // the boat is on (docs/security.md). Nothing for a single address.
 void logEveryInterface(const std::string& listen, unsigned port);

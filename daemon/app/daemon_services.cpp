@@ -1,15 +1,10 @@
 #include "app/daemon_services.h"
 
 #include "app/integrations_wiring.h"
+#include "logging/journal_gate.h"
 #include "logging/logging.h"
 
 namespace xr::app {
-
-namespace {
-
-double wallSecondsNow() { return static_cast<double>(unixMsNow()) / 1000.0; }
-
-}  // namespace
 
 DaemonServices::DaemonServices(const CliOptions& cli, const StartState& start, const Settings& settings,
                                rt::Handoffs& handoffs, DaemonRig& rig, std::unique_ptr<CsvWriter> csv,
@@ -17,8 +12,14 @@ DaemonServices::DaemonServices(const CliOptions& cli, const StartState& start, c
     : pump_(handoffs.events), csv_(std::move(csv)), update_(cli.releaseFile, cli.runDir, cli.updateWatch) {
   StoreService* store = start.store.get();
   pump_.addSource(handoffs.sideEvents);  // the CAN thread's events (docs/integrations.md)
-  pump_.addSink([](const Event& e) { logEvent(e); });
-  pump_.addSink([this](const Event& e) { recent_.add(e, wallSecondsNow(), describe(e)); });
+  // The journal gets each change once; repeats of a held alarm row stay in the store and the list.
+  pump_.addSink([gate = logging::JournalGate{}](const Event& e) mutable {
+    if (gate.pass(e)) logEvent(e);
+  });
+  // Stamped on the one wall clock: a simulated fault of 100 s lists as 100 s.
+  pump_.addSink([this, clock = &start.clock](const Event& e) {
+    recent_.add(e, static_cast<double>(clock->unixMs()) / 1000.0, describe(e));
+  });
   if (store) pump_.addSink([store](const Event& e) { store->appendEvent(e); });
   pump_.start();
   if (csv_) csv_->start();

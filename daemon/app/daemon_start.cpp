@@ -88,6 +88,7 @@ void openStore(const std::string& dbPath, Settings& settings, StartState& st) {
 StartState loadStartState(const Config& config, const CliOptions& cli, Settings& settings) {
   StartState st;
   if (auto n = profileShadowNotice(config.params, config.fileParamNames); !n.empty()) spdlog::warn("{}", n);
+  for (const auto& n : config.notices) spdlog::warn("{}", n);
   st.fileParams = config.params;
   st.origins.file = config.fileParamNames;
   // A bad scenario is bad input on the command line (exit 64, EX_USAGE), not

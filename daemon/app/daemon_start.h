@@ -13,6 +13,7 @@
 #include "config/param_sources.h"
 #include "config/settings.h"
 #include "drivers/sim/scenario.h"
+#include "runtime/wall_clock.h"
 #include "store/state_lock.h"
 
 namespace xr::app {
@@ -27,6 +28,7 @@ struct StartState {
   std::unique_ptr<StateLock> stateLock;   // held until exit (store/state_lock.h)
   std::unique_ptr<StoreService> store;    // null without a state database
   std::optional<BatteryLedger> restored;  // the ledger saved by the last run
+  rt::WallClock clock;                    // the one wall clock: simulated in --sim (Daemon::run)
   int exitCode = 0;                       // non-zero: stop with it, nothing was started
 };
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "params/derived.h"
+
 namespace xr::app {
 
 namespace {
@@ -36,6 +38,23 @@ std::string paramChangeText(const Params& before, const Params& after, const std
   }
   if (list.empty()) return {};
   return "Settings changed by " + (source.empty() ? std::string("the web API") : source) + ": " + list;
+}
+
+bool isSetupSave(const std::vector<std::string>& named) {
+  auto has = [&](const char* n) { return std::find(named.begin(), named.end(), n) != named.end(); };
+  return has("BatteryProfile") && has("MaxTableValue");
+}
+
+std::string setupSummaryText(const Params& p) {
+  static constexpr const char* kChemistry[] = {"LiFePO4", "AGM", "Flooded", "Gel", "Custom"};
+  const int id = std::clamp(p.BatteryProfile, 0, 4);
+  double belt = 0.0;
+  for (double a : p.rpmCapCurrentTable) belt = std::max(belt, a);
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "Set-up: %s %d V %.0f Ah, alternator %.0f A, belt %.0f A", kChemistry[id],
+                nominalVoltage(systemClass(p)), p.BatteryCapacity_Ah, p.MaxTableValue,
+                std::min(belt, p.MaxTableValue));
+  return buf;
 }
 
 }  // namespace xr::app

@@ -16,4 +16,11 @@ namespace xr::app {
 std::string paramChangeText(const Params& before, const Params& after, const std::vector<std::string>& named,
                             const std::string& source);
 
+// The set-up page's save (a PATCH naming BatteryProfile and MaxTableValue)
+// as one line: "Set-up: LiFePO4 12 V 280 Ah, alternator 120 A, belt 100 A"
+// (docs/dashboard.md). The per-value list stays out of the event list: the
+// set-up's result card and GET /api/params show every value.
+bool isSetupSave(const std::vector<std::string>& named);
+std::string setupSummaryText(const Params& after);
+
 }  // namespace xr::app

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -14,11 +15,7 @@
 
 namespace xr::app {
 
-std::int64_t unixMsNow() {
-  return std::chrono::duration_cast<std::chrono::milliseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
+std::int64_t unixMsNow() { return rt::WallClock::systemUnixMs(); }
 
 namespace {
 
@@ -53,6 +50,14 @@ StoreService::StoreService(const std::string& path, int checkpointIntervalS)
   store_.closeOpenCharges("STOPPED");
 }
 
+void StoreService::useClock(const rt::WallClock& clock, double speed) {
+  std::lock_guard lock(m_);
+  clock_ = &clock;
+  // Read once a wall second, a simulated clock moves by `speed` seconds; an
+  // unpaced run by any amount (it never stops between two reads).
+  if (clock.simulated()) tally_.setMaxStepS(speed > 0.0 ? kTallyMaxStepS * std::max(1.0, speed) : 1e12);
+}
+
 const char* StoreService::alarmCode(const OpenResult& o) {
   if (o.newerSchema) return "StoreNewerSchema";
   if (o.restored) return "StoreRestored";
@@ -67,7 +72,7 @@ void StoreService::recordOpenAlarm() {
   const char* code = alarmCode(open_);
   if (!code || !store_.isOpen()) return;
   EventRecord e;
-  e.tMs = unixMsNow();
+  e.tMs = nowMs();
   e.level = open_.restored ? "error" : "critical";
   e.code = code;
   e.reason = "NONE";
@@ -84,7 +89,7 @@ std::optional<SavedLedger> StoreService::loadLedger() {
 OverrideResolution StoreService::applyOverrides(const Params& fileParams) {
   std::lock_guard lock(m_);
   OverrideResolution r = resolveStoredOverrides(fileParams, store_.overrides());
-  const std::int64_t now = unixMsNow();
+  const std::int64_t now = nowMs();
   for (const auto& d : r.dropped) {
     EventRecord e;
     e.tMs = now;
@@ -111,7 +116,7 @@ std::string StoreService::saveOverrides(const Params& fileParams, const Params& 
                                         const std::vector<std::string>& dropped) {
   std::lock_guard lock(m_);
   if (std::string why = unwritable(); !why.empty()) return why;
-  const std::int64_t now = unixMsNow();
+  const std::int64_t now = nowMs();
   const StoreStatus st = store_.inTransaction([&]() -> StoreStatus {
     for (const auto& name : dropped)
       if (StoreStatus s = store_.resetOverride(name); !s) {
@@ -154,7 +159,7 @@ void StoreService::appendEvent(const Event& e) {
   Event clean = e;  // the events table wants numbers: NaN/inf values (e.g. a stale reading) become 0
   if (!std::isfinite(clean.a)) clean.a = 0.0;
   if (!std::isfinite(clean.b)) clean.b = 0.0;
-  const EventRecord r = toEventRecord(clean, unixMsNow());
+  const EventRecord r = toEventRecord(clean, nowMs());
   const StoreStatus st = store_.appendEvents(std::span<const EventRecord>(&r, 1));
   if (!st) spdlog::warn("store: event not saved: {}", st.error);
 }
@@ -181,23 +186,23 @@ double columnValue(const rt::RuntimeSnapshot& s, const std::string& name) {
 
 void StoreService::housekeeping(const rt::RuntimeSnapshot& s, const BatteryLedger& ledger, bool ledgerValid) {
   std::lock_guard lock(m_);
-  const std::int64_t nowMs = unixMsNow();
-  if (nowMs / 1000 != lastHistoryS_) {
-    lastHistoryS_ = nowMs / 1000;
+  const std::int64_t now = nowMs();
+  if (now / 1000 != lastHistoryS_) {
+    lastHistoryS_ = now / 1000;
     std::vector<double> values;
     values.reserve(series_.size());
     for (const auto& name : series_) values.push_back(columnValue(s, name));
-    const StoreStatus st = store_.appendHistory(nowMs, values);
+    const StoreStatus st = store_.appendHistory(now, values);
     if (!st) spdlog::warn("store: history not saved: {}", st.error);
   }
-  tallySummaries(s, nowMs);
+  tallySummaries(s, now);
   const CheckpointReason why =
       policy_.poll(s.telemetry.now, s.telemetry.field_enable, s.telemetry.stage, false);
   if (why != CheckpointReason::None && ledgerValid) {
-    const StoreStatus st = store_.checkpoint(ledger, toString(why), nowMs);
+    const StoreStatus st = store_.checkpoint(ledger, toString(why), now);
     if (!st) spdlog::error("store: checkpoint ({}) failed: {}", toString(why), st.error);
   }
-  if (const StoreStatus st = store_.backupIfDue(nowMs); !st)
+  if (const StoreStatus st = store_.backupIfDue(now); !st)
     spdlog::error("store: {} (the previous backup stays; retried in an hour)", st.error);
 }
 
@@ -264,7 +269,7 @@ void StoreService::stop(const BatteryLedger& ledger, bool ledgerValid) {
     store_.saveCharge(c);
   }
   if (ledgerValid) {
-    const StoreStatus st = store_.checkpoint(ledger, "stop", unixMsNow());
+    const StoreStatus st = store_.checkpoint(ledger, "stop", nowMs());
     if (!st) spdlog::error("store: final checkpoint failed: {}", st.error);
   }
   store_.flushHistory();

@@ -19,6 +19,7 @@
 #include "config/hardware_choices.h"
 #include "params/params.h"
 #include "runtime/handoffs.h"
+#include "runtime/wall_clock.h"
 #include "store/checkpoint_policy.h"
 #include "store/store.h"
 
@@ -30,6 +31,13 @@ class StoreService {
  public:
   StoreService(const std::string& path, int checkpointIntervalS);
   const OpenResult& openResult() const { return open_; }
+  // The one wall clock (runtime/wall_clock.h) for every row from now on:
+  // the simulated one in --sim. speed: how many clock seconds pass per
+  // wall second (0 = unpaced), which widens the summaries' step. Before
+  // the threads that use the store start.
+  void useClock(const rt::WallClock& clock, double speed);
+  // That clock's time (the system's before useClock).
+  std::int64_t clockMs() const { return nowMs(); }
 
   std::optional<SavedLedger> loadLedger();
   // fileParams with the stored overrides that fit applied, checked as one
@@ -90,6 +98,7 @@ class StoreService {
 
  private:
   std::string unwritable() const;  // caller holds m_
+  std::int64_t nowMs() const { return clock_ ? clock_->unixMs() : rt::WallClock::systemUnixMs(); }
   void recordOpenAlarm();
   // Once a second: the day and charge summaries, saved every minute and
   // whenever a day or a charge ends (caller holds m_).
@@ -103,6 +112,7 @@ class StoreService {
   std::int64_t lastHistoryS_ = -1;
   ChargeTally tally_;  // the History page's day and charge summaries
   std::int64_t lastSummarySaveMs_ = 0;
+  const rt::WallClock* clock_ = nullptr;  // nullptr: the system clock
 };
 
 }  // namespace xr::app

@@ -83,7 +83,7 @@ bool Supervisor::everySecond() {
 
 void Supervisor::everyMinute() {
   const rt::RuntimeSnapshot s = handoffs_.latest();
-  logLoopStats(s.loop, s.health);
+  logLoopStats(s.loop, s.health, statsCadence_.atInfo(s.loop, s.health));
 }
 
 }  // namespace xr::app

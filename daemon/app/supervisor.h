@@ -2,12 +2,13 @@
 // The daemon's main thread while the control thread runs (docs/operations.md):
 // signals, the systemd watchdog (fed only while the control loop ticks), the
 // status line, the state database's housekeeping, the patch log, and the
-// loop's figures in the journal once a minute.
+// loop's figures in the journal (hourly while healthy, at debug each minute).
 #include <chrono>
 #include <cstdint>
 
 #include "app/cli.h"
 #include "app/control_thread.h"
+#include "app/daemon_notices.h"
 #include "app/daemon_services.h"
 #include "app/presence_pairing.h"
 #include "app/store_service.h"
@@ -50,6 +51,7 @@ class Supervisor {
   PresencePairing presence_;  // the ignition turned off-on-off-on opens pairing (docs/security.md)
   std::uint64_t lastBeat_ = 0;
   bool edgeFallbackLogged_ = false;
+  LoopStatsCadence statsCadence_;
 };
 
 }  // namespace xr::app

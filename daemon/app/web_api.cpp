@@ -81,7 +81,8 @@ bool WebApi::latestStatus(web::StatusSnapshot& out) {
 }
 
 void WebApi::recordEvent(const std::string& code, const std::string& text) {
-  const std::int64_t nowMs = unixMsNow();
+  // On the store's clock: in --sim the simulated one, like the core's events.
+  const std::int64_t nowMs = ctx_.store ? ctx_.store->clockMs() : unixMsNow();
   if (ctx_.store) {
     EventRecord e;
     e.tMs = nowMs;

@@ -98,6 +98,8 @@ class WebApi final : public web::DaemonApi {
   // An event of the daemon's own (not the core's): into the store, and the
   // in-memory list that serves without one.
   void recordEvent(const std::string& code, const std::string& text);
+  void recordPatchEvent(const Params& before, const Params& after, const std::vector<std::string>& named,
+                        const std::string& source, bool setupDone);  // web_api_params.cpp
 
   WebApiContext ctx_;
   std::mutex patchMutex_;  // read-modify-write of the whole Params

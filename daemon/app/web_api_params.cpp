@@ -138,18 +138,32 @@ web::PatchResult WebApi::patchParams(const std::vector<web::ParamChange>& change
   if (ctx_.configured) ctx_.configured = p;
   ctx_.handoffs->submitParams(runningParams(p, origins));  // whole swap, between ticks
   ctx_.origins = std::move(origins);
-  if (!wasSetUp && ctx_.origins.setUp())
-    recordEvent("SetupDone", "Battery type chosen (" +
-                                 std::string(choiceName(*findParam("BatteryProfile"), p.BatteryProfile)) +
-                                 "): the \"not set up\" limits are lifted");
   logPatch(changes.size());
-  // Who changed what, in the event list; a PATCH that changes nothing (the
-  // same values again) makes no event.
   std::vector<std::string> named = patched;
   named.insert(named.end(), dropped.begin(), dropped.end());
-  if (const std::string text = paramChangeText(before, p, named, source); !text.empty())
-    recordEvent("ParamsChanged", text);
+  recordPatchEvent(before, p, named, source, !wasSetUp && ctx_.origins.setUp());
   return r;
+}
+
+// Who changed what, in the event list; a PATCH that changes nothing (the
+// same values again) makes no event. The set-up page's save is one line,
+// whoever asked; the first one lifts the "not set up" limits and says so in
+// the same line.
+void WebApi::recordPatchEvent(const Params& before, const Params& after,
+                              const std::vector<std::string>& named, const std::string& source,
+                              bool setupDone) {
+  const std::string changedText = paramChangeText(before, after, named, source);
+  if (isSetupSave(named)) {
+    if (changedText.empty() && !setupDone) return;
+    recordEvent(setupDone ? "SetupDone" : "ParamsChanged",
+                setupSummaryText(after) + (setupDone ? " (the \"not set up\" limits are lifted)" : ""));
+    return;
+  }
+  if (setupDone)
+    recordEvent("SetupDone", "Battery type chosen (" +
+                                 std::string(choiceName(*findParam("BatteryProfile"), after.BatteryProfile)) +
+                                 "): the \"not set up\" limits are lifted");
+  if (!changedText.empty()) recordEvent("ParamsChanged", changedText);
 }
 
 }  // namespace xr::app

@@ -191,7 +191,7 @@ void BatteryMonitor::runSocBody(TimeNs now, double elapsed_s, EventBatch& ev) no
   // Only on live samples: a dead INA228 reads "0 A" and must not declare the
   // bank full at the last voltage it saw.
   if (socInputsValid_ && std::fabs(batteryCurrentForSoC_) <= tail_A &&
-      currentBatteryVoltage_ >= p_.ChargedVoltage) {
+      currentBatteryVoltage_ >= chargedVoltageV(p_)) {
     FullChargeTimer_s_ += elapsed_s;
     if (FullChargeTimer_s_ >= p_.ChargedDetectionTime) declareFullCharge(now, ev);
   } else {

@@ -48,16 +48,6 @@ constexpr ProfileTable kTables[] = {
      50.0, false, false, 0.0},
 };
 
-// Scaled with the bank (x cells / cellsPer12V), from the catalogue's 12 V
-// defaults: the full-charge voltage of the SoC monitor and the buzzer limits.
-constexpr double kChargedVoltage12 = 13.8;
-constexpr double kVoltageAlarmHigh12 = 15.0;
-constexpr double kVoltageAlarmLow12 = 11.0;
-// LiFePO4 with no battery temperature charges at most C/10; the
-// profile's BatteryTempRequired turns that on.
-
-constexpr double kTargetVoltageSetpoint12 = 13.6;
-
 constexpr std::array<std::string_view, 24> kOwned{"BatteryCells",
                                                   "BulkVoltage",
                                                   "AbsorptionVoltage",
@@ -164,10 +154,9 @@ ProfileApplied applyBatteryProfile(const Params& in, const NameSet& pinned) {
   put("ChargeFullCurrentTempC", t->chargeFullCurrentC);
   put("ChargeMaxTempC", t->chargeMaxC);
   put("BatteryTempRequired", t->tempRequired ? 1.0 : 0.0);
-  put("ChargedVoltage", kChargedVoltage12 * scale);
-  put("VoltageAlarmHigh", kVoltageAlarmHigh12 * scale);
-  put("VoltageAlarmLow", kVoltageAlarmLow12 * scale);
-  put("TargetVoltageSetpoint", kTargetVoltageSetpoint12 * scale);
+  // ChargedVoltage, VoltageAlarmHigh/Low and TargetVoltageSetpoint stay 0:
+  // derived from the bank and the voltages above (params/derived.h), so they
+  // follow a BulkVoltage the owner wrote as well as the profile's.
   // The SoC monitor's full-charge tail (% of C) and Peukert's rated current
   // (C/20) follow the same battery.
   put("TailCurrent", t->tailFractionC * 100.0);

@@ -110,6 +110,7 @@ class Loader {
       config_.params = pa.params;
       config_.profileParamNames = std::move(pa.setByProfile);
     }
+    followRaisedTemperatureLimit();
 
     for (auto& e : checkConsistency(config_.params, file_)) {
       // Point consistency errors at the key in the file when it was written there.
@@ -132,6 +133,23 @@ class Loader {
   }
 
  private:
+  // Older shipped files wrote TempAlarm = 190 beside TemperatureLimitF = 150.
+  // Raising the limit to or past that alarm must not stop an installed
+  // regulator at the next start: the alarm follows the limit instead (its
+  // 0), and the start log says so (docs/configuration.md "Derived values").
+  void followRaisedTemperatureLimit() {
+    Params& p = config_.params;
+    if (!config_.fileParamNames.count("TempAlarm") || p.TempAlarm <= 0.0 || p.TempAlarm > p.TemperatureLimitF)
+      return;
+    config_.notices.push_back("TempAlarm " + formatNumber(p.TempAlarm) +
+                              " degF in the file is not above TemperatureLimitF " +
+                              formatNumber(p.TemperatureLimitF) + " degF: the alarm follows the limit at " +
+                              formatNumber(p.TemperatureLimitF + kTempAlarmDerivedMarginF) +
+                              " degF; delete the TempAlarm line to silence this");
+    p.TempAlarm = 0.0;
+    config_.fileParamNames.erase("TempAlarm");
+  }
+
   void error(const toml::key& k, std::string key, std::string message) {
     const auto loc = where(k.source());
     result_.errors.push_back({file_, loc.line, loc.column, std::move(key), std::move(message)});

@@ -36,6 +36,12 @@ std::string withUnit(double x, const char* unit) {
   if (u == "degC") return formatNumber(x) + " °C";
   return formatNumber(x) + " " + u;
 }
+// "88 °C (190 °F)": the owner's unit first (the pages default to °C), the
+// parameter's own beside it.
+std::string tempText(double degF) {
+  const double c = std::round((degF - 32.0) / 1.8 * 10.0) / 10.0;
+  return formatNumber(c) + " \u00B0C (" + formatNumber(degF) + " \u00B0F)";
+}
 
 // Every absolute battery voltage belongs to the bank that BulkVoltage names:
 // a 28.8 V value among 12 V ones would charge, trip or alarm a 12 V bank as
@@ -84,14 +90,18 @@ void checkBankAndAlarmSet(const Params& p, const ErrFn& err) {
                        ": a floor that high charges whatever the battery voltage says");
   // An alarm at or inside what the regulator is allowed to do sounds in
   // normal operation, and the owner learns to ignore it.
-  if (p.VoltageAlarmHigh <= p.BulkVoltage)
-    err("VoltageAlarmHigh", "VoltageAlarmHigh " + withUnit(p.VoltageAlarmHigh, "V") +
-                                " must be above BulkVoltage " + withUnit(p.BulkVoltage, "V") +
-                                ": it would sound in every bulk charge");
-  if (p.TempAlarm <= p.TemperatureLimitF)
-    err("TempAlarm", "TempAlarm " + withUnit(p.TempAlarm, "degF") + " must be above TemperatureLimitF " +
-                         withUnit(p.TemperatureLimitF, "degF") +
-                         ": the regulator holds the alternator at the limit, so the alarm would sound");
+  // Only a value the owner wrote can fail these: 0 derives one clear above
+  // (params/derived.h).
+  if (voltageAlarmHighV(p) <= p.BulkVoltage)
+    err("VoltageAlarmHigh", "the high battery voltage alarm (VoltageAlarmHigh) " +
+                                withUnit(voltageAlarmHighV(p), "V") + " must be above the bulk voltage " +
+                                withUnit(p.BulkVoltage, "V") +
+                                ": it would sound in every bulk charge; set it to 0 to follow the bank");
+  if (tempAlarmF(p) <= p.TemperatureLimitF)
+    err("TempAlarm", "the alternator temperature alarm (TempAlarm) " + tempText(tempAlarmF(p)) +
+                         " must be above the alternator temperature limit " + tempText(p.TemperatureLimitF) +
+                         ": the regulator holds the alternator at the limit, so the alarm would sound; set "
+                         "it to 0 to follow the limit");
   checkCurrentAlarm(p, err);
   // The T3 cut may not lie beyond what any alternator's winding is rated
   // for: class H insulation, 180 degC (IEC 60085), the highest in use.
@@ -119,8 +129,8 @@ std::vector<ConfigError> checkConsistency(const Params& p, std::string_view file
   if (p.FloatVoltage > p.AbsorptionVoltage)
     err("FloatVoltage", v(p.FloatVoltage, "V") + " is above AbsorptionVoltage " +
                             v(p.AbsorptionVoltage, "V") + "; it must not exceed it");
-  if (p.RebulkVoltage >= p.FloatVoltage)
-    err("RebulkVoltage", v(p.RebulkVoltage, "V") + " must be below FloatVoltage " + v(p.FloatVoltage, "V"));
+  if (rebulkVoltageV(p) >= p.FloatVoltage)
+    err("RebulkVoltage", v(rebulkVoltageV(p), "V") + " must be below FloatVoltage " + v(p.FloatVoltage, "V"));
   // A software trip at or below the charging target would trip in normal
   // bulk charging (docs/protections.md "Protections").
   if (p.AlternatorHardShutdownV != 0.0 && p.AlternatorHardShutdownV <= p.BulkVoltage)
@@ -129,23 +139,24 @@ std::vector<ConfigError> checkConsistency(const Params& p, std::string_view file
                                        " (or 0 for the first-boot default BulkVoltage + 0.3 V)");
   // The INA228 hardware limit is BulkVoltage + 0.3 V: a higher target would
   // trip the hardware ALERT in normal operation.
-  if (p.TargetVoltageSetpoint > voltageHardwareLimit(p))
-    err("TargetVoltageSetpoint", v(p.TargetVoltageSetpoint, "V") + " is above the INA228 hardware limit " +
+  if (targetVoltageSetpointV(p) > voltageHardwareLimit(p))
+    err("TargetVoltageSetpoint", v(targetVoltageSetpointV(p), "V") + " is above the INA228 hardware limit " +
                                      v(voltageHardwareLimit(p), "V") + " (BulkVoltage + 0.3 V)");
   {
     const auto range = plausibleVoltageRange(p);
-    if (p.FloatVoltage < range.min || p.RebulkVoltage < range.min)
+    if (p.FloatVoltage < range.min || rebulkVoltageV(p) < range.min)
       err("FloatVoltage",
           "FloatVoltage/RebulkVoltage must lie in the plausible range of the system class set by "
           "BulkVoltage (" +
               v(range.min, "V") + " to " + v(range.max, "V") + ")");
   }
   checkBankAndAlarmSet(p, err);
-  if (p.VoltageAlarmLow >= p.VoltageAlarmHigh)
+  if (voltageAlarmLowV(p) >= voltageAlarmHighV(p))
     err("VoltageAlarmLow",
-        v(p.VoltageAlarmLow, "V") + " must be below VoltageAlarmHigh " + v(p.VoltageAlarmHigh, "V"));
-  if (p.TempAlarmLow != 0.0 && p.TempAlarmLow >= p.TempAlarm)
-    err("TempAlarmLow", v(p.TempAlarmLow, "degF") + " must be below TempAlarm " + v(p.TempAlarm, "degF"));
+        v(voltageAlarmLowV(p), "V") + " must be below VoltageAlarmHigh " + v(voltageAlarmHighV(p), "V"));
+  if (p.TempAlarmLow != 0.0 && p.TempAlarmLow >= tempAlarmF(p))
+    err("TempAlarmLow", tempText(p.TempAlarmLow) + " must be below the alternator temperature alarm " +
+                            tempText(tempAlarmF(p)));
   if (p.TempWarnExcess >= p.TempCritExcess)
     err("TempWarnExcess", v(p.TempWarnExcess, "dF") + " must be below TempCritExcess " +
                               v(p.TempCritExcess, "dF") + " (T1 warning fires before T3 cut)");

@@ -161,6 +161,9 @@ struct Config {
   // the parameters written in the file, and those the profile filled.
   std::set<std::string, std::less<>> fileParamNames;
   std::set<std::string, std::less<>> profileParamNames;
+  // File values read otherwise than written, each in one sentence (the start
+  // log and --check-config print them as warnings).
+  std::vector<std::string> notices;
 };
 
 }  // namespace xr

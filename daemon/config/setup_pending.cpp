@@ -9,8 +9,6 @@ namespace xr {
 
 namespace {
 
-double bankScale(const Params& p) { return nominalVoltage(systemClass(p)) / 12.0; }
-
 // Lowers (or, with raise, raises) the value of `name` to `limit`.
 void limitValue(Params& p, std::string_view name, double limit, bool raise, NameSet& capped) {
   const ParamSpec* s = findParam(name);

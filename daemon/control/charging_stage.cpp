@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "params/constants.h"
+#include "params/derived.h"
 
 namespace xr {
 
@@ -60,7 +61,7 @@ bool ChargingStageMachine::rebulkDue(const StageInputs& in, const Params& p) noe
   const bool discharged = p.RebulkDischarge_percent > 0.0
                               ? restOutAh_ >= p.RebulkDischarge_percent * p.BatteryCapacity_Ah / 100.0
                               : in.Bcur < -p.RebulkCurrent_A;
-  bool cond = (in.v < p.RebulkVoltage) || discharged;
+  bool cond = (in.v < rebulkVoltageV(p)) || discharged;
   rebulkBlockedBySoc_ = false;
   if (in.socValid) {
     if (in.SOC_percent >= p.SOC_BlockRebulk_percent) {

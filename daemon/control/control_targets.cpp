@@ -7,6 +7,7 @@
 #include "control/control_law.h"
 #include "core/finite.h"
 #include "params/constants.h"
+#include "params/derived.h"
 
 namespace xr {
 
@@ -76,7 +77,7 @@ void ControlLaw::applyTargetOverrides(const ControlSensors& s, const Params& p, 
     cvTuning_.reset();  // nothing to clear unless a run is in progress (score/commit need one)
   }
   if (p.TargetVoltageMode) {
-    ChargingVoltageTarget_ = p.TargetVoltageSetpoint;
+    ChargingVoltageTarget_ = targetVoltageSetpointV(p);
     voltageControlActive_ = true;
   }
   if (p.MaintainMode) {

@@ -15,7 +15,48 @@ SystemClass bankClassOfVoltage(double volts) {
 SystemClass systemClass(const Params& p) { return bankClassOfVoltage(p.BulkVoltage); }
 
 bool isBankVoltage(const ParamSpec& spec, double value) {
-  return spec.unit == "V" && (spec.min >= 8.0 || (spec.name == "AlternatorHardShutdownV" && value > 0.0));
+  if (spec.unit != "V") return false;
+  if (spec.min >= 8.0) return true;
+  const bool zeroMeansDerived = spec.name == "AlternatorHardShutdownV" || isDerivedWhenZero(spec.name);
+  return zeroMeansDerived && value > 0.0;
+}
+
+bool isDerivedWhenZero(std::string_view name) {
+  return name == "VoltageAlarmHigh" || name == "VoltageAlarmLow" || name == "ChargedVoltage" ||
+         name == "RebulkVoltage" || name == "TargetVoltageSetpoint" || name == "TempAlarm";
+}
+
+double bankScale(const Params& p) { return nominalVoltage(systemClass(p)) / 12.0; }
+
+// The 12 V figures are the seeds' / catalogue's former defaults
+// (docs/parameters.md), scaled with the bank like the battery profiles.
+double voltageAlarmHighV(const Params& p) {
+  if (p.VoltageAlarmHigh > 0.0) return p.VoltageAlarmHigh;
+  const double s = bankScale(p);
+  return std::max(15.0 * s, p.BulkVoltage + k::HARD_SHUTDOWN_DEFAULT_OFFSET_V * s);
+}
+
+double voltageAlarmLowV(const Params& p) {
+  return p.VoltageAlarmLow > 0.0 ? p.VoltageAlarmLow : 11.0 * bankScale(p);
+}
+
+double chargedVoltageV(const Params& p) {
+  return p.ChargedVoltage > 0.0 ? p.ChargedVoltage : std::min(13.8 * bankScale(p), p.AbsorptionVoltage);
+}
+
+double rebulkVoltageV(const Params& p) {
+  if (p.RebulkVoltage > 0.0) return p.RebulkVoltage;
+  const double s = bankScale(p);
+  return std::min(12.9 * s, p.FloatVoltage - 0.1 * s);
+}
+
+double targetVoltageSetpointV(const Params& p) {
+  return p.TargetVoltageSetpoint > 0.0 ? p.TargetVoltageSetpoint
+                                       : std::min(13.6 * bankScale(p), p.BulkVoltage);
+}
+
+double tempAlarmF(const Params& p) {
+  return p.TempAlarm > 0.0 ? p.TempAlarm : p.TemperatureLimitF + kTempAlarmDerivedMarginF;
 }
 
 int nominalVoltage(SystemClass c) { return static_cast<int>(c); }

@@ -1,5 +1,7 @@
 #pragma once
 // Values derived from parameters, computed in one place.
+#include <string_view>
+
 #include "params/constants.h"
 #include "params/params.h"
 
@@ -46,6 +48,29 @@ inline double alternatorHardShutdownV(const Params& p) {
   return p.AlternatorHardShutdownV > 0.0 ? p.AlternatorHardShutdownV
                                          : p.BulkVoltage + k::HARD_SHUTDOWN_DEFAULT_OFFSET_V;
 }
+// Values that follow what they depend on (docs/configuration.md "Derived
+// values"): each parameter's 0 (its default) means "derived"; a value the
+// owner wrote is used as written (the checks keep it consistent).
+// bankScale: 1 / 2 / 4 for a 12 / 24 / 48 V bank (the class of BulkVoltage).
+double bankScale(const Params& p);
+// VoltageAlarmHigh: 15 V per 12 V, and at least 0.5 V per 12 V above
+// BulkVoltage, so it never sounds in a bulk charge.
+double voltageAlarmHighV(const Params& p);
+// VoltageAlarmLow: 11 V per 12 V.
+double voltageAlarmLowV(const Params& p);
+// ChargedVoltage: 13.8 V per 12 V, at most AbsorptionVoltage (reachable).
+double chargedVoltageV(const Params& p);
+// RebulkVoltage: 12.9 V per 12 V, at least 0.1 V per 12 V under FloatVoltage.
+double rebulkVoltageV(const Params& p);
+// TargetVoltageSetpoint: 13.6 V per 12 V, at most BulkVoltage.
+double targetVoltageSetpointV(const Params& p);
+// TempAlarm: TemperatureLimitF + 40 degF (the seed's 150 / 190 degF gap), so
+// the buzzer follows a raised alternator limit.
+double tempAlarmF(const Params& p);
+inline constexpr double kTempAlarmDerivedMarginF = 40.0;
+// True for the parameters whose 0 means "derived" (the six above).
+bool isDerivedWhenZero(std::string_view name);
+
 // BulkVoltage + 0.3 V: programmed into the INA228 BOVL register.
 double voltageHardwareLimit(const Params& p);
 // MaxTableValue + 10 A.

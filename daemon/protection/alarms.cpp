@@ -22,14 +22,15 @@ bool ProtectionSupervisor::checkAlarms(bool effAnomalyAlarmActive, EventBatch& e
     val[static_cast<std::size_t>(r)] = v;
     lim[static_cast<std::size_t>(r)] = l;
   };
-  set(AlarmRow::TempHigh, tempOk && TempToUse_ > p_.TempAlarm, TempToUse_, p_.TempAlarm);
+  const double tempAlarm = tempAlarmF(p_);  // 0 = derived from TemperatureLimitF
+  set(AlarmRow::TempHigh, tempOk && TempToUse_ > tempAlarm, TempToUse_, tempAlarm);
   set(AlarmRow::TempLow, p_.TempAlarmLow != 0.0 && tempOk && TempToUse_ < p_.TempAlarmLow, TempToUse_,
       p_.TempAlarmLow);
-  set(AlarmRow::VoltageHigh, std::isfinite(IBV_) && IBV_ > p_.VoltageAlarmHigh, IBV_, p_.VoltageAlarmHigh);
+  const double vHigh = voltageAlarmHighV(p_), vLow = voltageAlarmLowV(p_);  // 0 = derived from the bank
+  set(AlarmRow::VoltageHigh, std::isfinite(IBV_) && IBV_ > vHigh, IBV_, vHigh);
   // "VoltageAlarmLow (11 V, > 8 V floor)": a threshold at or under the floor disables the row.
-  set(AlarmRow::VoltageLow,
-      p_.VoltageAlarmLow > k::VOLTAGE_ALARM_LOW_FLOOR_V && std::isfinite(IBV_) && IBV_ < p_.VoltageAlarmLow,
-      IBV_, p_.VoltageAlarmLow);
+  set(AlarmRow::VoltageLow, vLow > k::VOLTAGE_ALARM_LOW_FLOOR_V && std::isfinite(IBV_) && IBV_ < vLow, IBV_,
+      vLow);
   const double currentAlarm = currentAlarmHighAmps(p_);
   set(AlarmRow::AltCurrentHigh, std::isfinite(MeasuredAmps_) && MeasuredAmps_ > currentAlarm, MeasuredAmps_,
       currentAlarm);

@@ -255,7 +255,12 @@ void ProtectionSupervisor::updateRpmGate(EventBatch& ev) noexcept {
       rpmOkAtRestStart_ &&
       (fieldResting_ || (restEndedAt_ >= 0 && now_ - restEndedAt_ < fromMs(k::RPM_REST_GRACE_MS)));
   flags_.rpmBelowMin = !p_.IgnoreRPM && !rpmLive && !restHold;
-  edge(evRpm_, flags_.rpmBelowMin, Reason::REASON_RPM_LOW, rpm_, p_.MinRPMForField, ev, EventLevel::Info);
+  // Before the first engine-speed reading the field stays off as above, but
+  // nothing "tripped": the event waits for a reading that is really low
+  // (docs/protections.md "First readings").
+  if (finite(rpm_)) rpmEverRead_ = true;
+  if (rpmEverRead_ || !flags_.rpmBelowMin)
+    edge(evRpm_, flags_.rpmBelowMin, Reason::REASON_RPM_LOW, rpm_, p_.MinRPMForField, ev, EventLevel::Info);
 }
 
 // Hard overcurrent, current data stale.

@@ -200,6 +200,7 @@ class ProtectionSupervisor {
   bool fieldResting_ = false;
   bool bmsStale_ = false;
   bool rpmOkAtRestStart_ = false;
+  bool rpmEverRead_ = false;  // an engine speed was read since start
   TimeNs restEndedAt_ = -1;
   bool wasResting_ = false;
   bool inaFastModeActive_ = false;

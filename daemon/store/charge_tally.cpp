@@ -31,7 +31,7 @@ ChargeTally::Ended ChargeTally::add(const TallySample& s) {
   Ended out;
   double dt = 0.0;
   if (lastMs_) dt = static_cast<double>(s.unixMs - *lastMs_) / 1000.0;
-  if (!(dt > 0.0 && dt <= kTallyMaxStepS)) dt = 0.0;
+  if (!(dt > 0.0 && dt <= maxStepS_)) dt = 0.0;
   lastMs_ = s.unixMs;
   if (s.day != day_.day) {
     if (!day_.day.empty()) out.day = day_;

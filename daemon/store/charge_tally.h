@@ -42,6 +42,9 @@ class ChargeTally {
   Ended add(const TallySample& s);
   const DaySummary& day() const { return day_; }
   const std::optional<ChargeSummary>& charge() const { return charge_; }
+  // The longest step integrated (kTallyMaxStepS by default): a simulated
+  // clock read once a wall second moves by --speed seconds at a time.
+  void setMaxStepS(double s) { maxStepS_ = s; }
   // The store gave the open charge its row id.
   void setChargeId(std::int64_t id) {
     if (charge_) charge_->id = id;
@@ -52,6 +55,7 @@ class ChargeTally {
   std::optional<ChargeSummary> addToCharge(const TallySample& s, double dt);
 
   DaySummary day_;
+  double maxStepS_ = kTallyMaxStepS;
   std::optional<ChargeSummary> charge_;
   std::optional<std::int64_t> fieldOffSinceMs_;
   Reason offReason_ = Reason::NONE;

@@ -78,5 +78,21 @@ TEST(WebApiParamEvents, ARefusedOrEmptyPatchMakesNoEvent) {
   EXPECT_THAT(events[0].text, HasSubstr("by the installer token: MaxDuty"));
 }
 
+// The set-up page's save is one event line, not one line per value
+// (about 40 with the RPM tables).
+TEST(WebApiParamEvents, TheSetUpIsOneEventLine) {
+  Rig r;
+  std::vector<web::ParamChange> setup{change("BatteryProfile", 0), change("BatteryCells", 4),
+                                      change("BatteryCapacity_Ah", 280), change("MaxTableValue", 120)};
+  for (int i = 1; i < static_cast<int>(RPM_TABLE_SIZE); ++i)
+    setup.push_back(change("rpmCapCurrentTable", 100, i));
+  ASSERT_TRUE(r.api->patchParams(setup, "device \"Anna\"").errors.empty());
+  const auto events = r.api->events(web::EventQuery{});
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_THAT(events[0].text, HasSubstr("Set-up: LiFePO4 12 V 280 Ah, alternator 120 A, belt 100 A"));
+  EXPECT_EQ(events[0].text.find('\n'), std::string::npos);
+  EXPECT_THAT(events[0].text, Not(HasSubstr("rpmCapCurrentTable")));
+}
+
 }  // namespace
 }  // namespace xr::app

@@ -5,10 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "config/config.h"
 #include "config/param_sources.h"
+#include "params/derived.h"
 
 namespace xr {
 namespace {
@@ -73,10 +75,12 @@ TEST(BatteryProfiles, EachProfileAt12_24_48VMatchesThePublishedTable) {
       EXPECT_DOUBLE_EQ(p.ChargeFullCurrentTempC, row.fullC);
       EXPECT_DOUBLE_EQ(p.ChargeMaxTempC, row.maxC);
       EXPECT_EQ(p.BatteryTempRequired, row.tempRequired);
-      // The 12 V alarm and full-charge voltages follow the bank.
-      EXPECT_NEAR(p.VoltageAlarmHigh, 15.0 * k, 1e-9);
-      EXPECT_NEAR(p.VoltageAlarmLow, 11.0 * k, 1e-9);
-      EXPECT_NEAR(p.ChargedVoltage, 13.8 * k, 1e-9);
+      // The 12 V alarm and full-charge voltages follow the bank: left at
+      // their 0, derived from it.
+      EXPECT_EQ(p.VoltageAlarmHigh, 0.0);
+      EXPECT_NEAR(voltageAlarmHighV(p), std::max(15.0, row.absorption12 + 0.3) * k, 1e-9);
+      EXPECT_NEAR(voltageAlarmLowV(p), 11.0 * k, 1e-9);
+      EXPECT_NEAR(chargedVoltageV(p), 13.8 * k, 1e-9);
     }
   }
 }

@@ -5,6 +5,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <string>
+#include <utility>
+#include <vector>
+
 #include "config/config.h"
 #include "params/derived.h"
 
@@ -103,10 +107,10 @@ TEST(SetChecks, TheTemperatureCutMayNotLieBeyondClassHInsulation) {
 }
 
 TEST(SetChecks, TheFileIsRefusedAsPatchWouldRefuseIt) {
-  // What --check-config reads: a 24 V charge set with a 12 V alarm.
+  // What --check-config reads: a 24 V charge set with a 12 V alarm written.
   const LoadResult r = loadConfigString(
       "[voltage]\nBulkVoltage = 28.8\nAbsorptionVoltage = 28.6\nFloatVoltage = 27.0\nRebulkVoltage = 25.8\n"
-      "TargetVoltageSetpoint = 27.2\nChargedVoltage = 27.6\n",
+      "TargetVoltageSetpoint = 27.2\n[battery]\nChargedVoltage = 27.6\n[alarms]\nVoltageAlarmHigh = 15.0\n",
       "boat.toml");
   ASSERT_FALSE(r.ok());
   std::string all;
@@ -114,6 +118,75 @@ TEST(SetChecks, TheFileIsRefusedAsPatchWouldRefuseIt) {
   EXPECT_THAT(all, HasSubstr("alarms.VoltageAlarmHigh"));
   EXPECT_THAT(
       all, HasSubstr("VoltageAlarmHigh 15 V is for a 12 V bank; BulkVoltage 28.8 V makes this a 24 V bank"));
+}
+
+// The shipped file with one line uncommented and changed, as an installer
+// edits it.
+std::string shippedWith(const std::vector<std::pair<std::string, std::string>>& lines) {
+  std::string text(defaultConfigText());
+  for (const auto& [commented, written] : lines) {
+    const auto at = text.find("\n" + commented + "\n");
+    if (at == std::string::npos)
+      ADD_FAILURE() << "not in the shipped file: " << commented;
+    else
+      text.replace(at + 1, commented.size(), written);
+  }
+  return text;
+}
+
+std::string allErrors(const LoadResult& r) {
+  std::string all;
+  for (const auto& e : r.errors) all += e.toString() + "\n";
+  return all;
+}
+
+TEST(ShippedFile, ThreeHandWritten24VoltChargeVoltagesPass) {
+  const LoadResult r =
+      loadConfigString(shippedWith({{"# BulkVoltage = 14.5", "BulkVoltage = 28.8"},
+                                    {"# AbsorptionVoltage = 14.4", "AbsorptionVoltage = 28.8"},
+                                    {"# FloatVoltage = 13.5", "FloatVoltage = 27.0"}}),
+                       "xregulator.toml");
+  ASSERT_TRUE(r.ok()) << allErrors(r);
+  const Params& p = r.config->params;
+  EXPECT_DOUBLE_EQ(voltageAlarmHighV(p), 30.0);  // the bank's, not the 12 V default
+  EXPECT_DOUBLE_EQ(rebulkVoltageV(p), 25.8);
+}
+
+TEST(ShippedFile, ARaisedAlternatorLimitPassesAndTheAlarmFollowsIt) {
+  const LoadResult r = loadConfigString(
+      shippedWith({{"# TemperatureLimitF = 150.0", "TemperatureLimitF = 200"}}), "xregulator.toml");
+  ASSERT_TRUE(r.ok()) << allErrors(r);
+  EXPECT_DOUBLE_EQ(tempAlarmF(r.config->params), 240.0);
+  EXPECT_TRUE(r.config->notices.empty());
+}
+
+// An installed file from before the alarm followed the limit wrote
+// TempAlarm = 190 beside it: raising the limit must not stop the next start.
+TEST(ShippedFile, AnOlderFileWithTempAlarmWrittenKeepsStartingWithANotice) {
+  const LoadResult r =
+      loadConfigString("[temperature]\nTemperatureLimitF = 200\nTempAlarm = 190.0\n", "old.toml");
+  ASSERT_TRUE(r.ok()) << allErrors(r);
+  EXPECT_DOUBLE_EQ(tempAlarmF(r.config->params), 240.0);
+  ASSERT_EQ(r.config->notices.size(), 1u);
+  EXPECT_THAT(r.config->notices[0], HasSubstr("the alarm follows the limit at 240 degF"));
+  // Just above the limit it is a valid alarm, used as written.
+  const LoadResult kept =
+      loadConfigString("[temperature]\nTemperatureLimitF = 200\nTempAlarm = 200.5\n", "old.toml");
+  ASSERT_TRUE(kept.ok()) << allErrors(kept);
+  EXPECT_DOUBLE_EQ(tempAlarmF(kept.config->params), 200.5);
+  EXPECT_TRUE(kept.config->notices.empty());
+}
+
+// The set-up page's 90 degC: the refusal it used to meet named a field not on
+// the page, in degF, twice.
+TEST(SetChecks, NinetyDegreesCelsiusFromTheSetUpPagePasses) {
+  Params p;
+  p.TemperatureLimitF = 194.0;
+  EXPECT_EQ(messages(p), "");
+  p.TempAlarm = 190.0;  // a value the owner wrote on the Settings page: named there, in degC first
+  EXPECT_THAT(messages(p),
+              HasSubstr("the alternator temperature alarm (TempAlarm) 87.8 \u00B0C (190 \u00B0F) must be "
+                        "above the alternator temperature limit 90 \u00B0C (194 \u00B0F)"));
 }
 
 // A current alarm at the cap sounds through every normal charge held there.

@@ -59,7 +59,6 @@ constexpr SeedDefault kScalarDefaults[] = {
     {"TempWarnExcess", 2, "S&P quick ref (legacy example 10 superseded)"},
     {"TempCritExcess", 10, "S&P quick ref (legacy example 30 superseded)"},
     {"TempSustainedTimeout", 120, "S&P quick ref: 120 s; legacy 120000 ms"},
-    {"TempAlarm", 190, "S&P quick ref"},
     {"TempAlarmLow", 32, "S&P quick ref"},
     {"ThermalLookaheadSec", 450, "ours; seed S&P quick ref and field-control.md quick ref 90"},
     // Ours (docs/deviations.md "Thermal loop"): the seed's 3 and 0.025
@@ -149,6 +148,44 @@ INSTANTIATE_TEST_SUITE_P(Seeds, SeedTableDefault, ::testing::ValuesIn(kTableDefa
 TEST(SeedDerivedDefaults, FirstBootHardShutdownIsBulkPlus0_3) {
   EXPECT_DOUBLE_EQ(Params{}.AlternatorHardShutdownV, 0.0);  // 0 = "not yet saved"
   EXPECT_DOUBLE_EQ(alternatorHardShutdownV(Params{}), 14.8);
+}
+
+// The seed's 190 degF buzzer beside its 150 degF limit: TempAlarm's 0 derives
+// exactly that, and follows a raised limit by the same 40 degF
+// (docs/deviations.md "Alarms follow their limits").
+TEST(SeedDerivedDefaults, TempAlarmIs190AtTheSeedLimitAndFollowsARaisedOne) {
+  Params p;
+  EXPECT_DOUBLE_EQ(p.TempAlarm, 0.0);
+  EXPECT_DOUBLE_EQ(tempAlarmF(p), 190.0);
+  p.TemperatureLimitF = 194.0;  // 90 degC, as the set-up page saves it
+  EXPECT_DOUBLE_EQ(tempAlarmF(p), 234.0);
+  p.TempAlarm = 250.0;  // written by the owner: used as written
+  EXPECT_DOUBLE_EQ(tempAlarmF(p), 250.0);
+}
+
+// The seed's 12 V alarm voltages (15 / 11 V) and the catalogue's former
+// 12 V values scale with the bank of BulkVoltage.
+TEST(SeedDerivedDefaults, BankVoltagesFollowTheBankOfBulkVoltage) {
+  Params p;
+  EXPECT_DOUBLE_EQ(voltageAlarmHighV(p), 15.0);
+  EXPECT_DOUBLE_EQ(voltageAlarmLowV(p), 11.0);
+  EXPECT_DOUBLE_EQ(chargedVoltageV(p), 13.8);
+  EXPECT_DOUBLE_EQ(rebulkVoltageV(p), 12.9);
+  EXPECT_DOUBLE_EQ(targetVoltageSetpointV(p), 13.6);
+  p.BulkVoltage = 28.8;
+  p.AbsorptionVoltage = 28.8;
+  p.FloatVoltage = 27.0;
+  EXPECT_DOUBLE_EQ(voltageAlarmHighV(p), 30.0);
+  EXPECT_DOUBLE_EQ(voltageAlarmLowV(p), 22.0);
+  EXPECT_DOUBLE_EQ(chargedVoltageV(p), 27.6);
+  EXPECT_DOUBLE_EQ(rebulkVoltageV(p), 25.8);
+  EXPECT_DOUBLE_EQ(targetVoltageSetpointV(p), 27.2);
+  p.BulkVoltage = 29.9;  // an equalising bulk: the alarm stays above it
+  EXPECT_DOUBLE_EQ(voltageAlarmHighV(p), 30.5);
+  p.FloatVoltage = 25.7;  // a low float: the re-bulk stays under it
+  EXPECT_DOUBLE_EQ(rebulkVoltageV(p), 25.5);
+  p.VoltageAlarmHigh = 31.0;  // written by the owner: used as written
+  EXPECT_DOUBLE_EQ(voltageAlarmHighV(p), 31.0);
 }
 
 TEST(SeedDerivedDefaults, HardwareLimitAndHardOcTrip) {

@@ -3,6 +3,7 @@
 // current-stale window in INA slow mode, single-sensor implausibility.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 
 #include "params/constants.h"
@@ -271,6 +272,39 @@ TEST(AutoZero, LockoutRampWithoutAlarmOrLockout) {
 
 namespace xr::test {
 namespace {
+
+// Before the first engine-speed reading the gate holds the field off, but
+// files no "RPM below minimum: nan" trip (the false "Engine stopped or
+// idling" incident at every start); a first reading that is really low
+// trips at once, and a good one leaves no event at all.
+TEST(FirstReadings, NoRpmTripBeforeTheFirstReading) {
+  Params p;
+  p.MinRPMForField = 200.0;
+  Rig r(p);
+  r.rpm = std::nan("");
+  r.run(fromMs(2000));
+  EXPECT_TRUE(r.sup.flags().rpmBelowMin) << "the field stays off until a speed is read";
+  EXPECT_EQ(r.count(EventCode::ProtectionTrip, Reason::REASON_RPM_LOW), 0u);
+  r.rpm = 1500.0;
+  r.run(fromMs(2000));
+  EXPECT_FALSE(r.sup.flags().rpmBelowMin);
+  EXPECT_EQ(r.count(EventCode::ProtectionTrip, Reason::REASON_RPM_LOW), 0u);
+  EXPECT_EQ(r.count(EventCode::ProtectionClear, Reason::REASON_RPM_LOW), 0u);
+
+  Rig low(p);
+  low.rpm = std::nan("");
+  low.run(fromMs(500));
+  low.rpm = 150.0;  // the first reading, just below the minimum
+  low.tick();
+  EXPECT_EQ(low.count(EventCode::ProtectionTrip, Reason::REASON_RPM_LOW), 1u);
+  Rig atMin(p);
+  atMin.rpm = std::nan("");
+  atMin.run(fromMs(500));
+  atMin.rpm = 200.0;  // at the threshold: allowed
+  atMin.tick();
+  EXPECT_FALSE(atMin.sup.flags().rpmBelowMin);
+  EXPECT_EQ(atMin.count(EventCode::ProtectionTrip, Reason::REASON_RPM_LOW), 0u);
+}
 
 // A value hovering on a threshold is one event, not a trip/clear pair per
 // tick; the clear is logged once the condition stayed false for the hold.

@@ -89,7 +89,7 @@ function collectBattery(body) {
       // A different bank: its charge voltages, and the other absolute voltages scaled.
       Object.assign(body, BANK[bank]);
       for (const n of ["RebulkVoltage", "TargetVoltageSetpoint", "ChargedVoltage", "VoltageAlarmHigh", "VoltageAlarmLow"])
-        if (find(n)) body[n] = Math.round((find(n).value * bank) / was * 100) / 100;
+        if (find(n) && find(n).value > 0) body[n] = Math.round((find(n).value * bank) / was * 100) / 100;
     }
   }
   body.BatteryCapacity_Ah = read("su-capacity", "Capacity", 1, 100000);
