@@ -12,6 +12,33 @@
 
 namespace xr::app {
 
+namespace {
+
+// Not set up (no BatteryProfile in the file, none chosen on the set-up page,
+// not an install from before): the file may not name a voltage target above
+// the lowered set; the daemon refuses it at start too (daemon_start.cpp).
+bool setupPendingTargetsFit(const std::string& file, const Config& config, const std::string& db,
+                            const std::vector<OverrideRow>& rows, std::ostream& err) {
+  if (config.fileParamNames.count("BatteryProfile")) return true;
+  for (const auto& row : rows)
+    if (row.name == "BatteryProfile") return true;
+  if (!db.empty() && setUpBeforeUpgradeReadOnly(db)) return true;
+  bool fit = true;
+  for (const auto& e : checkSetupPendingTargets(config.params)) {
+    if (!config.fileParamNames.count(e.key)) continue;
+    bool stored = false;  // the dashboard's value replaces the file's
+    for (const auto& row : rows) stored = stored || row.name == e.key;
+    if (stored) continue;
+    const ParamSpec* s = findParam(e.key);
+    err << ConfigError{file, 0, 0, std::string(tomlTableName(s->group)) + "." + e.key, e.message}.toString()
+        << "\n";
+    fit = false;
+  }
+  return fit;
+}
+
+}  // namespace
+
 int checkConfigAndState(const std::string& configPath, const std::optional<std::string>& stateDb,
                         std::ostream& out, std::ostream& err) {
   const int rc = checkConfigMain(configPath, out, err);
@@ -31,9 +58,12 @@ int checkConfigAndState(const std::string& configPath, const std::optional<std::
 
   const std::string db = stateDb.value_or(r.config->settings.store.path);
   std::error_code ec;
-  if (db.empty() || !std::filesystem::exists(db, ec)) return 0;  // first start: nothing stored yet
+  const bool haveDb = !db.empty() && std::filesystem::exists(db, ec);
   std::string why;
-  const auto rows = readOverridesReadOnly(db, &why);
+  const auto rows = haveDb ? readOverridesReadOnly(db, &why) : std::vector<OverrideRow>{};
+  if (!setupPendingTargetsFit(configPath, *r.config, haveDb ? db : std::string(), rows, err))
+    return kExitConfig;
+  if (!haveDb) return 0;  // first start: nothing stored yet
   if (!why.empty()) {
     out << "warning: " << why << " (the stored dashboard settings were not checked)\n";
     return 0;

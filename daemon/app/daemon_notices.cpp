@@ -6,6 +6,7 @@
 
 #include "config/web_checks.h"
 #include "logging/logging.h"
+#include "web/server/on_board.h"
 
 namespace xr::app {
 
@@ -39,10 +40,10 @@ void logLoopStats(const rt::LoopStatsSummary& s, const rt::RuntimeHealth& h, boo
 void logEveryInterface(const std::string& listen, unsigned port) {
   if (!isEveryInterface(listen)) return;
   spdlog::warn(
-      "the web server listens on EVERY network interface ({}:{}): reads are open to the boat's network, "
+      "the web server listens on EVERY network interface ({}): reads are open to the boat's network, "
       "writes "
       "need a paired phone or the token",
-      listen, port);
+      web::hostPortText(listen, port));
 }
 
 std::unique_ptr<StateLock> lockStateDatabase(const std::string& dbPath) {

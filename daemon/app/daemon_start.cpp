@@ -11,6 +11,7 @@
 #include "config/battery_profiles.h"
 #include "config/hardware_choices.h"
 #include "config/setup_pending.h"
+#include "store/ledger_check.h"
 
 namespace xr::app {
 
@@ -83,6 +84,38 @@ void openStore(const std::string& dbPath, Settings& settings, StartState& st) {
   if (!why.empty()) spdlog::error("{}", why);
 }
 
+// The health ledger checked like every stored value, against the capacity
+// the regulator runs with (store/ledger_check.h): dropped with an event.
+void checkRestoredLedger(StartState& st) {
+  if (!st.restored || !st.store) return;
+  const std::string why = dropImplausibleCapacity(*st.restored, st.configured.BatteryCapacity_Ah);
+  if (why.empty()) return;
+  spdlog::warn("store: {}", why);
+  EventRecord e;
+  e.tMs = unixMsNow();
+  e.level = "warning";
+  e.code = "LedgerDropped";
+  e.reason = "NONE";
+  e.message = why;
+  st.store->appendRecord(e);
+}
+
+// Not set up: the file may not name a voltage target above the lowered set
+// (refused like any bad file, as --check-config does); a stored dashboard
+// value above it is lowered by the running layer, and said.
+bool setupPendingTargetsFit(const StartState& st) {
+  bool fit = true;
+  for (const auto& e : checkSetupPendingTargets(st.configured)) {
+    if (st.origins.dashboard.count(e.key)) {
+      spdlog::error("stored dashboard setting {}: {}; lowered until set up", e.key, e.message);
+    } else if (st.origins.file.count(e.key)) {
+      spdlog::error("configuration: {}", e.message);
+      fit = false;
+    }
+  }
+  return fit;
+}
+
 }  // namespace
 
 StartState loadStartState(const Config& config, const CliOptions& cli, Settings& settings) {
@@ -112,6 +145,11 @@ StartState loadStartState(const Config& config, const CliOptions& cli, Settings&
       return st;
     }
     openStore(dbPath, settings, st);
+    checkRestoredLedger(st);
+  }
+  if (!st.origins.setUp() && !setupPendingTargetsFit(st)) {
+    st.exitCode = kExitConfig;  // before any output is driven, as every refused file
+    return st;
   }
   st.running = runningParams(st.configured, st.origins);
   if (!st.origins.setUp())

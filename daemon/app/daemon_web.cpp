@@ -10,6 +10,7 @@
 #include "app/pair_cli.h"
 #include "app/store_auth.h"
 #include "config/web_checks.h"
+#include "web/server/on_board.h"
 
 namespace xr::app {
 
@@ -65,8 +66,8 @@ DaemonWeb startWeb(const CliOptions& cli, const DaemonWebInputs& in) {
     web.server = std::make_unique<web::WebServer>(*web.api, opts);
     web.server->start();
     startPairing(*web.server, store);
-    spdlog::info("dashboard at http://{}:{}/ (www root '{}')", opts.listen, web.server->port(),
-                 opts.www_root);
+    spdlog::info("dashboard at http://{}/ (www root '{}')",
+                 web::hostPortText(opts.listen, web.server->port()), opts.www_root);
     logEveryInterface(opts.listen, web.server->port());
     logTokenHint(settings.web.token.empty(), store != nullptr, opts.token,
                  cli.stateDb.value_or(settings.store.path));
@@ -75,8 +76,8 @@ DaemonWeb startWeb(const CliOptions& cli, const DaemonWebInputs& in) {
   } catch (const std::exception& e) {
     web.server.reset();
     web.down = true;
-    spdlog::critical("web server cannot start on {}:{}: {}: the regulator runs WITHOUT the dashboard and API",
-                     opts.listen, opts.port, e.what());
+    spdlog::critical("web server cannot start on {}: {}: the regulator runs WITHOUT the dashboard and API",
+                     web::hostPortText(opts.listen, opts.port), e.what());
     std::fprintf(stderr, "xregulatord: web server: %s: running without it\n", e.what());
   }
   return web;

@@ -13,6 +13,7 @@
 #include "app/store_service.h"
 #include "app/stored_overrides.h"
 #include "config/config.h"
+#include "web/server/on_board.h"
 #include "web/server/web_server.h"
 
 namespace xr::app {
@@ -82,8 +83,8 @@ int pairMain(const std::optional<std::string>& configPath, const std::optional<s
         << j.at("expires_in_s").to_number<long>() / 60 << " min): enter it on the dashboard\n";
     return 0;
   } catch (const std::exception& e) {
-    err << "xregulatord: --pair: cannot reach the daemon on " << opts.listen << ":" << opts.port << ": "
-        << e.what() << "\n";
+    err << "xregulatord: --pair: cannot reach the daemon on " << web::hostPortText(opts.listen, opts.port)
+        << ": " << e.what() << "\n";
     return 1;
   }
 }
@@ -103,8 +104,9 @@ void startPairing(web::WebServer& server, const StoreService* store) {
   if (server.pairingWindowOpen())
     spdlog::warn(
         "pairing: a new regulator with nothing paired: for {} min the first device to pair needs no code "
-        "and becomes the owner (docs/security.md)",
-        kFirstStartWindowMs / 60000);
+        "and becomes the owner, if it is on board: loopback, link-local or the board's own subnets ({}) "
+        "(docs/security.md)",
+        kFirstStartWindowMs / 60000, web::subnetsText(web::boardSubnets()));
 }
 
 }  // namespace xr::app

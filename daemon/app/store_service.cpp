@@ -310,12 +310,15 @@ std::vector<std::pair<std::string, std::string>> StoreService::documents(std::st
 bool StoreService::putDocument(std::string_view key, std::string_view value) {
   std::lock_guard lock(m_);
   // A pairing that would be gone after a restart is no pairing: refuse it.
-  return !store_.inMemory() && static_cast<bool>(store_.putBlob(key, value));
+  return unwritable().empty() && static_cast<bool>(store_.putBlob(key, value));
 }
 
 bool StoreService::eraseDocument(std::string_view key) {
   std::lock_guard lock(m_);
-  return static_cast<bool>(store_.eraseBlob(key));
+  // A revocation is a write like any other: one that a restart would undo
+  // (a database read into memory because it cannot be written) gives the
+  // phone its access back, so it goes through the same gate as PATCH.
+  return unwritable().empty() && static_cast<bool>(store_.eraseBlob(key));
 }
 
 HardwareChoices StoreService::loadHardwareChoices() {

@@ -37,6 +37,17 @@ std::string bankError(const Params& p, double batteryV) {
          " V bank";
 }
 
+// Not set up: a value the patch names may not sit above the lowered set (it
+// would run lowered without a word, and leak once the limits are lifted); a
+// stored one is lowered by the running layer (config/setup_pending.h).
+void addSetupPendingErrors(const Params& p, const ParamOrigins& origins,
+                           const std::vector<std::string>& patched, web::PatchResult& r) {
+  if (origins.setUp()) return;
+  for (const auto& e : checkSetupPendingTargets(p))
+    if (std::find(patched.begin(), patched.end(), e.key) != patched.end())
+      r.errors.push_back({e.key, e.message});
+}
+
 }  // namespace
 
 Params WebApi::currentParams() { return ctx_.handoffs->acceptedParams(); }
@@ -115,6 +126,7 @@ web::PatchResult WebApi::patchParams(const std::vector<web::ParamChange>& change
     // keys carry the file's table ("voltage.").
     for (const auto& e : checkConsistency(p))
       r.errors.push_back({e.key.substr(e.key.rfind('.') + 1), e.message});
+    addSetupPendingErrors(p, origins, patched, r);
     web::StatusSnapshot snap;
     if (latestStatus(snap))
       if (std::string e = bankError(p, snap.telemetry.battery_v); !e.empty())

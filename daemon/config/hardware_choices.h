@@ -37,6 +37,10 @@ std::optional<double> parseChoiceNumber(const std::optional<std::string>& text);
 // A 1-Wire device id as sysfs names it: two hex digits of family, '-', twelve
 // hex digits of serial ("28-0316a2794aff").
 bool isOneWireId(const std::string& id);
+// A DS18B20's id (family 28), in lower case as the kernel lists it: the
+// only kind the docs ask for ([hardware] onewire_sensor_id,
+// battery_temp_sensor).
+bool isDs18b20Id(const std::string& id);
 
 // The battery probe's id, as the file and the set-up page give it.
 std::vector<std::pair<std::string, std::string>> checkBatteryProbe(const HardwareSettings& h);

@@ -83,18 +83,26 @@ std::vector<std::pair<std::string, std::string>> checkIntegrations(const Integra
 
 std::vector<std::pair<std::string, std::string>> checkCan(const CanSettings& s) {
   std::vector<std::pair<std::string, std::string>> out;
-  // A Linux interface name: at most 15 bytes (IFNAMSIZ - 1), no '/', ':'
-  // or white space; anything else could never be opened.
+  // A CAN interface name (docs/configuration.md "CAN interface names"): the
+  // kernel's rule (dev_valid_name: at most 15 bytes, IFNAMSIZ - 1, not "."
+  // or "..", no '/', ':' or white space), narrowed to the letters, digits,
+  // '-', '_' and '.' that CAN drivers and udev use (can0, vcan0, slcan0,
+  // can-house), so markup or shell characters never reach a log, a page or a
+  // socket call; and never the loopback "lo", which is no CAN bus.
   auto badName = [](const std::string& n) {
-    if (n.size() > 15) return true;
+    if (n.empty()) return false;  // none
+    if (n.size() > 15 || n == "." || n == ".." || n == "lo") return true;
     for (unsigned char c : n)
-      if (c == '/' || c == ':' || std::isspace(c) || !std::isprint(c)) return true;
+      if (!std::isalnum(c) && c != '-' && c != '_' && c != '.') return true;
     return false;
   };
   for (const auto& [key, name] :
        {std::pair<const char*, const std::string&>{"can.bms_interface", s.bms_interface},
         std::pair<const char*, const std::string&>{"can.n2k_interface", s.n2k_interface}})
-    if (badName(name)) out.emplace_back(key, "'" + name + "' is not a network interface name (e.g. can0)");
+    if (badName(name))
+      out.emplace_back(key, "'" + name +
+                                "' is not a CAN interface name (e.g. can0): at most 15 letters, digits, '-', "
+                                "'_' or '.', not '.', '..' or 'lo'");
   if (!s.bms_interface.empty() && s.bms_interface == s.n2k_interface)
     out.emplace_back("can.n2k_interface", "must not be the BMS bus: the two run at different bit rates");
   if (s.RpmSource == "n2k" && s.n2k_interface.empty())

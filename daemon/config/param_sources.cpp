@@ -45,8 +45,10 @@ Params applyLayers(const Params& p, ParamOrigins& origins) {
 
 Params runningParams(const Params& configured, ParamOrigins& origins) {
   origins.setupPending.clear();
-  if (origins.setUp()) return configured;
-  return withSetupPendingLimits(configured, origins.setupPending);
+  if (!origins.setUp()) return withSetupPendingLimits(configured, origins.setupPending);
+  Params p = configured;
+  p.SetupCeilingV = 0.0;  // set up: no ceiling, whatever set this came from
+  return p;
 }
 
 namespace {

@@ -6,8 +6,10 @@
 // within limits that no common chemistry (LiFePO4, AGM, flooded, gel) is
 // hurt by, and the headline says so.
 #include <string>
+#include <vector>
 
 #include "config/battery_profiles.h"
+#include "config/config.h"
 #include "params/params.h"
 
 namespace xr {
@@ -23,16 +25,33 @@ inline constexpr double kSetupPendingChargeV12 = 14.0;
 inline constexpr double kSetupPendingFloatV12 = 13.4;
 inline constexpr double kSetupPendingMinTempC = 5.0;
 inline constexpr double kSetupPendingMaxTempC = 45.0;
+// RebulkVoltage must stay under the lowered float: at or above it a full
+// bank returns to bulk at once, and cycles bulk-absorption-float for ever.
+// 0.2 V under 13.4 V is the catalogue's gap (12.9 under 13.5) scaled down.
+inline constexpr double kSetupPendingRebulkGapV12 = 0.2;
 
 // True when the file (with a scenario's [config]) or the dashboard names the
 // battery type.
 bool batteryChosen(const NameSet& fileNames, const NameSet& dashboardNames);
 
-// p with the limits above applied: charge voltages lowered to them, the
-// battery-temperature window narrowed to them, lead-acid temperature
+// p with the limits above applied: every voltage target (the stages', the
+// TargetVoltageMode setpoint, ChargedVoltage, RebulkVoltage) lowered to them,
+// the battery-temperature window narrowed to them, lead-acid temperature
 // compensation off (it raises the voltage in the cold, which LiFePO4 must
-// not see). `capped` gets the names whose value changed.
+// not see), and p.SetupCeilingV set so that the core clamps every target it
+// computes (CV tuning's high phase included). `capped` gets the names whose
+// value changed.
 Params withSetupPendingLimits(const Params& p, NameSet& capped);
+
+// The charge ceiling of p's bank while not set up (14.0 V at 12 V).
+double setupPendingChargeCeiling(const Params& p);
+
+// The values of a configured (not yet lowered) set that the limits above
+// would have to lower although they do not lower with BulkVoltage: the
+// setpoint of TargetVoltageMode, ChargedVoltage, RebulkVoltage. A file or a
+// PATCH naming one is refused with these errors while not set up (docs/
+// configuration.md "Not set up"); `key` is the parameter's name.
+std::vector<ConfigError> checkSetupPendingTargets(const Params& configured);
 
 // One line for the journal, --check-config and the dashboard: the limits in
 // force for this bank, e.g. "at most 14.0 V, float 13.4 V, battery 5-45 degC".

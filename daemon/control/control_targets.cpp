@@ -89,6 +89,12 @@ void ControlLaw::applyTargetOverrides(const ControlSensors& s, const Params& p, 
     ChargingVoltageTarget_ = p.FloatVoltage;
     voltageControlActive_ = true;
   }
+  // Not set up (config/setup_pending.h): no target above the charge ceiling,
+  // whichever mode or stored value asks for it (docs/configuration.md "Not
+  // set up"). The running layer already lowered the values; this holds even
+  // for a target computed from several of them.
+  if (p.SetupCeilingV > 0.0 && ChargingVoltageTarget_ > p.SetupCeilingV)
+    ChargingVoltageTarget_ = p.SetupCeilingV;
   // The BMS's CVL is a ceiling on every target, overrides included, and the
   // voltage loop runs under it from the start (it sits at its current ceiling
   // while below): engaging it only once IBV reached CVL overshoots by the

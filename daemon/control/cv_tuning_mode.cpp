@@ -34,7 +34,9 @@ double CvTuningModeRunner::target(TimeNs now, double normalTarget, const Params&
   // Ours (docs/deviations.md "CVTuningMode high target"): the HIGH phase
   // never asks for more than the hard-shutdown trip less a margin for the
   // loop's overshoot; the seed's 14.5 + 0.2 V sat 0.1 V under a 14.8 V trip.
-  const double ceiling = alternatorHardShutdownV(p) - k::CV_TUNING_TRIP_MARGIN_V;
+  // Not set up: never above the charge ceiling (config/setup_pending.h).
+  double ceiling = alternatorHardShutdownV(p) - k::CV_TUNING_TRIP_MARGIN_V;
+  if (p.SetupCeilingV > 0.0) ceiling = std::min(ceiling, p.SetupCeilingV);
   target_ =
       high_ ? std::max(normalTarget, std::min(normalTarget + p.cvWaveAmplitudeV, ceiling)) : normalTarget;
   return target_;

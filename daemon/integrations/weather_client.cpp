@@ -95,6 +95,14 @@ asio::awaitable<void> WeatherClient::run() {
       auto parsed = parseOpenMeteoDaily(body);
       if (!parsed.forecast)
         throw ForecastError(WeatherMissing::AnswerRefused, "answer refused: " + parsed.error);
+      // Today's forecast for the place asked, or none at all.
+      const auto unixNow = std::chrono::duration_cast<std::chrono::seconds>(
+                               std::chrono::system_clock::now().time_since_epoch())
+                               .count();
+      if (const std::string bad = forecastMismatch(*parsed.forecast, asked_->latitudeDeg,
+                                                   asked_->longitudeDeg, static_cast<std::int64_t>(unixNow));
+          !bad.empty())
+        throw ForecastError(WeatherMissing::AnswerRefused, "answer refused: " + bad);
       forecast_ = parsed.forecast;
       forecastAt_ = std::chrono::steady_clock::now();
       health_.received();

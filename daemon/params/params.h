@@ -45,6 +45,11 @@ struct Params {
 #undef XR_PARAM
 #undef XR_CHOICE
 #undef XR_TABLE
+  // Not a parameter (no catalogue entry: never read from a file, a PATCH or
+  // the store): the "not set up" charge ceiling, set only by the running
+  // layer (config/setup_pending.h); 0 = set up, no ceiling. The core clamps
+  // every voltage target to it, so no value can leak past the lowered set.
+  double SetupCeilingV = 0.0;
   bool operator==(const Params&) const = default;
 };
 

@@ -6,6 +6,8 @@
 
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
+#include <system_error>
 
 namespace xr {
 
@@ -19,7 +21,16 @@ std::string readHolder(int fd) {
 }
 }  // namespace
 
-StateLock::StateLock(const std::string& databasePath) : path_(databasePath + ".lock") {
+std::string StateLock::resolvedPath(const std::string& databasePath) {
+  // Every symlink on the way resolved (the file's own too, when it exists):
+  // "dlink.db -> d.db" and "/data -> /mnt/sd/data" name the same file, so
+  // they must name the same lock.
+  std::error_code ec;
+  const auto p = std::filesystem::weakly_canonical(std::filesystem::absolute(databasePath, ec), ec);
+  return ec || p.empty() ? databasePath : p.string();
+}
+
+StateLock::StateLock(const std::string& databasePath) : path_(resolvedPath(databasePath) + ".lock") {
   fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
   if (fd_ < 0) {
     message_ = "cannot create the lock file " + path_ + ": " + std::strerror(errno);
@@ -29,7 +40,9 @@ StateLock::StateLock(const std::string& databasePath) : path_(databasePath + ".l
     const int err = errno;
     if (err == EWOULDBLOCK) {
       result_ = Result::HeldByOther;
+      const std::string real = resolvedPath(databasePath);
       message_ = "another xregulatord (pid " + readHolder(fd_) + ") uses the state database " + databasePath +
+                 (real != databasePath ? " (the file " + real + ")" : std::string()) +
                  "; one daemon per state database";
     } else {
       message_ = "cannot lock " + path_ + ": " + std::strerror(err);  // no flock on this file system

@@ -6,6 +6,12 @@
 // until it exits; the kernel drops it when the process dies, even by kill -9,
 // so a crash never leaves a stale lock behind. The lock file holds the
 // holder's pid, for the message the second daemon prints.
+//
+// The lock follows the file, not the name it was given: the lock file sits
+// beside the path with every symlink resolved, so a --state-db that is a
+// symlink to (or through a symlinked directory to) a running daemon's
+// database finds that daemon's lock (docs/operations.md). A hard link is a
+// second name the kernel does not tell apart; it is not followed.
 #include <string>
 
 namespace xr {
@@ -26,6 +32,9 @@ class StateLock {
   // For the log: who holds it, or why there is none.
   const std::string& message() const { return message_; }
   const std::string& path() const { return path_; }
+  // The database's path with every symlink resolved (the path itself when
+  // it cannot be resolved).
+  static std::string resolvedPath(const std::string& databasePath);
 
  private:
   std::string path_;

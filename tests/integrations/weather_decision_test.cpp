@@ -100,3 +100,62 @@ TEST(OpenMeteoParse, KeepsTheFirstThreeOfALongerForecast) {
   EXPECT_EQ(r.forecast->dayCount, 3);
   EXPECT_DOUBLE_EQ(*r.forecast->days[2].uvIndexMax, 3.0);
 }
+
+namespace {
+// 2026-12-06 12:00 UTC.
+constexpr std::int64_t kNoonDec6 = 1796558400;
+
+Forecast parsed(const std::string& time, double lat = 43.3, double lon = 5.4) {
+  std::string body = daily("[8,8,8]", "[20.1,18.2,19.5]", time);
+  const auto at = body.find("\"timezone\"");
+  body = R"({"latitude":)" + std::to_string(lat) + R"(,"longitude":)" + std::to_string(lon) + "," +
+         body.substr(at);
+  auto p = parseOpenMeteoDaily(body);
+  EXPECT_TRUE(p.forecast) << p.error;
+  return p.forecast.value_or(Forecast{});
+}
+}  // namespace
+
+TEST(ForecastMismatch, TodaysForecastForThePlaceAskedIsTaken) {
+  EXPECT_EQ(forecastMismatch(parsed(R"(["2026-12-06","2026-12-07","2026-12-08"])"), 43.3, 5.4, kNoonDec6),
+            "");
+  // The place's own date may be the UTC date +-1 (time zones), and the
+  // server's grid point a few km off.
+  EXPECT_EQ(forecastMismatch(parsed(R"(["2026-12-05","2026-12-06","2026-12-07"])"), 43.3, 5.4, kNoonDec6),
+            "");
+  EXPECT_EQ(forecastMismatch(parsed(R"(["2026-12-07","2026-12-08","2026-12-09"])"), 43.3, 5.4, kNoonDec6),
+            "");
+  EXPECT_EQ(forecastMismatch(parsed(R"(["2026-12-06","2026-12-07","2026-12-08"])", 43.5, 5.6), 43.3, 5.4,
+                             kNoonDec6),
+            "");
+}
+
+TEST(ForecastMismatch, AForecastForOtherDatesIsRefused) {
+  for (const char* t :
+       {R"(["1999-07-05","1999-07-06","1999-07-07"])", R"(["2099-07-05","2099-07-06","2099-07-07"])",
+        R"(["2026-12-04","2026-12-05","2026-12-06"])", R"(["2026-12-08","2026-12-09","2026-12-10"])"})
+    EXPECT_NE(forecastMismatch(parsed(t), 43.3, 5.4, kNoonDec6).find("not for today"), std::string::npos)
+        << t;
+  EXPECT_NE(forecastMismatch(parsed(R"(["2026-12-06","2026-12-09","2026-12-10"])"), 43.3, 5.4, kNoonDec6)
+                .find("not consecutive"),
+            std::string::npos);
+  EXPECT_NE(forecastMismatch(parsed(R"(["2026-13-06","2026-12-07","2026-12-08"])"), 43.3, 5.4, kNoonDec6)
+                .find("not a date"),
+            std::string::npos);
+}
+
+TEST(ForecastMismatch, AForecastForAnotherPlaceIsRefused) {
+  const std::string today = R"(["2026-12-06","2026-12-07","2026-12-08"])";
+  EXPECT_NE(forecastMismatch(parsed(today, 53.3, 5.4), 43.3, 5.4, kNoonDec6).find("another place"),
+            std::string::npos);
+  EXPECT_NE(forecastMismatch(parsed(today, 43.3, 5.95), 43.3, 5.4, kNoonDec6).find("another place"),
+            std::string::npos);  // just beyond the 0.5 degree tolerance
+  EXPECT_EQ(forecastMismatch(parsed(today, 43.3, 5.85), 43.3, 5.4, kNoonDec6), "");  // just inside
+  // Across the date line: 179.9 and -179.9 are 0.2 degrees apart.
+  EXPECT_EQ(forecastMismatch(parsed(today, -17.0, -179.9), -17.0, 179.9, kNoonDec6), "");
+  // An answer that does not say where it is for.
+  auto p = parseOpenMeteoDaily(daily("[8,8,8]", "[20.1,18.2,19.5]", today));
+  ASSERT_TRUE(p.forecast);
+  p.forecast->latitude.reset();
+  EXPECT_NE(forecastMismatch(*p.forecast, 43.3, 5.4, kNoonDec6).find("does not say"), std::string::npos);
+}

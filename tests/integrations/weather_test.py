@@ -14,12 +14,14 @@ in --sim reads recorded Open-Meteo answers from a local HTTP server.
   - scenarios/weather-gps.toml: with no position in the file, the forecast is
     asked for the position a simulated GNSS sends on NMEA 2000 (129029),
     decoded by the daemon, and the dashboard's source says so."""
+import datetime
 import http.server
 import json
 import os
 import sys
 import threading
 import time
+import urllib.parse
 import urllib.request
 
 from harness import Checks, Harness, wait_until
@@ -30,9 +32,20 @@ TOKEN = "weather-test-token-0123456789abcdef"
 WEATHER = "REASON_WEATHER_MODE"
 
 
-def recorded(name):
+def recorded(name, path="", start=None, shift_deg=0.0):
+    """A recorded forecast, made today's (or from `start`) for the place the
+    request asked (moved by shift_deg): the daemon refuses another day's or
+    another place's forecast."""
     with open(os.path.join(HERE, "weather", name + ".json"), "rb") as f:
-        return f.read()
+        answer = json.loads(f.read())
+    query = urllib.parse.parse_qs(urllib.parse.urlsplit(path).query)
+    if "latitude" in query and "longitude" in query:
+        answer["latitude"] = float(query["latitude"][0]) + shift_deg
+        answer["longitude"] = float(query["longitude"][0])
+    first = start or datetime.datetime.now(datetime.timezone.utc).date()
+    answer["daily"]["time"] = [(first + datetime.timedelta(days=i)).isoformat()
+                               for i in range(len(answer["daily"]["time"]))]
+    return json.dumps(answer).encode()
 
 
 class Server:
@@ -51,14 +64,18 @@ class Server:
                     return self._send(500, b"oops")
                 if a == "timeout":
                     time.sleep(15)
-                    return self._send(200, recorded("sunny"))
+                    return self._send(200, recorded("sunny", self.path))
                 if a == "badjson":
                     return self._send(200, b'{"daily": {"time": [')
                 if a == "shape":
                     return self._send(200, b'{"hourly": {"uv_index": [9, 9, 9]}}')
                 if a == "huge":
                     return self._send(200, b'{"pad":"' + b"x" * (10 * 1024 * 1024) + b'"}')
-                return self._send(200, recorded(a))
+                if a == "olddates":  # a cached answer: sunny, but for 1999
+                    return self._send(200, recorded("sunny", self.path, start=datetime.date(1999, 7, 5)))
+                if a == "elsewhere":  # sunny, but 10 degrees of latitude away
+                    return self._send(200, recorded("sunny", self.path, shift_deg=10.0))
+                return self._send(200, recorded(a, self.path))
 
             def _send(self, code, body):
                 try:
@@ -226,7 +243,8 @@ PARTS = {
     "broken": lambda c, srv, d: [broken(c, srv, d, answer, why, ev) for answer, why, ev in [
         ("500", "HTTP 500", "server answered HTTP 500"), ("badjson", "not JSON", "not a forecast"),
         ("shape", "no daily object", "not a forecast"), ("huge", "body limit", "not a forecast"),
-        ("timeout", "timeout", "no answer from the server")]],
+        ("timeout", "timeout", "no answer from the server"),
+        ("olddates", "not for today", "not a forecast"), ("elsewhere", "another place", "not a forecast")]],
 }
 
 

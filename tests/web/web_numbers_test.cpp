@@ -3,6 +3,7 @@
 // and in the WebSocket frames (docs/dashboard.md, "Numbers").
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <boost/json.hpp>
 #include <cmath>
 #include <limits>
@@ -114,6 +115,55 @@ TEST_F(JsonNumbersRoutes, EveryGetRouteAndTheWebSocketFrameHaveNoExponent) {
     EXPECT_NE(frame.find("\"battery_v\":"), std::string::npos);
     EXPECT_EQ(exponentNumber(frame), "") << frame.substr(0, 300);
   }
+}
+
+// The most decimals any number outside strings carries.
+std::size_t longestFraction(const std::string& text) {
+  std::size_t most = 0;
+  bool inString = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (inString) {
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        inString = false;
+      continue;
+    }
+    if (c == '"') {
+      inString = true;
+      continue;
+    }
+    if (c != '.' || i == 0 || !std::isdigit(static_cast<unsigned char>(text[i - 1]))) continue;
+    std::size_t j = i + 1;
+    while (j < text.size() && std::isdigit(static_cast<unsigned char>(text[j]))) ++j;
+    most = std::max(most, j - i - 1);
+  }
+  return most;
+}
+
+// The reproducers: "age_s": 1.8984e-05 in /api/system and 17-digit floats
+// in the history routes. Each is now rounded to what it resolves (the
+// status rounding, json_status.h): at most 4 decimals anywhere.
+TEST_F(JsonNumbersRoutes, SystemAndHistoryNumbersAreRoundedToTheirResolution) {
+  const std::map<std::string, std::string> auth{{"Authorization", std::string("Bearer ") + kToken}};
+  const auto port = server_->port();
+  api_.publish();
+  for (const std::string target :
+       {"/api/system", "/api/history?series=battery_v,bcur_a,temp_f,soc_pct&from=-600&step=1",
+        "/api/history/days", "/api/history/charges"}) {
+    const auto r = httpRequest(port, bhttp::verb::get, target, "", auth);
+    ASSERT_EQ(r.status, 200) << target;
+    EXPECT_LE(longestFraction(r.body), 4u) << target << ": " << r.body.substr(0, 400);
+  }
+  const auto days = json::parse(httpRequest(port, bhttp::verb::get, "/api/history/days", "", auth).body);
+  const auto& day = days.at("days").at(0);
+  EXPECT_EQ(day.at("alt_ah"), json::value(123.4568));
+  EXPECT_EQ(day.at("min_soc_pct"), json::value(std::int64_t{0}));
+  const auto h = json::parse(
+      httpRequest(port, bhttp::verb::get, "/api/history?series=battery_v&from=-600&step=1", "", auth).body);
+  const double v = h.at("series").at("battery_v").at(0).to_number<double>();
+  EXPECT_EQ(v, std::round(v * 1000.0) / 1000.0);  // volts: 3 decimals
 }
 
 }  // namespace

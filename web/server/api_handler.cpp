@@ -100,10 +100,10 @@ std::shared_ptr<const std::string> ApiHandler::statusText(std::uint64_t* seqOut)
   return text;
 }
 
-Response ApiHandler::handle(const Request& req) {
+Response ApiHandler::handle(const Request& req, const Peer& peer) {
   Response res;
   try {
-    res = route(req);
+    res = route(req, peer);
   } catch (const std::exception& e) {
     // A bug must cost one request, never the daemon (and never the field).
     res = error(req, http::status::internal_server_error, std::string("internal error: ") + e.what());
@@ -118,7 +118,7 @@ Response ApiHandler::handle(const Request& req) {
   return res;
 }
 
-Response ApiHandler::route(const Request& req) {
+Response ApiHandler::route(const Request& req, const Peer& peer) {
   const std::string_view target = req.target();
   const auto qpos = target.find('?');
   const std::string_view path = target.substr(0, qpos);
@@ -182,7 +182,7 @@ Response ApiHandler::route(const Request& req) {
     if (auto code = checkWrite(req[http::field::authorization])) return authError(req, code);
     return putHardwareSetup(req);
   }
-  if (path == "/api/pair" || path.starts_with("/api/pair/")) return pairRoutes(req, path);
+  if (path == "/api/pair" || path.starts_with("/api/pair/")) return pairRoutes(req, path, peer);
   if (path == "/ws") return error(req, http::status::upgrade_required, "WebSocket upgrade required");
   if (path.starts_with("/api/")) return error(req, http::status::not_found, "no such endpoint");
   if (!isGet) return error(req, http::status::method_not_allowed, "method not allowed");

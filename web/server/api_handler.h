@@ -3,11 +3,13 @@
 // API tests, the fuzz target and the Beast sessions share exactly this code.
 // Thread-safe: the server's Asio threads call handle() concurrently.
 #include <atomic>
+#include <boost/asio/ip/address.hpp>
 #include <boost/beast/http.hpp>
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 
 #include "web/server/daemon_api.h"
@@ -24,7 +26,10 @@ class ApiHandler {
  public:
   ApiHandler(DaemonApi& api, const WebServerOptions& opts, std::function<WebServerStats()> stats = {});
 
-  Response handle(const Request& req);
+  // peer: the client's address (the server always gives it). Without it a
+  // request is not "on board": no code-less pairing (on_board.h).
+  using Peer = std::optional<boost::asio::ip::address>;
+  Response handle(const Request& req, const Peer& peer = std::nullopt);
 
   // The latest status serialised once per telemetry sequence number, shared by
   // GET /api/status and every WebSocket client. nullptr before the first tick.
@@ -41,7 +46,7 @@ class ApiHandler {
   Pairing& pairing() { return pairing_; }
 
  private:
-  Response route(const Request& req);
+  Response route(const Request& req, const Peer& peer);
   Response getStatus(const Request& req);
   Response getParams(const Request& req);
   Response patchParams(const Request& req);
@@ -58,12 +63,14 @@ class ApiHandler {
   Response getStatic(const Request& req, std::string_view path);
   Response getHardwareSetup(const Request& req);  // api_setup.cpp
   Response putHardwareSetup(const Request& req);
-  Response pairRoutes(const Request& req, std::string_view path);
+  Response pairRoutes(const Request& req, std::string_view path, const Peer& peer);
   // Who an authorised write comes from, for the event it makes: the paired
   // device's name, or the static token.
   std::string writerName(std::string_view authorization) const;
   Pairing::Caller callerOf(std::string_view authorization) const;
-  Response postPair(const Request& req);
+  Response postPair(const Request& req, const Peer& peer);
+  // A code-less pairing from off the boat's networks: the reason, "" when on board.
+  std::string offBoardRefusal(const Peer& peer);
   Response listDevices(const Request& req);
   Response revokeDevice(const Request& req, const std::string& id);
   Response revokeAllDevices(const Request& req);
@@ -72,6 +79,7 @@ class ApiHandler {
   const WebServerOptions& opts_;
   std::function<WebServerStats()> stats_;
   Pairing pairing_;
+  std::atomic<int> offBoardEvents_{0};  // refusals put in the event list (bounded)
 
   std::mutex cacheMutex_;
   std::uint64_t cachedSeq_ = 0;

@@ -10,6 +10,7 @@
 #include "web/server/api_handler.h"
 #include "web/server/api_reply.h"
 #include "web/server/json_format.h"
+#include "web/server/json_status.h"
 
 namespace xr::web {
 
@@ -92,9 +93,9 @@ Response ApiHandler::getHistory(const Request& req, std::string_view query) {
   HistoryResult r = api_.history(q);
   if (!r.error.empty()) return error(req, http::status::bad_request, r.error);
   auto o = historyToJson(r);
-  o["from"] = q.from_s;
-  o["to"] = q.to_s;
-  o["step"] = q.step_s;
+  o["from"] = statusNumber("t_s", q.from_s);
+  o["to"] = statusNumber("t_s", q.to_s);
+  o["step"] = statusNumber("step_s", q.step_s);
   return jsonReply(req, http::status::ok, o);
 }
 
@@ -109,33 +110,33 @@ double hours(double s) { return s / 3600.0; }
 json::object dayToJson(const DaySummary& d) {
   json::object o;
   o["day"] = d.day;
-  o["alt_ah"] = number(d.altAh);
-  o["alt_wh"] = number(d.altWh);
-  o["battery_ah_in"] = number(d.batteryAhIn);
-  o["battery_ah_out"] = number(d.batteryAhOut);
-  o["bulk_h"] = number(hours(d.bulkS));
-  o["absorption_h"] = number(hours(d.absorptionS));
-  o["float_h"] = number(hours(d.floatS));
-  o["resting_h"] = number(hours(d.idleS));
-  o["field_on_h"] = number(hours(d.fieldOnS));
-  o["peak_alt_temp_c"] = number(d.peakAltTempC);
-  o["min_soc_pct"] = number(d.minSocPct);
-  o["max_soc_pct"] = number(d.maxSocPct);
+  o["alt_ah"] = statusNumber("alt_ah", d.altAh);
+  o["alt_wh"] = statusNumber("alt_wh", d.altWh);
+  o["battery_ah_in"] = statusNumber("battery_ah_in", d.batteryAhIn);
+  o["battery_ah_out"] = statusNumber("battery_ah_out", d.batteryAhOut);
+  o["bulk_h"] = statusNumber("bulk_h", hours(d.bulkS));
+  o["absorption_h"] = statusNumber("absorption_h", hours(d.absorptionS));
+  o["float_h"] = statusNumber("float_h", hours(d.floatS));
+  o["resting_h"] = statusNumber("resting_h", hours(d.idleS));
+  o["field_on_h"] = statusNumber("field_on_h", hours(d.fieldOnS));
+  o["peak_alt_temp_c"] = statusNumber("peak_alt_temp_c", d.peakAltTempC);
+  o["min_soc_pct"] = statusNumber("min_soc_pct", d.minSocPct);
+  o["max_soc_pct"] = statusNumber("max_soc_pct", d.maxSocPct);
   return o;
 }
 
 json::object chargeToJson(const ChargeSummary& c) {
   json::object o;
   o["id"] = c.id;
-  o["start_s"] = number(static_cast<double>(c.startMs) / 1000.0);
-  o["end_s"] = number(static_cast<double>(c.endMs) / 1000.0);
-  o["bulk_min"] = number(c.bulkS / 60.0);
-  o["absorption_min"] = number(c.absorptionS / 60.0);
-  o["float_min"] = number(c.floatS / 60.0);
-  o["alt_ah"] = number(c.altAh);
-  o["alt_wh"] = number(c.altWh);
-  o["start_soc_pct"] = number(c.startSocPct);
-  o["end_soc_pct"] = number(c.endSocPct);
+  o["start_s"] = statusNumber("start_s", static_cast<double>(c.startMs) / 1000.0);
+  o["end_s"] = statusNumber("end_s", static_cast<double>(c.endMs) / 1000.0);
+  o["bulk_min"] = statusNumber("bulk_min", c.bulkS / 60.0);
+  o["absorption_min"] = statusNumber("absorption_min", c.absorptionS / 60.0);
+  o["float_min"] = statusNumber("float_min", c.floatS / 60.0);
+  o["alt_ah"] = statusNumber("alt_ah", c.altAh);
+  o["alt_wh"] = statusNumber("alt_wh", c.altWh);
+  o["start_soc_pct"] = statusNumber("start_soc_pct", c.startSocPct);
+  o["end_soc_pct"] = statusNumber("end_soc_pct", c.endSocPct);
   o["ended_by"] = c.open ? json::value(nullptr) : json::value(c.endReason);
   o["open"] = c.open;
   return o;

@@ -8,6 +8,7 @@
 #include "web/server/api_handler.h"
 #include "web/server/api_reply.h"
 #include "web/server/auth.h"
+#include "web/server/on_board.h"
 
 namespace xr::web {
 
@@ -43,7 +44,22 @@ namespace {
 std::string deviceText(const PairedDevice& d) { return "device \"" + d.name + "\" (" + d.id + ")"; }
 }  // namespace
 
-Response ApiHandler::postPair(const Request& req) {
+// At most this many off-board refusals go to the event list per run: a
+// neighbour's script must not bury the owner's events (the journal's rate
+// limit covers the rest).
+constexpr int kMaxOffBoardEvents = 5;
+
+std::string ApiHandler::offBoardRefusal(const Peer& peer) {
+  if (peer && onBoard(*peer, boardSubnets())) return "";
+  const std::string from = peer ? addressText(*peer) : std::string("an unknown address");
+  if (offBoardEvents_.fetch_add(1) < kMaxOffBoardEvents)
+    api_.securityEvent("Refused a pairing without a code from " + from +
+                       ": not on the boat's own networks (loopback, link-local or the board's subnets)");
+  return "pairing without a code is only for a device on the boat's own network (" + from +
+         " is not); pair with the 6-digit code from the journal or from a paired phone";
+}
+
+Response ApiHandler::postPair(const Request& req, const Peer& peer) {
   std::string err;
   auto body = parseBody(req, err);
   if (!body) return error(req, http::status::bad_request, err);
@@ -56,16 +72,33 @@ Response ApiHandler::postPair(const Request& req) {
     return error(req, http::status::bad_request, "expected {\"code\": \"123456\", \"name\": \"...\"}");
   std::string name;
   if (const auto* n = o->if_contains("name"); n && n->is_string()) name = std::string(n->get_string());
-  const auto r =
-      windowed ? pairing_.pairInWindow(name) : pairing_.pair(std::string_view(code->get_string()), name);
+  // A code-less window is for someone on board only (on_board.h); the check
+  // comes only when a window is open, so the answer without one is unchanged.
+  if (windowed && pairing_.window().open)
+    if (std::string why = offBoardRefusal(peer); !why.empty())
+      return error(req, http::status::forbidden, why);
+  const std::string from = peer ? addressText(*peer) : std::string();
+  const auto r = windowed ? pairing_.pairInWindow(name, from)
+                          : pairing_.pair(std::string_view(code->get_string()), name);
   json::object out;
   switch (r.kind) {
     case Pairing::Outcome::NoWindow:
       return error(req, http::status::forbidden, "a pairing code is needed: no pairing window is open");
+    case Pairing::Outcome::WindowClaimed:
+      // Who claimed it is for people on board; a stranger learns nothing.
+      if (!peer || !onBoard(*peer, boardSubnets()))
+        return error(req, http::status::forbidden, "a pairing code is needed: no pairing window is open");
+      api_.securityEvent("Refused a pairing without a code of \"" + cleanDeviceName(name) + "\"" +
+                         (from.empty() ? "" : " from " + from) + ": the window was already used by " +
+                         r.claimedBy);
+      out["error"] = "a pairing code is needed: the pairing window was already used by " + r.claimedBy +
+                     "; if that was not you, ask the owner for a code";
+      out["claimed_by"] = r.claimedBy;
+      return jsonReply(req, http::status::forbidden, out);
     case Pairing::Outcome::Paired:
-      api_.securityEvent("Paired " + deviceText(r.device) +
-                         (pairing_.ownerId() == r.device.id ? " as the owner" : "") +
-                         (windowed ? " without a code, in a pairing window" : ""));
+      api_.securityEvent(
+          "Paired " + deviceText(r.device) + (pairing_.ownerId() == r.device.id ? " as the owner" : "") +
+          (windowed ? " without a code, in a pairing window" : "") + (from.empty() ? "" : " from " + from));
       out["token"] = r.token;
       out["id"] = r.device.id;
       out["name"] = r.device.name;
@@ -93,7 +126,7 @@ Response ApiHandler::postPair(const Request& req) {
   return error(req, http::status::internal_server_error, "pairing");
 }
 
-Response ApiHandler::pairRoutes(const Request& req, std::string_view path) {
+Response ApiHandler::pairRoutes(const Request& req, std::string_view path, const Peer& peer) {
   const auto method = req.method();
   if (path == "/api/pair") {
     if (method != http::verb::post) {
@@ -101,7 +134,7 @@ Response ApiHandler::pairRoutes(const Request& req, std::string_view path) {
       r.set(http::field::allow, "POST");
       return r;
     }
-    return postPair(req);
+    return postPair(req, peer);
   }
   if (path == "/api/pair/window") {  // open: a new phone asks whether it needs a code
     if (method != http::verb::get && method != http::verb::head)
@@ -148,6 +181,8 @@ Response ApiHandler::listDevices(const Request& req) {
   json::object out;
   out["devices"] = std::move(list);
   out["you_are_owner"] = pairing_.isOwner(caller);
+  // Who paired without a code in this run's window (the owner checks it was them).
+  if (const std::string claim = pairing_.windowClaim(); !claim.empty()) out["window_claimed_by"] = claim;
   return jsonReply(req, http::status::ok, out);
 }
 

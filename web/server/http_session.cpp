@@ -92,7 +92,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     // A page elsewhere may not write through the owner's browser either.
     if (!read && !sameOrigin)
       return sendResponse(makeError(req, http::status::forbidden, "Origin not allowed"));
-    sendResponse(impl_.handler.handle(req));
+    sendResponse(impl_.handler.handle(req, peer_));
   }
 
   Response makeError(const Request& req, http::status status, std::string_view msg) {

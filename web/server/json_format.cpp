@@ -236,12 +236,13 @@ json::object eventToJson(const EventRecord& r) {
 json::object historyToJson(const HistoryResult& h) {
   json::object o;
   json::array t;
-  for (double v : h.t) t.push_back(number(v));
+  // Rounded as /api/status is (json_status.h), here and in the integrations' values.
+  for (double v : h.t) t.push_back(statusNumber("t_s", v));
   o["t"] = std::move(t);
   json::object series;
   for (const auto& [name, values] : h.series) {
     json::array a;
-    for (double v : values) a.push_back(number(v));
+    for (double v : values) a.push_back(statusNumber(name, v));
     series[name] = std::move(a);
   }
   o["series"] = std::move(series);
@@ -313,11 +314,11 @@ json::object canBmsToJson(const CanBmsState& b) {
   o["state"] = b.state;
   o["protocol"] = b.protocol.empty() ? json::value(nullptr) : json::value(b.protocol);
   o["follow"] = b.follow;
-  o["cvl_v"] = number(b.cvl_v);
-  o["ccl_a"] = number(b.ccl_a);
-  o["soc_pct"] = number(b.soc_pct);
-  o["cell_max_v"] = number(b.cell_max_v);
-  o["age_s"] = number(b.age_s);
+  o["cvl_v"] = statusNumber("cvl_v", b.cvl_v);
+  o["ccl_a"] = statusNumber("ccl_a", b.ccl_a);
+  o["soc_pct"] = statusNumber("soc_pct", b.soc_pct);
+  o["cell_max_v"] = statusNumber("cell_max_v", b.cell_max_v);
+  o["age_s"] = statusNumber("age_s", b.age_s);
   o["frames"] = b.frames;
   o["bad_frames"] = b.bad_frames;
   o["error_frames"] = b.error_frames;
@@ -350,7 +351,7 @@ json::object integrationToJson(const IntegrationState& i) {
   o["outages"] = i.outages;
   if (!i.values.empty()) {
     json::object v;
-    for (const auto& [k, x] : i.values) v[k] = number(x);
+    for (const auto& [k, x] : i.values) v[k] = statusNumber(k, x);
     o["values"] = std::move(v);
   }
   if (!i.texts.empty()) {

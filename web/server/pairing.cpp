@@ -162,6 +162,7 @@ void Pairing::openFirstStartWindow(std::int64_t durationMs) {
   if (!devices_.empty()) return;
   windowUntilMs_ = t + durationMs;
   windowNeedsNoDevice_ = true;
+  windowClaim_.clear();
 }
 
 void Pairing::openPresenceWindow(std::int64_t durationMs) {
@@ -169,6 +170,7 @@ void Pairing::openPresenceWindow(std::int64_t durationMs) {
   std::lock_guard lock(m_);
   windowUntilMs_ = t + durationMs;
   windowNeedsNoDevice_ = false;
+  windowClaim_.clear();
 }
 
 Pairing::Window Pairing::window() const {
@@ -180,18 +182,32 @@ Pairing::Window Pairing::window() const {
   return w;
 }
 
-Pairing::Outcome Pairing::pairInWindow(std::string_view name) {
+Pairing::Outcome Pairing::pairInWindow(std::string_view name, std::string_view from) {
   Outcome out;
   const std::int64_t t = elapsed();
   const std::int64_t wallNow = now();
   std::lock_guard lock(m_);
   if (!windowOpenLocked(t)) {
-    out.kind = Outcome::NoWindow;
+    // Told who took it, so the second phone (perhaps the owner's) knows
+    // the window was used, not that it never opened.
+    const bool claimed = !windowClaim_.empty() && t < windowClaimUntilMs_;
+    out.kind = claimed ? Outcome::WindowClaimed : Outcome::NoWindow;
+    if (claimed) out.claimedBy = windowClaim_;
     return out;
   }
   addDeviceLocked(name, wallNow, out);
-  if (out.kind == Outcome::Paired) windowUntilMs_ = 0;  // one device: the owner
+  if (out.kind == Outcome::Paired) {
+    windowClaimUntilMs_ = windowUntilMs_;
+    windowUntilMs_ = 0;  // one device: the owner
+    windowClaim_ = "device \"" + out.device.name + "\" (" + out.device.id + ")";
+    if (!from.empty()) windowClaim_ += " from " + std::string(from);
+  }
   return out;
+}
+
+std::string Pairing::windowClaim() const {
+  std::lock_guard lock(m_);
+  return windowClaim_;
 }
 
 bool Pairing::isDeviceToken(std::string_view token) const {

@@ -89,11 +89,12 @@ class Pairing {
   Code newCode();
 
   struct Outcome {
-    enum Kind { Paired, WrongCode, LockedOut, NotSaved, Full, NoWindow } kind = WrongCode;
+    enum Kind { Paired, WrongCode, LockedOut, NotSaved, Full, NoWindow, WindowClaimed } kind = WrongCode;
     std::string token;              // Paired: the device's write token (shown once)
     PairedDevice device;            // Paired
     int triesLeft = 0;              // WrongCode
     std::int64_t retryAfterMs = 0;  // LockedOut
+    std::string claimedBy;          // WindowClaimed: who paired in this window
   };
   Outcome pair(std::string_view code, std::string_view name);
 
@@ -110,7 +111,13 @@ class Pairing {
     std::int64_t closesInMs = 0;
   };
   Window window() const;
-  Outcome pairInWindow(std::string_view name);
+  // `from`: the client's address, kept with the claim. A device that comes
+  // after another claimed the window (before it would have closed) is told
+  // WindowClaimed and by whom, not merely NoWindow.
+  Outcome pairInWindow(std::string_view name, std::string_view from = {});
+  // Who claimed the last window ("device \"phone\" (1a2b3c4d) from
+  // 192.168.4.20"); empty when no window was claimed.
+  std::string windowClaim() const;
 
   // True when token is one of the paired devices' tokens.
   bool isDeviceToken(std::string_view token) const;
@@ -150,8 +157,10 @@ class Pairing {
   std::int64_t codeExpiresMs_ = 0;  // on the elapsed clock, like lockedUntilMs_
   int wrongTries_ = 0;
   std::int64_t lockedUntilMs_ = 0;
-  std::int64_t windowUntilMs_ = 0;   // elapsed clock; 0: never opened
-  bool windowNeedsNoDevice_ = true;  // the first-start window: only while nothing is paired
+  std::int64_t windowUntilMs_ = 0;       // elapsed clock; 0: never opened
+  bool windowNeedsNoDevice_ = true;      // the first-start window: only while nothing is paired
+  std::string windowClaim_;              // who paired in the last window
+  std::int64_t windowClaimUntilMs_ = 0;  // when that window would have closed
   std::vector<PairedDevice> devices_;
 };
 

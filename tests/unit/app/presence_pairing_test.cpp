@@ -75,7 +75,10 @@ TEST(PresenceWindow, OneDevicePairsWithoutACodeWhenDevicesArePairedAlready) {
   const auto crew = p.pairInWindow("crew");
   ASSERT_EQ(crew.kind, web::Pairing::Outcome::Paired);
   EXPECT_NE(p.ownerId(), crew.device.id);  // the owner stays the owner
-  EXPECT_EQ(p.pairInWindow("third").kind, web::Pairing::Outcome::NoWindow);
+  // One device per window: the next is told the window was used, and by whom.
+  const auto third = p.pairInWindow("third");
+  EXPECT_EQ(third.kind, web::Pairing::Outcome::WindowClaimed);
+  EXPECT_NE(third.claimedBy.find("\"crew\""), std::string::npos) << third.claimedBy;
   p.openPresenceWindow(kPresenceWindowMs);
   ms += kPresenceWindowMs;
   EXPECT_EQ(p.pairInWindow("late").kind, web::Pairing::Outcome::NoWindow);

@@ -142,10 +142,11 @@ TEST(HardwareSetup, RefusalsSaveNothing) {
     const char* why;
   };
   const Case cases[] = {
-      {battery("28-zz"), "hardware.battery_temp_sensor", "not a 1-Wire id"},
+      {battery("28-zz"), "hardware.battery_temp_sensor", "not a DS18B20 id"},
       {battery(kAlt), "hardware.battery_temp_sensor", "alternator's sensor"},
-      {bms("can1"), "can.n2k_interface", "must not be the BMS bus"},
-      {bms("can0/x"), "can.bms_interface", "not a network interface name"},
+      // Filed under the setting the page sent (before: can.n2k_interface).
+      {bms("can1"), "can.bms_interface", "is the NMEA 2000 bus"},
+      {bms("can0/x"), "can.bms_interface", "not a CAN interface name"},
       {pulley(0.009), "hardware.frontend.pulley_ratio", "from 0.01 to 100"},
       {pulley(100.5), "hardware.frontend.pulley_ratio", "from 0.01 to 100"},
       {pulley(std::nan("")), "hardware.frontend.pulley_ratio", "from 0.01 to 100"},

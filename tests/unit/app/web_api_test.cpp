@@ -10,10 +10,13 @@
 
 #include <cmath>
 #include <fstream>
+#include <sstream>
 
+#include "app/config_check.h"
 #include "app/store_service.h"
 #include "store/sqlite_db.h"
 #include "store_test_util.h"
+#include "test_files.h"
 #include "web_api_rig.h"
 
 namespace xr::app {
@@ -300,6 +303,56 @@ TEST(NotSetUp, ChoosingTheBatteryLiftsTheLimitsFromTheValuesSetBelowThem) {
   for (const auto& e : r.api->events(web::EventQuery{}))
     lifted += e.text.find("limits are lifted") != std::string::npos;
   EXPECT_EQ(lifted, 1);
+}
+
+// The reproducer: on the shipped file, PATCH {"TargetVoltageMode": true,
+// "TargetVoltageSetpoint": 14.8} answered 200 and ran at 14.8 V; after
+// BulkVoltage 14.6, 14.9 was accepted.
+TEST(NotSetUp, ATargetAboveTheLoweredSetIsRefusedByPatchAtItsThreshold) {
+  Rig r({}, false);
+  auto res =
+      r.api->patchParams({change("TargetVoltageMode", 1), change("TargetVoltageSetpoint", 14.8)}, "test");
+  ASSERT_EQ(res.errors.size(), 1u);
+  EXPECT_EQ(res.errors[0].name, "TargetVoltageSetpoint");
+  EXPECT_THAT(res.errors[0].message, HasSubstr("while not set up"));
+  EXPECT_FALSE(r.api->currentParams().TargetVoltageMode) << "nothing applied";
+  ASSERT_TRUE(r.api->patchParams({change("BulkVoltage", 14.6)}, "test").errors.empty());
+  EXPECT_FALSE(r.api->patchParams({change("TargetVoltageSetpoint", 14.9)}, "test").errors.empty());
+  EXPECT_FALSE(r.api->patchParams({change("TargetVoltageSetpoint", 14.01)}, "test").errors.empty());
+  EXPECT_FALSE(r.api->patchParams({change("ChargedVoltage", 14.2)}, "test").errors.empty());
+  EXPECT_FALSE(r.api->patchParams({change("RebulkVoltage", 13.45)}, "test").errors.empty());
+  // At the limit: taken, and what runs is never above it.
+  ASSERT_TRUE(
+      r.api->patchParams({change("TargetVoltageMode", 1), change("TargetVoltageSetpoint", 14.0)}, "test")
+          .errors.empty());
+  const Params p = r.api->currentParams();
+  EXPECT_DOUBLE_EQ(p.TargetVoltageSetpoint, 14.0);
+  EXPECT_DOUBLE_EQ(p.SetupCeilingV, 14.0);
+  // Once set up, the owner's 14.5 V setpoint is theirs to choose.
+  ASSERT_TRUE(r.api->patchParams({change("BatteryProfile", 4), change("TargetVoltageSetpoint", 14.5)}, "test")
+                  .errors.empty());
+  EXPECT_DOUBLE_EQ(r.api->currentParams().TargetVoltageSetpoint, 14.5);
+  EXPECT_DOUBLE_EQ(r.api->currentParams().SetupCeilingV, 0.0);
+}
+
+// The same in the file passed --check-config, and a 4 h run targeted 14.9 V.
+TEST(NotSetUp, CheckConfigRefusesAFileTargetAboveTheLoweredSet) {
+  TempDir d;
+  xr::testing::TempFile bad(
+      "[voltage]\nBulkVoltage = 14.6\nTargetVoltageSetpoint = 14.9\n[modes]\nTargetVoltageMode = true\n");
+  std::ostringstream out, err;
+  EXPECT_EQ(checkConfigAndState(bad.path(), d.file("none.db"), out, err), 78);
+  EXPECT_THAT(err.str(), HasSubstr("voltage.TargetVoltageSetpoint: TargetVoltageSetpoint 14.9 V is above"));
+  // Named battery: set up, the same file is fine.
+  xr::testing::TempFile chosen(
+      "[voltage]\nBulkVoltage = 14.6\nTargetVoltageSetpoint = 14.9\n[battery]\nBatteryProfile = "
+      "\"custom\"\n");
+  std::ostringstream out2, err2;
+  EXPECT_EQ(checkConfigAndState(chosen.path(), d.file("none.db"), out2, err2), 0) << err2.str();
+  // At the limit: fine.
+  xr::testing::TempFile edge("[voltage]\nTargetVoltageSetpoint = 14.0\n");
+  std::ostringstream out3, err3;
+  EXPECT_EQ(checkConfigAndState(edge.path(), d.file("none.db"), out3, err3), 0) << err3.str();
 }
 
 TEST(NotSetUp, AFileThatNamesTheBatteryIsSetUp) {

@@ -48,6 +48,16 @@ TEST(CanSettings, InterfaceNamesTheKernelCouldNeverHaveAreRefused) {
   EXPECT_TRUE(messages("[can]\nn2k_interface = \"can0123456789ab\"\n").empty());  // 15: the limit
 }
 
+TEST(CanSettings, DotNamesLoopbackAndMarkupAreNoCanInterface) {
+  for (const char* name : {".", "..", "lo", "<b>x", "can0;reboot", "can\\u00e90"}) {
+    const auto m = messages(std::string("[can]\nbms_interface = \"") + name + "\"\n");
+    ASSERT_EQ(m.size(), 1u) << name;
+    EXPECT_THAT(m[0], HasSubstr("not a CAN interface name")) << name;
+  }
+  for (const char* name : {"can0", "vcan0", "slcan0", "can-house", "can_1", "can0.1", "lo0"})
+    EXPECT_TRUE(messages(std::string("[can]\nn2k_interface = \"") + name + "\"\n").empty()) << name;
+}
+
 TEST(CanSettings, TheTwoBusesAreNotOneInterface) {
   const auto m = messages("[can]\nbms_interface = \"can0\"\nn2k_interface = \"can0\"\n");
   ASSERT_EQ(m.size(), 1u);

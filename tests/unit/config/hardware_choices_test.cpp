@@ -46,7 +46,7 @@ TEST(HardwareChoices, ANumberIsKeptAsExactText) {
 TEST(HardwareChoices, TheFilesBatteryProbeIsCheckedToo) {
   const auto bad = loadConfigString("[hardware]\nbattery_temp_sensor = \"28-abc\"\n", "test.toml");
   ASSERT_EQ(bad.errors.size(), 1u);
-  EXPECT_THAT(bad.errors[0].toString(), HasSubstr("not a 1-Wire id"));
+  EXPECT_THAT(bad.errors[0].toString(), HasSubstr("not a DS18B20 id"));
   const auto same = loadConfigString(
       "[hardware]\nonewire_sensor_id = \"28-000000000001\"\nbattery_temp_sensor = \"28-000000000001\"\n",
       "test.toml");
@@ -54,6 +54,48 @@ TEST(HardwareChoices, TheFilesBatteryProbeIsCheckedToo) {
   EXPECT_THAT(same.errors[0].toString(), HasSubstr("alternator's sensor"));
   EXPECT_TRUE(
       loadConfigString("[hardware]\nbattery_temp_sensor = \"28-000000000002\"\n", "t").errors.empty());
+}
+
+TEST(HardwareChoices, AnUpperCaseCopyOfTheAlternatorsProbeIsRefusedAsTheBatterys) {
+  HardwareSettings h;
+  h.onewire_sensor_id = "28-0316a2794aff";
+  h.battery_temp_sensor = "28-0316A2794AFF";  // the reproducer: accepted before
+  auto e = checkBatteryProbe(h);
+  ASSERT_EQ(e.size(), 1u);
+  EXPECT_EQ(e[0].first, "hardware.battery_temp_sensor");
+  EXPECT_THAT(e[0].second, HasSubstr("alternator's sensor"));
+  // Another probe in upper case is no id the kernel lists either.
+  h.battery_temp_sensor = "28-0316A2794AF0";
+  e = checkBatteryProbe(h);
+  ASSERT_EQ(e.size(), 1u);
+  EXPECT_THAT(e[0].second, HasSubstr("lower case"));
+  h.battery_temp_sensor = "28-0316a2794af0";
+  EXPECT_TRUE(checkBatteryProbe(h).empty());
+}
+
+TEST(HardwareChoices, OnlyADs18b20FamilyIdIsTakenWhereTheDocsSay28) {
+  EXPECT_TRUE(isDs18b20Id("28-0316a2794aff"));
+  EXPECT_FALSE(isDs18b20Id("10-0316a2794aff"));  // a DS18S20: the reproducer
+  EXPECT_FALSE(isDs18b20Id("3b-0316a2794aff"));
+  HardwareSettings h;
+  h.battery_temp_sensor = "10-0316a2794aff";
+  auto e = checkBatteryProbe(h);
+  ASSERT_EQ(e.size(), 1u);
+  EXPECT_EQ(e[0].first, "hardware.battery_temp_sensor");
+  h = {};
+  h.onewire_sensor_id = "10-0316a2794aff";
+  e = checkBatteryProbe(h);
+  ASSERT_EQ(e.size(), 1u);
+  EXPECT_EQ(e[0].first, "hardware.onewire_sensor_id");
+}
+
+TEST(HardwareChoices, TheNmea2000BusSentAsTheBmsBusIsFiledUnderTheBmsSetting) {
+  Settings file;
+  file.can.n2k_interface = "can1";
+  const auto e = checkHardwareChoices(file, {std::nullopt, std::string("can1"), std::nullopt});
+  ASSERT_EQ(e.size(), 1u);
+  EXPECT_EQ(e[0].first, "can.bms_interface");  // before: can.n2k_interface, a setting not sent
+  EXPECT_THAT(e[0].second, HasSubstr("NMEA 2000 bus"));
 }
 
 }  // namespace

@@ -194,6 +194,54 @@ TEST(CvTuningMode, DrivesTheLawTargetAndCommitsToLog) {
   EXPECT_EQ(rig.law.cvTuning().logCount(), 1);
 }
 
+// Not set up (config/setup_pending.h): the running layer sets the charge
+// ceiling and lowers the values; the core clamps every target to the
+// ceiling too, so a value that got past the layer cannot leak.
+TEST(SetupCeiling, TheTargetVoltageModeSetpointIsClampedToTheCeiling) {
+  for (double setpoint : {13.99, 14.0, 14.01, 14.8, 14.9}) {
+    test::LawRig rig;
+    rig.p.SetupCeilingV = 14.0;
+    rig.p.TargetVoltageMode = 1;
+    rig.p.TargetVoltageSetpoint = setpoint;
+    rig.start();
+    rig.run(2.0);
+    EXPECT_DOUBLE_EQ(rig.law.ChargingVoltageTarget(), std::min(setpoint, 14.0)) << setpoint;
+  }
+}
+
+TEST(SetupCeiling, CvTuningsHighPhaseStaysUnderTheCeiling) {
+  test::LawRig rig;
+  rig.p.SetupCeilingV = 14.0;
+  rig.p.BulkVoltage = 14.0;  // the lowered set: trip at 14.3, high phase 14.1 before
+  rig.p.AbsorptionVoltage = 14.0;
+  rig.p.CVTuningMode = 1;
+  rig.start();
+  double highest = 0.0;
+  for (int i = 0; i < 400; ++i) {  // two whole periods of 20 s
+    rig.run(0.1);
+    highest = std::max(highest, rig.law.ChargingVoltageTarget());
+  }
+  EXPECT_LE(highest, 14.0);
+}
+
+TEST(SetupCeiling, EveryStageAndModeStaysUnderTheCeilingAndNoCeilingChangesNothing) {
+  for (int mode = 0; mode < 3; ++mode) {
+    test::LawRig rig;
+    rig.p.SetupCeilingV = 14.0;
+    rig.p.MaintainMode = mode == 1;
+    rig.p.BulkVoltage = 14.5;  // a value that leaked past the running layer
+    rig.start();
+    rig.run(5.0);
+    EXPECT_LE(rig.law.ChargingVoltageTarget(), 14.0) << mode;
+  }
+  test::LawRig set;
+  set.p.TargetVoltageMode = 1;
+  set.p.TargetVoltageSetpoint = 14.7;  // set up (SetupCeilingV 0): as before
+  set.start();
+  set.run(1.0);
+  EXPECT_DOUBLE_EQ(set.law.ChargingVoltageTarget(), 14.7);
+}
+
 TEST(SystemId, MeasuresDeadTimeRiseTimeAndSlopeAndRestores) {
   test::LawRig rig;
   rig.plant.deadTime = 0.05;

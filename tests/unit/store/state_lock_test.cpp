@@ -6,6 +6,8 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
+#include <memory>
 
 namespace xr {
 namespace {
@@ -40,6 +42,36 @@ TEST_F(StateLockTest, TwoDatabasesInOneDirectoryDoNotShareALock) {
   StateLock b((dir / "b.db").string());
   EXPECT_EQ(a.result(), StateLock::Result::Held);
   EXPECT_EQ(b.result(), StateLock::Result::Held);
+}
+
+// The reproducer: `--state-db dlink.db` where dlink.db links to the running
+// daemon's d.db started a second daemon on the same file.
+TEST_F(StateLockTest, ASymlinkToAHeldDatabaseIsRefused) {
+  const auto db = dir / "d.db";
+  { std::ofstream(db) << "x"; }
+  std::filesystem::create_symlink(db, dir / "dlink.db");
+  auto first = std::make_unique<StateLock>(db.string());
+  ASSERT_EQ(first->result(), StateLock::Result::Held) << first->message();
+  StateLock second((dir / "dlink.db").string());
+  EXPECT_EQ(second.result(), StateLock::Result::HeldByOther);
+  EXPECT_NE(second.message().find("(the file " + std::filesystem::canonical(db).string() + ")"),
+            std::string::npos)
+      << second.message();
+  // And the other way round: the link first, then the real name.
+  first.reset();
+  first = std::make_unique<StateLock>((dir / "dlink.db").string());
+  ASSERT_EQ(first->result(), StateLock::Result::Held);
+  EXPECT_EQ(StateLock(db.string()).result(), StateLock::Result::HeldByOther);
+}
+
+TEST_F(StateLockTest, ADatabaseReachedThroughASymlinkedDirectoryIsRefused) {
+  std::filesystem::create_directories(dir / "real");
+  std::filesystem::create_directory_symlink(dir / "real", dir / "alias");
+  StateLock first((dir / "real" / "state.db").string());  // not created yet: a first start
+  ASSERT_EQ(first.result(), StateLock::Result::Held);
+  EXPECT_EQ(StateLock((dir / "alias" / "state.db").string()).result(), StateLock::Result::HeldByOther);
+  EXPECT_EQ(StateLock((dir / "alias" / ".." / "real" / "state.db").string()).result(),
+            StateLock::Result::HeldByOther);
 }
 
 TEST_F(StateLockTest, AnUnwritableDirectoryGivesNoLockButNoRefusal) {

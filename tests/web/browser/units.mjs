@@ -240,6 +240,12 @@ await test("pairing refusals in words the owner can act on (item 15)", () => {
   assert.match(A.pairingError(429, { retry_after_s: 300 }), /locked for 5 min.*xregulatord --pair/);
   assert.match(A.pairingError(409, {}), /revoke one/);
   assert.match(A.pairingError(503, {}), /cannot save/);
+  // A window another device used, or a device off the boat's network: the server's words, not "15 minutes are over".
+  assert.match(A.pairingError(403, { error: "a pairing code is needed: the pairing window was already used by device \"Skipper\" (1a2b3c4d) from 192.168.4.20; if that was not you, ask the owner for a code", claimed_by: "x" }),
+    /^A pairing code is needed: the pairing window was already used by device "Skipper"/);
+  assert.match(A.pairingError(403, { error: "pairing without a code is only for a device on the boat's own network (203.0.113.5 is not); pair with the 6-digit code from the journal or from a paired phone" }),
+    /^Pairing without a code is only for a device on the boat's own network/);
+  assert.match(A.pairingError(403, { error: "a pairing code is needed: no pairing window is open" }), /15 minutes/);
   assert.equal(A.guessDeviceName("Mozilla/5.0 (iPhone; CPU iPhone OS 17_0 like Mac OS X)"), "iPhone");
   assert.equal(A.guessDeviceName("Mozilla/5.0 (Linux; Android 14; Pixel 8) Mobile Safari"), "Android phone");
 });
@@ -453,6 +459,37 @@ await test("the History page: bars scaled to the best day, charges in words", ()
   assert.equal(H.endedBy({ open: true }), "still charging");
   assert.equal(H.endedBy({ open: false, ended_by: "STOPPED" }), "the regulator stopped");
   assert.equal(H.endedBy({ open: false, ended_by: "REASON_RPM_LOW" }), N.REASONS.REASON_RPM_LOW.title);
+});
+
+const HL = await mod("web/www/js/health.js");
+await test("the one-tap capacity offer never proposes a value the set-up would refuse", () => {
+  const range = { min: 1, max: 100000 };
+  assert.deepEqual(HL.capacityOffer(170, 200, range), { useAh: 170, pct: -15 });
+  assert.equal(HL.capacityOffer(195, 200, range), null);  // within 10 %: nothing to offer
+  // The reproducers: a damaged ledger's 1e11 Ah, 0 Ah, and a sum that lands
+  // inside the parameter's range (50,000 Ah) but 250x the setting.
+  assert.equal(HL.capacityOffer(1e11, 200, range), null);
+  assert.equal(HL.capacityOffer(0, 200, range), null);
+  assert.equal(HL.capacityOffer(50000, 200, range), null);
+  // At the 0.3x-2x bounds and just beyond.
+  assert.equal(HL.capacityOffer(60, 200, range).useAh, 60);
+  assert.equal(HL.capacityOffer(59.9, 200, range), null);
+  assert.equal(HL.capacityOffer(400, 200, range).useAh, 400);
+  assert.equal(HL.capacityOffer(400.1, 200, range), null);
+  assert.equal(HL.capacityOffer(150000, 90000, range), null);  // beyond the parameter's maximum
+});
+
+const SH = await mod("web/www/js/setup_hardware.js");
+await test("the set-up result table's hardware rows are escaped before they meet innerHTML", () => {
+  const hostile = { running: "<img src=x onerror=alert(1)>", next: "<b>x</b>", restart_needed: true };
+  const rows = SH.hardwareRows({ battery_temp_sensor: hostile, bms_interface: hostile,
+    pulley_ratio: { running: 2.5, next: 2.5, restart_needed: false } });
+  const html = rows.map(([k, x]) => `<tr><th>${SH.esc(k)}</th><td>${SH.esc(x)}</td></tr>`).join("");
+  assert.ok(!/<img|<b>/.test(html), html);
+  assert.match(html, /&lt;img src=x onerror=alert\(1\)&gt;/);
+  // setup.js builds its table with exactly this helper, for every cell.
+  const src = fs.readFileSync(path.join(root, "web/www/js/setup.js"), "utf8");
+  assert.match(src, /<th>\$\{esc\(k\)\}<\/th><td>\$\{esc\(x\)\}<\/td>/);
 });
 
 console.log(`${n} dashboard unit tests passed`);

@@ -12,18 +12,26 @@ const $ = (id) => document.getElementById(id);
 
 // The capacity the owner set (BatteryCapacity_Ah), read when the Battery page opens.
 let configuredAh = null;
+let capacityRange = null;
 export async function loadCapacitySetting() {
   const { params } = await getJson("/api/params");
   const p = params.find((x) => x.name === "BatteryCapacity_Ah");
   configuredAh = p && isNum(p.value) ? p.value : null;
+  capacityRange = p && isNum(p.min) && isNum(p.max) ? { min: p.min, max: p.max } : null;
 }
 
-// A measured capacity more than 10 % away from the setting: say so and offer it.
-export function capacityOffer(measuredAh, setAh) {
+// A measured capacity more than 10 % away from the setting: say so and offer
+// it, but only a value the set-up would take: within the parameter's range
+// and within 0.3x-2x of the setting, as the daemon checks its stored ledger
+// (store/ledger_check.h); anything else is a damaged measurement, not an offer.
+export function capacityOffer(measuredAh, setAh, range = null) {
   if (!isNum(measuredAh) || !isNum(setAh) || setAh <= 0) return null;
   const off = (measuredAh - setAh) / setAh;
   if (Math.abs(off) <= 0.10) return null;
-  return { useAh: Math.round(measuredAh), pct: Math.round(off * 100) };
+  if (measuredAh < 0.3 * setAh || measuredAh > 2 * setAh) return null;
+  const useAh = Math.round(measuredAh);
+  if (range && (useAh < range.min || useAh > range.max)) return null;
+  return { useAh, pct: Math.round(off * 100) };
 }
 
 export function renderHealth(s) {
@@ -38,7 +46,7 @@ export function renderHealth(s) {
     ["capacity set (Ah)", configuredAh === null ? "—" : plain(configuredAh, 0)],
     ["internal resistance at 25 °C (mΩ)", r],
   ]);
-  const offer = capacityOffer(s.capacity_measured_ah, configuredAh);
+  const offer = capacityOffer(s.capacity_measured_ah, configuredAh, capacityRange);
   const el = $("capacity-offer");
   el.hidden = !offer;
   if (offer) {

@@ -22,6 +22,10 @@ export function guessDeviceName(ua = navigator.userAgent) {
 
 // The server's refusal in words the owner can act on.
 export function pairingError(status, body = {}) {
+  // The window was used by another device, or this one is not on the boat's
+  // own network: the server's words say which (docs/security.md).
+  if (status === 403 && (body.claimed_by || /own network/.test(body.error || "")))
+    return `${body.error.charAt(0).toUpperCase()}${body.error.slice(1)}.`;
   if (status === 403 && typeof body.tries_left !== "number")
     return "The first 15 minutes for pairing without a code are over: enter a pairing code.";
   if (status === 403) {

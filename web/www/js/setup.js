@@ -5,7 +5,7 @@ import { getJson, toast, write } from "./api.js";
 import { fToC, parseDecimal } from "./format.js";
 import { renderSetupState, tempUnit } from "./live.js";
 import { choicesOf, loadSettings } from "./settings.js";
-import { collectHardware, hardwareRows, renderHardwareStep, restartNeeded, rpmHint } from "./setup_hardware.js";
+import { collectHardware, esc, hardwareRows, renderHardwareStep, restartNeeded, rpmHint } from "./setup_hardware.js";
 import { exportToml, parseParamsToml } from "./toml.js";
 
 const $ = (id) => document.getElementById(id);
@@ -133,8 +133,8 @@ function renderResult() {
     ["Battery current limit", `${v("MaximumAllowedBatteryAmps")} A`],
     ["Alternator limit", `${Math.max(...v("rpmCapCurrentTable"))} A`], ...(hardware ? hardwareRows(hardware) : [])];
   const pinned = params.filter((p) => p.profile_owned && p.source === "file").map((p) => p.name);
-  $("setup-result").innerHTML = `<h3>Now in effect</h3><table class="kv">${rows.map(([k, x]) => `<tr><th>${k}</th><td>${x}</td></tr>`).join("")}</table>` +
-    (pinned.length ? `<p class="msg warn">Still set by the configuration file, not by the profile: ${pinned.join(", ")}. Comment them out in xregulator.toml to let the profile decide.</p>` : "");
+  $("setup-result").innerHTML = `<h3>Now in effect</h3><table class="kv">${rows.map(([k, x]) => `<tr><th>${esc(k)}</th><td>${esc(x)}</td></tr>`).join("")}</table>` +
+    (pinned.length ? `<p class="msg warn">Still set by the configuration file, not by the profile: ${esc(pinned.join(", "))}. Comment them out in xregulator.toml to let the profile decide.</p>` : "");
   $("setup-result").hidden = false;
 }
 

@@ -5,7 +5,7 @@
 // present on the board now.
 import { parseDecimal } from "./format.js";
 
-const esc = (s) => String(s).replace(/[&<>"]/g, (c) => ({ "&": "&amp;", "<": "&lt;", ">": "&gt;", '"': "&quot;" })[c]);
+export const esc = (s) => String(s).replace(/[&<>"]/g, (c) => ({ "&": "&amp;", "<": "&lt;", ">": "&gt;", '"': "&quot;" })[c]);
 
 function options(current, found, noneLabel, label) {
   const list = [["", noneLabel], ...found.map((v) => [v, label(v)])];
