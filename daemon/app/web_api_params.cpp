@@ -123,6 +123,7 @@ web::PatchResult WebApi::patchParams(const std::vector<web::ParamChange>& change
   if (ctx_.configured) ctx_.configured = p;
   ctx_.handoffs->submitParams(runningParams(p, origins));  // whole swap, between ticks
   ctx_.origins = std::move(origins);
+  ctx_.handoffs->setUp.store(ctx_.origins.setUp());
   if (!wasSetUp && ctx_.origins.setUp())
     recordEvent("SetupDone", "Battery type chosen (" +
                                  std::string(choiceName(*findParam("BatteryProfile"), p.BatteryProfile)) +
