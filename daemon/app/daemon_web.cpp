@@ -21,6 +21,7 @@ WebApiContext apiContext(const CliOptions& cli, const DaemonWebInputs& in) {
   ctx.handoffs = in.handoffs;
   ctx.fileParams = in.start->fileParams;
   ctx.origins = in.start->origins;
+  in.handoffs->setUp.store(ctx.origins.setUp());
   ctx.configured = in.start->configured;
   ctx.store = in.start->store.get();
   ctx.events = in.recent;

@@ -215,7 +215,7 @@ void StoreService::tallySummaries(const rt::RuntimeSnapshot& s, std::int64_t now
   x.batteryV = t.battery_v;
   x.batteryA = t.bcur_a;
   x.altTempC = std::isfinite(t.temp_f) && t.temp_f > -40.0 ? (t.temp_f - 32.0) / 1.8 : NAN;
-  x.socPct = t.battery.socSource == SocSource::Unknown ? NAN : t.soc_pct;
+  x.socPct = socShown(t).pct;
   x.stage = t.stage;
   x.fieldOn = t.field_enable;
   x.reason = t.reason;

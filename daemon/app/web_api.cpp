@@ -10,6 +10,7 @@
 #include "app/effective_params.h"
 #include "app/param_change_text.h"
 #include "config/config.h"
+#include "config/setup_pending.h"
 #include "core/modes.h"
 #include "core/wall_time_text.h"
 
@@ -77,6 +78,10 @@ bool WebApi::latestStatus(web::StatusSnapshot& out) {
   const rt::RuntimeSnapshot s = ctx_.handoffs->latest();
   if (s.tick == 0) return false;
   out = toStatus(s, ctx_.sim, ctx_.controlPeriodUs);
+  // The owner model says "Not set up" from the same state as /api/params
+  // (the hand-off's copy: patchParams calls this holding patchMutex_).
+  out.setUp = ctx_.handoffs->setUp.load();
+  if (!out.setUp) out.setupLimits = setupPendingLimitsText(ctx_.handoffs->acceptedParams());
   return true;
 }
 

@@ -150,6 +150,7 @@ web::PatchResult WebApi::patchParams(const std::vector<web::ParamChange>& change
   if (ctx_.configured) ctx_.configured = p;
   ctx_.handoffs->submitParams(runningParams(p, origins));  // whole swap, between ticks
   ctx_.origins = std::move(origins);
+  ctx_.handoffs->setUp.store(ctx_.origins.setUp());
   logPatch(changes.size());
   std::vector<std::string> named = patched;
   named.insert(named.end(), dropped.begin(), dropped.end());

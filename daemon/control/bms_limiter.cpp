@@ -22,6 +22,20 @@ std::string_view toString(BmsState s) {
   return "?";
 }
 
+std::string_view toString(BmsSource s) {
+  switch (s) {
+    case BmsSource::None:
+      return "None";
+    case BmsSource::Can:
+      return "Can";
+    case BmsSource::VictronGx:
+      return "VictronGx";
+    case BmsSource::Sim:
+      return "Sim";
+  }
+  return "None";
+}
+
 void BmsLimiter::reset() noexcept {
   state_ = BmsState::OFF;
   enabledSince_ = -1;

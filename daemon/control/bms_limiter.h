@@ -30,6 +30,7 @@ namespace xr {
 // bms_state telemetry column.
 enum class BmsState : std::uint8_t { OFF, OK, WARNING, CHARGE_DISABLED, STALE };
 std::string_view toString(BmsState s);
+std::string_view toString(BmsSource s);  // "None", "Can", "VictronGx", "Sim"
 
 class BmsLimiter {
  public:

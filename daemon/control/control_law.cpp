@@ -170,6 +170,7 @@ double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const Fa
 // cv_I and setpoint actions, and what their clearing restarts.
 void ControlLaw::applyFastOv(const ControlSensors& s, const Params& p, const FastOvApply& fa) noexcept {
   fastOvClampActive_ = fa.fastOvClampActive;
+  fastOvCapA_ = fa.fastOvCurrentCap;
   if (fa.zeroSetpointLimited && !loadDumpInEpisode_)
     dumpAcceptA_ = emaBcur_.primed() ? emaBcur_.value() : kNoValue;
   if (fa.zeroSetpointLimited) loadDumpInEpisode_ = true;

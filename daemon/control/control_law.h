@@ -14,6 +14,7 @@
 //                       currentPID -> governorApply -> trackAppliedOutput.
 #include "control/bms_limiter.h"
 #include "control/charging_stage.h"
+#include "control/command_caps.h"
 #include "control/control_telemetry.h"
 #include "control/cv_loop.h"
 #include "control/cv_tuning_mode.h"
@@ -147,6 +148,8 @@ class ControlLaw {
   double dutyRequest() const noexcept { return dutyRequest_; }
   double setpointCommand() const noexcept { return setpointCommand_; }
   void fillTelemetry(ControlTelemetry& t) const noexcept;
+  // This tick's alternator-side caps (the command path's, computed only in AUTO).
+  void fillCommandCaps(CommandCaps& c, const Params& p) const noexcept;
 
  private:
   // A control dt longer than this is not integrated as-is: such a gap means
@@ -245,6 +248,7 @@ class ControlLaw {
   double ibvSlope_ = 0.0;              // cvDSlope: dV/dt of IBV_filtered between fresh IBV samples
   double lastFiltV_ = 0.0;
   double sysIdDutyOut_ = 0.0;
+  double fastOvCapA_ = kNoCeiling;  // the fast-OV supervisors' cap this tick
 };
 
 }  // namespace xr

@@ -1,5 +1,9 @@
 // ControlLaw's telemetry block: every loop variable under its seed name.
+#include <algorithm>
+#include <cmath>
+
 #include "control/control_law.h"
+#include "control/rpm_tables.h"
 
 namespace xr {
 
@@ -58,6 +62,25 @@ void ControlLaw::fillLoopTelemetry(ControlTelemetry& t) const noexcept {
   t.inIdleStage = stages_.inIdleStage();
   t.tailSuppressedByThermal = stages_.tailSuppressedByThermal();
   t.rebulkBlockedBySoc = stages_.rebulkBlockedBySoc();
+}
+
+void ControlLaw::fillCommandCaps(CommandCaps& c, const Params& p) const noexcept {
+  auto ifBelow = [](double cap) { return cap < kNoCeiling ? cap : kNoValue; };
+  c.ratingA = p.MaxTableValue;
+  c.rpmTableA = I_cap_;
+  // The table's top is the belt limit the set-up writes (in amps only: the power table's top moves with
+  // volts).
+  const RpmTable& table = activeCapCurrentTable(p);
+  c.rpmTableTopA = p.capLimitMode == 1 ? kNoValue : *std::max_element(table.begin(), table.end());
+  c.batteryMaxA = p.MaximumAllowedBatteryAmps;
+  const double penalty = thermal_.thermalPenaltyAmps();
+  c.thermalPenaltyA = penalty > 0.0 ? penalty : kNoValue;
+  c.thermalA = penalty > 0.0 ? std::max(0.0, I_cap_ - penalty) : kNoValue;
+  c.warmupA = warmupActive_ ? p.WarmupCeilingAmps : kNoValue;
+  c.batteryCapAltA = ifBelow(bmsAltCap_);
+  c.fastOvA = fastOvClampActive_ ? ifBelow(fastOvCapA_) : kNoValue;
+  c.zeroBatteryHold = holdsZeroBatteryCurrent(p);
+  c.commandA = I_cmd_;
 }
 
 void ControlLaw::fillTuningTelemetry(ControlTelemetry& t) const noexcept {

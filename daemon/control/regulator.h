@@ -56,6 +56,7 @@ class Regulator {
   void updateHealth(Tick& t) noexcept;
   void fillInputTelemetry(const Tick& t) noexcept;
   void fillStateTelemetry() noexcept;
+  void fillCapsTelemetry(const Tick& t) noexcept;
 
   struct State;
   std::unique_ptr<State> s_;

@@ -43,6 +43,7 @@ const Outputs& Regulator::step(const Inputs& in) noexcept {
   updateHealth(t);
   fillInputTelemetry(t);
   fillStateTelemetry();
+  fillCapsTelemetry(t);
   return s_->out;
 }
 
@@ -339,6 +340,33 @@ void Regulator::fillStateTelemetry() noexcept {
   t.bms_ccl_a = bms.shownCclA();
   t.bms_soc_pct = bms.shownSocPct();
   t.bms_state = bms.state();
+}
+
+}  // namespace xr
+
+namespace xr {
+
+// The caps on the current command (docs/dashboard.md "Owner model"): the
+// battery's every tick, the command path's only while AUTO computed them.
+void Regulator::fillCapsTelemetry(const Tick& t) noexcept {
+  State& s = *s_;
+  CommandCaps& c = s.out.telemetry.caps;
+  c = CommandCaps{};
+  s.law.fillCommandCaps(c, s.p);
+  if (t.d.mode != FieldControlMode::MODE_NORMAL_AUTO_PID) {
+    // Computed by AUTO's command path only: last AUTO tick's, not this one's.
+    c.rpmTableA = c.thermalA = c.thermalPenaltyA = c.warmupA = c.batteryCapAltA = c.fastOvA = kNoValue;
+    c.commandA = kNoValue;
+    c.zeroBatteryHold = false;
+  }
+  const BatteryTempDecision& bt = s.batTemp.decision();
+  if (bt.capCause != BatteryTempCap::NONE) {
+    c.batteryTempA = bt.currentCapA;
+    c.batteryTempCause = bt.capCause;
+  }
+  const double bmsCap = s.law.bms().batteryCapA();
+  if (std::isfinite(bmsCap)) c.bmsA = bmsCap;
+  c.bmsSource = t.in.bms.source;
 }
 
 }  // namespace xr

@@ -3,11 +3,13 @@
 // per-module detail. Plain data: copied out of the RT thread whole. It lives
 // beside the Regulator, where control, protection and battery meet: the
 // aggregate needs all three, and daemon/core (below them) must not.
+#include <cmath>
 #include <string_view>
 #include <variant>
 
 #include "battery/battery_telemetry.h"
 #include "control/bms_limiter.h"
+#include "control/command_caps.h"
 #include "control/control_telemetry.h"
 #include "core/inputs.h"
 #include "core/modes.h"
@@ -49,10 +51,29 @@ struct Telemetry {
   bool ignition_on = true;           // the ignition input this tick (pairing by presence, docs/security.md)
 
   ControlTelemetry control;
+  CommandCaps caps;  // what holds the current command back, for the owner model
   ProtectionTelemetry protection;
   BatteryTelemetry battery;
   WearTelemetry wear;
 };
+
+// The one SoC rule (docs/batteries.md "State of charge", docs/dashboard.md
+// "Owner model"): a talking BMS's SoC, else the counted SoC, else the
+// rested-voltage estimate, else unknown (NaN: no number anywhere, the CSV
+// cell empty). Every reader of a SoC takes it from here.
+enum class SocShownSource { UNKNOWN, BMS, COUNTED, OCV_ESTIMATE };
+struct SocShown {
+  double pct = kNoValue;
+  SocShownSource source = SocShownSource::UNKNOWN;
+};
+inline SocShown socShown(const Telemetry& t) {
+  const bool bmsTalking = t.bms_state == BmsState::OK || t.bms_state == BmsState::WARNING ||
+                          t.bms_state == BmsState::CHARGE_DISABLED;
+  if (bmsTalking && std::isfinite(t.bms_soc_pct)) return {t.bms_soc_pct, SocShownSource::BMS};
+  if (t.battery.socSource == SocSource::Counted) return {t.soc_pct, SocShownSource::COUNTED};
+  if (t.battery.socSource == SocSource::OcvEstimate) return {t.soc_pct, SocShownSource::OCV_ESTIMATE};
+  return {};
+}
 
 // A column value: a number, a flag (0/1) or a name (mode, stage, reason).
 using ColumnValue = std::variant<double, bool, std::string_view>;
@@ -79,7 +100,7 @@ void visitTelemetryColumns(const Telemetry& t, TimeNs start, F&& f) {
   f("target_v", ColumnValue{t.target_v});
   f("thermal_penalty_a", ColumnValue{t.thermal_penalty_a});
   f("fast_ov_active", ColumnValue{t.fast_ov_active});
-  f("soc_pct", ColumnValue{t.soc_pct});
+  f("soc_pct", ColumnValue{socShown(t).pct});
   f("alarm", ColumnValue{t.alarm});
   f("charged_wh_lifetime", ColumnValue{t.charged_wh_lifetime});
   f("alt_charged_wh_lifetime", ColumnValue{t.alt_charged_wh_lifetime});

@@ -2,6 +2,7 @@
 
 #include <boost/json.hpp>
 #include <cmath>
+#include <string_view>
 
 namespace xr::integrations {
 
@@ -39,6 +40,9 @@ constexpr SensorDef kSensors[] = {
     {"alternator_life_used", "Alternator insulation life used", "%", "", "total_increasing",
      "mdi:timer-sand"},
     {"belt_slips", "Alternator belt slips", "", "", "total_increasing", "mdi:car-tire-alert"},
+    // The owner model's words (docs/dashboard.md "Owner model"), as the dashboard shows them.
+    {"charging_state", "Charging state", "", "", "", "mdi:information-outline"},
+    {"limited_by", "Limited by", "", "", "", "mdi:speedometer-slow"},
 };
 
 struct BinaryDef {
@@ -94,6 +98,12 @@ std::vector<MqttMessage> discoveryConfigs(const HaTopics& t, bool withCommands, 
     if (*s.deviceClass) o["device_class"] = s.deviceClass;
     if (*s.stateClass) o["state_class"] = s.stateClass;
     if (*s.icon) o["icon"] = s.icon;
+    // Every limit acting now, with its amps and cause, as the sensor's attributes.
+    if (std::string_view(s.object) == "limited_by") {
+      o["json_attributes_topic"] = t.state();
+      o["json_attributes_template"] =
+          "{{ {'limits': value_json.limits, 'limit_amps': value_json.limit_amps} | tojson }}";
+    }
     out.push_back({t.config("sensor", s.object), json::serialize(o)});
   }
   for (const auto& b : kBinary) {
@@ -147,6 +157,15 @@ std::string stateJson(const IntegrationSample& s) {
   o["field"] = s.field_on ? "ON" : "OFF";
   o["alarm"] = s.alarm ? "ON" : "OFF";
   o["weather_mode"] = s.reason == "REASON_WEATHER_MODE" ? "ON" : "OFF";
+  o["charging_state"] = s.ownerState;
+  o["limited_by"] = s.limitedBy;
+  o["limit_amps"] = number(s.limitAmps, 1);
+  o["soc_source"] = s.socSource;
+  json::array limits;
+  for (const auto& l : s.limits)
+    limits.push_back(
+        json::object{{"id", l.id}, {"what", l.what}, {"amps", number(l.amps, 1)}, {"why", l.why}});
+  o["limits"] = std::move(limits);
   o["regulator_mode"] = regulatorModeOption(s);
   return json::serialize(o);
 }

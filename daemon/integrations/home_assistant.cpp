@@ -104,7 +104,7 @@ void HomeAssistantBridge::announce() {
 }
 
 void HomeAssistantBridge::publishState() {
-  const IntegrationSample s = sampleOf(handoffs_.latest());
+  const IntegrationSample s = sampleOf(handoffs_.latest(), {handoffs_.setUp.load(), ""});
   if (!s.valid) return;
   link_->publish(topics_.state(), stateJson(s), false);
 }

@@ -11,7 +11,7 @@ namespace {
 double finiteOr(double v, double fallback) { return std::isfinite(v) ? v : fallback; }
 }  // namespace
 
-IntegrationSample sampleOf(const rt::RuntimeSnapshot& s) {
+IntegrationSample sampleOf(const rt::RuntimeSnapshot& s, const owner::OwnerContext& ctx) {
   IntegrationSample o;
   o.valid = s.tick > 0;
   const Telemetry& t = s.telemetry;
@@ -25,11 +25,17 @@ IntegrationSample sampleOf(const rt::RuntimeSnapshot& s) {
   o.alarm = t.alarm;
   o.setpoint_v = t.target_v;
   o.setpoint_a = t.target_a;
-  // A SoC the regulator does not know is not sent as a number: Signal K
-  // leaves the path out, Home Assistant gets null (docs/batteries.md "State
-  // of charge at first start").
-  const bool socUnknown = t.battery.socSource == SocSource::Unknown;
-  o.soc_pct = socUnknown ? std::numeric_limits<double>::quiet_NaN() : t.soc_pct;
+  // The owner model: the one SoC rule (a SoC the regulator does not know is
+  // not sent as a number: Signal K leaves the path out, Home Assistant gets
+  // null), the state and the limits in words.
+  const owner::OwnerModel m = owner::ownerModel(t, ctx);
+  const bool socUnknown = !std::isfinite(m.soc.pct);
+  o.soc_pct = m.soc.pct;
+  o.socSource = std::string(m.soc.source);
+  o.ownerState = m.state;
+  o.limitedBy = owner::limitedByText(m);
+  if (!m.limits.empty()) o.limitAmps = m.limits.front().amps;
+  o.limits = m.limits;
   const double minutes = t.battery.timeToFullDischargeMin;
   o.time_to_empty_s = !socUnknown && std::isfinite(minutes) && minutes > 0 ? minutes * 60.0 : -1.0;
   o.power_w = o.battery_v * o.alt_a;

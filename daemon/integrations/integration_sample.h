@@ -10,6 +10,7 @@
 
 #include "core/inputs.h"
 #include "core/modes.h"
+#include "owner/owner_model.h"
 #include "runtime/handoffs.h"
 
 namespace xr::integrations {
@@ -36,9 +37,16 @@ struct IntegrationSample {
   std::string mode, stage, reason;
   ChargeStage stageValue = ChargeStage::BULK;
   bool operatorOff = false;  // sysMode SYS_MODE_OFF: switched off by a command
+  // The owner model's words (docs/dashboard.md "Owner model"): the same
+  // function as the dashboard's, so Home Assistant and Signal K say what it says.
+  std::string ownerState;                                       // "Charging · Bulk · limited by Belt limit"
+  std::string limitedBy;                                        // "Belt limit: 100 A", "nothing"
+  double limitAmps = std::numeric_limits<double>::quiet_NaN();  // the first limit's amps
+  std::vector<owner::OwnerLimit> limits;  // every limit acting now, most restrictive first
+  std::string socSource = "unknown";      // bms | counted | ocv_estimate | unknown
 };
 
-IntegrationSample sampleOf(const rt::RuntimeSnapshot& s);
+IntegrationSample sampleOf(const rt::RuntimeSnapshot& s, const owner::OwnerContext& ctx = {});
 
 // Signal K's chargingMode words for a stage (bulk / acceptance / float /
 // other): absorption is "acceptance", idle or a field that is off is "other".

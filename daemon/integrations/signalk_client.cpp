@@ -266,7 +266,7 @@ asio::awaitable<void> SignalKClient::writeDeltas(SignalKStream& ws) {
   auto lastSent = std::chrono::steady_clock::now() - 1h;
   std::string lastState;
   for (;;) {
-    const IntegrationSample s = sampleOf(handoffs_.latest());
+    const IntegrationSample s = sampleOf(handoffs_.latest(), {handoffs_.setUp.load(), ""});
     if (s.valid) {
       const std::string state = std::string(signalKChargingMode(s.stageValue, s.field_on)) + s.stage + s.mode;
       const auto now = std::chrono::steady_clock::now();

@@ -34,6 +34,10 @@ constexpr PathDef kAlternator[] = {
     {"insulationLifeUsed", "ratio", "Insulation life used",
      "Share of the windings' insulation life used (0-1)"},
     {"beltSlips", "", "Belt slips", "Belt-slip episodes seen, lifetime"},
+    // The owner model's words (docs/dashboard.md "Owner model").
+    {"chargingState", "", "Charging state", "What the regulator is doing, in words"},
+    {"limitedBy", "", "Limited by", "The most restrictive limit acting now, with its amps, or nothing"},
+    {"currentLimit", "A", "Current limit", "The amps of the most restrictive limit acting now"},
 };
 constexpr PathDef kBattery[] = {
     {"voltage", "V", "Battery voltage", "Battery voltage"},
@@ -64,6 +68,9 @@ std::vector<SignalKValue> signalKValues(const IntegrationSample& s, const std::s
   num(alt + "setpointVoltage", s.setpoint_v);
   num(alt + "setpointCurrent", s.setpoint_a);
   num(alt + "weatherMode", s.reason == "REASON_WEATHER_MODE" ? 1.0 : 0.0);
+  if (!s.ownerState.empty()) v.push_back({alt + "chargingState", 0.0, s.ownerState, true});
+  if (!s.limitedBy.empty()) v.push_back({alt + "limitedBy", 0.0, s.limitedBy, true});
+  num(alt + "currentLimit", s.limitAmps);
   num(bat + "voltage", s.battery_v);
   num(bat + "current", s.battery_a);
   if (std::isfinite(s.battery_temp_c)) num(bat + "temperature", s.battery_temp_c + kZeroCelsiusK);

@@ -18,6 +18,20 @@ bool sampleKnown(const Inputs& in) {
 
 }  // namespace
 
+std::string_view toString(BatteryTempCap c) {
+  switch (c) {
+    case BatteryTempCap::NONE:
+      return "NONE";
+    case BatteryTempCap::NO_PROBE:
+      return "NO_PROBE";
+    case BatteryTempCap::WAITING_PROBE:
+      return "WAITING_PROBE";
+    case BatteryTempCap::COLD_RAMP:
+      return "COLD_RAMP";
+  }
+  return "NONE";
+}
+
 const BatteryTempDecision& BatteryTemperatureGuard::update(const Inputs& in, const Params& p,
                                                            EventBatch& ev) noexcept {
   if (firstTick_ < 0) firstTick_ = in.now;
@@ -26,6 +40,7 @@ const BatteryTempDecision& BatteryTemperatureGuard::update(const Inputs& in, con
   d_.known = known;
   d_.tempC = t;
   d_.currentCapA = 1e300;
+  d_.capCause = BatteryTempCap::NONE;
 
   if (known) {
     everKnown_ = true;
@@ -56,8 +71,10 @@ const BatteryTempDecision& BatteryTemperatureGuard::update(const Inputs& in, con
     // Reduced current just above the cold limit: 0 at ChargeMinTempC, full
     // (MaximumAllowedBatteryAmps) at ChargeFullCurrentTempC.
     const double span = p.ChargeFullCurrentTempC - p.ChargeMinTempC;
-    if (span > 0.0 && t < p.ChargeFullCurrentTempC)
+    if (span > 0.0 && t < p.ChargeFullCurrentTempC) {
       d_.currentCapA = std::clamp((t - p.ChargeMinTempC) / span, 0.0, 1.0) * p.MaximumAllowedBatteryAmps;
+      d_.capCause = BatteryTempCap::COLD_RAMP;
+    }
     return d_;
   }
 
@@ -70,8 +87,10 @@ const BatteryTempDecision& BatteryTemperatureGuard::update(const Inputs& in, con
   const bool sourceConfigured = in.batteryTempSource != BatteryTempSource::none;
   const bool waitingFirst =
       sourceConfigured && !everKnown_ && in.now - firstTick_ < fromMs(k::BATTERY_TEMP_FIRST_SAMPLE_MS);
-  if (p.BatteryTempRequired)
+  if (p.BatteryTempRequired) {
     d_.currentCapA = waitingFirst ? 0.0 : k::BATTERY_NO_TEMP_RATE_C * p.BatteryCapacity_Ah;
+    d_.capCause = waitingFirst ? BatteryTempCap::WAITING_PROBE : BatteryTempCap::NO_PROBE;
+  }
   // Only worth a warning when something depends on the temperature.
   const bool matters = sourceConfigured || p.BatteryTempRequired || p.TempCompMvPerCellC != 0.0;
   if (matters && !waitingFirst && !missingReported_) {

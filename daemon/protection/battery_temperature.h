@@ -15,11 +15,23 @@
 // Pure: the temperature arrives in Inputs with its stamp and source; events
 // go into the tick's batch. Trips and clears are events, never the buzzer,
 // and the hystereses keep a temperature at a limit from chattering.
+#include <cstdint>
+#include <string_view>
+
 #include "core/events.h"
 #include "core/inputs.h"
 #include "params/params.h"
 
 namespace xr {
+
+// Why the rules cap the charge current (the owner model's words: docs/dashboard.md "Owner model").
+enum class BatteryTempCap : std::uint8_t {
+  NONE,
+  NO_PROBE,       // BatteryTempRequired and no fresh temperature: C/10
+  WAITING_PROBE,  // a configured sensor has not sent its first sample: 0 A
+  COLD_RAMP,      // between ChargeMinTempC and ChargeFullCurrentTempC
+};
+std::string_view toString(BatteryTempCap c);
 
 struct BatteryTempDecision {
   bool known = false;          // a valid sample no older than BATTERY_TEMP_STALE_MS
@@ -27,6 +39,7 @@ struct BatteryTempDecision {
   bool cold = false;           // REASON_BATTERY_COLD acting
   bool hot = false;            // REASON_BATTERY_HOT acting
   double currentCapA = 1e300;  // on the current command (1e300 = none)
+  BatteryTempCap capCause = BatteryTempCap::NONE;
 };
 
 class BatteryTemperatureGuard {

@@ -173,6 +173,9 @@ class Handoffs {
   SeqLock<PositionHandoff> n2kPosition;  // the newest position heard on NMEA 2000
   SeqLock<BatteryLedger> ledger;         // the core's ledger, copied out ~4 times a second
   CommandAcks acks;
+  // A battery type is chosen (docs/configuration.md "Not set up"): written by
+  // the web API when it changes, read by the owner model of the integrations.
+  std::atomic<bool> setUp{true};
 
  private:
   mutable std::mutex producerMutex_;

@@ -25,8 +25,8 @@ TEST(HaDiscovery, SensorsAndBinarySensorsWithoutCommands) {
   const auto all = discoveryConfigs(topics(), false, "1.2.3");
   std::set<std::string> names;
   for (const auto& m : all) names.insert(m.topic);
-  EXPECT_EQ(all.size(), 18u);
-  EXPECT_EQ(names.size(), 18u);
+  EXPECT_EQ(all.size(), 20u);
+  EXPECT_EQ(names.size(), 20u);
   EXPECT_TRUE(names.count("homeassistant/sensor/xregulator_boat1/capacity_measured/config"));
   EXPECT_TRUE(names.count("homeassistant/sensor/xregulator_boat1/alternator_life_used/config"));
   EXPECT_TRUE(names.count("homeassistant/sensor/xregulator_boat1/battery_voltage/config"));
@@ -37,7 +37,7 @@ TEST(HaDiscovery, SensorsAndBinarySensorsWithoutCommands) {
 
 TEST(HaDiscovery, CommandsAddSelectAndButton) {
   const auto all = discoveryConfigs(topics(), true, "1.2.3");
-  EXPECT_EQ(all.size(), 20u);
+  EXPECT_EQ(all.size(), 22u);
   auto sel = find(all, "homeassistant/select/xregulator_boat1/regulator_mode/config");
   EXPECT_EQ(sel.at("command_topic").as_string(), "xregulator/boat1/set/mode");
   EXPECT_EQ(json::serialize(sel.at("options")), R"(["off","auto"])");
@@ -96,6 +96,30 @@ TEST(HaDiscovery, StateDocumentCarriesEveryEntityInItsUnit) {
   EXPECT_EQ(o.at("regulator_mode").as_string(), "auto");
   s.operatorOff = true;
   EXPECT_EQ(json::parse(stateJson(s)).as_object().at("regulator_mode").as_string(), "off");
+}
+
+// The owner model's words (docs/integrations.md "The owner model in Home
+// Assistant and Signal K"): the same function as the dashboard's.
+TEST(HaDiscovery, ChargingStateAndLimitedByComeFromTheOwnerModel) {
+  Telemetry t;
+  t.mode = FieldControlMode::MODE_NORMAL_AUTO_PID;
+  t.control.sysMode = SysMode::SYS_MODE_AUTO;
+  t.field_enable = true;
+  t.alt_a = 30.0;
+  t.bcur_a = 27.0;
+  t.caps.ratingA = 120.0;
+  t.caps.batteryTempA = 28.0;
+  t.caps.batteryTempCause = BatteryTempCap::NO_PROBE;
+  rt::RuntimeSnapshot snap;
+  snap.tick = 1;
+  snap.telemetry = t;
+  auto o = json::parse(stateJson(sampleOf(snap))).as_object();
+  EXPECT_EQ(o.at("charging_state").as_string(), "Charging · Bulk · limited by C/10 without a battery probe");
+  EXPECT_EQ(o.at("limited_by").as_string(), "C/10 without a battery probe: 28 A");
+  EXPECT_DOUBLE_EQ(o.at("limit_amps").as_double(), 28.0);
+  EXPECT_EQ(o.at("limits").as_array().at(0).at("id").as_string(), "battery_temp_required");
+  auto cfg = find(discoveryConfigs(topics(), false, "1"), "homeassistant/sensor/xregulator_boat1/limited_by/config");
+  EXPECT_EQ(cfg.at("json_attributes_topic").as_string(), "xregulator/boat1/state");
 }
 
 TEST(HaDiscovery, NonFiniteValuesBecomeNull) {

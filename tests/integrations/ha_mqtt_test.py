@@ -22,7 +22,8 @@ NODE = "boat1"
 SENSORS = {"battery_voltage": "V", "battery_current": "A", "alternator_current": "A",
            "alternator_temperature": "°C", "soc": "%", "field_duty": "%", "power": "W", "stage": None,
            "mode": None, "charged_energy": "kWh", "capacity_measured": "Ah", "battery_resistance": "mΩ",
-           "alternator_run_hours": "h", "alternator_life_used": "%", "belt_slips": None}
+           "alternator_run_hours": "h", "alternator_life_used": "%", "belt_slips": None,
+           "charging_state": None, "limited_by": None}
 BINARY = ["field", "alarm", "weather_mode"]
 
 

@@ -82,12 +82,24 @@ TEST(SignalKDelta, KnownValuesAreSentAndNaNIsLeftOut) {
   EXPECT_DOUBLE_EQ(m.at("electrical.batteries.b1.internalResistance").as_double(), 0.0035);
 }
 
+TEST(SignalKDelta, TheOwnerModelsStateAndFirstLimitAreSent) {
+  auto s = sample();
+  s.ownerState = "Charging · Bulk · limited by Belt limit";
+  s.limitedBy = "Belt limit: 100 A";
+  s.limitAmps = 100.0;
+  auto m = valuesOf(signalKDelta(signalKValues(s, "a1", "b1"), "t"));
+  EXPECT_EQ(m.at("electrical.alternators.a1.chargingState").as_string(), "Charging · Bulk · limited by Belt limit");
+  EXPECT_EQ(m.at("electrical.alternators.a1.limitedBy").as_string(), "Belt limit: 100 A");
+  EXPECT_DOUBLE_EQ(m.at("electrical.alternators.a1.currentLimit").as_double(), 100.0);
+}
+
 TEST(SignalKDelta, MetaHasUnitsAndNamesForEveryPath) {
   auto d = json::parse(signalKMetaDelta(signalKMeta("main", "house"))).as_object();
   std::map<std::string, json::object> meta;
   for (const auto& m : d.at("updates").as_array()[0].as_object().at("meta").as_array())
     meta[std::string(m.as_object().at("path").as_string())] = m.as_object().at("value").as_object();
-  EXPECT_EQ(meta.size(), 19u);
+  EXPECT_EQ(meta.size(), 22u);
+  EXPECT_EQ(meta.at("electrical.alternators.main.currentLimit").at("units").as_string(), "A");
   EXPECT_EQ(meta.at("electrical.batteries.house.capacity.actual").at("units").as_string(), "J");
   EXPECT_EQ(meta.at("electrical.alternators.main.insulationLifeUsed").at("units").as_string(), "ratio");
   EXPECT_EQ(meta.at("electrical.alternators.main.temperature").at("units").as_string(), "K");

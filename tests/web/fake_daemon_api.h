@@ -16,6 +16,11 @@ class FakeDaemonApi : public DaemonApi {
  public:
   // Where the published SoC comes from (a test sets Unknown or OcvEstimate).
   SocSource socSource = SocSource::Counted;
+  // The owner model's inputs beside the plain columns (docs/dashboard.md "Owner model").
+  CommandCaps caps;
+  BmsState bmsState = BmsState::OFF;
+  double bmsSocPct = kBmsNoValue;
+  bool setUp = true;
   FakeDaemonApi() {
     for (int i = 1; i <= 250; ++i) {
       EventRecord r;
@@ -64,6 +69,11 @@ class FakeDaemonApi : public DaemonApi {
     t.battery.timeToFullChargeMin = 95.0;
     t.protection.lastTripReason = Reason::REASON_TEMP_WARNING;
     t.control.sysMode = SysMode::SYS_MODE_AUTO;
+    t.caps = caps;
+    t.bms_state = bmsState;
+    t.bms_soc_pct = bmsSocPct;
+    s.setUp = setUp;
+    s.setupLimits = setUp ? "" : "at most 14.0 V, float 13.4 V";
     s.loop.ticks = seq_ * 40;
     s.loop.target_period_us = 2500;
     s.loop.period_p99_us = 2510;

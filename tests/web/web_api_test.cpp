@@ -161,6 +161,49 @@ TEST_F(WebApiTest, Status_SocIsNullWhileUnknownAndNamesItsSource) {
   EXPECT_EQ(obj(get("/api/status")).at("soc_source").as_string(), "counted");
 }
 
+// The owner model (docs/dashboard.md "Owner model"): one object, the same
+// in /api/status and in the WebSocket frame, with every limit acting now.
+TEST_F(WebApiTest, Status_OwnerListsTheC10CapInStatusAndInTheWebSocketFrame) {
+  api_.caps.ratingA = 120.0;
+  api_.caps.rpmTableA = api_.caps.rpmTableTopA = 100.0;
+  api_.caps.commandA = 28.0;
+  api_.caps.batteryTempA = 28.0;
+  api_.caps.batteryTempCause = BatteryTempCap::NO_PROBE;
+  api_.publish();
+  start();
+  const auto o = obj(get("/api/status"));
+  const auto& owner = o.at("owner").as_object();
+  EXPECT_NE(owner.at("state").as_string().find("limited by C/10 without a battery probe"), std::string::npos);
+  const auto& first = owner.at("limits").as_array().at(0).as_object();
+  EXPECT_EQ(first.at("id").as_string(), "battery_temp_required");
+  EXPECT_EQ(first.at("what").as_string(), "C/10 without a battery probe");
+  EXPECT_EQ(first.at("amps").to_number<double>(), 28.0);
+  EXPECT_FALSE(first.at("why").as_string().empty());
+  EXPECT_EQ(owner.at("hero").at("unit").as_string(), "A");
+  EXPECT_EQ(o.at("caps").at("battery_temp_cause").as_string(), "NO_PROBE");
+  WsClient ws(port_, std::string("/ws?token=") + kToken);
+  const auto frame = json::parse(ws.read()).as_object();
+  EXPECT_EQ(frame.at("owner").at("limits").as_array().at(0).at("id").as_string(), "battery_temp_required");
+}
+
+// One SoC: a talking BMS's, the same in owner.soc, soc_pct and soc_source;
+// "Not set up" from the same state as /api/params.
+TEST_F(WebApiTest, Status_OwnerSocIsTheBmsWhileItTalksAndNotSetUpLeadsTheLimits) {
+  api_.bmsState = BmsState::OK;
+  api_.bmsSocPct = 40.0;
+  api_.setUp = false;
+  api_.publish();
+  start();
+  const auto o = obj(get("/api/status"));
+  EXPECT_EQ(o.at("owner").at("soc").at("pct").to_number<double>(), 40.0);
+  EXPECT_EQ(o.at("owner").at("soc").at("source").as_string(), "bms");
+  EXPECT_EQ(o.at("soc_pct").to_number<double>(), 40.0);
+  EXPECT_EQ(o.at("soc_source").as_string(), "bms");
+  EXPECT_EQ(o.at("owner").at("bms").at("state").as_string(), "talking");
+  EXPECT_EQ(o.at("owner").at("limits").as_array().at(0).at("id").as_string(), "not_set_up");
+  EXPECT_TRUE(o.at("owner").at("limits").as_array().at(0).at("amps").is_null());
+}
+
 TEST_F(WebApiTest, Status_FollowsNewTicks) {
   api_.publish();
   start();

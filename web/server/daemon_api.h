@@ -76,6 +76,10 @@ struct StatusSnapshot {
   LoopStats loop;
   std::optional<SimTruth> sim;  // present in simulation
   std::vector<ExtraValue> extras;
+  // For the owner model (daemon/owner): whether a battery type is chosen,
+  // and the limits that hold until it is.
+  bool setUp = true;
+  std::string setupLimits;
 };
 
 // Hardware probe result (xregulatord --probe and the start-up probe).

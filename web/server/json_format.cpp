@@ -143,13 +143,11 @@ json::object statusToJson(const StatusSnapshot& s) {
     o["sim_bms_connected"] = s.sim->bms_connected;
     o["sim_field_on"] = s.sim->field_on;
   }
-  // Where the SoC comes from (docs/batteries.md "State of charge at first
-  // start"); no number while the regulator does not know it.
-  const SocSource src = s.telemetry.battery.socSource;
-  o["soc_source"] = src == SocSource::Counted       ? "counted"
-                    : src == SocSource::OcvEstimate ? "ocv_estimate"
-                                                    : "unknown";
-  if (src == SocSource::Unknown) o["soc_pct"] = nullptr;
+  // The one SoC rule (socShown, docs/batteries.md): the number and its
+  // source; no number while the regulator does not know it.
+  const owner::OwnerModel model = owner::ownerModel(s.telemetry, {s.setUp, s.setupLimits});
+  o["soc_source"] = model.soc.source;
+  o["owner"] = ownerToJson(model);
   o["seq"] = s.seq;
   o["wall_time_s"] = statusNumber("wall_time_s", s.wall_time_s);
   o["simulated"] = s.sim.has_value();
@@ -157,6 +155,7 @@ json::object statusToJson(const StatusSnapshot& s) {
       telemetryToJson(s.telemetry.control, [](const auto& t, auto f) { visitControlTelemetry(t, f); });
   o["protection"] =
       telemetryToJson(s.telemetry.protection, [](const auto& t, auto f) { visitProtectionTelemetry(t, f); });
+  o["caps"] = telemetryToJson(s.telemetry.caps, [](const auto& t, auto f) { visitCommandCaps(t, f); });
   o["battery"] =
       telemetryToJson(s.telemetry.battery, [](const auto& t, auto f) { visitBatteryTelemetry(t, f); });
   o["loop"] = loopToJson(s.loop);

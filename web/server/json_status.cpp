@@ -64,4 +64,37 @@ json::value statusNumber(std::string_view name, double v) {
   return r;
 }
 
+boost::json::object ownerToJson(const owner::OwnerModel& m) {
+  namespace json = boost::json;
+  json::object o;
+  o["state"] = m.state;
+  json::object hero;
+  hero["value"] = statusNumber(m.hero.unit == "V"   ? "battery_v"
+                               : m.hero.unit == "A" ? "bcur_a"
+                                                    : "soc_pct",
+                               m.hero.value);
+  hero["unit"] = m.hero.unit;
+  hero["label"] = m.hero.label;
+  o["hero"] = std::move(hero);
+  json::object soc;
+  soc["pct"] = statusNumber("soc_pct", m.soc.pct);
+  soc["source"] = m.soc.source;
+  o["soc"] = std::move(soc);
+  json::object bms;
+  bms["state"] = m.bms.state;
+  bms["words"] = m.bms.words;
+  o["bms"] = std::move(bms);
+  json::array limits;
+  for (const auto& l : m.limits) {
+    json::object x;
+    x["id"] = l.id;
+    x["what"] = l.what;
+    x["amps"] = statusNumber("amps_a", l.amps);
+    x["why"] = l.why;
+    limits.push_back(std::move(x));
+  }
+  o["limits"] = std::move(limits);
+  return o;
+}
+
 }  // namespace xr::web

@@ -7,6 +7,8 @@
 #include <string>
 #include <string_view>
 
+#include "owner/owner_model.h"
+
 namespace xr::web {
 
 // Bumped whenever a key is renamed or removed (additions keep it).
@@ -24,5 +26,10 @@ int statusDecimals(std::string_view name);
 // The rounded value: null when not finite or a -999 "no value" sentinel,
 // an integer when the rounded value is whole.
 boost::json::value statusNumber(std::string_view name, double v);
+
+// The owner model as JSON (docs/dashboard.md "Owner model"): {state, hero
+// {value, unit, label}, soc {pct, source}, bms {state, words}, limits
+// [{id, what, amps, why}]}, amps null for a limit that is not a current.
+boost::json::object ownerToJson(const owner::OwnerModel& m);
 
 }  // namespace xr::web

@@ -328,16 +328,20 @@ await test("events: a date header per day", async () => {
   assert.equal(Ev.dayHeader(0, now), "Time since the regulator started");
 });
 
-await test("the headline says Charging only while current goes into the battery", () => {
+await test("the headline is the regulator's own state words (owner.state), then the current and the power", () => {
   const base = { mode: "MODE_NORMAL_AUTO_PID", stage: "bulk", field_enable: true, alt_a: 60, battery_v: 13.2 };
-  assert.match(L.headline({ ...base, bcur_a: 42 }), /^Charging · .* · 42 A into the battery · 792 W$/);
-  // Field ramping up, loads larger than the output so far: not "Charging".
-  assert.match(L.headline({ ...base, bcur_a: -6 }), /^Alternator on · .* · 6 A still from the battery · 792 W$/);
-  assert.match(L.headline({ ...base, bcur_a: -0.4 }), /^Charging/);  // within the noise of a resting battery
-  assert.match(L.headline({ ...base, field_enable: false, alt_a: 0, bcur_a: -6 }), /^Not charging/);
-  // Until a battery type is chosen the headline says so first (docs/configuration.md "Not set up").
-  assert.match(L.headline({ ...base, bcur_a: 42 }, true), /^Not set up · Charging · .* · 42 A into the battery/);
-  assert.match(L.headline({ ...base, bcur_a: 42 }, false), /^Charging/);
+  const owner = (state, value, label) => ({ state, hero: { value, unit: "A", label }, soc: { pct: null, source: "unknown" }, limits: [] });
+  assert.equal(L.headline({ ...base, owner: owner("Charging · Bulk", 42, "into the battery") }),
+    "Charging · Bulk · 42 A into the battery · 792 W");
+  assert.equal(L.headline({ ...base, owner: owner("Alternator on · Bulk", 6, "out of the battery") }),
+    "Alternator on · Bulk · 6 A still from the battery · 792 W");
+  // Resting: the hero is a SoC or a voltage, not part of the sentence.
+  assert.equal(L.headline({ ...base, owner: { state: "Not charging · Engine stopped or idling", hero: { value: 12.8, unit: "V", label: "battery" }, limits: [] } }),
+    "Not charging · Engine stopped or idling");
+  // No owner model (an old frame): no made-up words.
+  assert.equal(L.headline(base), "—");
+  assert.equal(L.limitText({ what: "C/10 without a battery probe", amps: 28.04 }), "C/10 without a battery probe: 28 A");
+  assert.equal(L.limitText({ what: "Manual mode", amps: null }), "Manual mode");
 });
 
 await test("the System page's CAN rows say the BMS and NMEA 2000 state in words, never invent a value", () => {
@@ -361,22 +365,23 @@ await test("the System page's CAN rows say the BMS and NMEA 2000 state in words,
   assert.equal(silent["Highest cell"], undefined);  // a BMS that does not send it: no row
 });
 
-await test("the SoC tile: the BMS's SoC first, unknown is a word not a number, a guess is marked", () => {
-  const bms = L.socDisplay({ soc_pct: 40, bms_soc_pct: 81.6, soc_source: "bms" }, { soc_known: true });
+await test("the SoC tile shows the regulator's one SoC (owner.soc): unknown is a word, a guess is marked", () => {
+  const o = (pct, source) => ({ owner: { soc: { pct, source } } });
+  const bms = L.socDisplay(o(81.6, "bms"), { soc_known: false });
   assert.deepEqual([bms.text, bms.unit, bms.note], ["82", "%", "from the BMS"]);
-  for (const s of [{ soc_pct: null }, { soc_pct: 50, soc_source: "unknown" }, {}]) {
+  for (const s of [o(null, "unknown"), o(50, "unknown"), {}]) {
     const u = L.socDisplay(s, {});
     assert.equal(u.text, "unknown");
     assert.equal(u.unit, "");
     assert.ok(u.guess);
   }
-  const guess = L.socDisplay({ soc_pct: 63.2 }, { soc_known: false });
+  const guess = L.socDisplay(o(63.2, "counted"), { soc_known: false });
   assert.equal(guess.text, "≈ 63");
   assert.ok(guess.guess);
-  const ocv = L.socDisplay({ soc_pct: 70, soc_source: "ocv_estimate" }, { soc_known: true });
+  const ocv = L.socDisplay(o(70, "ocv_estimate"), { soc_known: true });
   assert.equal(ocv.text, "≈ 70");
   assert.match(ocv.note, /estimate from voltage/);
-  const counted = L.socDisplay({ soc_pct: 91.4, soc_source: "counted" }, { soc_known: true, time_to_full_charge_min: 30 });
+  const counted = L.socDisplay(o(91.4, "counted"), { soc_known: true, time_to_full_charge_min: 30 });
   assert.deepEqual([counted.text, counted.guess], ["91", false]);
   assert.match(counted.note, /^counted, full in/);
 });

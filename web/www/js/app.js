@@ -8,7 +8,7 @@ import { commandAnswer, plainCommand } from "./names.js";
 import { applyEventFilter, loadEvents, loadSystem, renderBattery, renderProtections, renderTuning } from "./pages.js";
 import { initPairing, loadDevices } from "./pairing.js";
 import { initSettings, loadSettings, setParam } from "./settings.js";
-import { initSetup } from "./setup.js";
+import { initSetup, renderSetupOwner } from "./setup.js";
 import { loadHistoryPage } from "./history.js";
 import { renderGuardBanner } from "./guards.js";
 import { loadCapacitySetting, renderAlternator, renderHealth, useMeasuredCapacity } from "./health.js";
@@ -49,6 +49,7 @@ function connect() {
     else if (page === "battery") { renderBattery(s); renderHealth(s); }
     else if (page === "alternator") renderAlternator(s);
     else if (page === "tuning") renderTuning(s);
+    else if (page === "setup") renderSetupOwner(s);
   };
 }
 

@@ -2,7 +2,7 @@
 // active protection (texts from names.js), the mode on every page, and an
 // offline state nobody can take for live.
 import { ago, hmin, isNum, num, temp } from "./format.js";
-import { activeProblems, ownerMode, plainMode, plainStage, reasonInfo } from "./names.js";
+import { activeProblems, ownerMode, plainStage, reasonInfo } from "./names.js";
 
 const $ = (id) => document.getElementById(id);
 const STALE_AFTER_S = 3;  // no frame for this long = not live (frames come at 2..20 Hz)
@@ -23,41 +23,34 @@ function setValue(id, text, unit, note) {
 }
 const on = (v) => v === true || v === 1;
 
-// "Charging · Absorption · 42 A into the battery · 580 W",
-// "Alternator on · Bulk · 6 A still from the battery · 900 W" or
-// "Not charging · Engine stopped or idling".
-// Until a battery type is chosen the headline starts with "Not set up"
-// (docs/configuration.md "Not set up"); /api/params says which.
-let setUp = true;
+// The first-run notice until a battery type is chosen (docs/configuration.md
+// "Not set up"); /api/params says which, and the owner's state starts with it.
 export function renderSetupState(paramsBody) {
-  setUp = paramsBody.set_up !== false;
+  const setUp = paramsBody.set_up !== false;
   $("first-run").hidden = setUp;
   $("first-run-limits").textContent = paramsBody.setup_limits || "";
 }
 
-export function headline(s, notSetUp = !setUp) {
-  const regulating = ["MODE_NORMAL_AUTO_PID", "MODE_NORMAL_MANUAL", "MODE_LIMP_HOME"].includes(s.mode);
-  const charging = on(s.field_enable) && isNum(s.alt_a) && s.alt_a > 0.5;
-  const parts = notSetUp ? ["Not set up"] : [];
-  const why = () => (s.reason && s.reason !== "NONE" ? reasonInfo(s.reason).title
-    : s.control && s.control.sys_mode === "SYS_MODE_OFF" ? "Switched off" : "");
-  if (charging && !regulating) {
-    // A shutdown ramp: the field still carries current but is on its way down.
-    parts.push("Stopping", why() || plainMode(s.mode));
-  } else if (charging) {
-    // While the field ramps up, or when the loads take more than the
-    // alternator gives, the battery is still discharging: "Charging" would
-    // be untrue, so say what is on and let the current tell the rest.
-    const stillDischarging = isNum(s.bcur_a) && s.bcur_a < -0.5;
-    parts.push(stillDischarging ? "Alternator on" : "Charging", plainStage(s.stage));
-    if (isNum(s.bcur_a)) parts.push(s.bcur_a >= 0 ? `${num(s.bcur_a, 0)} A into the battery`
-                                                   : `${num(-s.bcur_a, 0)} A still from the battery`);
-    if (isNum(s.battery_v)) parts.push(`${num(s.alt_a * s.battery_v, 0)} W`);
-  } else {
-    parts.push("Not charging");
-    if (why()) parts.push(why());
+// The regulator's own words (the `owner` object of the status frame,
+// docs/dashboard.md "Owner model"): its state, then the current that goes
+// into or out of the battery and the power while the alternator gives it:
+// "Charging · Bulk · limited by Belt limit · 42 A into the battery · 580 W",
+// "Not charging · Engine stopped or idling".
+export function headline(s) {
+  const o = s.owner;
+  if (!o) return "—";
+  const parts = [o.state];
+  const h = o.hero || {};
+  if (h.unit === "A" && isNum(h.value)) {
+    parts.push(h.label === "out of the battery" ? `${num(h.value, 0)} A still from the battery` : `${num(h.value, 0)} A ${h.label}`);
+    if (isNum(s.alt_a) && isNum(s.battery_v)) parts.push(`${num(s.alt_a * s.battery_v, 0)} W`);
   }
   return parts.join(" · ");
+}
+
+// "C/10 without a battery probe: 28 A" — a limit as the owner reads it.
+export function limitText(l) {
+  return isNum(l.amps) ? `${l.what}: ${num(l.amps, 0)} A` : l.what;
 }
 
 function renderBanners(s) {
@@ -93,14 +86,15 @@ function renderBanners(s) {
 // guess is marked "≈" until it was set, restored or a full charge was seen.
 export function socDisplay(s, b = {}) {
   const sourceNote = { bms: "from the BMS", counted: "counted", ocv_estimate: "estimate from voltage" };
-  if (isNum(s.bms_soc_pct)) return { text: num(s.bms_soc_pct, 0), unit: "%", note: "from the BMS", guess: false };
-  if (!isNum(s.soc_pct) || s.soc_source === "unknown")
+  const soc = (s.owner && s.owner.soc) || { pct: null, source: "unknown" };
+  if (!isNum(soc.pct) || soc.source === "unknown")
     return { text: "unknown", unit: "", note: "set it on the Battery page", guess: true };
-  const known = b.soc_known !== false && s.soc_source !== "ocv_estimate";
+  if (soc.source === "bms") return { text: num(soc.pct, 0), unit: "%", note: "from the BMS", guess: false };
+  const known = b.soc_known !== false && soc.source !== "ocv_estimate";
   const full = isNum(b.time_to_full_charge_min) && b.time_to_full_charge_min > 0 ? `full in ${hmin(b.time_to_full_charge_min)}` : "";
-  const note = known ? [sourceNote[s.soc_source], full].filter(Boolean).join(", ")
-                     : (sourceNote[s.soc_source] || "estimate") + " — set it on the Battery page";
-  return { text: (known ? "" : "≈ ") + num(s.soc_pct, 0), unit: "%", note, guess: !known };
+  const note = known ? [sourceNote[soc.source], full].filter(Boolean).join(", ")
+                     : (sourceNote[soc.source] || "estimate") + " — set it on the Battery page";
+  return { text: (known ? "" : "≈ ") + num(soc.pct, 0), unit: "%", note, guess: !known };
 }
 
 export function renderLive(s) {
@@ -128,10 +122,14 @@ export function renderLive(s) {
   setValue("v-soc_pct", soc.text, soc.unit, soc.note);
   $("v-soc_pct").classList.toggle("guess", soc.guess);
   setValue("v-field", on(s.field_enable) ? "On" : "Off", "", on(s.field_enable) ? `${num(s.duty_pct, 0)} %` : "");
-  // The target only means something while Auto regulates with the field on.
+  // The target only means something while Auto regulates with the field on;
+  // the limits acting now are the regulator's (owner.limits), with amps and cause.
   const regulating = s.mode === "MODE_NORMAL_AUTO_PID" && on(s.field_enable);
-  setValue("v-target", regulating ? `${plainStage(s.stage)}: up to ${num(s.target_a, 0)} A, ${num(s.target_v, 2)} V`
-                                  : `nothing (${ownerMode(s).toLowerCase()}${on(s.field_enable) ? "" : ", field off"})`);
+  const limits = (s.owner && s.owner.limits) || [];
+  const aim = regulating ? `${plainStage(s.stage)}: up to ${num(s.target_a, 0)} A, ${num(s.target_v, 2)} V`
+                         : `nothing (${ownerMode(s).toLowerCase()}${on(s.field_enable) ? "" : ", field off"})`;
+  setValue("v-target", aim, "", limits.length ? "limited by " + limits.map(limitText).join("; ") : "");
+  $("v-target").title = limits.map((l) => `${limitText(l)} — ${l.why}`).join("\n");
   const alarms = activeProblems(s).map((c) => reasonInfo(c).title);
   if (on(s.alarm)) alarms.unshift("buzzer on");
   if (on(s.fast_ov_active)) alarms.push("fast over-voltage clamp");

@@ -2,6 +2,7 @@
 // the event list and the System page. Plain names, rounded numbers, clock times.
 import { getJson } from "./api.js";
 import { ago, clock, hmin, hminFromSeconds, num, plain } from "./format.js";
+import { limitText, latestStatus } from "./live.js";
 import { plainMode, reasonInfo } from "./names.js";
 
 const $ = (id) => document.getElementById(id);
@@ -41,14 +42,33 @@ export function renderProtections(s) {
     row("buzzer", p.buzzer),
     ["last trip", p.last_trip_reason && p.last_trip_reason !== "NONE" ? reasonInfo(p.last_trip_reason).title : "none"],
     ["last trip at", tripAt],
+    ...holdingBack(s),
   ]);
+}
+
+// What holds the charge back now: the regulator's limits (owner.limits,
+// docs/dashboard.md "Owner model"), most restrictive first, with amps and cause.
+function holdingBack(s) {
+  const limits = (s.owner && s.owner.limits) || [];
+  if (!limits.length) return [["holding back", "nothing", "good"]];
+  return limits.map((l, i) => [i ? "also holding back" : "holding back", `${limitText(l)} — ${l.why}`, "warn"]);
+}
+
+// The SoC row: the regulator's one SoC (owner.soc), the same as Live's.
+function socRow(s) {
+  const soc = (s.owner && s.owner.soc) || { pct: null, source: "unknown" };
+  if (soc.pct === null || soc.source === "unknown") return "unknown until the first full charge (or set it below)";
+  if (soc.source === "bms") return `${plain(soc.pct, 0)} (from the BMS)`;
+  if (soc.source === "ocv_estimate") return `≈ ${plain(soc.pct, 0)} (estimate from the rested voltage)`;
+  return (s.battery || {}).soc_known === false ? `≈ ${plain(soc.pct, 0)} (estimate)` : plain(soc.pct, 1);
 }
 
 export function renderBattery(s) {
   const b = s.battery || {};
+  // Averages of the counted SoC mean something only while it is the SoC shown.
+  const counted = s.owner && s.owner.soc && s.owner.soc.source === "counted";
   kvTable("batt-table", [
-    ["state of charge (%)", s.soc_pct === null || s.soc_source === "unknown" ? "unknown until the first full charge (or set it below)"
-      : b.soc_known === false ? `≈ ${plain(s.soc_pct, 0)} (estimate${s.soc_source === "ocv_estimate" ? " from the rested voltage" : ""})` : plain(s.soc_pct, 1)],
+    ["state of charge (%)", socRow(s)],
     ["charge counted (Ah)", plain(b.coulomb_count_ah, 1)], ["battery current (A)", plain(s.bcur_a, 1)],
     ["full charge seen", yes(b.full_charge_detected)],
     ["time to full", b.soc_known === false ? "unknown until the SoC is known" : hmin(b.time_to_full_charge_min)],
@@ -57,7 +77,8 @@ export function renderBattery(s) {
     ["from the alternator (Wh)", plain(b.alternator_charged_energy_wh, 0)], ["from solar (Wh)", plain(b.solar_charged_energy_wh, 0)],
     ["charged, lifetime (Wh)", plain(s.charged_wh_lifetime, 0)], ["alternator, lifetime (Wh)", plain(s.alt_charged_wh_lifetime, 0)],
     ["charge cycles", plain(b.charge_cycles, 2)], ["charge cycles, lifetime", plain(b.charge_cycles_all_time, 1)],
-    ["average SoC (%)", plain(b.avg_soc, 0)], ["average SoC, lifetime (%)", plain(b.avg_soc_all_time, 0)],
+    ["average SoC (%)", counted ? plain(b.avg_soc, 0) : "—"],
+    ["average SoC, lifetime (%)", counted ? plain(b.avg_soc_all_time, 0) : "—"],
     ["average voltage, lifetime (V)", plain(b.avg_voltage_all_time, 2)],
     ["alternator running (h:min)", hminFromSeconds(b.alternator_on_time_s)], ["fuel used (L)", plain(b.alternator_fuel_used_l, 1)],
     ["shunt gain correction", plain(b.dynamic_shunt_gain_factor, 3)], ["alternator current zero (A)", plain(b.dynamic_alt_current_zero, 2)],
@@ -97,10 +118,13 @@ const N2K_WORDS = {
   no_address: ["no free address on the network", "bad"],
   claimed: ["on the network", "good"],
 };
-export function canRows(bms, n2k) {
+// ownerBms: the regulator's own BMS state (owner.bms), the one every page shows.
+const OWNER_BMS_CLASS = { talking: "good", warning: "warn", no_charge: "warn", silent: "bad", none: "" };
+export function canRows(bms, n2k, ownerBms) {
   const v = (x, unit, digits = 1) => (num(x, digits) === "—" ? "—" : `${num(x, digits)} ${unit}`);
   const rows = [];
-  const [bw, bc] = BMS_WORDS[bms?.state] || [bms?.state || "unknown", ""];
+  const [bw, bc] = ownerBms ? [ownerBms.words, OWNER_BMS_CLASS[ownerBms.state] || ""]
+    : BMS_WORDS[bms?.state] || [bms?.state || "unknown", ""];
   rows.push(["Battery BMS", bms?.protocol ? `${bw} (${bms.protocol})` : bw, bc]);
   if (bms && bms.state !== "off")
     rows.push(["BMS limits are", bms.follow === false ? "shown only (monitor only: not followed)" : "followed", bms.follow === false ? "warn" : ""]);
@@ -122,6 +146,7 @@ export async function loadSystem() {
   kvTable("sys-versions", obj(s.versions));
   kvTable("sys-loop", obj(s.loop).map(([k, v]) => [k.replace(/_/g, " "), v, k === "overruns" ? (v ? "bad" : "good") : ""]));
   kvTable("sys-probes", (s.probes || []).map((p) => [p.device, `${p.ok ? "OK" : "FAIL"} ${p.detail || ""}`, p.ok ? "good" : "bad"]));
-  kvTable("sys-can", canRows(s.bms, s.n2k));
+  const status = latestStatus();
+  kvTable("sys-can", canRows(s.bms, s.n2k, status && status.owner ? status.owner.bms : null));
   kvTable("sys-web", obj(s.web).map(([k, v]) => [k.replace(/_/g, " "), v]).concat([["telemetry rate (Hz)", s.telemetry_rate_hz]]));
 }

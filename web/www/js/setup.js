@@ -3,7 +3,7 @@
 // is sent as ONE change: the server checks it all or applies nothing.
 import { getJson, toast, write } from "./api.js";
 import { fToC, parseDecimal } from "./format.js";
-import { renderSetupState, tempUnit } from "./live.js";
+import { latestStatus, limitText, renderSetupState, tempUnit } from "./live.js";
 import { choicesOf, loadSettings } from "./settings.js";
 import { collectHardware, esc, hardwareRows, renderHardwareStep, restartNeeded, rpmHint } from "./setup_hardware.js";
 import { exportToml, parseParamsToml } from "./toml.js";
@@ -124,6 +124,25 @@ function collect() {
   return body;
 }
 
+// What the regulator itself says holds the charge back now, and its BMS
+// state (owner.limits and owner.bms of each status frame, docs/dashboard.md
+// "Owner model"): the same words as Live and Protections, kept current.
+export function renderSetupOwner(s) {
+  const t = document.getElementById("setup-now");
+  const o = s && s.owner;
+  if (!t || !o) return;
+  const rows = [["Holding back now", o.limits.length ? o.limits.map(limitText).join("; ") : "nothing"],
+    ["BMS now", o.bms.words]];
+  t.textContent = "";
+  for (const [k, x] of rows) {
+    const tr = t.insertRow();
+    const th = document.createElement("th");
+    th.textContent = k;
+    tr.appendChild(th);
+    tr.insertCell().textContent = x;
+  }
+}
+
 // What now runs, read back from the daemon, and what the file still pins
 // over the profile (only the file can release those).
 function renderResult() {
@@ -134,8 +153,10 @@ function renderResult() {
     ["Alternator limit", `${Math.max(...v("rpmCapCurrentTable"))} A`], ...(hardware ? hardwareRows(hardware) : [])];
   const pinned = params.filter((p) => p.profile_owned && p.source === "file").map((p) => p.name);
   $("setup-result").innerHTML = `<h3>Now in effect</h3><table class="kv">${rows.map(([k, x]) => `<tr><th>${esc(k)}</th><td>${esc(x)}</td></tr>`).join("")}</table>` +
+    `<table class="kv" id="setup-now"></table>` +
     (pinned.length ? `<p class="msg warn">Still set by the configuration file, not by the profile: ${esc(pinned.join(", "))}. Comment them out in xregulator.toml to let the profile decide.</p>` : "");
   $("setup-result").hidden = false;
+  renderSetupOwner(latestStatus());
 }
 
 async function saveSetup(runCommand) {
