@@ -18,6 +18,14 @@ namespace {
 // docs/batteries.md). The voltage is the mean of the last hour of it.
 constexpr double kHealthRestS = 4.0 * 3600.0;
 constexpr double kHealthRestAverageS = 3600.0;
+// "At rest" for this point is wider than the first-start estimate's: a
+// fridge compressor on a boat draws 4 to 6 A while it runs, 2 to 3 % of C,
+// and the bank rests only with it. Any second within kHealthRestPeakC
+// (discharge) or kHealthRestChargeC (charge) counts, with the alternator
+// off; the hour the voltage is averaged over must average within
+// kHealthRestMeanC, and what still flows is taken off with the measured
+// resistance (docs/batteries.md "Measured capacity").
+constexpr double kHealthRestPeakC = 0.05, kHealthRestChargeC = 0.02, kHealthRestMeanC = 0.02;
 // A BMS's SoC older than this is not a point.
 constexpr std::int64_t kBmsSocStaleMs = 10000;
 }  // namespace
@@ -28,9 +36,11 @@ void BatteryMonitor::trackHealth(const Inputs& in, double dt_s, double amps, dou
   const double tempC =
       usable(in.batteryTempC, in.now, k::BATTERY_TEMP_STALE_MS) ? in.batteryTempC.value : kNoValue;
   if (resistance_.update(dt_s, amps, volts, tempC, p_.BatteryCapacity_Ah)) telemetryStale_ = true;
-  // "At rest" as for the first-start estimate (a fridge on a 200 Ah bank is at
-  // rest); what still flows is corrected with the measured resistance below.
-  restedVoltagePoint(dt_s, amps, volts, tempC, leadAcidAtRest(amps, volts, altAmps));
+  const double c = p_.BatteryCapacity_Ah;
+  // leadAcidAtRest with no current: a lead-acid bank, a voltage, the alternator off.
+  const bool resting = leadAcidAtRest(0.0, volts, altAmps) && std::isfinite(amps) &&
+                       amps <= kHealthRestChargeC * c && amps >= -kHealthRestPeakC * c;
+  restedVoltagePoint(dt_s, amps, volts, tempC, resting);
   const bool bmsFresh =
       std::isfinite(in.bms.socPct) && in.bms.stamp != 0 && in.now - in.bms.stamp <= fromMs(kBmsSocStaleMs);
   bmsSocPct_ = bmsFresh ? in.bms.socPct : kNoValue;
@@ -56,6 +66,7 @@ void BatteryMonitor::restedVoltagePoint(double dt_s, double amps, double volts, 
   // current drops across the bank (when its resistance is known).
   const double r = resistance_.ohmsAt(tempC);
   const double a = healthRestA_s_ / healthRestAvg_s_;
+  if (std::fabs(a) > kHealthRestMeanC * p_.BatteryCapacity_Ah) return;  // not a rest on average
   const double ocv = healthRestV_s_ / healthRestAvg_s_ - (std::isfinite(r) ? a * r : 0.0);
   pendingRestSocPct_ = socFromRestVolts(ocv);
 }

@@ -158,7 +158,17 @@ void BatteryMonitor::runSocBody(TimeNs now, double elapsed_s, EventBatch& ev) no
 
   countCoulombs(elapsed_s);
   // Points of known SoC for the measured capacity, in step with the count.
-  if (finite(pendingRestSocPct_)) capacityPoint(now, pendingRestSocPct_, false, ev);
+  if (finite(pendingRestSocPct_)) {
+    capacityPoint(now, pendingRestSocPct_, false, ev);
+    // Until a full charge has set the count, a 4 h rested voltage is a far
+    // better SoC than the first-start estimate (30 s of rest) it replaces
+    // (docs/batteries.md "State of charge at first start").
+    if (socSource() != SocSource::Counted) {
+      ledger_.CoulombCount_Ah = cap * pendingRestSocPct_ / 100.0;
+      ledger_.coulombAccumulator_Ah = 0.0;
+      setSocSource(SocSource::OcvEstimate);
+    }
+  }
   pendingRestSocPct_ = kNoValue;
   if (finite(bmsSocPct_)) capacityPoint(now, bmsSocPct_, false, ev);
 

@@ -225,7 +225,8 @@ void Regulator::runAuto(Tick& t) noexcept {
   fi.altCurrentFresh = t.in.altCurrentRaw.fresh;
   const FastOvAction fa = s.prot.runFastOvSupervisors(fi);
   FastOvApply apply;
-  apply.fastOvCurrentCap = fa.fastOvCurrentCap;
+  // A belt-slip probe holds the target low for a few seconds (docs/operations.md "Belt slip").
+  apply.fastOvCurrentCap = std::min(fa.fastOvCurrentCap, s.belt.probeCapA());
   apply.fastOvClampActive = fa.fastOvClampActive;
   apply.setCvI = fa.cvIAction != CvIAction::None;
   apply.cv_I = fa.cv_I;
@@ -287,6 +288,8 @@ void Regulator::updateHealth(Tick& t) noexcept {
   b.dutyPct = s.out.dutyPct;
   b.targetAmps = s.law.uTargetAmps();
   b.fieldOn = s.out.fieldEnable && t.d.mode == FieldControlMode::MODE_NORMAL_AUTO_PID;
+  b.engineHeard = engineFresh;
+  b.ratedA = s.p.MaxTableValue;
   if (s.belt.update(in.now, dt, b, s.out.events)) s.wear.countBeltSlip();
 }
 

@@ -302,6 +302,12 @@ std::optional<std::string> describeCommandsAndBattery(const Event& e) {
             "Alternator belt slipping: the alternator turns %.0f %% slower than the engine (%.0f rpm). "
             "Check the belt's tension, wear and glazing, and the pulleys' alignment",
             e.a, e.b);
+      else if (e.detail == 3)
+        std::snprintf(buf, sizeof buf,
+                      "Alternator belt slipping: the alternator sped up %.0f %% when its current was held "
+                      "low (from %.0f A), and slowed again when it came back. Check the belt's tension, wear "
+                      "and glazing, and the pulleys' alignment",
+                      e.a, e.b);
       else
         std::snprintf(
             buf, sizeof buf,

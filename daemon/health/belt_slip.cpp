@@ -17,6 +17,8 @@ bool BeltSlipDetector::update(TimeNs now, double dt_s, const BeltSample& s, Even
   add(acc_.duty, s.dutyPct);
   add(acc_.target, s.targetAmps);
   if (engineKnown) acc_.engine += s.engineRpm * dt_s;
+  ratedA_ = s.ratedA;
+  engineHeard_ = s.engineHeard;
   // A second counts as "field on" / "engine heard" only if every tick of it was.
   acc_.field = accT_ == 0.0 ? s.fieldOn : acc_.field && s.fieldOn;
   acc_.engineKnown = accT_ == 0.0 ? engineKnown : acc_.engineKnown && engineKnown;
@@ -38,9 +40,17 @@ bool BeltSlipDetector::closeSecond(TimeNs now, EventBatch& ev) noexcept {
   next_ = (next_ + 1) % kWindowS;
   filled_ = std::min(filled_ + 1, kWindowS);
 
-  double slipPct = 0.0, dropA = 0.0, riseDuty = 0.0;
+  double slipPct = 0.0, dropA = 0.0, riseDuty = 0.0, risePct = 0.0, ampsBefore = 0.0;
   const bool a = ratioSign(s, slipPct);
   const bool b = currentSign(dropA, riseDuty);
+  const bool c = !a && !b && probeSign(risePct, ampsBefore);
+  if (c) {
+    if (latched_) return false;
+    latched_ = true;
+    quietS_ = 0.0;
+    ev.push(makeEvent(now, EventLevel::Warning, EventCode::BeltSlip, Reason::NONE, risePct, ampsBefore, 3));
+    return true;
+  }
   if (!a && !b && lowS_ == 0) {
     quietS_ += 1.0;
     if (quietS_ >= kRearmS) latched_ = false;

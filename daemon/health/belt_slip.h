@@ -7,8 +7,17 @@
 //   B. At a steady speed, the current falls while the duty rises and the
 //      regulator still wants more: the field is pushed and the machine
 //      gives less, as when its pulley slows under the belt.
-// Ordinary speed changes meet neither: A needs the engine steady, and B a
-// steady speed. Pure: no clock, no I/O.
+//   C. With the tach alone (no engine speed), a short probe: when the tach
+//      falls fast while the alternator carries much of its rating, the
+//      current target is held low for kProbeS. A slipping belt slips with
+//      its load, so the alternator speeds up as the current falls, and
+//      slows again when the current comes back; an engine that slowed does
+//      neither. Lowering the field is always safe (less charge, never
+//      more), and costs a few seconds of charge. Its BeltSlip event has
+//      detail 3: a = the speed's rise (%), b = the current before the probe (A).
+// Ordinary speed changes meet none: A needs the engine steady, B a steady
+// speed, and C a speed that follows the current both ways. Pure: no clock,
+// no I/O.
 #include <array>
 
 #include "core/events.h"
@@ -29,6 +38,17 @@ inline constexpr double kCurrentDropA = 5.0, kCurrentDropShare = 0.10;  // B
 inline constexpr double kWantMoreA = 5.0;                               // B: target above the current by this
 inline constexpr double kRearmS = 600.0;                                // quiet seconds before a new episode
 inline constexpr double kFreshS = 2.0;  // an engine speed older than this is not read
+// C: the probe (tach alone).
+inline constexpr int kFallWindowS = 5;             // the tach fell within this many seconds
+inline constexpr double kFallShare = 0.08;         // by this share of its speed
+inline constexpr double kProbeLoadShare = 0.4;     // while the current was this share of MaxTableValue
+inline constexpr double kProbeMinA = 10.0;         // and at least this
+inline constexpr double kProbeCapShare = 0.3;      // the target during the probe, a share of that current
+inline constexpr int kProbeS = 6;                  // the probe's length
+inline constexpr int kReleaseS = 6;                // watching the speed after it
+inline constexpr double kProbeRiseShare = 0.04;    // the speed rises this share during the probe
+inline constexpr double kProbeCurrentShare = 0.3;  // while the current falls by this share
+inline constexpr double kProbeRearmS = 300.0;      // at most one probe in this many seconds
 }  // namespace belt_k
 
 struct BeltSample {
@@ -38,6 +58,8 @@ struct BeltSample {
   double dutyPct = 0.0;
   double targetAmps = kNoValue;  // what the current loop asks for
   bool fieldOn = false;
+  bool engineHeard = false;  // an engine speed from NMEA 2000 at all (then sign A, no probe)
+  double ratedA = 0.0;       // MaxTableValue: what "much of its rating" means for C
 };
 
 class BeltSlipDetector {
@@ -45,6 +67,9 @@ class BeltSlipDetector {
   // Every tick. Returns true (and pushes BeltSlip) when an episode begins.
   bool update(TimeNs now, double dt_s, const BeltSample& s, EventBatch& ev) noexcept;
   bool slipping() const noexcept { return latched_; }
+  // C: the current target's ceiling while a probe runs (+infinity otherwise).
+  double probeCapA() const noexcept { return probe_ == Probe::Holding ? probeCap_ : 1e300; }
+  bool probing() const noexcept { return probe_ != Probe::Idle; }
   double learnedRatio() const noexcept { return ratio_; }
 
  private:
@@ -55,6 +80,14 @@ class BeltSlipDetector {
   bool closeSecond(TimeNs now, EventBatch& ev) noexcept;
   bool ratioSign(const Second& s, double& slipPct) noexcept;
   bool currentSign(double& dropA, double& riseDuty) const noexcept;
+  bool probeSign(double& risePct, double& ampsBefore) noexcept;  // C (belt_slip_probe.cpp)
+  enum class Probe { Idle, Holding, Releasing };
+  Probe probe_ = Probe::Idle;
+  int probeS_ = 0;
+  double probeCap_ = 1e300, sinceProbeS_ = 1e9;
+  double beforeRpm_ = 0.0, beforeAmps_ = 0.0, heldRpm_ = 0.0, heldAmps_ = 0.0;
+  double ratedA_ = 0.0;
+  bool engineHeard_ = false;
   const Second& ago(int s) const noexcept {
     return ring_[(next_ + belt_k::kWindowS - 1 - s) % belt_k::kWindowS];
   }

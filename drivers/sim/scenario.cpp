@@ -130,6 +130,10 @@ ScenarioEvent parseEvent(const Ctx& c, const toml::table& t, double duration) {
       if (s != "charge_enabled" && s != "charge_disabled")
         c.fail(lineOf(v), "bms_input must be \"charge_enabled\" or \"charge_disabled\"");
       e.bms_charge_enabled = s == "charge_enabled";
+    } else if (n == "charger") {
+      const auto s = text(c, k, v);
+      if (s != "on" && s != "off") c.fail(lineOf(v), "charger must be \"on\" or \"off\"");
+      e.charger_on = s == "on";
     } else if (parseBmsEventKey(c, k, v, e)) {
     } else if (n == "command") {
       // handled above
@@ -155,8 +159,8 @@ ScenarioEvent parseEvent(const Ctx& c, const toml::table& t, double duration) {
   checkEventFault(c, e, haveValue);
   if (cmd) e.command = eventCommand(c, *cmd, cmdArgName, cmdArg, cmdLine);
   const bool any = e.rpm || e.house_a || e.ambient_f || e.battery_temp_c || e.ignition || e.bms_connected ||
-                   e.bms_charge_enabled || e.touchesSimCan() || e.command || !e.set.empty() || e.fault ||
-                   e.clear;
+                   e.bms_charge_enabled || e.charger_on || e.touchesSimCan() || e.command || !e.set.empty() ||
+                   e.fault || e.clear;
   if (!any) c.fail(e.line, "event does nothing");
   return e;
 }
@@ -215,10 +219,7 @@ Scenario parseTable(const Ctx& c, const toml::table& root) {
       }
     } else if (n == "loads") {
       for (auto&& [lk, lv] : tableOf(c, k, v)) {
-        if (lk.str() == "house_a")
-          s.plant.house_a = number(c, lk, lv, 0.0, 2000.0);
-        else
-          unknownKey(c, lk, "[loads]");
+        if (!parseLoadKey(c, lk, lv, s.plant)) unknownKey(c, lk, "[loads]");
       }
     } else if (n == "bus") {
       for (auto&& [bk, bv] : tableOf(c, k, v)) {
@@ -229,6 +230,8 @@ Scenario parseTable(const Ctx& c, const toml::table& root) {
         else
           unknownKey(c, bk, "[bus]");
       }
+    } else if (n == "solar" || n == "charger") {
+      parseChargeSource(c, tableOf(c, k, v), n == "solar" ? s.plant.solar : s.plant.charger, n == "solar");
     } else if (n == "bms") {
       parseBms(c, tableOf(c, k, v), s.bms);
     } else if (n == "gps") {
@@ -244,6 +247,8 @@ Scenario parseTable(const Ctx& c, const toml::table& root) {
     }
   }
   checkBmsEvents(c, s);
+  for (const auto& e : s.events)
+    if (e.charger_on && !s.plant.charger.present) c.fail(e.line, "'charger' event without a [charger]");
   if (s.name.empty()) s.name = c.src;
   return s;
 }
@@ -306,6 +311,7 @@ void ScenarioPlayer::applyToWorld(const ScenarioEvent& e, SimWorld& w) {
   if (e.ignition) w.setIgnition(*e.ignition);
   if (e.bms_connected) w.plant().setBmsConnected(*e.bms_connected);
   if (e.bms_charge_enabled) w.setBmsChargeEnabled(*e.bms_charge_enabled);
+  if (e.charger_on) w.plant().setChargerOn(*e.charger_on);
   if (e.fault) w.setFault(*e.fault, true, e.value);
   if (e.clear) w.setFault(*e.clear, false);
 }

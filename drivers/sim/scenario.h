@@ -54,6 +54,7 @@ struct ScenarioEvent {
   std::optional<bool> ignition;            // ignition = "on" | "off"
   std::optional<bool> bms_connected;       // bms = "connect" | "disconnect"
   std::optional<bool> bms_charge_enabled;  // bms_input = "charge_enabled" | "charge_disabled"
+  std::optional<bool> charger_on;          // charger = "on" | "off" (shore power; needs [charger])
   // The simulated BMS on CAN (docs/integrations.md; only with [bms] can = true):
   std::optional<BmsCanMode> bms_can;  // bms_can = "talking" | "silent" | "short_frames"
   std::optional<double> bms_ccl_a;    // forced CCL (A); < 0 = "auto" (the BMS's own taper)

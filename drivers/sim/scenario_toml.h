@@ -38,6 +38,10 @@ bool parseBmsEventKey(const Ctx& c, const toml::key& k, const toml::node& v, Sce
 // [gps] and [weather] (scenario_position.cpp).
 void parseGps(const Ctx& c, const toml::table& t, ScenarioGps& g);
 void parseWeather(const Ctx& c, const toml::table& t, ScenarioWeather& w);
+// [solar], [charger] and the [loads] keys (scenario_sources.cpp);
+// parseLoadKey returns false when `k` is not one of [loads]' keys.
+void parseChargeSource(const Ctx& c, const toml::table& t, ChargeSourceConfig& s, bool solar);
+bool parseLoadKey(const Ctx& c, const toml::key& k, const toml::node& v, PlantConfig& p);
 // An event that changes the simulated BMS or engine ECU in a scenario
 // without one.
 void checkBmsEvents(const Ctx& c, const Scenario& s);

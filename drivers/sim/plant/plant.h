@@ -11,6 +11,7 @@
 
 #include "drivers/sim/plant/alternator.h"
 #include "drivers/sim/plant/battery.h"
+#include "drivers/sim/plant/charge_source.h"
 
 namespace xr::sim {
 
@@ -19,6 +20,10 @@ struct PlantConfig {
   AlternatorConfig alternator;
   double rpm = 1800.0;    // engine RPM
   double house_a = 15.0;  // house load at the nominal voltage
+  // A fridge compressor (docs/simulator.md "Loads"): fridge_a while it runs,
+  // fridge_duty of every fridge_period_s, on top of house_a. 0 = none.
+  double fridge_a = 0.0, fridge_duty = 0.5, fridge_period_s = 1800.0;
+  ChargeSourceConfig solar, charger;  // [solar], [charger]
   double bus_capacitance_f = 0.01;
   double tvs_clamp_v = 0.0;  // 0 = 2.5 x nominal (30 V on a 12 V bus)
 };
@@ -30,7 +35,9 @@ struct PlantTruth {
   double alt_terminal_v = 0.0;
   double alt_temp_f = 0.0;  // housing (where the sensor sits)
   double alt_stator_c = 0.0;
-  double house_a = 0.0;
+  double house_a = 0.0;    // house load and fridge
+  double solar_a = 0.0;    // from the solar controller
+  double charger_a = 0.0;  // from the shore charger
   double soc_pct = 0.0;
   double field = 0.0;    // field current / full field at 13.5 V, 20 °C
   double field_a = 0.0;  // field current
@@ -63,6 +70,9 @@ class Plant {
   // The engine rpm the alternator's speed corresponds to (what its W-terminal tach shows).
   double tachRpm() const noexcept { return rpm_ * (1.0 - slipNow_); }
   void setSocPct(double p) noexcept { bat_.setSocPct(p); }
+  void setChargerOn(bool on) noexcept { charger_.setOn(on); }
+  const ChargeSource& solar() const noexcept { return solar_; }
+  const ChargeSource& charger() const noexcept { return charger_; }
   double tvsClampV() const noexcept { return tvs_; }
   const BatteryModel& battery() const noexcept { return bat_; }
   const AlternatorModel& alternator() const noexcept { return alt_; }
@@ -73,10 +83,14 @@ class Plant {
   PlantConfig cfg_;
   BatteryModel bat_;
   AlternatorModel alt_;
+  ChargeSource solar_, charger_;
   double rpm_;
+  double t_ = 0.0;  // seconds since the start (the fridge's cycle)
   double beltSlip_ = 0.0, slipNow_ = 0.0;
   double ambientF_;
-  double houseG_;  // house load conductance, S (0 = no load)
+  double houseG_;           // house load conductance, S (0 = no load)
+  double fridgeG_;          // the fridge's conductance while its compressor runs
+  double houseNowG_ = 0.0;  // the whole load's conductance in the last step
   double tvs_;
   bool bmsConnected_ = true;
   double busV_;

@@ -40,6 +40,7 @@ class Run:
     bms_state: list[str] = field(default_factory=list)
     bms_ccl: list[float] = field(default_factory=list)
     bms_connected: list[int] = field(default_factory=list)
+    belt_slips: list[float] = field(default_factory=list)  # the lifetime BeltSlip count
 
 
 def _num(s: str) -> float:
@@ -68,6 +69,7 @@ def load_csv(path: str) -> Run:
             r.bms_state.append(row.get("bms_state", ""))
             r.bms_ccl.append(_num(row.get("bms_ccl_a", "")))
             r.bms_connected.append(int(row.get("sim_bms_connected") or 1))
+            r.belt_slips.append(_num(row.get("belt_slip_events", "")))
     if not r.t:
         raise ValueError(f"{path}: no telemetry rows")
     return r
@@ -81,6 +83,12 @@ class Verdict:
     @property
     def passed(self) -> bool:
         return not self.failures
+
+
+def belt_slips(run: Run) -> int:
+    """BeltSlip events during the run (no scenario here slips its belt)."""
+    seen = [x for x in run.belt_slips if x == x]
+    return int(max(seen) - min(seen)) if seen else 0
 
 
 def count_trips(run: Run, before_s: float = float("inf")) -> int:

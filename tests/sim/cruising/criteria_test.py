@@ -33,6 +33,20 @@ class Trips(unittest.TestCase):
         self.assertEqual(C.count_trips(make_run(10)), 0)
 
 
+class BeltSlips(unittest.TestCase):
+    def test_counts_events_during_the_run_only(self):
+        r = make_run(5)
+        r.belt_slips = [2.0, 2.0, 3.0, 3.0, float("nan")]  # two from earlier runs, one now
+        self.assertEqual(C.belt_slips(r), 1)
+
+    def test_none_or_no_column(self):
+        r = make_run(3)
+        r.belt_slips = [0.0, 0.0, 0.0]
+        self.assertEqual(C.belt_slips(r), 0)
+        r.belt_slips = [float("nan")] * 3
+        self.assertEqual(C.belt_slips(r), 0)
+
+
 class Regulation(unittest.TestCase):
     def test_median_only_while_the_voltage_loop_holds(self):
         v = [14.2 + 0.019] * 10 + [13.0] * 10

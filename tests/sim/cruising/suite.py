@@ -80,6 +80,10 @@ def judge(run: C.Run, crit: dict, params: dict, scenario: dict) -> C.Verdict:
     if trips > crit["max_trips"]:
         v.failures.append(f"{trips} protection trips (max {crit['max_trips']})")
 
+    slips = C.belt_slips(run)
+    if slips:
+        v.failures.append(f"{slips} BeltSlip event(s) on a belt that grips")
+
     limit = float(params["TemperatureLimitF"])
     hottest = C.hottest_while_running(run)
     v.figures["alt max F"] = f"{hottest:.1f}/{limit:.0f}"

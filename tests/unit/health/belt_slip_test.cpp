@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 namespace xr {
 namespace {
 
@@ -116,6 +118,92 @@ TEST(BeltSlipDetector, ANewEpisodeNeedsTenQuietMinutes) {
   r.feed(kRearmS + 5, grip());
   r.feed(20, s);
   EXPECT_EQ(r.events, 2);
+}
+
+// C: the tach alone. A toy of the belt and the regulator, 10 ticks a
+// second: the alternator gives `want` A (or the probe's cap, through a
+// first-order lag of 1 s), and the tach reads the engine's speed less the
+// belt's slip, `slip` of it at 120 A and in proportion below.
+struct TachOnly {
+  Drive r;
+  double amps = 80.0, engine = 1800.0, slip = 0.0;
+  double want = 80.0;
+  bool probed = false;
+  void run(double seconds) {
+    for (int i = 0; i < static_cast<int>(seconds * 10); ++i) {
+      const double target = std::min(want, r.d.probeCapA());
+      probed = probed || r.d.probing();
+      amps += (target - amps) * 0.1;
+      BeltSample s;
+      s.rpm = engine * (1.0 - slip * amps / 120.0);
+      s.altAmps = amps;
+      s.dutyPct = 60.0;
+      s.targetAmps = target;
+      s.fieldOn = true;
+      s.ratedA = 120.0;
+      r.feed(0.1, s);
+    }
+  }
+};
+
+TEST(BeltSlipDetector, TachAloneASpeedThatFollowsTheCurrentIsOneEvent) {
+  TachOnly b;
+  b.run(60);
+  b.slip = 0.5;  // the belt starts slipping at 80 A: the tach falls 33 %
+  b.run(30);
+  EXPECT_TRUE(b.probed);
+  EXPECT_EQ(b.r.events, 1);
+  EXPECT_EQ(b.r.lastDetail, 3);
+  EXPECT_FALSE(b.r.d.probing());
+  b.run(600);  // the same episode: no second event, no more probes
+  EXPECT_EQ(b.r.events, 1);
+  EXPECT_GE(b.r.d.probeCapA(), 1e299);
+}
+
+TEST(BeltSlipDetector, TachAloneAnEngineThatSlowsIsProbedButNoEvent) {
+  TachOnly b;
+  b.run(60);
+  b.engine = 1300.0;  // the skipper pulls the throttle back
+  b.run(30);
+  EXPECT_TRUE(b.probed);
+  EXPECT_EQ(b.r.events, 0);
+  EXPECT_FALSE(b.r.d.probing());
+  EXPECT_GE(b.r.d.probeCapA(), 1e299);  // the cap is released
+}
+
+TEST(BeltSlipDetector, TachAloneThrottleBackThenUpAgainIsNoEvent) {
+  TachOnly b;
+  b.run(60);
+  b.engine = 1300.0;
+  b.run(3);  // the probe starts
+  ASSERT_TRUE(b.r.d.probing());
+  b.engine = 1900.0;  // ... and the throttle goes up during it, and stays
+  b.run(30);
+  EXPECT_EQ(b.r.events, 0);
+}
+
+TEST(BeltSlipDetector, TachAloneAFallAtLowCurrentIsNotProbed) {
+  TachOnly b;
+  b.want = b.amps = 0.35 * 120.0;  // below kProbeLoadShare of the rating
+  b.run(60);
+  b.slip = 0.5;
+  b.run(30);
+  EXPECT_FALSE(b.probed);
+  EXPECT_EQ(b.r.events, 0);
+}
+
+TEST(BeltSlipDetector, TachAloneOneProbeInFiveMinutes) {
+  TachOnly b;
+  b.run(60);
+  b.engine = 1300.0;
+  b.run(30);
+  ASSERT_TRUE(b.probed);
+  b.probed = false;
+  b.engine = 1800.0;
+  b.run(60);
+  b.engine = 1300.0;  // a second throttle back within kProbeRearmS
+  b.run(30);
+  EXPECT_FALSE(b.probed);
 }
 
 }  // namespace
