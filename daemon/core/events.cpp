@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/bms_limits.h"
+#include "core/charge_checks.h"
 #include "core/commands.h"
 
 namespace xr {
@@ -67,6 +68,8 @@ constexpr std::string_view kEventCodeNames[] = {
     "WeatherForecastBack",
     "CapacityMeasured",
     "BeltSlip",
+    "BmsMismatch",
+    "ChargingHeld",
 };
 static_assert(std::size(kEventCodeNames) == static_cast<std::size_t>(kEventCodeCount));
 
@@ -165,7 +168,9 @@ const char* alarmRowText(int row) {
                                           "Efficiency anomaly",
                                           "Field protection active",
                                           "TempTask hung",
-                                          "BMS limits stale"};
+                                          "BMS limits stale",
+                                          "BMS does not fit the bank",
+                                          "Charging held"};
   if (row < 0 || row >= static_cast<int>(sizeof kRows / sizeof kRows[0])) return "Alarm";
   return kRows[row];
 }
@@ -357,8 +362,8 @@ std::optional<std::string> describeLinks(const Event& e) {
 }  // namespace
 
 std::string describe(const Event& e) {
-  for (const auto part :
-       {describeModeAndStage, describeSensorsAndField, describeCommandsAndBattery, describeLinks})
+  for (const auto part : {describeModeAndStage, describeSensorsAndField, describeCommandsAndBattery,
+                          describeLinks, describeChargeChecks})
     if (auto text = part(e)) return *text;
   char buf[256];
   std::snprintf(buf, sizeof buf, "%s %s a=%.3f b=%.3f", std::string(toString(e.code)).c_str(),

@@ -40,6 +40,10 @@ class Run:
     bms_state: list[str] = field(default_factory=list)
     bms_ccl: list[float] = field(default_factory=list)
     bms_connected: list[int] = field(default_factory=list)
+    alarm: list[int] = field(default_factory=list)
+    bms_mismatch: list[str] = field(default_factory=list)
+    charge_held_by: list[str] = field(default_factory=list)
+    charge_held_min: list[float] = field(default_factory=list)
 
 
 def _num(s: str) -> float:
@@ -68,6 +72,10 @@ def load_csv(path: str) -> Run:
             r.bms_state.append(row.get("bms_state", ""))
             r.bms_ccl.append(_num(row.get("bms_ccl_a", "")))
             r.bms_connected.append(int(row.get("sim_bms_connected") or 1))
+            r.alarm.append(int(row.get("alarm") or 0))
+            r.bms_mismatch.append(row.get("bms_mismatch", ""))
+            r.charge_held_by.append(row.get("charge_held_by", ""))
+            r.charge_held_min.append(_num(row.get("charge_held_min", "")))
     if not r.t:
         raise ValueError(f"{path}: no telemetry rows")
     return r
