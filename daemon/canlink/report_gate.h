@@ -22,6 +22,14 @@ class ReportGate {
   static constexpr double kMaxPeriodS = 3600.0;
   static constexpr double kQuietS = 600.0;
 
+  // Something of another kind came (a new reason for bad frames): the next
+  // due() reports at once and the intervals start again from kPeriodS. The
+  // caller restarts once per kind and incident, so the lines stay bounded.
+  void restart() {
+    periodS_ = kPeriodS;
+    last_ = -1;
+  }
+
   // How many to report now (0: nothing new, or too soon after the last).
   std::uint64_t due(std::uint64_t total, TimeNs now) {
     if (total != seen_) {

@@ -91,6 +91,28 @@ TEST(BmsCanLink, RepeatedBadFramesAreAtMostTenLinesAnHourWithTheirCount) {
   EXPECT_EQ(r.reports.size(), before + 1);
 }
 
+// Another kind of bad frame in the same incident is told at once, once.
+TEST(BmsCanLink, ANewKindOfBadFrameIsToldAtOnce) {
+  LinkRig r;
+  CanFrame cvl = can::encode351(71.0, 10, 100, 12);  // CVL out of range
+  for (int s = 0; s < 200; ++s) {
+    r.bms.send(cvl);
+    r.link.poll(fromSec(s));
+  }
+  const std::size_t before = r.reports.size();
+  CanFrame shortDlc = can::encode351(14.2, 10, 100, 12);
+  shortDlc.dlc = 4;
+  r.bms.send(shortDlc);
+  r.link.poll(fromSec(200));
+  ASSERT_EQ(r.reports.size(), before + 1);
+  EXPECT_NE(r.reports.back().find("short DLC"), std::string::npos) << r.reports.back();
+  for (int s = 201; s < 260; ++s) {  // both kinds again: nothing new to tell at once
+    r.bms.send(s % 2 ? cvl : shortDlc);
+    r.link.poll(fromSec(s));
+  }
+  EXPECT_LE(r.reports.size(), before + 2);
+}
+
 TEST(BmsCanLink, WithAnEventSinkTheReportIsAnEvent) {
   LinkRig r;
   std::vector<Event> events;
