@@ -57,7 +57,11 @@ inline constexpr double kMaxCvlV = 70.0;  // 48 V class packs charge to ~58 V
 inline constexpr double kMinCvlV = 8.0;
 inline constexpr double kMaxCclA = 2000.0;  // MaximumAllowedBatteryAmps' own ceiling
 inline constexpr double kMinTempC = -40.0, kMaxTempC = 100.0;
-inline constexpr double kMinCellV = 1.0, kMaxCellV = 5.0;  // any lithium cell that is still measured
+// A cell reading is decoded when a BMS could send it: one set up for another
+// cell count reads the pack over the wrong count (4 cells on a 48 V bank:
+// ~13 V "cells"). Whether it fits the bank is BmsPlausibility's call (it
+// tells the owner), not the decoder's: a dropped frame says nothing.
+inline constexpr double kMinCellV = 0.5, kMaxCellV = 16.0;
 
 class BmsDecoder {
  public:

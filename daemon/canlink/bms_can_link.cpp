@@ -32,6 +32,16 @@ void BmsCanLink::poll(TimeNs now) {
     }
   }
   if (changed && post_) post_(decoder_.limits());
+  if (decoder_.rejected() != seenRejected_) {
+    seenRejected_ = decoder_.rejected();
+    if (lastBadAt_ >= 0 && now - lastBadAt_ >= fromSec(ReportGate::kQuietS)) toldReasons_ = 0;
+    lastBadAt_ = now;
+    const std::uint32_t bit = 1u << static_cast<unsigned>(decoder_.lastReject());
+    if ((toldReasons_ & bit) == 0) {
+      if (toldReasons_ != 0) badGate_.restart();  // another kind of bad frame: told at once
+      toldReasons_ |= bit;
+    }
+  }
   if (const std::uint64_t n = badGate_.due(decoder_.rejected(), now)) {
     if (postEvent_) {
       postEvent_(makeEvent(now, EventLevel::Warning, EventCode::BmsBadFrames, Reason::NONE,

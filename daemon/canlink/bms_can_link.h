@@ -51,6 +51,11 @@ class BmsCanLink {
   std::uint64_t errorFrames_ = 0;
   TimeNs lastAccepted_ = 0;
   std::uint32_t lastErrorClass_ = 0;
+  // The reasons for bad frames told in this incident (bit = BmsReject), and
+  // when the last bad frame came: a new reason is told at once, once.
+  std::uint32_t toldReasons_ = 0;
+  std::uint64_t seenRejected_ = 0;
+  TimeNs lastBadAt_ = -1;
 };
 
 }  // namespace xr::canlink

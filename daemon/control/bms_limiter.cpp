@@ -56,6 +56,7 @@ void BmsLimiter::update(const BmsLimits& b, TimeNs now, double Bcur, double pack
     if (state_ == BmsState::STALE)
       ev.push(makeEvent(now, EventLevel::Info, EventCode::ProtectionClear, Reason::REASON_BMS_STALE));
     reset();
+    plausibility_.reset();
     return;
   }
   if (enabledSince_ < 0) enabledSince_ = now;
@@ -88,7 +89,16 @@ void BmsLimiter::update(const BmsLimits& b, TimeNs now, double Bcur, double pack
   cvl_ = std::isfinite(b.cvlV) && b.cvlV > 0.0 ? b.cvlV - p.BmsCvlMarginV : kNone;
   chargeAllowed_ = b.chargeAllowed;
 
-  updateCellCeiling(b, packV, dt, p);
+  // Every value against the bank; cell readings that do not fit (a BMS set
+  // up for another cell count) never drive the ceiling.
+  plausibility_.update(b, now, packV, p, ev);
+  if (BmsPlausibility::cellsFit(b, packV, p)) {
+    updateCellCeiling(b, packV, dt, p);
+  } else {
+    BmsLimits noCells = b;
+    noCells.cellMaxV = noCells.cellMinV = kBmsNoValue;
+    updateCellCeiling(noCells, packV, dt, p);
+  }
   const bool warn = ((b.warnings | b.alarms) & bmswarn::ChargeRampDown) != 0;
   if (warn) {
     if (warnCap_ == kNone) {

@@ -12,6 +12,9 @@
 //                  puts a ceiling on the voltage target that holds that cell
 //                  at the limit (a constant voltage on the highest cell, no
 //                  on/off), before the BMS's own cell limit
+//   not fitting  : values that do not fit the bank (bms_plausibility.h) are
+//                  told once per episode; cell readings that do not fit
+//                  are not followed by the highest cell's ceiling
 //   no source    : BmsLimits::source None (nothing configured): OFF
 //   stale        : no limits for BmsStaleS (or none since the source was
 //                  configured):
@@ -21,6 +24,7 @@
 #include <limits>
 #include <string_view>
 
+#include "control/bms_plausibility.h"
 #include "core/bms_limits.h"
 #include "core/events.h"
 #include "params/params.h"
@@ -54,6 +58,7 @@ class BmsLimiter {
   bool stale() const noexcept { return state_ == BmsState::STALE; }
   bool cellHigh() const noexcept { return cellHigh_; }
   BmsState state() const noexcept { return state_; }
+  const BmsPlausibility& plausibility() const noexcept { return plausibility_; }
   // The last BMS values for telemetry (NaN when none or stale).
   double shownCvlV() const noexcept { return shownCvl_; }
   double shownCclA() const noexcept { return shownCcl_; }
@@ -73,6 +78,7 @@ class BmsLimiter {
   bool chargeAllowed_ = true;
   bool cellHigh_ = false;
   double cellCeiling_ = kNone;  // the highest cell's pack ceiling (kNone = not holding)
+  BmsPlausibility plausibility_;
   double shownCvl_ = kBmsNoValue, shownCcl_ = kBmsNoValue, shownSoc_ = kBmsNoValue;
 };
 

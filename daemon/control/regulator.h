@@ -11,6 +11,7 @@
 
 #include "battery/ledger.h"
 #include "control/outputs.h"
+#include "core/charge_checks.h"
 #include "core/commands.h"
 #include "core/inputs.h"
 #include "params/params.h"
@@ -53,6 +54,8 @@ class Regulator {
   void runAuto(Tick& t) noexcept;
   void applyField(Tick& t) noexcept;
   void updateBattery(Tick& t) noexcept;
+  void updateChargeChecks(Tick& t) noexcept;  // regulator_hold.cpp
+  ChargeHold chargeHoldCause(const Tick& t) const noexcept;
   void updateHealth(Tick& t) noexcept;
   void fillInputTelemetry(const Tick& t) noexcept;
   void fillStateTelemetry() noexcept;

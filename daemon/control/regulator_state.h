@@ -5,6 +5,7 @@
 #include <cstddef>
 
 #include "battery/battery_monitor.h"
+#include "control/charge_hold.h"
 #include "control/control_law.h"
 #include "control/regulator.h"
 #include "health/alternator_wear.h"
@@ -25,7 +26,9 @@ struct Regulator::State {
   BatteryTemperatureGuard batTemp;  // docs/batteries.md "Temperature rules"
   AlternatorWear wear;              // docs/operations.md "Alternator wear"
   BeltSlipDetector belt;            // docs/operations.md "Belt slip"
+  ChargeHoldDetector hold;          // docs/protections.md "Charging held"
   TimeNs lastHealthTick = 0;
+  TimeNs lastHoldTick = 0;
   Params compensated;  // p with temperature-compensated targets (when compensating)
   Outputs out;
 

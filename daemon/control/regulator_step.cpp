@@ -5,7 +5,7 @@
 //   (sustained timers) -> charging stage -> TickSnapshot -> mode selection ->
 //   mode transitions (enterSys*) -> shutdown path (incl. applyImmediateCut)
 //   or normal control (AUTO with fast-OV supervisors / MANUAL / Limp Home)
-//   -> governor -> outputs -> SoC update -> alarms -> alternator wear and belt
+//   -> governor -> outputs -> SoC update -> charging held -> alarms -> alternator wear and belt
 //   slip -> telemetry.
 //
 // CH1 freshness: the control law (filters, CV loop, PID, governor) fires on
@@ -265,6 +265,7 @@ void Regulator::updateBattery(Tick& t) noexcept {
   s.bat.updateBatterySoc(t.in, t.MeasuredAmps, ev);
   if (s.law.stages().completedOnTail()) s.bat.chargeCompletedOnTail(t.in.now, ev);
   s.prot.setBmsStale(s.law.bms().stale());
+  updateChargeChecks(t);
   s.out.buzzer = s.prot.checkAlarms(false, ev);
 }
 
@@ -343,6 +344,9 @@ void Regulator::fillStateTelemetry() noexcept {
   t.bms_ccl_a = bms.shownCclA();
   t.bms_soc_pct = bms.shownSocPct();
   t.bms_state = bms.state();
+  t.bms_mismatch = bms.plausibility().reported();
+  t.charge_held_by = s.hold.cause();
+  t.charge_held_min = s.hold.held() ? s.hold.heldS() / 60.0 : 0.0;
 }
 
 }  // namespace xr

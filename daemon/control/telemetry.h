@@ -11,6 +11,7 @@
 #include "control/bms_limiter.h"
 #include "control/command_caps.h"
 #include "control/control_telemetry.h"
+#include "core/charge_checks.h"
 #include "core/inputs.h"
 #include "core/modes.h"
 #include "core/time.h"
@@ -49,6 +50,12 @@ struct Telemetry {
   BmsState bms_state = BmsState::OFF;
   double battery_temp_c = kNoValue;  // NaN while no sample was ever read
   bool ignition_on = true;           // the ignition input this tick (pairing by presence, docs/security.md)
+  // Never silently not charging (docs/protections.md): what of the BMS does
+  // not fit the bank (the episode reported), what holds the charge now and
+  // for how long (minutes, while held).
+  BmsMismatch bms_mismatch = BmsMismatch::NONE;
+  ChargeHold charge_held_by = ChargeHold::NONE;
+  double charge_held_min = 0.0;
 
   ControlTelemetry control;
   CommandCaps caps;  // what holds the current command back, for the owner model
@@ -121,6 +128,9 @@ void visitTelemetryColumns(const Telemetry& t, TimeNs start, F&& f) {
   f("alt_hours_above_225f", ColumnValue{t.wear.alt_hours_above[3]});
   f("alt_life_used_pct", ColumnValue{t.wear.alt_life_used_pct});
   f("belt_slip_events", ColumnValue{t.wear.belt_slip_events});
+  f("bms_mismatch", ColumnValue{toString(t.bms_mismatch)});
+  f("charge_held_by", ColumnValue{toString(t.charge_held_by)});
+  f("charge_held_min", ColumnValue{t.charge_held_min});
 }
 
 }  // namespace xr

@@ -7,6 +7,8 @@
 #include <string>
 
 #include "core/bms_limits.h"
+#include "core/calm_text.h"
+#include "core/charge_checks.h"
 #include "core/commands.h"
 
 namespace xr {
@@ -67,6 +69,8 @@ constexpr std::string_view kEventCodeNames[] = {
     "WeatherForecastBack",
     "CapacityMeasured",
     "BeltSlip",
+    "BmsMismatch",
+    "ChargingHeld",
 };
 static_assert(std::size(kEventCodeNames) == static_cast<std::size_t>(kEventCodeCount));
 
@@ -165,7 +169,9 @@ const char* alarmRowText(int row) {
                                           "Efficiency anomaly",
                                           "Field protection active",
                                           "TempTask hung",
-                                          "BMS limits stale"};
+                                          "BMS limits stale",
+                                          "BMS does not fit the bank",
+                                          "Charging held"};
   if (row < 0 || row >= static_cast<int>(sizeof kRows / sizeof kRows[0])) return "Alarm";
   return kRows[row];
 }
@@ -360,42 +366,11 @@ std::optional<std::string> describeLinks(const Event& e) {
   }
 }
 
-bool isLetter(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }
-
-// A value that was never read prints as "nan" (or "inf"): the owner reads
-// "no reading" instead, without the unit that followed it ("IBV=nan V" ->
-// "IBV=no reading"). Whole words only: "maintenance" keeps its "nan".
-std::string calmNonFinite(std::string text) {
-  for (const char* word : {"-nan", "nan", "-inf", "inf"}) {
-    const std::string w(word);
-    for (std::size_t at = text.find(w); at != std::string::npos; at = text.find(w, at)) {
-      std::size_t end = at + w.size();
-      const bool wordStart = at == 0 || !isLetter(text[at - 1]);
-      // "nans": a unit written against the number ("%.0fs") goes with it.
-      if (end < text.size() && text[end] == 's' && (end + 1 == text.size() || !isLetter(text[end + 1])))
-        ++end;
-      if (!wordStart || (end < text.size() && isLetter(text[end]))) {
-        at = end;
-        continue;
-      }
-      std::size_t cut = end;  // " V", " RPM", " %": the unit of the missing value goes too
-      if (cut + 1 < text.size() && text[cut] == ' ') {
-        std::size_t u = cut + 1;
-        while (u < text.size() && (isLetter(text[u]) || text[u] == '%') && u - cut <= 3) ++u;
-        if (u > cut + 1 && (u == text.size() || !isLetter(text[u]))) cut = u;
-      }
-      text.replace(at, cut - at, "no reading");
-      at += 10;
-    }
-  }
-  return text;
-}
-
 }  // namespace
 
 std::string describe(const Event& e) {
-  for (const auto part :
-       {describeModeAndStage, describeSensorsAndField, describeCommandsAndBattery, describeLinks})
+  for (const auto part : {describeModeAndStage, describeSensorsAndField, describeCommandsAndBattery,
+                          describeLinks, describeChargeChecks})
     if (auto text = part(e)) return calmNonFinite(std::move(*text));
   char buf[256];
   std::snprintf(buf, sizeof buf, "%s %s a=%.3f b=%.3f", std::string(toString(e.code)).c_str(),

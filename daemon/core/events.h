@@ -62,12 +62,19 @@ enum class EventCode {
                      // far)
   BeltSlip,          // the belt slips (detail 1: tach against engine speed, a = slip %, b = engine rpm;
                      // detail 2: current falling while the duty rises, a = current drop A, b = duty rise %)
+  // The BMS's values do not fit the bank (docs/protections.md "BMS plausibility"), once per episode:
+  // detail bits 0-3 = BmsMismatch (0 = everything fits again, a = the kind that was reported), bits 4-9 =
+  // the bank's cells, from bit 10 = its nominal V; a, b = the value that does not fit and what it meets.
+  BmsMismatch,
+  // Charging held with the engine running and the bank not full (docs/protections.md "Charging held"):
+  // level Warning once when it reaches the limit, Info when it ends; a = minutes held, detail = ChargeHold.
+  ChargingHeld,
 };
 // Why the weather forecast cannot be read (WeatherForecastMissing's detail).
 enum class WeatherMissing { NoPosition = 0, ServerError = 1, NoAnswer = 2, AnswerRefused = 3 };
 // How many codes there are (keep it after the last one): parsing a stored
 // code name tries each.
-inline constexpr int kEventCodeCount = static_cast<int>(EventCode::BeltSlip) + 1;
+inline constexpr int kEventCodeCount = static_cast<int>(EventCode::ChargingHeld) + 1;
 
 struct Event {
   TimeNs t = 0;

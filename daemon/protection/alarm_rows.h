@@ -19,7 +19,9 @@ enum class AlarmRow {
   FaultMode,           // critical / warning / lockout mode (docs/install.md, the buzzer on GPIO21)
   TempTaskHung,        // NOT gated by AlarmActivate
   BmsStale,            // ours: BMS limits silent for BmsStaleS
+  BmsMismatch,         // ours: the BMS's values do not fit the bank (its own BmsMismatch event)
+  ChargingHeld,        // ours: charging held 15 min with the engine running (its own ChargingHeld event)
 };
-inline constexpr std::size_t kAlarmRowCount = 12;
+inline constexpr std::size_t kAlarmRowCount = 14;
 
 }  // namespace xr

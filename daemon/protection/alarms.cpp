@@ -42,14 +42,20 @@ bool ProtectionSupervisor::checkAlarms(bool effAnomalyAlarmActive, EventBatch& e
   set(AlarmRow::FaultMode, faultAlarm_, 0.0, 0.0);
   set(AlarmRow::TempTaskHung, flags_.tempTaskAlarm, 0.0, k::TEMP_TASK_TIMEOUT / 1000.0);
   set(AlarmRow::BmsStale, bmsStale_, 0.0, p_.BmsStaleS);
+  set(AlarmRow::BmsMismatch, bmsMismatch_, 0.0, 0.0);
+  set(AlarmRow::ChargingHeld, chargingHeld_, 0.0, 0.0);
 
   bool gated = false;
   for (std::size_t i = 0; i < kAlarmRowCount; ++i) {
     const auto r = static_cast<AlarmRow>(i);
     const bool counts = row[i] && (r == AlarmRow::TempTaskHung || p_.AlarmActivate);
     if (counts && r != AlarmRow::TempTaskHung) gated = true;
-    // One console message per row per 30 s while it holds.
-    if (counts && (alarmMsgAt_[i] < 0 || now_ - alarmMsgAt_[i] >= fromMs(k::ALARM_MESSAGE_THROTTLE_MS))) {
+    // One console message per row per 30 s while it holds; the rows with an
+    // event of their own (once per episode) add none: a mismatch that lasts
+    // hours is not 120 journal lines an hour.
+    const bool ownEvent = r == AlarmRow::BmsMismatch || r == AlarmRow::ChargingHeld;
+    if (counts && !ownEvent &&
+        (alarmMsgAt_[i] < 0 || now_ - alarmMsgAt_[i] >= fromMs(k::ALARM_MESSAGE_THROTTLE_MS))) {
       alarmMsgAt_[i] = now_;
       push(ev, EventCode::AlarmCondition, EventLevel::Warning, Reason::NONE, val[i], lim[i],
            static_cast<int>(i));

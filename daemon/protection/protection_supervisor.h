@@ -122,6 +122,12 @@ class ProtectionSupervisor {
   void setFieldResting(bool resting) noexcept { fieldResting_ = resting; }
   // The BMS limits went stale (BmsLimiter): an alarm row of its own.
   void setBmsStale(bool stale) noexcept { bmsStale_ = stale; }
+  // The BMS's values do not fit the bank, and charging held for long
+  // (docs/protections.md): rows whose own event tells the owner once.
+  void setChargeChecks(bool bmsMismatch, bool chargingHeld) noexcept {
+    bmsMismatch_ = bmsMismatch;
+    chargingHeld_ = chargingHeld;
+  }
   const ProtectionFlags& flags() const noexcept { return flags_; }
 
   // Step 7: the shutdown sequencer (three paths + lockout + disabled ramp).
@@ -199,6 +205,7 @@ class ProtectionSupervisor {
   double rpm_ = kNoValue;
   bool fieldResting_ = false;
   bool bmsStale_ = false;
+  bool bmsMismatch_ = false, chargingHeld_ = false;
   bool rpmOkAtRestStart_ = false;
   bool rpmEverRead_ = false;  // an engine speed was read since start
   TimeNs restEndedAt_ = -1;

@@ -25,6 +25,10 @@ SimCanRig::SimCanRig(const Scenario& scenario, const CanSettings& settings, rt::
       service_(handoffs, std::move(report)),
       nextStep_(start),
       start_(start) {
+  // The BMS follows the bank (docs/simulator.md "[bms]"): its cells from
+  // [bms] cells, else the plant's (resolved at the first step), its CVL
+  // from its cells unless the scenario sets one.
+  bms_.cells = scenario.bms.cells;
   bms_.cvlV = scenario.bms.cvl_v;
   bms_.cclMaxA = scenario.bms.ccl_max_a;
   bms_.openAfterS = scenario.bms.open_after_s;
@@ -62,6 +66,8 @@ void SimCanRig::step(TimeNs now, Plant& plant) {
   now_ = now;
   while (nextStep_ <= now) nextStep_ += fromSec(canlink::CanService::kPollPeriodS);
   if (simBms_) {
+    if (bms_.cells <= 0) bms_.cells = plant.battery().cells();
+    if (bms_.cvlV <= 0.0) bms_.cvlV = bms_.cells * ScenarioBms::kCellCvlV;
     const PlantTruth& t = plant.truth();
     // A scenario's bms = "connect" closes what the BMS opened.
     if (bms_.contactorOpen() && t.bms_connected) bms_.closeContactor();

@@ -39,12 +39,14 @@ enum class BmsCanMode { Talking, Silent, ShortFrames };
 // by the plant's truth, opening the plant's BMS disconnect when its limits
 // are ignored (drivers/sim/bms/sim_bms.h).
 struct ScenarioBms {
-  bool can = false;                  // can = true: the BMS talks on the bus
-  std::string protocol = "victron";  // victron | pylontech | rec (what the daemon decodes)
-  double cvl_v = 14.2;               // its charge voltage limit
-  double ccl_max_a = 100.0;          // its CCL before the SoC / cold taper
-  double open_after_s = 3.0;         // limits ignored this long: the contactor opens
-  double cell_spread_v = 0.0;        // rec: highest cell this far over the average (0x373)
+  static constexpr double kCellCvlV = 3.55;  // an LFP BMS's usual charge voltage per cell
+  bool can = false;                          // can = true: the BMS talks on the bus
+  std::string protocol = "victron";          // victron | pylontech | rec (what the daemon decodes)
+  int cells = 0;                             // cells in series it is set up for; 0 = the [battery]'s
+  double cvl_v = 0.0;                        // its charge voltage limit; 0 = cells x kCellCvlV
+  double ccl_max_a = 100.0;                  // its CCL before the SoC / cold taper
+  double open_after_s = 3.0;                 // limits ignored this long: the contactor opens
+  double cell_spread_v = 0.0;                // rec: highest cell this far over the average (0x373)
 };
 
 struct ScenarioEvent {

@@ -28,6 +28,9 @@ void parseBms(const Ctx& c, const toml::table& t, ScenarioBms& b) {
       if (s != "victron" && s != "pylontech" && s != "rec")
         c.fail(lineOf(v), "[bms] protocol must be \"victron\", \"pylontech\" or \"rec\"");
       b.protocol = s;
+    } else if (n == "cells") {
+      b.cells = static_cast<int>(number(c, k, v, 1.0, 32.0));
+      if (b.cells != *v.value<double>()) c.fail(lineOf(v), "[bms] cells must be a whole number");
     } else if (n == "cvl_v") {
       b.cvl_v = number(c, k, v, 8.0, 70.0);
     } else if (n == "ccl_max_a") {

@@ -1,7 +1,9 @@
 #pragma once
 // SimBms: a simulated LFP BMS on the CAN bus (the Victron/SMA frame set),
 // driven by the plant's truth. What it sends:
-//   CVL: cvlV (cells x 3.55 V for 12 V: 14.2 V), or a scenario's bms_cvl_v
+//   CVL: cvlV (cells x 3.55 V: 14.2 V for 4 cells; the rig sets it from the
+//        bank's cells unless the scenario's [bms] cvl_v does), or a
+//        scenario's bms_cvl_v event
 //   CCL: cclMaxA, tapered as the bank nears full and when cold, or a
 //        scenario's bms_ccl_a. Taper by SoC after the dbus-serialbattery
 //        table (85 %: 100 %, 90 %: 50 %, 95 %: 20 %, 98 %: 10 %), by
@@ -46,7 +48,7 @@ class SimBms {
   bool shortFrames = false;
   bool pylontech = false;
   bool rec = false;
-  int cells = 4;  // in series: a 12 V LFP bank
+  int cells = 4;  // in series it is set up for (the rig: [bms] cells, else the bank's)
   double cellSpreadV = 0.0;
 
   // One step of `dt` seconds; returns the frames to send now (every

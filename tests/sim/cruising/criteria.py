@@ -41,6 +41,10 @@ class Run:
     bms_ccl: list[float] = field(default_factory=list)
     bms_connected: list[int] = field(default_factory=list)
     belt_slips: list[float] = field(default_factory=list)  # the lifetime BeltSlip count
+    alarm: list[int] = field(default_factory=list)
+    bms_mismatch: list[str] = field(default_factory=list)
+    charge_held_by: list[str] = field(default_factory=list)
+    charge_held_min: list[float] = field(default_factory=list)
 
 
 def _num(s: str) -> float:
@@ -70,6 +74,10 @@ def load_csv(path: str) -> Run:
             r.bms_ccl.append(_num(row.get("bms_ccl_a", "")))
             r.bms_connected.append(int(row.get("sim_bms_connected") or 1))
             r.belt_slips.append(_num(row.get("belt_slip_events", "")))
+            r.alarm.append(int(row.get("alarm") or 0))
+            r.bms_mismatch.append(row.get("bms_mismatch", ""))
+            r.charge_held_by.append(row.get("charge_held_by", ""))
+            r.charge_held_min.append(_num(row.get("charge_held_min", "")))
     if not r.t:
         raise ValueError(f"{path}: no telemetry rows")
     return r

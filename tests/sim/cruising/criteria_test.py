@@ -6,6 +6,7 @@ import unittest
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+import bms_fit as B  # noqa: E402
 import criteria as C  # noqa: E402
 
 
@@ -171,6 +172,52 @@ class HeatSoak(unittest.TestCase):
         r = make_run(10, field_on=on, mode=modes)
         self.assertEqual(C.resumed_after(r, 3.0), 4.0)
         self.assertIsNone(C.resumed_after(make_run(10, field_on=0), 3.0))
+
+class BmsFit(unittest.TestCase):
+    def fit_run(self, n=100, **cols):
+        r = make_run(n)
+        r.alarm = cols.get("alarm", [0] * n)
+        r.bms_mismatch = cols.get("bms_mismatch", ["NONE"] * n)
+        r.bms_state = cols.get("bms_state", ["OK"] * n)
+        r.charge_held_by = cols.get("charge_held_by", ["NONE"] * n)
+        r.charge_held_min = cols.get("charge_held_min", [0.0] * n)
+        return r
+
+    def test_mismatch_alarm_within_the_minute(self):
+        crit = {"mismatch_within_s": 60, "mismatch_kind": "CVL_CLASS"}
+        at60 = self.fit_run(bms_mismatch=["NONE"] * 60 + ["CVL_CLASS"] * 40, alarm=[0] * 60 + [1] * 40)
+        v = C.Verdict()
+        B.judge_bms_fit(at60, crit, v, None)
+        self.assertTrue(v.passed, v.failures)
+        at61 = self.fit_run(bms_mismatch=["NONE"] * 61 + ["CVL_CLASS"] * 39, alarm=[0] * 61 + [1] * 39)
+        v = C.Verdict()
+        B.judge_bms_fit(at61, crit, v, None)
+        self.assertFalse(v.passed)
+        silent = self.fit_run(bms_mismatch=["CVL_CLASS"] * 100)  # named, but no alarm
+        v = C.Verdict()
+        B.judge_bms_fit(silent, crit, v, None)
+        self.assertFalse(v.passed)
+
+    def test_a_fitting_bms_never_warns(self):
+        v = C.Verdict()
+        B.judge_bms_fit(self.fit_run(), {"bms_fits": True}, v, None)
+        self.assertTrue(v.passed, v.failures)
+        v = C.Verdict()
+        B.judge_bms_fit(self.fit_run(bms_state=["OK"] * 99 + ["WARNING"]), {"bms_fits": True}, v, None)
+        self.assertFalse(v.passed)
+
+    def test_log_lines_about_the_bms(self):
+        import tempfile
+        with tempfile.TemporaryDirectory() as tmp:
+            log = Path(tmp) / "run.log"
+            log.write_text("x BMS one\ny bms two\nz other\n")
+            v = C.Verdict()
+            B.judge_bms_fit(self.fit_run(), {"max_bms_lines": 2}, v, log)
+            self.assertTrue(v.passed, v.failures)
+            v = C.Verdict()
+            B.judge_bms_fit(self.fit_run(), {"max_bms_lines": 1}, v, log)
+            self.assertFalse(v.passed)
+
 
 if __name__ == "__main__":
     unittest.main()

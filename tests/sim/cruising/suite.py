@@ -22,6 +22,7 @@ import tomllib
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+import bms_fit  # noqa: E402
 import criteria as C  # noqa: E402
 import passage  # noqa: E402
 
@@ -72,7 +73,7 @@ def run_daemon(daemon: str, toml_path: Path, csv_path: Path, rate_hz: float) -> 
         raise RuntimeError(f"{toml_path.name}: xregulatord exited {rc}, see {log}")
 
 
-def judge(run: C.Run, crit: dict, params: dict, scenario: dict) -> C.Verdict:
+def judge(run: C.Run, crit: dict, params: dict, scenario: dict, log: Path | None = None) -> C.Verdict:
     v = C.Verdict()
     fault_at = crit.get("fault_at_s", float("inf"))
     trips = C.count_trips(run, before_s=fault_at)
@@ -151,6 +152,7 @@ def judge(run: C.Run, crit: dict, params: dict, scenario: dict) -> C.Verdict:
             v.failures.append(f"charging not resumed within {crit['resume_within_s']} s of {crit['resumes_after_s']} s")
 
     passage.judge_passage(run, crit, v)
+    bms_fit.judge_bms_fit(run, crit, v, log)
     v.figures["end"] = f"{run.stage[-1]} {run.soc[-1]:.0f}%"
     if crit.get("known_failure"):
         v.failures.append("known failure: " + crit["known_failure"])
@@ -165,7 +167,7 @@ def run_one(daemon: str, toml_path: Path, out: Path, table: dict, plot: bool) ->
     csv_path = out / f"{name}.csv"
     run_daemon(daemon, toml_path, csv_path, crit["telemetry_rate_hz"])
     run = C.load_csv(str(csv_path))
-    verdict = judge(run, crit, effective_params(daemon, scenario), scenario)
+    verdict = judge(run, crit, effective_params(daemon, scenario), scenario, csv_path.with_suffix(".log"))
     if plot:
         import plot as P  # matplotlib only where plots are wanted
 

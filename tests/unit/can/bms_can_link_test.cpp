@@ -1,5 +1,6 @@
 // BmsCanLink: frames from a (simulated) BMS become posted limits; bad frames
-// are counted and reported at most once per 30 s; the candump log holds
+// are counted and reported at most once per 30 s, less often as an incident
+// goes on; the candump log holds
 // every frame.
 #include "canlink/bms_can_link.h"
 
@@ -58,6 +59,58 @@ TEST(BmsCanLink, BadFramesAreCountedIgnoredAndReportedRateLimited) {
   r.link.poll(fromSec(40));  // 30 s on: the next report counts what came since
   ASSERT_EQ(r.reports.size(), 2u);
   EXPECT_NE(r.reports[1].find("5 bad frame"), std::string::npos);
+}
+
+// Ten hours of a bad frame every second (a BMS that keeps sending what the
+// decoder drops): a handful of lines in the first hour, one an hour after,
+// and every frame still in the counts.
+TEST(BmsCanLink, RepeatedBadFramesAreAtMostTenLinesAnHourWithTheirCount) {
+  LinkRig r;
+  CanFrame bad = can::encode351(71.0, 10, 100, 12);  // CVL out of range
+  std::vector<std::size_t> perHour(10, 0);
+  for (int s = 0; s < 10 * 3600; ++s) {
+    r.bms.send(bad);
+    const std::size_t before = r.reports.size();
+    r.link.poll(fromSec(s));
+    perHour[s / 3600] += r.reports.size() - before;
+  }
+  for (std::size_t h = 0; h < perHour.size(); ++h) EXPECT_LE(perHour[h], 10u) << "hour " << h;
+  EXPECT_GE(perHour[0], 2u);  // the first at once, then a few more while it is new
+  EXPECT_LE(perHour[5], 2u);  // then about one an hour
+  std::uint64_t counted = 0;
+  for (const auto& line : r.reports) counted += std::stoull(line.substr(line.find(": ") + 2));
+  EXPECT_LE(counted, r.link.decoder().rejected());
+  EXPECT_GE(counted, 9u * 3600u);  // the counts carry (almost) every frame: only the last hour's tail waits
+  // Quiet for ten minutes ends the incident: the next bad frame is told at once.
+  const int quietEnd = 10 * 3600 + 700;
+  r.link.poll(fromSec(10 * 3600 + 100));
+  r.link.poll(fromSec(quietEnd - 1));
+  const std::size_t before = r.reports.size();
+  r.bms.send(bad);
+  r.link.poll(fromSec(quietEnd));
+  EXPECT_EQ(r.reports.size(), before + 1);
+}
+
+// Another kind of bad frame in the same incident is told at once, once.
+TEST(BmsCanLink, ANewKindOfBadFrameIsToldAtOnce) {
+  LinkRig r;
+  CanFrame cvl = can::encode351(71.0, 10, 100, 12);  // CVL out of range
+  for (int s = 0; s < 200; ++s) {
+    r.bms.send(cvl);
+    r.link.poll(fromSec(s));
+  }
+  const std::size_t before = r.reports.size();
+  CanFrame shortDlc = can::encode351(14.2, 10, 100, 12);
+  shortDlc.dlc = 4;
+  r.bms.send(shortDlc);
+  r.link.poll(fromSec(200));
+  ASSERT_EQ(r.reports.size(), before + 1);
+  EXPECT_NE(r.reports.back().find("short DLC"), std::string::npos) << r.reports.back();
+  for (int s = 201; s < 260; ++s) {  // both kinds again: nothing new to tell at once
+    r.bms.send(s % 2 ? cvl : shortDlc);
+    r.link.poll(fromSec(s));
+  }
+  EXPECT_LE(r.reports.size(), before + 2);
 }
 
 TEST(BmsCanLink, WithAnEventSinkTheReportIsAnEvent) {

@@ -133,8 +133,8 @@ TEST(BmsCodec, RecRoundTripsAndRejectsBadCells) {
   CanFrame shortDlc = encode373(3.1, 3.2, 20, 20);
   shortDlc.dlc = 6;
   EXPECT_EQ(d.feed(shortDlc, 2), BmsFrameResult::Rejected);
-  EXPECT_EQ(d.feed(encode373(3.1, 5.1, 20, 20), 2), BmsFrameResult::Rejected);  // over 5 V
-  EXPECT_EQ(d.feed(encode373(0.5, 3.3, 20, 20), 2), BmsFrameResult::Rejected);  // under 1 V
+  EXPECT_EQ(d.feed(encode373(3.1, 16.1, 20, 20), 2), BmsFrameResult::Rejected);  // over 16 V
+  EXPECT_EQ(d.feed(encode373(0.4, 3.3, 20, 20), 2), BmsFrameResult::Rejected);   // under 0.5 V
   EXPECT_EQ(d.feed(encode373(3.4, 3.3, 20, 20), 2), BmsFrameResult::Rejected);  // min above max
   EXPECT_EQ(d.feed(encode373(3.1, 3.3, 20, 130), 2), BmsFrameResult::Rejected);
   EXPECT_EQ(d.lastRejectWhy(), "temperature out of range");
@@ -144,6 +144,10 @@ TEST(BmsCodec, RecRoundTripsAndRejectsBadCells) {
   EXPECT_EQ(d.rejected(), 6u);
   EXPECT_NEAR(d.limits().cellMaxV, 3.55, 1e-9);  // the good values stand
   EXPECT_NEAR(d.limits().socPct, 87.37, 1e-9);
+  // A BMS set up for 4 cells on a 24 V bank reads 6.5 V "cells": decoded,
+  // for the plausibility check to name (bms_plausibility.h), not dropped.
+  EXPECT_EQ(d.feed(encode373(6.4, 6.5, 20, 20), 2), BmsFrameResult::Accepted);
+  EXPECT_NEAR(d.limits().cellMaxV, 6.5, 1e-9);
   EXPECT_EQ(parseBmsProtocol("rec"), BmsProtocol::Rec);
   EXPECT_FALSE(parseBmsProtocol("jk").has_value());
 }

@@ -243,6 +243,7 @@ TEST(BmsLimiter, CellsInSeriesFromThePackWhenNotConfigured) {
   EventBatch ev;
   Params p = bmsParams();
   ASSERT_EQ(p.BatteryCells, 0);
+  p.BulkVoltage = 28.4;  // the 24 V class: the CVL and the cells fit the bank
   BmsLimits b = limits(fromSec(1), 28.4, 50);
   b.cellMaxV = 3.60;
   b.cellMinV = 3.20;
@@ -369,6 +370,41 @@ TEST(BmsClosedLoop, StaleRaisesTheAlarmWhenAlarmsAreOn) {
   EXPECT_FALSE(r.out->buzzer);
   r.run(5);  // never heard: stale after BmsStaleS
   EXPECT_TRUE(r.out->buzzer);
+}
+
+// The whole regulator: a BMS that holds the charge (CCL 0) with the engine
+// running and the bank not full is told after 15 min, naming the BMS, with
+// the alarm; not at 14 min 59 s.
+TEST(BmsClosedLoop, AChargeHeldByTheBmsFor15MinIsOneAlarmNamingIt) {
+  BmsLoop r;
+  r.plant.Vocv = 12.6;
+  r.bms.cclA = 0;
+  int held = 0;
+  auto runCounting = [&](double seconds) {
+    const long n = std::lround(seconds / 0.0025);
+    for (long i = 0; i < n; ++i) {
+      if (r.now - r.bms.stamp >= fromMs(500)) r.bms.stamp = r.now;
+      const Outputs& o = r.tick();
+      for (std::size_t k = 0; k < o.events.count; ++k)
+        if (o.events.items[k].code == EventCode::ChargingHeld) {
+          ++held;
+          EXPECT_EQ(static_cast<ChargeHold>(o.events.items[k].detail), ChargeHold::BMS);
+        }
+    }
+  };
+  runCounting(898.0);
+  EXPECT_EQ(held, 0);
+  EXPECT_EQ(r.out->telemetry.charge_held_by, ChargeHold::BMS);  // shown before the alarm
+  EXPECT_FALSE(r.out->buzzer);
+  runCounting(4.0);
+  EXPECT_EQ(held, 1);
+  EXPECT_TRUE(r.out->buzzer);
+  EXPECT_GE(r.out->telemetry.charge_held_min, 15.0);
+  // The BMS lets go: charging again, and a minute later the episode ends.
+  r.bms.cclA = 100;
+  runCounting(70.0);
+  EXPECT_EQ(held, 2);
+  EXPECT_EQ(r.out->telemetry.charge_held_by, ChargeHold::NONE);
 }
 
 }  // namespace

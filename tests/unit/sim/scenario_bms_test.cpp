@@ -90,6 +90,20 @@ TEST(ScenarioBms, BadValuesHaveFileAndLine) {
   EXPECT_EQ(e.rfind("b.toml:5:", 0), 0u) << e;
 }
 
+// The BMS follows the bank unless told otherwise: 0 cells and 0 V CVL mean
+// "the [battery]'s cells, 3.55 V each" (the rig resolves them).
+TEST(ScenarioBms, CellsAndCvlFollowTheBankUnlessSet) {
+  const Scenario dflt = parseScenario("name = \"x\"\n[bms]\ncan = true\n", "b.toml");
+  EXPECT_EQ(dflt.bms.cells, 0);
+  EXPECT_DOUBLE_EQ(dflt.bms.cvl_v, 0.0);
+  const Scenario four = parseScenario("name = \"x\"\n[bms]\ncan = true\ncells = 4\n", "b.toml");
+  EXPECT_EQ(four.bms.cells, 4);
+  auto e = errorOf("[bms]\ncan = true\ncells = 4.5\n");
+  EXPECT_EQ(e.rfind("b.toml:3:", 0), 0u) << e;
+  e = errorOf("[bms]\ncan = true\ncells = 0\n");
+  EXPECT_EQ(e.rfind("b.toml:3:", 0), 0u) << e;
+}
+
 TEST(ScenarioBms, EventsNeedASimulatedBms) {
   // The events may come before the [bms] table in the file: checked after.
   auto e = errorOf("[[events]]\nat_s = 1\nbms_ccl_a = 30\n");
