@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 #include <systemd/sd-daemon.h>
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -67,8 +68,11 @@ bool Supervisor::everySecond() {
   const rt::RuntimeSnapshot s = handoffs_.latest();
   const bool updateStop = s.tick > 0 && services_.updateWatch().poll(s.telemetry, s.tick, unixMsNow());
   services_.outputsFault() = s.health.outputWriteErrors > 0 && !s.telemetry.field_enable && s.health.stopping;
-  sd_notifyf(0, "STATUS=%s %s SoC %.0f%% duty %.1f%%%s", std::string(toString(s.telemetry.mode)).c_str(),
-             std::string(toString(s.telemetry.stage)).c_str(), s.telemetry.soc_pct, s.telemetry.duty_pct,
+  // The one SoC every screen shows (docs/dashboard.md "State of charge"), "unknown" while it is.
+  const double soc = socShown(s.telemetry).pct;
+  const std::string socText = std::isfinite(soc) ? std::to_string(std::lround(soc)) + "%" : "unknown";
+  sd_notifyf(0, "STATUS=%s %s SoC %s duty %.1f%%%s", std::string(toString(s.telemetry.mode)).c_str(),
+             std::string(toString(s.telemetry.stage)).c_str(), socText.c_str(), s.telemetry.duty_pct,
              services_.webDown() ? " (web server DOWN, see the journal)" : "");
   if (store_) store_->housekeeping(s, handoffs_.ledger.load(), s.tick > 100);
   if (s.health.adsEdgeFallback && !edgeFallbackLogged_) {

@@ -169,7 +169,8 @@ void WebApi::recordPatchEvent(const Params& before, const Params& after,
   if (isSetupSave(named)) {
     if (changedText.empty() && !setupDone) return;
     recordEvent(setupDone ? "SetupDone" : "ParamsChanged",
-                setupSummaryText(after) + (setupDone ? " (the \"not set up\" limits are lifted)" : ""));
+                setupSummaryText(after) + ", by " + (source.empty() ? std::string("the web API") : source) +
+                    (setupDone ? " (the \"not set up\" limits are lifted)" : ""));
     return;
   }
   if (setupDone)

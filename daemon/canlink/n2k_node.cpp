@@ -112,7 +112,7 @@ void N2kNode::publish(TimeNs now) {
   const Telemetry& t = s.telemetry;
   const std::uint8_t sid = sid_;
   sid_ = static_cast<std::uint8_t>((sid_ + 1) % 253);  // 253..255 mean "no SID"
-  send(can::dcDetailedStatus(src, sid, 0, can::N2kDcType::Battery, t.soc_pct, kBmsNoValue));
+  send(can::dcDetailedStatus(src, sid, 0, can::N2kDcType::Battery, socShown(t).pct, kBmsNoValue));
   send(can::batteryStatus(src, 0, t.battery_v, t.bcur_a, t.battery_temp_c, sid));
   send(can::converterStatus(src, sid, 0, converterStateOf(t)));
   send(can::dcVoltageCurrent(src, sid, 0, t.battery_v, t.alt_a));

@@ -20,7 +20,15 @@ let answer = "sunny";
 const requests = [];
 const forecast = http.createServer((req, res) => {
   requests.push(req.url);
-  const body = fs.readFileSync(path.join(root, "tests/integrations/weather", `${answer}.json`));
+  // The recorded answer made today's and for the place asked, as a real
+  // server answers (the client refuses a forecast for other days or places).
+  const recorded = JSON.parse(fs.readFileSync(path.join(root, "tests/integrations/weather", `${answer}.json`), "utf8"));
+  const query = new URL(req.url, "http://forecast").searchParams;
+  if (query.has("latitude")) recorded.latitude = Number(query.get("latitude"));
+  if (query.has("longitude")) recorded.longitude = Number(query.get("longitude"));
+  const today = Date.parse(new Date().toISOString().slice(0, 10));
+  recorded.daily.time = recorded.daily.time.map((_, i) => new Date(today + i * 86400000).toISOString().slice(0, 10));
+  const body = Buffer.from(JSON.stringify(recorded));
   res.writeHead(200, { "Content-Type": "application/json", "Content-Length": body.length });
   res.end(body);
 });
