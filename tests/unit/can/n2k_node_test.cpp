@@ -33,6 +33,7 @@ struct NodeRig {
     s.telemetry.bcur_a = bcur;
     s.telemetry.alt_a = alt;
     s.telemetry.soc_pct = soc;
+    s.telemetry.battery.socSource = SocSource::Counted;  // the shown SoC is the counted one
     s.telemetry.mode = FieldControlMode::MODE_NORMAL_AUTO_PID;
     s.telemetry.stage = ChargeStage::ABSORPTION;
     s.telemetry.field_enable = true;
@@ -83,6 +84,26 @@ TEST(N2kNode, PublishesAtItsRatesFromTheTelemetry) {
       EXPECT_EQ(m.data[3], 77);
     }
   }
+}
+
+// One SoC on every screen: while the SoC is not known (no BMS, not yet counted), the
+// bus says "not available" rather than a number a chart plotter would show.
+TEST(N2kNode, AnUnknownSocIsNotAvailableOnTheBus) {
+  NodeRig r;
+  r.publishTelemetry(12.9, 0.0, 0.0, 55.0);
+  rt::RuntimeSnapshot s = r.h.snapshot.load();
+  s.telemetry.battery.socSource = SocSource::Unknown;
+  r.h.snapshot.store(s);
+  std::vector<can::N2kMessage> all;
+  for (TimeNs t = 0; t <= fromSec(3.0); t += fromMs(10)) {
+    r.node.poll(t);
+    for (auto& m : r.heard()) all.push_back(m);
+  }
+  ASSERT_GE(NodeRig::count(all, 127506), 1);
+  for (const auto& m : all)
+    if (m.id.pgn == 127506) {
+      EXPECT_EQ(m.data[3], 0xFF);
+    }
 }
 
 TEST(N2kNode, NoStatusBeforeTheFirstTelemetry) {
