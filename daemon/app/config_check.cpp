@@ -68,7 +68,7 @@ int checkConfigAndState(const std::string& configPath, const std::optional<std::
     out << "warning: " << why << " (the stored dashboard settings were not checked)\n";
     return 0;
   }
-  const OverrideResolution res = resolveStoredOverrides(r.config->params, rows);
+  const OverrideResolution res = resolveStoredOverrides(r.config->params, r.config->fileParamNames, rows);
   for (const auto& d : res.dropped) out << "warning: " << db << ": " << d.text() << " (at the next start)\n";
   out << db << ": " << rows.size() - res.dropped.size() << " stored dashboard setting"
       << (rows.size() - res.dropped.size() == 1 ? "" : "s") << " fit the configuration";
@@ -113,7 +113,7 @@ int printConfigMain(const std::optional<std::string>& configPath, const std::opt
     if (!why.empty()) {
       err << "warning: " << why << " (stored dashboard settings not shown)\n";
     } else {
-      const OverrideResolution res = resolveStoredOverrides(params, rows);
+      const OverrideResolution res = resolveStoredOverrides(params, origins.file, rows);
       for (const auto& d : res.dropped) err << "warning: " << d.text() << "\n";
       std::string setAside;
       params = withDashboardLayer(params, res, origins, &setAside);

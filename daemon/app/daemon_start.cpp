@@ -77,7 +77,7 @@ void openStore(const std::string& dbPath, Settings& settings, StartState& st) {
   // An install from before "not set up" existed keeps charging as it did
   // (store/schema.cpp, v4).
   if (st.store->loadValue("set_up_before_upgrade")) st.origins.assumeSetUp = true;
-  const OverrideResolution resolved = st.store->applyOverrides(st.fileParams);
+  const OverrideResolution resolved = st.store->applyOverrides(st.fileParams, st.origins.file);
   for (const auto& d : resolved.dropped) spdlog::error("{}", d.text());
   std::string why;
   st.configured = withDashboardLayer(st.fileParams, resolved, st.origins, &why);

@@ -86,9 +86,9 @@ std::optional<SavedLedger> StoreService::loadLedger() {
   return store_.loadLedger();
 }
 
-OverrideResolution StoreService::applyOverrides(const Params& fileParams) {
+OverrideResolution StoreService::applyOverrides(const Params& fileParams, const NameSet& fileNames) {
   std::lock_guard lock(m_);
-  OverrideResolution r = resolveStoredOverrides(fileParams, store_.overrides());
+  OverrideResolution r = resolveStoredOverrides(fileParams, fileNames, store_.overrides());
   const std::int64_t now = nowMs();
   for (const auto& d : r.dropped) {
     EventRecord e;

@@ -43,7 +43,7 @@ class StoreService {
   // fileParams with the stored overrides that fit applied, checked as one
   // set (stored_overrides.h). Each dropped override is forgotten in the
   // store and recorded there as an OverrideDropped warning event.
-  OverrideResolution applyOverrides(const Params& fileParams);
+  OverrideResolution applyOverrides(const Params& fileParams, const NameSet& fileNames);
   // One PATCH, in one transaction: forgets the stored dashboard values of
   // `dropped` (its nulls) and persists the names whose values differ
   // between before and after. Empty, or why the change could not be saved

@@ -6,6 +6,7 @@
 #include <cstddef>
 
 #include "config/config.h"
+#include "config/param_sources.h"
 #include "store/param_overrides.h"
 #include "store/sqlite_db.h"
 
@@ -31,6 +32,19 @@ Params applyActive(const Params& fileParams, const std::vector<Candidate>& cands
   return p;
 }
 
+// The set as the daemon will run it: the battery profile re-applied with the
+// file's names and the active overrides pinned (effective_params.h). A stored
+// BatteryProfile moves every value it owns, so the raw values alone would be
+// judged against the old profile's (LiFePO4 against AGM's -45 degC limit).
+std::vector<ConfigError> errorsOf(const Params& fileParams, const NameSet& fileNames,
+                                  const std::vector<Candidate>& cands, std::size_t skip) {
+  ParamOrigins o;
+  o.file = fileNames;
+  for (std::size_t i = 0; i < cands.size(); ++i)
+    if (cands[i].active && i != skip) o.dashboard.emplace(cands[i].spec->name);
+  return checkConsistency(applyLayers(applyActive(fileParams, cands, skip), o));
+}
+
 // Consistency errors are keyed "group.Name" or "Name": compare the bare name.
 bool names(const std::vector<ConfigError>& errs, std::string_view name) {
   for (const auto& e : errs) {
@@ -53,7 +67,8 @@ std::string describe(const std::vector<ConfigError>& errs) {
 
 }  // namespace
 
-OverrideResolution resolveStoredOverrides(const Params& fileParams, const std::vector<OverrideRow>& rows) {
+OverrideResolution resolveStoredOverrides(const Params& fileParams, const NameSet& fileNames,
+                                          const std::vector<OverrideRow>& rows) {
   OverrideResolution r;
   std::vector<Candidate> cands;
   for (const auto& row : rows) {
@@ -71,14 +86,14 @@ OverrideResolution resolveStoredOverrides(const Params& fileParams, const std::v
     cands.push_back({spec, &row});
   }
   const std::size_t none = cands.size();
-  auto errs = checkConsistency(applyActive(fileParams, cands, none));
+  auto errs = errorsOf(fileParams, fileNames, cands, none);
   while (!errs.empty()) {
     std::size_t best = none;
     std::size_t bestCount = 0;
     bool bestNamed = false;
     for (std::size_t i = 0; i < cands.size(); ++i) {
       if (!cands[i].active) continue;
-      const std::size_t count = checkConsistency(applyActive(fileParams, cands, i)).size();
+      const std::size_t count = errorsOf(fileParams, fileNames, cands, i).size();
       const bool named = names(errs, cands[i].spec->name);
       const bool better = best == none || count < bestCount || (count == bestCount && named && !bestNamed) ||
                           (count == bestCount && named == bestNamed &&
@@ -93,7 +108,7 @@ OverrideResolution resolveStoredOverrides(const Params& fileParams, const std::v
     cands[best].active = false;
     r.dropped.push_back({cands[best].row->name, cands[best].row->value,
                          "it does not fit the other values: " + describe(errs)});
-    errs = checkConsistency(applyActive(fileParams, cands, none));
+    errs = errorsOf(fileParams, fileNames, cands, none);
   }
   r.params = applyActive(fileParams, cands, none);
   for (const auto& c : cands)

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "config/battery_profiles.h"
 #include "config/hardware_choices.h"
 #include "params/params.h"
 #include "store/store.h"
@@ -25,7 +26,7 @@ struct DroppedOverride {
 };
 
 struct OverrideResolution {
-  Params params;                         // file + every override that fits, consistent
+  Params params;  // file + every override that fits (profile re-applied by withDashboardLayer)
   std::vector<DroppedOverride> dropped;  // in the order they were dropped
   std::vector<std::string> applied;      // names of the overrides in force (their source)
 };
@@ -34,8 +35,11 @@ struct OverrideResolution {
 // not a number, out of the catalogue range) is dropped; then, while the set
 // is inconsistent, the one override whose removal leaves the fewest
 // cross-parameter errors (ties: one the errors name, then the most recently
-// changed) is dropped. fileParams must be consistent (the loader checked it).
-OverrideResolution resolveStoredOverrides(const Params& fileParams, const std::vector<OverrideRow>& rows);
+// changed) is dropped. fileParams must be consistent (the loader checked it);
+// fileNames are the names the file (and a scenario's [config]) wrote. The set
+// is judged as it will run: with the battery profile re-applied over it.
+OverrideResolution resolveStoredOverrides(const Params& fileParams, const NameSet& fileNames,
+                                          const std::vector<OverrideRow>& rows);
 
 // Read-only look at a state database for --check-config: the override rows,
 // or empty with *error set when the file cannot be opened or read. Never

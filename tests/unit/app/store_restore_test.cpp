@@ -31,7 +31,7 @@ struct Daemon {
   BatteryLedger ledger;
   explicit Daemon(const std::string& db) : store(db, 300) {
     if (auto saved = store.loadLedger()) ledger = saved->ledger;
-    params = store.applyOverrides(Params{}).params;  // as daemon.cpp does at start
+    params = store.applyOverrides(Params{}, NameSet{}).params;  // as daemon.cpp does at start
     WebApiContext ctx;
     ctx.handoffs = &handoffs;
     ctx.store = &store;

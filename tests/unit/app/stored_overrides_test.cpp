@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "app/config_check.h"
+#include "app/effective_params.h"
 #include "app/store_service.h"
 #include "config/config.h"
 #include "store/param_overrides.h"
@@ -31,8 +32,9 @@ TEST(StoredOverrides, TheIssuesReproducerDropsFloatAndRunsConsistent) {
   // AbsorptionVoltage to 14.0. Before: Float 14.3 > Absorption 14.0 ran silently.
   Params file;
   file.AbsorptionVoltage = 14.0;
+  const NameSet fileNames{"AbsorptionVoltage"};  // the file wrote it
   ASSERT_TRUE(checkConsistency(file).empty());
-  const auto r = resolveStoredOverrides(file, {row("FloatVoltage", "14.3")});
+  const auto r = resolveStoredOverrides(file, fileNames, {row("FloatVoltage", "14.3")});
   EXPECT_TRUE(checkConsistency(r.params).empty());
   EXPECT_DOUBLE_EQ(r.params.FloatVoltage, file.FloatVoltage);
   ASSERT_EQ(r.dropped.size(), 1u);
@@ -44,16 +46,20 @@ TEST(StoredOverrides, TheIssuesReproducerDropsFloatAndRunsConsistent) {
 TEST(StoredOverrides, AtTheLimitTheOverrideStaysJustAboveItIsDropped) {
   Params file;
   file.AbsorptionVoltage = 14.0;
-  EXPECT_TRUE(resolveStoredOverrides(file, {row("FloatVoltage", "14")}).dropped.empty());
-  EXPECT_DOUBLE_EQ(resolveStoredOverrides(file, {row("FloatVoltage", "14")}).params.FloatVoltage, 14.0);
-  EXPECT_EQ(resolveStoredOverrides(file, {row("FloatVoltage", "14.01")}).dropped.size(), 1u);
+  const NameSet fileNames{"AbsorptionVoltage"};  // the file wrote it
+  EXPECT_TRUE(resolveStoredOverrides(file, fileNames, {row("FloatVoltage", "14")}).dropped.empty());
+  EXPECT_DOUBLE_EQ(resolveStoredOverrides(file, fileNames, {row("FloatVoltage", "14")}).params.FloatVoltage,
+                   14.0);
+  EXPECT_EQ(resolveStoredOverrides(file, fileNames, {row("FloatVoltage", "14.01")}).dropped.size(), 1u);
 }
 
 TEST(StoredOverrides, OverridesThatOnlyFitTogetherAreKeptTogether) {
   // One PATCH raised Bulk and Absorption together: each alone would be fine
   // with the file, both together must stay.
   const Params file;
-  const auto r = resolveStoredOverrides(file, {row("BulkVoltage", "14.6"), row("AbsorptionVoltage", "14.6")});
+  const NameSet fileNames;
+  const auto r =
+      resolveStoredOverrides(file, fileNames, {row("BulkVoltage", "14.6"), row("AbsorptionVoltage", "14.6")});
   EXPECT_TRUE(r.dropped.empty());
   EXPECT_DOUBLE_EQ(r.params.AbsorptionVoltage, 14.6);
   EXPECT_DOUBLE_EQ(r.params.BulkVoltage, 14.6);
@@ -62,8 +68,10 @@ TEST(StoredOverrides, OverridesThatOnlyFitTogetherAreKeptTogether) {
 TEST(StoredOverrides, OnlyTheOffendingOneOfSeveralIsDropped) {
   Params file;
   file.AbsorptionVoltage = 14.0;
+  const NameSet fileNames{"AbsorptionVoltage"};  // the file wrote it
   const auto r = resolveStoredOverrides(
-      file, {row("FloatVoltage", "14.3"), row("MaxDuty", "90"), row("Gone", "1"), row("BulkVoltage", "999")});
+      file, fileNames,
+      {row("FloatVoltage", "14.3"), row("MaxDuty", "90"), row("Gone", "1"), row("BulkVoltage", "999")});
   EXPECT_TRUE(checkConsistency(r.params).empty());
   EXPECT_DOUBLE_EQ(r.params.MaxDuty, 90.0);
   std::vector<std::string> names;
@@ -85,9 +93,10 @@ TEST(StoredOverrides, StoreServiceForgetsADroppedOverrideAndRecordsAnEvent) {
     ASSERT_TRUE(saveParamOverride(s, "MaxDuty", file, operatorSet, kT0).ok);
   }
   file.AbsorptionVoltage = 14.0;  // the file changed under the stored Float
+  const NameSet fileNames{"AbsorptionVoltage"};
   {
     StoreService svc(db, 300);
-    const auto r = svc.applyOverrides(file);
+    const auto r = svc.applyOverrides(file, fileNames);
     EXPECT_TRUE(checkConsistency(r.params).empty());
     EXPECT_DOUBLE_EQ(r.params.MaxDuty, 90.0);
     ASSERT_EQ(r.dropped.size(), 1u);
@@ -102,6 +111,39 @@ TEST(StoredOverrides, StoreServiceForgetsADroppedOverrideAndRecordsAnEvent) {
   ASSERT_TRUE(s.open(db, kT0).ok);
   EXPECT_FALSE(s.findOverride("FloatVoltage").has_value());  // forgotten: no repeat at every start
   EXPECT_TRUE(s.findOverride("MaxDuty").has_value());
+}
+
+// The set-up page stores the battery type among the overrides. At the next
+// start the set is judged as it will run, the profile re-applied: LiFePO4
+// with the catalogue's custom values (a -45 degC charge limit) alone would
+// fail the LiFePO4 check and the owner's choice would be lost.
+TEST(StoredOverrides, ASetUpChoiceOfLifepo4SurvivesTheNextStart) {
+  TempDir d;
+  const std::string db = d.file("x.db");
+  const Params file;  // the shipped file: no battery chosen
+  const NameSet fileNames;
+  {
+    Store s;
+    ASSERT_TRUE(s.open(db, kT0).ok);
+    Params chosen = file;
+    chosen.BatteryProfile = static_cast<int>(BatteryProfileId::lifepo4);
+    chosen.BatteryCapacity_Ah = 280;
+    ASSERT_TRUE(saveParamOverride(s, "BatteryProfile", file, chosen, kT0).ok);
+    ASSERT_TRUE(saveParamOverride(s, "BatteryCapacity_Ah", file, chosen, kT0).ok);
+  }
+  StoreService svc(db, 300);
+  const auto r = svc.applyOverrides(file, fileNames);
+  EXPECT_TRUE(r.dropped.empty()) << (r.dropped.empty() ? "" : r.dropped[0].text());
+  ParamOrigins origins;
+  std::string why;
+  const Params running = withDashboardLayer(file, r, origins, &why);
+  EXPECT_EQ(why, "");
+  EXPECT_EQ(running.BatteryProfile, static_cast<int>(BatteryProfileId::lifepo4));
+  EXPECT_DOUBLE_EQ(running.BatteryCapacity_Ah, 280.0);
+  EXPECT_TRUE(checkConsistency(running).empty());
+  EXPECT_TRUE(origins.setUp());
+  EXPECT_TRUE(svc.queryEvents(10, std::nullopt).empty()) << "nothing dropped, nothing to say";
+  svc.stop(BatteryLedger{}, false);
 }
 
 TEST(StoredOverrides, CheckConfigReadsTheStateDatabaseAndWarnsWithoutChangingIt) {

@@ -99,7 +99,8 @@ TEST(WebApiPatch, AChangeIsSavedWholeOrNotAtAll) {
   EXPECT_EQ(res.errors[0].name, "store");
   EXPECT_THAT(res.errors[0].message, HasSubstr("cannot save FloatVoltage"));
   EXPECT_EQ(r.api->currentParams(), before);
-  EXPECT_TRUE(r.store->applyOverrides(Params{}).applied.empty()) << "AbsorptionVoltage was saved alone";
+  EXPECT_TRUE(r.store->applyOverrides(Params{}, NameSet{}).applied.empty())
+      << "AbsorptionVoltage was saved alone";
 }
 
 TEST(WebApiPatch, AChangeThatIsSavedIsAppliedAndTheStoreShowsOk) {
@@ -206,7 +207,7 @@ TEST(WebApiProfiles, ANullDropsTheDashboardValueSoTheProfileAppliesAgain) {
   ASSERT_TRUE(res.errors.empty()) << res.errors[0].message;
   EXPECT_DOUBLE_EQ(r.api->currentParams().FloatVoltage, 13.3);  // the AGM profile's, not 13.2
   EXPECT_EQ(r.api->paramSources().at("FloatVoltage"), "profile");
-  const auto stored = r.store->applyOverrides(Params{}).applied;
+  const auto stored = r.store->applyOverrides(Params{}, NameSet{}).applied;
   EXPECT_THAT(stored, ::testing::Contains("BatteryProfile"));
   EXPECT_THAT(stored, ::testing::Not(::testing::Contains("FloatVoltage")));
   EXPECT_TRUE(r.api->profileOwned().contains("FloatVoltage"));

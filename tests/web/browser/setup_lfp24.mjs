@@ -11,7 +11,7 @@
 import fs from "node:fs";
 import path from "node:path";
 import assert from "node:assert/strict";
-import { parseArgs, runDaemonBrowserTest, until } from "./server.mjs";
+import { parseArgs, runDaemonBrowserTest, startServer, until } from "./server.mjs";
 
 const args = parseArgs();
 const token = "browser-test-token-0123456789";
@@ -93,4 +93,24 @@ await runDaemonBrowserTest({ args, token, scenario, shipped: true, prefix: "xr-s
     return s.reason !== "REASON_BANK_MISMATCH" && s.field_enable === true;
   }, 30000);
   console.log("ok - the field is on again once the settings match the bank");
+
+  // The next start keeps the owner's set-up: nothing dropped, the same values.
+  await ctx.close();
+  await server.stop();
+  const again = await startServer({ mode: "daemon", args, token, stateDir, scenario, shipped: true });
+  try {
+    const j = async (u) => (await fetch(again.base + u)).json();
+    const q = Object.fromEntries((await j("/api/params")).params.map((x) => [x.name, x]));
+    assert.equal(q.BatteryProfile.value_name, "lifepo4");
+    assert.equal(q.BatteryCells.value, 8);
+    assert.equal(q.BatteryCapacity_Ah.value, 400);
+    assert.equal(q.AbsorptionVoltage.value, 28.4);
+    assert.equal((await j("/api/params")).set_up, true);
+    const events = (await j("/api/events?limit=50")).events.map((e) => e.text).join("\n");
+    assert.doesNotMatch(events, /dropped/, events);
+    assert.doesNotMatch(again.log(), /dropped|set aside/, "no stored setting dropped at the start");
+    console.log("ok - after a restart the daemon runs with the set-up: LiFePO4 24 V 400 Ah, nothing dropped");
+  } finally {
+    await again.stop();
+  }
 });
