@@ -5,6 +5,7 @@
 
 #include "battery/battery_monitor.h"
 #include "battery/monitor_helpers.h"
+#include "core/freshness.h"
 #include "params/constants.h"
 
 namespace xr {
@@ -26,15 +27,12 @@ constexpr double kHealthRestAverageS = 3600.0;
 // kHealthRestMeanC, and what still flows is taken off with the measured
 // resistance (docs/batteries.md "Measured capacity").
 constexpr double kHealthRestPeakC = 0.05, kHealthRestChargeC = 0.02, kHealthRestMeanC = 0.02;
-// A BMS's SoC older than this is not a point.
-constexpr std::int64_t kBmsSocStaleMs = 10000;
 }  // namespace
 
 void BatteryMonitor::trackHealth(const Inputs& in, double dt_s, double amps, double volts,
                                  double altAmps) noexcept {
   // The battery temperature counts while the temperature rules count it (BATTERY_TEMP_STALE_MS).
-  const double tempC =
-      usable(in.batteryTempC, in.now, k::BATTERY_TEMP_STALE_MS) ? in.batteryTempC.value : kNoValue;
+  const double tempC = fresh::batteryTemp(in.batteryTempC, in.now) ? in.batteryTempC.value : kNoValue;
   if (resistance_.update(dt_s, amps, volts, tempC, p_.BatteryCapacity_Ah)) telemetryStale_ = true;
   const double c = p_.BatteryCapacity_Ah;
   // leadAcidAtRest with no current: a lead-acid bank, a voltage, the alternator off.
@@ -42,7 +40,7 @@ void BatteryMonitor::trackHealth(const Inputs& in, double dt_s, double amps, dou
                        amps <= kHealthRestChargeC * c && amps >= -kHealthRestPeakC * c;
   restedVoltagePoint(dt_s, amps, volts, tempC, resting);
   const bool bmsFresh =
-      std::isfinite(in.bms.socPct) && in.bms.stamp != 0 && in.now - in.bms.stamp <= fromMs(kBmsSocStaleMs);
+      std::isfinite(in.bms.socPct) && in.bms.stamp != 0 && fresh::bms(in.bms.stamp, in.now, p_.BmsStaleS);
   bmsSocPct_ = bmsFresh ? in.bms.socPct : kNoValue;
 }
 

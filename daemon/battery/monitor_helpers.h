@@ -6,13 +6,14 @@
 
 #include "core/events.h"
 #include "core/finite.h"
+#include "core/freshness.h"
 #include "core/inputs.h"
 
 namespace xr::battery_detail {
 
-// A reading usable at `now`: has a value and is no older than maxAgeMs.
+// A reading usable at `now`: the core's one rule (core/freshness.h).
 inline bool usable(const Reading& r, TimeNs now, std::int64_t maxAgeMs) {
-  return finite(r.value) && r.stamp != 0 && now - r.stamp <= fromMs(maxAgeMs);
+  return fresh::withinMs(r, now, maxAgeMs);
 }
 
 inline double clampFinite(double v, double lo, double hi, double fallback) {

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/freshness.h"
+
 namespace xr {
 
 std::string_view toString(BmsState s) {
@@ -64,7 +66,7 @@ void BmsLimiter::update(const BmsLimits& b, TimeNs now, double Bcur, double pack
   // Silent since it was enabled counts as stale too: a BMS that never spoke
   // must not leave the bank uncapped.
   const TimeNs heard = b.stamp != 0 ? b.stamp : enabledSince_;
-  const bool stale = now - heard > fromSec(p.BmsStaleS);
+  const bool stale = !fresh::bms(heard, now, p.BmsStaleS);
   const bool wasStale = state_ == BmsState::STALE;
   if (stale && !wasStale) {
     ev.push(makeEvent(now, EventLevel::Warning, EventCode::ProtectionTrip, Reason::REASON_BMS_STALE,

@@ -6,7 +6,7 @@
 
 #include "control/regulator.h"
 #include "control/regulator_state.h"
-#include "health/alternator_wear.h"
+#include "core/freshness.h"
 
 namespace xr {
 
@@ -64,9 +64,8 @@ void Regulator::updateChargeChecks(Tick& t) noexcept {
   // speed) turning; with the field off a W-terminal tach reads nothing, so
   // the ignition alone says it then. Stopped or idling under the cut-in
   // (REASON_RPM_LOW) is no hold.
-  const bool turning = (std::isfinite(in.rpm.value) && in.rpm.value >= wear_k::kRunningRpm) ||
-                       (in.engineRpm.stamp != 0 && std::isfinite(in.engineRpm.value) &&
-                        in.engineRpm.value >= wear_k::kRunningRpm);
+  const bool turning = fresh::engineTurning(in.rpm.value) ||
+                       (fresh::engineRpm(in.engineRpm, in.now) && fresh::engineTurning(in.engineRpm.value));
   h.engineRunning = in.ignitionOn && t.d.reason != Reason::REASON_RPM_LOW &&
                     t.d.reason != Reason::REASON_IGNITION_OFF && (turning || !s.out.fieldEnable);
   const ChargingStageMachine& st = s.law.stages();

@@ -19,6 +19,7 @@
 #include "control/regulator_state.h"
 #include "control/temp_compensation.h"
 #include "core/alternator_temperature.h"
+#include "core/freshness.h"
 #include "params/derived.h"
 
 namespace xr {
@@ -277,13 +278,15 @@ void Regulator::updateHealth(Tick& t) noexcept {
   const double dt =
       s.lastHealthTick != 0 && in.now > s.lastHealthTick ? toSec(in.now - s.lastHealthTick) : 0.0;
   s.lastHealthTick = in.now;
-  const bool turning = (std::isfinite(in.rpm.value) && in.rpm.value >= wear_k::kRunningRpm) ||
+  const bool turning = fresh::engineTurning(in.rpm.value) ||
                        (std::isfinite(t.MeasuredAmps) && t.MeasuredAmps > s.p.CurrentThreshold);
-  const bool tempKnown = t.temp->stamp != 0 && in.now - t.temp->stamp <= fromSec(60.0);
+  // The temperature the protections act on counts, and only that: a reading
+  // out of the sensor's range must not add to the insulation life used.
+  const bool tempKnown = fresh::alternatorTemp(*t.temp, in.now);
   s.wear.update(dt, turning, tempKnown ? t.temp->value : kNoValue, t.MeasuredAmps, s.p);
   BeltSample b;
   b.rpm = in.rpm.value;
-  const bool engineFresh = in.engineRpm.stamp != 0 && in.now - in.engineRpm.stamp <= fromSec(belt_k::kFreshS);
+  const bool engineFresh = fresh::engineRpm(in.engineRpm, in.now);
   b.engineRpm = engineFresh ? in.engineRpm.value : kNoValue;
   b.altAmps = t.MeasuredAmps;
   b.dutyPct = s.out.dutyPct;

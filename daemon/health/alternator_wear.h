@@ -20,8 +20,6 @@ inline constexpr double kClassLifeHours = 20000.0;
 inline constexpr double kHalvingC = 10.0;
 // B, F, H (AltInsulationClass 0, 1, 2).
 inline constexpr double kClassC[] = {130.0, 155.0, 180.0};
-// The alternator turns: the engine-running test the auto-zero also uses.
-inline constexpr double kRunningRpm = 200.0;
 // The current's share of AltRatedCurrent_A is capped here for the winding rise.
 inline constexpr double kMaxLoadShare = 1.5;
 }  // namespace wear_k

@@ -37,7 +37,6 @@ inline constexpr double kDutyRise = 10.0;     // B: duty points
 inline constexpr double kCurrentDropA = 5.0, kCurrentDropShare = 0.10;  // B
 inline constexpr double kWantMoreA = 5.0;                               // B: target above the current by this
 inline constexpr double kRearmS = 600.0;                                // quiet seconds before a new episode
-inline constexpr double kFreshS = 2.0;  // an engine speed older than this is not read
 // C: the probe (tach alone).
 inline constexpr int kFallWindowS = 5;             // the tach fell within this many seconds
 inline constexpr double kFallShare = 0.08;         // by this share of its speed

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/freshness.h"
 #include "params/constants.h"
 
 namespace xr {
@@ -11,9 +12,7 @@ namespace {
 
 bool sampleKnown(const Inputs& in) {
   const Reading& r = in.batteryTempC;
-  return in.batteryTempSource != BatteryTempSource::none && r.stamp != 0 && std::isfinite(r.value) &&
-         r.value >= k::BATTERY_TEMP_VALID_MIN_C && r.value <= k::BATTERY_TEMP_VALID_MAX_C &&
-         in.now - r.stamp <= fromMs(k::BATTERY_TEMP_STALE_MS);
+  return in.batteryTempSource != BatteryTempSource::none && fresh::batteryTemp(r, in.now);
 }
 
 }  // namespace

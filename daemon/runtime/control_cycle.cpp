@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "core/dvcc_limits.h"
+#include "core/freshness.h"
 #include "runtime/fatal_guard.h"
 
 namespace xr::rt {
@@ -89,7 +90,7 @@ void ControlCycle::mergeEngineRpm() noexcept {
   // The engine's speed as last heard, for the belt-slip check; the core judges its age.
   if (r.stamp != 0) in_.engineRpm = Reading{r.rpm, r.stamp, r.stamp != lastEngineRpmStamp_};
   if (cfg_.rpmFromN2k) {
-    const bool heard = r.stamp != 0 && in_.now - r.stamp <= fromSec(CycleConfig::kEngineRpmStaleS);
+    const bool heard = fresh::engineRpm(Reading{r.rpm, r.stamp, false}, in_.now);
     // A silent ECU reads like a tach with no pulses: 0 rpm, fresh each tick.
     in_.rpm = heard ? Reading{r.rpm, r.stamp, r.stamp != lastEngineRpmStamp_} : Reading{0.0, in_.now, true};
   }

@@ -30,9 +30,8 @@ struct CycleConfig {
   int timeEveryTicks = 1;
   // RpmSource = n2k (docs/integrations.md): the RPM input is the engine speed the CAN
   // service posts (Handoffs::engineRpm), not the tach on ADS1115 CH2. None
-  // for kEngineRpmStaleS (a silent ECU) reads 0 rpm, as a lost tach does.
+  // for fresh::kEngineRpmMaxAgeS (a silent ECU, core/freshness.h) reads 0 rpm, as a lost tach does.
   bool rpmFromN2k = false;
-  static constexpr double kEngineRpmStaleS = 1.0;  // 127488 comes every 0.1 s
   // The thinning for an unpaced run (--speed max, SimRunner at speed 0):
   // ~10 snapshots per simulated second at 400 Hz.
   void thinForUnpacedRun() noexcept {

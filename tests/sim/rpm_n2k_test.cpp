@@ -76,7 +76,7 @@ TEST(RpmFromN2k, TheEcuSpeedDrivesTheRpmTables) {
 
 TEST(RpmFromN2k, ASilentEcuIsALostTach) {
   const SimRunResult r = run("n2k");
-  // Silent from 60 s: stale after CycleConfig::kEngineRpmStaleS (1 s), then
+  // Silent from 60 s: stale after fresh::kEngineRpmMaxAgeS (1 s), then
   // 0 rpm, below MinRPMForField: the field is cut as with no tach pulses.
   const double zero = firstTime(
       r, [](const SimRow& w) { return w.telemetry.rpm == 0.0; }, 60.0);
