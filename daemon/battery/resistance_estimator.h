@@ -2,7 +2,7 @@
 // ResistanceEstimator: the bank's DC internal resistance from the current
 // steps that happen anyway (docs/batteries.md "Internal resistance"). It
 // keeps one-second means of the battery's voltage and current; a step is a
-// current that held for kBeforeS, changed by at least max(kMinStepA, C/40),
+// current that held for kBeforeS, changed by at least max(kMinStepA, C/100),
 // then held again for kAfterS. R = dV/dI between the kBeforeS before the
 // step and the last kMeasureS of the hold: late enough that the fast
 // polarisation (tens of seconds) is in, as a load or a field ramp sees it.
@@ -22,8 +22,15 @@ inline constexpr int kAfterS = 120;   // steady seconds after it (the last kMeas
 inline constexpr int kMeasureS = 30;  // 90..120 s after the step
 inline constexpr int kSkipS = 2;      // the step's own seconds, mixed
 inline constexpr int kWindowS = kBeforeS + kAfterS;
-inline constexpr double kMinStepA = 5.0;
-inline constexpr double kMinStepC = 1.0 / 40.0;  // of the capacity, per hour
+// The smallest step: a fridge compressor's 3-5 A is the step an ordinary day
+// offers most (two or more an hour), so the floor is under it. C/100 moves a
+// 12 V bank's voltage by 4 mV (LiFePO4, ~0.4 ohm-Ah) to 7 mV (AGM, ~0.7
+// ohm-Ah as read here), twenty times the INA228's 195 uV step and several
+// times the ~1 mV a discharging bank drifts in the two minutes; the median
+// of 16 keeps the odd step spoiled by drift out (docs/batteries.md
+// "Internal resistance").
+inline constexpr double kMinStepA = 2.0;
+inline constexpr double kMinStepC = 1.0 / 100.0;  // of the capacity, per hour
 // "Steady": every second within this of the window's mean.
 inline constexpr double kSteadyA = 1.0, kSteadyShare = 0.03;
 inline constexpr double kMaxChargeA = 0.5;  // "not being charged"

@@ -168,7 +168,8 @@ def float_creep_mv(run: Run, float_v: float, window_s: float = 600.0) -> float |
 
 
 def absorption_exits(run: Run, tail_a: float, timeout_s: float) -> list[tuple[float, str]]:
-    """Each ABSORPTION -> FLOAT change, judged: 'tail' when the bank was
+    """Each ABSORPTION -> FLOAT change (IDLE for a LiFePO4 bank that rests
+    instead of floating), judged: 'tail' when the bank was
     charging at or under the tail current at the target voltage over the last
     30 s (or held the target with the field resting), 'timeout' when
     absorption lasted its timeout, else 'early'."""
@@ -176,7 +177,7 @@ def absorption_exits(run: Run, tail_a: float, timeout_s: float) -> list[tuple[fl
     for i in range(1, len(run.t)):
         if run.stage[i] == "ABSORPTION" and run.stage[i - 1] != "ABSORPTION":
             entered = run.t[i]
-        if run.stage[i - 1] == "ABSORPTION" and run.stage[i] == "FLOAT":
+        if run.stage[i - 1] == "ABSORPTION" and run.stage[i] in ("FLOAT", "IDLE"):
             t = run.t[i]
             idx = [j for j in range(i) if t - 30.0 <= run.t[j] < t]
             cur = statistics.mean(run.bcur[j] for j in idx) if idx else float("nan")

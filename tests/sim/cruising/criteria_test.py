@@ -132,6 +132,13 @@ class AbsorptionExit(unittest.TestCase):
     def test_timeout(self):
         self.assertEqual(self.run_exit(bcur=-39.0, n_abs=3600)[0][1], "timeout")
 
+    def test_a_lifepo4_rest_after_absorption_is_judged_too(self):
+        stages = ["BULK"] * 10 + ["ABSORPTION"] * 100 + ["IDLE"] * 10
+        r = make_run(len(stages), stage=stages, bcur=4.0, v=14.2)
+        self.assertEqual(C.absorption_exits(r, tail_a=4.0, timeout_s=3600)[0][1], "tail")
+        r.bcur = [-39.0] * len(stages)
+        self.assertEqual(C.absorption_exits(r, tail_a=4.0, timeout_s=3600)[0][1], "early")
+
 
 class LoadDump(unittest.TestCase):
     def test_peak_and_recovery(self):

@@ -46,10 +46,15 @@ def effective_params(daemon: str, scenario: dict) -> dict:
     # Every parameter's default: --print-config of a file that names only the
     # battery type (the shipped file writes most keys commented out), as a
     # scenario's boat is set up (docs/configuration.md "Not set up"). No state
-    # database is opened.
+    # database is opened. The bank's keys go in too: a profile sets the tail
+    # current, the absorption's timeout and the float voltage the judge uses,
+    # scaled to the bank's capacity and cells (docs/batteries.md).
+    config = scenario.get("config", {})
+    bank = {"BatteryProfile": "custom"}
+    bank.update({k: config[k] for k in ("BatteryProfile", "BatteryCapacity_Ah", "BatteryCells") if k in config})
     with tempfile.TemporaryDirectory() as tmp:
         empty = Path(tmp) / "empty.toml"
-        empty.write_text('[battery]\nBatteryProfile = "custom"\n')
+        empty.write_text("[battery]\n" + "".join(f"{k} = {v!r}\n".replace("'", '"') for k, v in bank.items()))
         text = subprocess.run([daemon, "--config", str(empty), "--state-db", str(Path(tmp) / "none.db"),
                                "--print-config"], check=True, capture_output=True, text=True).stdout
     params = flatten(tomllib.loads(text))
@@ -128,6 +133,8 @@ def judge(run: C.Run, crit: dict, params: dict, scenario: dict, log: Path | None
         for t, kind in exits:
             if kind == "early":
                 v.failures.append(f"absorption ended at {t:.0f} s without a tail or its timeout")
+        if crit.get("tail_exit_required") and not any(k == "tail" for _, k in exits):
+            v.failures.append("no absorption ended on its tail current")
 
     if "load_dump_at_s" in crit:
         peak, back = C.load_dump(run, crit["load_dump_at_s"])

@@ -11,10 +11,11 @@ namespace {
 using namespace resistance_k;
 
 // Feeds `seconds` of a constant current at 10 Hz to a bank of EMF e and series R (ohm).
-int feed(ResistanceEstimator& r, double seconds, double amps, double e, double ohm, double tempC = 25.0) {
+int feed(ResistanceEstimator& r, double seconds, double amps, double e, double ohm, double tempC = 25.0,
+         double capacityAh = 200.0) {
   int taken = 0;
   for (int i = 0; i < static_cast<int>(seconds * 10); ++i)
-    taken += r.update(0.1, amps, e + amps * ohm, tempC, 200.0);
+    taken += r.update(0.1, amps, e + amps * ohm, tempC, capacityAh);
   return taken;
 }
 
@@ -36,9 +37,20 @@ TEST(ResistanceEstimator, AStepBetweenTwoHoldsIsOneSample) {
 TEST(ResistanceEstimator, AStepJustUnderTheSmallestIsNotMeasured) {
   ResistanceEstimator r;
   feed(r, kAfterChargeS + kWindowS, -1.0, 12.6, 0.004);
-  EXPECT_EQ(feed(r, kAfterS + 5, -5.9, 12.6, 0.004), 0);  // 4.9 A < 5 A
+  // 200 Ah: the smallest step is max(2 A, C/100) = 2 A, a fridge compressor's.
+  EXPECT_EQ(feed(r, kAfterS + 5, -2.9, 12.6, 0.004), 0);  // 1.9 A < 2 A
   EXPECT_EQ(feed(r, kAfterS + 5, -1.0, 12.6, 0.004), 0);
-  EXPECT_EQ(feed(r, kAfterS + 5, -6.1, 12.6, 0.004), 1);  // 5.1 A
+  EXPECT_EQ(feed(r, kAfterS + 5, -3.1, 12.6, 0.004), 1);  // 2.1 A
+  EXPECT_NEAR(r.ledger().samples_mohm[0], 4.0, 1e-6);
+}
+
+TEST(ResistanceEstimator, OnABigBankTheSmallestStepIsAHundredthOfItsCapacity) {
+  ResistanceEstimator r;
+  const double ah = 600.0;  // C/100 = 6 A
+  feed(r, kAfterChargeS + kWindowS, -1.0, 12.6, 0.001, 25.0, ah);
+  EXPECT_EQ(feed(r, kAfterS + 5, -6.9, 12.6, 0.001, 25.0, ah), 0);  // 5.9 A
+  EXPECT_EQ(feed(r, kAfterS + 5, -1.0, 12.6, 0.001, 25.0, ah), 0);
+  EXPECT_EQ(feed(r, kAfterS + 5, -7.1, 12.6, 0.001, 25.0, ah), 1);  // 6.1 A
 }
 
 TEST(ResistanceEstimator, NoStepIsMeasuredWhileOrSoonAfterCharging) {
