@@ -80,10 +80,13 @@ await runDaemonBrowserTest({ args, token, scenario, shipped: true, prefix: "xr-f
   const p = Object.fromEntries((await get("/api/params")).params.map((x) => [x.name, x]));
   assert.equal(p.AbsorptionVoltage.value, 28.8);
   assert.equal(p.BulkVoltage.value, 28.8);
+  // The profile's 28.8 V at 25 °C; AGM's temperature compensation moves it
+  // with the battery's 20 °C (docs/batteries.md), never back to the 28 V ceiling.
+  let last = {};
   await until("aiming for the profile's 28.8 V", async () => {
-    const t = await get("/api/status");
-    return t.field_enable === true && Math.abs(t.target_v - 28.8) < 1e-6;
-  }, 30000);
+    last = await get("/api/status");
+    return last.field_enable === true && last.target_v > 28.4 && last.target_v < 29.3 && last.alarm === false;
+  }, 30000).catch((e) => { throw new Error(`${e.message}: ${JSON.stringify({ t: last.target_v, f: last.field_enable, r: last.reason, s: last.owner?.state })}`); });
   const after = await get("/api/params");
   assert.equal(after.set_up, true);
   await page.goto(server.base + "/#live");
