@@ -7,6 +7,7 @@
 #include "app/stored_overrides.h"
 #include "config/battery_profiles.h"
 #include "config/config.h"
+#include "config/param_sources.h"
 #include "config/setup_pending.h"
 #include "config/web_checks.h"
 
@@ -17,6 +18,15 @@ namespace {
 // Not set up (no BatteryProfile in the file, none chosen on the set-up page,
 // not an install from before): the file may not name a voltage target above
 // the lowered set; the daemon refuses it at start too (daemon_start.cpp).
+// No bank size named: the class is read from the battery at start
+// (docs/configuration.md "Not set up"), and the limits above are its 12 V ones.
+std::string bankReadNote(const Params& p, const NameSet& fileNames) {
+  ParamOrigins origins;
+  origins.file = fileNames;
+  if (!runningParams(p, origins).SetupBankFromBattery) return "";
+  return "; per 12 V of bank: the bank's size is read from the battery at start";
+}
+
 bool setupPendingTargetsFit(const std::string& file, const Config& config, const std::string& db,
                             const std::vector<OverrideRow>& rows, std::ostream& err) {
   if (config.fileParamNames.count("BatteryProfile")) return true;
@@ -54,7 +64,8 @@ int checkConfigAndState(const std::string& configPath, const std::optional<std::
   if (!r.config->fileParamNames.count("BatteryProfile"))
     out << "note: no BatteryProfile in this file; unless the set-up page chose one, the regulator is not set "
            "up and charges only within limits safe for every chemistry ("
-        << setupPendingLimitsText(r.config->params) << ")\n";
+        << setupPendingLimitsText(r.config->params) << ")"
+        << bankReadNote(r.config->params, r.config->fileParamNames) << "\n";
 
   const std::string db = stateDb.value_or(r.config->settings.store.path);
   std::error_code ec;

@@ -4,8 +4,10 @@
 
 #include <cstdio>
 
+#include "config/setup_pending.h"
 #include "config/web_checks.h"
 #include "logging/logging.h"
+#include "owner/owner_model.h"
 #include "web/server/on_board.h"
 
 namespace xr::app {
@@ -84,6 +86,20 @@ void logTokenHint(bool generated, bool stored, const std::string& token, const s
   // Started from a terminal (`make run`): the operator sees it there. Under
   // systemd stderr is the journal, so nothing is printed.
   if (!loggingToJournal()) std::fprintf(stderr, "xregulatord: API write token: %s\n", token.c_str());
+}
+
+}  // namespace xr::app
+
+namespace xr::app {
+
+void followBankClass(rt::Handoffs& handoffs, const Telemetry& t) {
+  if (!handoffs.followBankClass(t.setupBank)) return;
+  const std::string notice = owner::setupBankNotice(t.setupBank);
+  const std::string limits = setupPendingLimitsText(handoffs.acceptedParams());
+  if (t.setupBank.fits)
+    spdlog::info("not set up: {} Charging within {}", notice, limits);
+  else
+    spdlog::warn("not set up: {} Charging within {}", notice, limits);
 }
 
 }  // namespace xr::app

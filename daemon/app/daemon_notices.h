@@ -41,3 +41,12 @@ void logPairingCode(const web::Pairing::Code& code);
 void logTokenHint(bool generated, bool stored, const std::string& token, const std::string& dbPath);
 
 }  // namespace xr::app
+
+namespace xr::app {
+
+// Not set up: once the core has read the bank class from the battery, the
+// accepted parameters follow it and the journal says so, once
+// (docs/configuration.md "Not set up"). Called with each fresh snapshot.
+void followBankClass(rt::Handoffs& handoffs, const Telemetry& t);
+
+}  // namespace xr::app

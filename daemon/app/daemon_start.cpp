@@ -24,7 +24,8 @@ bool loadScenario(const CliOptions& cli, Settings& settings, StartState& st) {
     st.scenario = cli.scenario ? sim::loadScenario(*cli.scenario) : sim::defaultScenario();
     sim::applyOverrides(st.fileParams, st.scenario->config, st.scenario->source);
     for (const auto& c : st.scenario->config) st.origins.file.insert(c.name);
-    st.origins.assumeSetUp = cli.scenario.has_value();  // a scenario's boat is set up (param_sources.h)
+    // A scenario's boat is set up unless it says set_up = false (param_sources.h).
+    st.origins.assumeSetUp = cli.scenario.has_value() && st.scenario->set_up;
     applyScenarioWeather(*st.scenario, settings.integrations.weather);
     // A scenario's probe on the bank is its board's configured battery probe,
     // as its [config] is its file (the set-up page can then choose none).

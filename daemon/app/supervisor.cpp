@@ -66,6 +66,7 @@ void Supervisor::throwTestFault() const {
 
 bool Supervisor::everySecond() {
   const rt::RuntimeSnapshot s = handoffs_.latest();
+  if (s.tick > 0) followBankClass(handoffs_, s.telemetry);
   const bool updateStop = s.tick > 0 && services_.updateWatch().poll(s.telemetry, s.tick, unixMsNow());
   services_.outputsFault() = s.health.outputWriteErrors > 0 && !s.telemetry.field_enable && s.health.stopping;
   // The one SoC every screen shows (docs/dashboard.md "State of charge"), "unknown" while it is.

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <thread>
 
+#include "app/daemon_notices.h"
 #include "app/effective_params.h"
 #include "app/param_change_text.h"
 #include "config/config.h"
@@ -77,6 +78,7 @@ web::StatusSnapshot WebApi::toStatus(const rt::RuntimeSnapshot& s, bool sim, dou
 bool WebApi::latestStatus(web::StatusSnapshot& out) {
   const rt::RuntimeSnapshot s = ctx_.handoffs->latest();
   if (s.tick == 0) return false;
+  followBankClass(*ctx_.handoffs, s.telemetry);  // the limits below are then the bank's
   out = toStatus(s, ctx_.sim, ctx_.controlPeriodUs);
   // The owner model says "Not set up" from the same state as /api/params
   // (the hand-off's copy: patchParams calls this holding patchMutex_).

@@ -6,6 +6,7 @@
 #include "config/param_values.h"
 #include "config/settings_schema.h"
 #include "config/setup_pending.h"
+#include "params/derived.h"
 
 namespace xr {
 
@@ -43,11 +44,37 @@ Params applyLayers(const Params& p, ParamOrigins& origins) {
   return r.params;
 }
 
+namespace {
+
+// Nobody named the bank's size: no bank voltage and no cell count in the
+// file, a scenario's [config] or the dashboard. The class is then read from
+// the battery (params/params.h SetupBankFromBattery).
+bool bankSizeUnnamed(const Params& p, const ParamOrigins& origins) {
+  for (const NameSet* names : {&origins.file, &origins.dashboard}) {
+    for (const auto& name : *names) {
+      if (name == "BatteryCells") {
+        if (p.BatteryCells > 0) return false;  // 0 (the shipped file's) = from the voltage class
+        continue;
+      }
+      const ParamSpec* spec = findParam(name);
+      if (spec && spec->kind == ParamKind::Float && isBankVoltage(*spec, spec->get(p, 0))) return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
 Params runningParams(const Params& configured, ParamOrigins& origins) {
   origins.setupPending.clear();
-  if (!origins.setUp()) return withSetupPendingLimits(configured, origins.setupPending);
+  if (!origins.setUp()) {
+    Params p = withSetupPendingLimits(configured, origins.setupPending);
+    p.SetupBankFromBattery = bankSizeUnnamed(configured, origins);
+    return p;
+  }
   Params p = configured;
   p.SetupCeilingV = 0.0;  // set up: no ceiling, whatever set this came from
+  p.SetupBankFromBattery = false;
   return p;
 }
 

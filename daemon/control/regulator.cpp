@@ -15,6 +15,9 @@ Regulator::Regulator(const Params& params) : s_(std::make_unique<State>(params))
 Regulator::~Regulator() = default;
 
 void Regulator::setParams(const Params& params) noexcept {
+  // A new set reads the bank again when it asks to (bank_reading.cpp).
+  s_->bank = {};
+  s_->bankWaiting = false;
   s_->p = params;
   s_->prot.setParams(params);
   s_->bat.setParams(params);

@@ -46,6 +46,7 @@ class Regulator {
   // One step's stages, in order (regulator_step.cpp), on the real-time thread like step().
   struct Tick;
   void beginTick(Tick& t) noexcept;
+  bool settleBankClass(const Tick& t) noexcept;  // bank_reading.cpp
   void readSensors(Tick& t) noexcept;
   void runProtections(Tick& t) noexcept;
   void selectMode(Tick& t) noexcept;

@@ -40,6 +40,10 @@ struct Regulator::State {
   bool currentWeatherMode = false;
 
   bool firstTick = true;
+  // Not set up: the bank class read from the battery (bank_reading.cpp).
+  bool bankWaiting = false;
+  TimeNs bankWaitSince = 0;
+  Telemetry::SetupBank bank;
   FieldControlMode lastMode = FieldControlMode::MODE_DISABLED_RAMP;
   Reason lastReason = Reason::NONE;
   bool lastField = false;

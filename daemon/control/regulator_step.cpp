@@ -34,6 +34,7 @@ bool isRampMode(FieldControlMode m) {
 const Outputs& Regulator::step(const Inputs& in) noexcept {
   Tick t(in);
   beginTick(t);
+  if (s_->p.SetupBankFromBattery && !settleBankClass(t)) return s_->out;
   readSensors(t);
   runProtections(t);
   selectMode(t);
@@ -160,9 +161,13 @@ void Regulator::enterMode(Tick& t) noexcept {
         s.law.enterSysFault();
         break;
     }
-    s.out.events.push(makeEvent(t.in.now, isNormalMode(d.mode) ? EventLevel::Info : EventLevel::Warning,
-                                EventCode::ModeChanged, d.reason, static_cast<double>(s.lastMode), 0.0, 0,
-                                d.mode));
+    // The first tick before the first engine-speed reading: the field waits
+    // off, but no engine stopped (docs/protections.md "First readings").
+    const bool rpmUnread = d.reason == Reason::REASON_RPM_LOW && !std::isfinite(t.in.rpm.value);
+    if (!(s.firstTick && rpmUnread))
+      s.out.events.push(makeEvent(t.in.now, isNormalMode(d.mode) ? EventLevel::Info : EventLevel::Warning,
+                                  EventCode::ModeChanged, d.reason, static_cast<double>(s.lastMode), 0.0, 0,
+                                  d.mode));
   }
   s.firstTick = false;
   s.lastMode = d.mode;
@@ -334,6 +339,7 @@ void Regulator::fillStateTelemetry() noexcept {
   s.wear.fillTelemetry(t.wear);
   t.wear.belt_slipping = s.belt.slipping();
   t.stage = s.law.stages().stage();
+  t.setupBank = s.bank;
   t.setpoint_a = s.law.setpointLimited();
   t.target_a = s.law.uTargetAmps();
   t.target_v = s.law.ChargingVoltageTarget();

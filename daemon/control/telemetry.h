@@ -57,6 +57,16 @@ struct Telemetry {
   ChargeHold charge_held_by = ChargeHold::NONE;
   double charge_held_min = 0.0;
 
+  // Not set up, the bank class read from the battery (docs/configuration.md
+  // "Not set up"): fromBattery once read; readV the reading (NaN: none came);
+  // classV the class the limits are scaled to; fits: the reading fits it.
+  struct SetupBank {
+    bool fromBattery = false;
+    double readV = kNoValue;
+    int classV = 0;
+    bool fits = false;
+  } setupBank;
+
   ControlTelemetry control;
   CommandCaps caps;  // what holds the current command back, for the owner model
   ProtectionTelemetry protection;

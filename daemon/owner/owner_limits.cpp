@@ -154,11 +154,13 @@ std::vector<OwnerLimit> ownerLimits(const Telemetry& t, const OwnerContext& ctx)
                         "A fixed field without the sensors' loops; press \"Limp home off\" once the sensors "
                         "are fixed."));
   if (!ctx.setUp)
-    out.push_back(limit("not_set_up", "Not set up", kNoValue,
-                        "No battery type is chosen, so charging stays within limits every common battery "
-                        "takes" +
-                            (ctx.setupLimits.empty() ? std::string() : " (" + ctx.setupLimits + ")") +
-                            ". Choose the battery on the set-up page."));
+    out.push_back(
+        limit("not_set_up", "Not set up", kNoValue,
+              "No battery type is chosen, so charging stays within limits every common battery "
+              "takes" +
+                  (ctx.setupLimits.empty() ? std::string() : " (" + ctx.setupLimits + ")") + ". " +
+                  (t.setupBank.fromBattery ? setupBankNotice(t.setupBank)
+                                           : std::string("Choose the battery on the set-up page."))));
   addHold(t, out);
   addBatteryTemp(t.caps, out);
   addBms(t, out);

@@ -138,7 +138,23 @@ OwnerModel ownerModel(const Telemetry& t, const OwnerContext& ctx) {
   m.hero = hero(t, m.soc);
   m.bms = bms(t);
   m.state = (ctx.setUp ? "" : "Not set up · ") + stateWords(t, m.limits);
+  if (!ctx.setUp) m.notice = setupBankNotice(t.setupBank);
   return m;
+}
+
+std::string setupBankNotice(const Telemetry::SetupBank& b) {
+  if (!b.fromBattery) return "";
+  char v[32];
+  std::snprintf(v, sizeof v, "%.1f V", b.readV);
+  if (b.fits)
+    return std::string("The bank reads ") + v + ": choose " + std::to_string(b.classV) +
+           " V on the set-up page.";
+  const std::string read = std::isfinite(b.readV)
+                               ? std::string("The bank reads ") + v + ", which fits no 12, 24 or 48 V bank"
+                               : std::string("No battery voltage reading yet");
+  return read +
+         ": charging stays within the 12 V limits. Check the battery voltage wire, then choose the "
+         "bank on the set-up page.";
 }
 
 std::string limitedByText(const OwnerModel& m) {

@@ -54,6 +54,9 @@ struct OwnerModel {
   OwnerSoc soc;
   OwnerBms bms;
   std::vector<OwnerLimit> limits;  // most restrictive first
+  // One calm notice beside the state, "" when none: not set up, what the
+  // bank reads and which size to choose (setupBankNotice).
+  std::string notice;
 };
 
 OwnerModel ownerModel(const Telemetry& t, const OwnerContext& ctx = {});
@@ -61,6 +64,12 @@ OwnerModel ownerModel(const Telemetry& t, const OwnerContext& ctx = {});
 // The one SoC rule: a talking BMS's SoC, else the counted SoC, else the
 // rested-voltage estimate, else unknown (no number).
 OwnerSoc ownerSoc(const Telemetry& t);
+
+// Not set up, the bank class read from the battery (docs/configuration.md
+// "Not set up"): "The bank reads 26.1 V: choose 24 V on the set-up page.";
+// a reading that fits no bank says the 12 V limits stay. "" when the class
+// was not read.
+std::string setupBankNotice(const Telemetry::SetupBank& b);
 
 // "Battery too cold to charge" for REASON_BATTERY_COLD; "" for NONE.
 std::string_view reasonTitle(Reason r);

@@ -61,6 +61,27 @@ double tempAlarmF(const Params& p) {
 
 int nominalVoltage(SystemClass c) { return static_cast<int>(c); }
 
+std::optional<SystemClass> bankClassOfReading(double volts) {
+  for (SystemClass c : {SystemClass::V12, SystemClass::V24, SystemClass::V48}) {
+    const double k = nominalVoltage(c) / 12.0;
+    if (volts >= kBankReadingLowV12 * k && volts <= kBankReadingHighV12 * k) return c;
+  }
+  return std::nullopt;  // NaN lands here too
+}
+
+Params withBankClass(const Params& in, SystemClass c) {
+  Params p = in;
+  const double k = double(nominalVoltage(c)) / nominalVoltage(systemClass(in));
+  for (const ParamSpec& spec : catalogue()) {
+    if (spec.kind != ParamKind::Float) continue;
+    const double v = spec.get(in, 0);
+    if (isBankVoltage(spec, v)) spec.set(p, 0, v * k);
+  }
+  p.SetupCeilingV = in.SetupCeilingV * k;
+  p.SetupBankFromBattery = false;
+  return p;
+}
+
 VoltageRange plausibleVoltageRange(const Params& p) {
   // docs/protections.md "Protections": the seed's table, which
   // already includes its 0.5 V buffer.
@@ -100,7 +121,9 @@ double criticalDisagreementThreshold(const Params& p) {
   return k::DISAGREE_CRITICAL_12V;
 }
 
-double voltageHardwareLimit(const Params& p) { return p.BulkVoltage + k::INA_OV_OFFSET_V; }
+double voltageHardwareLimit(const Params& p) {
+  return p.SetupBankFromBattery ? kBankReadingBovlV : p.BulkVoltage + k::INA_OV_OFFSET_V;
+}
 
 double hardOCTripAmps(const Params& p) { return p.MaxTableValue + k::HARD_OC_OFFSET_A; }
 

@@ -1,5 +1,6 @@
 #pragma once
 // Values derived from parameters, computed in one place.
+#include <optional>
 #include <string_view>
 
 #include "params/constants.h"
@@ -24,6 +25,24 @@ SystemClass systemClass(const Params& p);
 // the bank's class; `value` is the parameter's value.
 bool isBankVoltage(const ParamSpec& spec, double value);
 int nominalVoltage(SystemClass c);
+
+// Not set up: the class of a measured bank voltage, or nullopt when the
+// reading fits none (docs/configuration.md "Not set up"). A 12 V bank reads
+// 10-16 V whatever its chemistry and state: a LiFePO4 bank at its BMS's low
+// cut-off (2.5 V per cell) up to a flooded bank equalising; 20-32 V and
+// 40-64 V for 24 and 48 V. 18 V, 36 V or 0 V (a cut sense wire) fit no bank:
+// the caller stays at the 12 V limits and says so.
+std::optional<SystemClass> bankClassOfReading(double volts);
+inline constexpr double kBankReadingLowV12 = 10.0;
+inline constexpr double kBankReadingHighV12 = 16.0;
+// p for a bank of class c: every bank voltage set (isBankVoltage: the
+// stages, the alarms, the hard shutdown...) and SetupCeilingV scaled from
+// p's class to c; SetupBankFromBattery cleared. Pure, no heap.
+Params withBankClass(const Params& p, SystemClass c);
+// The INA228 bus limit while the bank class is still being read: above every
+// class's reading window, so the chip cannot alert before the first reading
+// (the field is off until then).
+inline constexpr double kBankReadingBovlV = 4.0 * kBankReadingHighV12 + 1.0;
 
 struct VoltageRange {
   double min;
@@ -71,7 +90,8 @@ inline constexpr double kTempAlarmDerivedMarginF = 40.0;
 // True for the parameters whose 0 means "derived" (the six above).
 bool isDerivedWhenZero(std::string_view name);
 
-// BulkVoltage + 0.3 V: programmed into the INA228 BOVL register.
+// BulkVoltage + 0.3 V: programmed into the INA228 BOVL register
+// (kBankReadingBovlV while SetupBankFromBattery).
 double voltageHardwareLimit(const Params& p);
 // MaxTableValue + 10 A.
 double hardOCTripAmps(const Params& p);

@@ -50,6 +50,12 @@ struct Params {
   // layer (config/setup_pending.h); 0 = set up, no ceiling. The core clamps
   // every voltage target to it, so no value can leak past the lowered set.
   double SetupCeilingV = 0.0;
+  // Not a parameter either: not set up and nobody wrote a bank voltage, so
+  // the bank class is read from the battery (docs/configuration.md "Not set
+  // up"). The core keeps the field off and the voltage trips unarmed until
+  // the first battery-voltage reading, then runs withBankClass(p, class of
+  // that reading) (params/derived.h).
+  bool SetupBankFromBattery = false;
   bool operator==(const Params&) const = default;
 };
 

@@ -53,7 +53,10 @@ bool ProtectionSupervisor::checkAlarms(bool effAnomalyAlarmActive, EventBatch& e
     // One console message per row per 30 s while it holds; the rows with an
     // event of their own (once per episode) add none: a mismatch that lasts
     // hours is not 120 journal lines an hour.
-    const bool ownEvent = r == AlarmRow::BmsMismatch || r == AlarmRow::ChargingHeld;
+    // A silent BMS has its trip and clear (REASON_BMS_STALE, bms_limiter.cpp):
+    // one incident, not a row every 30 s.
+    const bool ownEvent =
+        r == AlarmRow::BmsMismatch || r == AlarmRow::ChargingHeld || r == AlarmRow::BmsStale;
     if (counts && !ownEvent &&
         (alarmMsgAt_[i] < 0 || now_ - alarmMsgAt_[i] >= fromMs(k::ALARM_MESSAGE_THROTTLE_MS))) {
       alarmMsgAt_[i] = now_;

@@ -18,6 +18,7 @@
 #include "core/commands.h"
 #include "core/inputs.h"
 #include "core/seqlock.h"
+#include "params/derived.h"
 #include "params/params.h"
 #include "runtime/event_pump.h"
 #include "runtime/loop_stats.h"
@@ -155,6 +156,17 @@ class Handoffs {
     return acceptedParams_;
   }
   RuntimeSnapshot latest() const { return snapshot.load(); }
+  // Not set up: the core scaled its set to the bank class it read from the
+  // battery (control/bank_reading.cpp); the accepted copy follows, so the
+  // API shows what runs. Not handed to the RT thread again (it has it). A
+  // set submitted since (no longer reading the bank) is left alone. True
+  // when the copy changed.
+  bool followBankClass(const Telemetry::SetupBank& bank) {
+    std::lock_guard lock(producerMutex_);
+    if (!bank.fromBattery || !acceptedParams_.SetupBankFromBattery) return false;
+    acceptedParams_ = withBankClass(acceptedParams_, bankClassOfVoltage(bank.classV));
+    return true;
+  }
 
   // ---- the hand-offs themselves ----
   SpscQueue<Command, 64> commands;

@@ -200,6 +200,9 @@ Scenario parseTable(const Ctx& c, const toml::table& root) {
       if (!v.is_integer() || *v.value<std::int64_t>() < 0)
         c.fail(lineOf(v), "'seed' must be a non-negative integer");
       s.seed = std::uint64_t(*v.value<std::int64_t>());
+    } else if (n == "set_up") {
+      if (!v.is_boolean()) c.fail(lineOf(v), "'set_up' must be true or false");
+      s.set_up = *v.value<bool>();
     } else if (n == "config") {
       for (auto&& [pk, pv] : tableOf(c, k, v)) s.config.push_back(paramOverride(c, pk, pv));
     } else if (n == "battery") {

@@ -92,6 +92,10 @@ struct Scenario {
   std::string source;  // file name used in messages
   double duration_s = 3600.0;
   std::uint64_t seed = 1;
+  // set_up = false: the boat as delivered, before its set-up page; the
+  // daemon's "not set up" limits apply (docs/simulator.md "Scenario file").
+  // A scenario's boat is otherwise set up (config/param_sources.h).
+  bool set_up = true;
   std::vector<ParamOverride> config;
   PlantConfig plant;
   NoiseConfig noise;

@@ -68,6 +68,7 @@ boost::json::object ownerToJson(const owner::OwnerModel& m) {
   namespace json = boost::json;
   json::object o;
   o["state"] = m.state;
+  if (!m.notice.empty()) o["notice"] = m.notice;
   json::object hero;
   hero["value"] = statusNumber(m.hero.unit == "V"   ? "battery_v"
                                : m.hero.unit == "A" ? "bcur_a"

@@ -207,5 +207,38 @@ TEST(OwnerState, NotSetUpLeadsTheStateAndTheBmsHasOneWord) {
   EXPECT_EQ(ownerModel(t).bms.state, "none");
 }
 
+// Not set up on a 24 V bank: one calm notice naming the size to choose, in
+// the state's notice and in the "Not set up" limit; no number from an
+// unread bank.
+TEST(OwnerModel, NotSetUpNoticeNamesTheBankSizeTheBatteryReads) {
+  Telemetry t;
+  t.setupBank = {true, 26.04, 24, true};
+  const OwnerModel m = ownerModel(t, {false, "at most 28 V"});
+  EXPECT_EQ(m.notice, "The bank reads 26.0 V: choose 24 V on the set-up page.");
+  const auto it = std::find_if(m.limits.begin(), m.limits.end(),
+                               [](const OwnerLimit& l) { return l.id == "not_set_up"; });
+  ASSERT_NE(it, m.limits.end());
+  EXPECT_NE(it->why.find("choose 24 V on the set-up page"), std::string::npos) << it->why;
+}
+
+TEST(OwnerModel, NotSetUpNoticeSaysTheTwelveVoltLimitsStayForAReadingThatFitsNoBank) {
+  Telemetry t;
+  t.setupBank = {true, 18.0, 12, false};
+  const std::string n = ownerModel(t, {false, ""}).notice;
+  EXPECT_NE(n.find("18.0 V, which fits no 12, 24 or 48 V bank"), std::string::npos) << n;
+  EXPECT_NE(n.find("12 V limits"), std::string::npos) << n;
+  t.setupBank = {true, kNoValue, 12, false};
+  const std::string none = ownerModel(t, {false, ""}).notice;
+  EXPECT_EQ(none.find("nan"), std::string::npos) << none;
+  EXPECT_NE(none.find("No battery voltage reading"), std::string::npos) << none;
+}
+
+TEST(OwnerModel, NoNoticeOnceSetUpOrWhenTheBankWasNotRead) {
+  Telemetry t;
+  t.setupBank = {true, 26.0, 24, true};
+  EXPECT_TRUE(ownerModel(t, {true, ""}).notice.empty());
+  EXPECT_TRUE(ownerModel(Telemetry{}, {false, ""}).notice.empty());
+}
+
 }  // namespace
 }  // namespace xr::owner

@@ -145,6 +145,21 @@ TEST(Alarms, MessagesThrottledTo30s) {
   EXPECT_EQ(n, 3u);  // t = 0, 30, 60 s
 }
 
+// A silent BMS sounds the buzzer but files no AlarmCondition row every 30 s:
+// its own trip and clear make the one incident.
+TEST(Alarms, SilentBmsSoundsWithoutARowEveryThirtySeconds) {
+  Rig r(alarmParams());
+  r.manual = true;
+  r.warmUp();
+  r.sup.setBmsStale(true);
+  r.run(fromSec(65.0), fromMs(10));
+  EXPECT_TRUE(r.buzzer);
+  std::size_t n = 0;
+  for (const Event& e : r.log)
+    n += e.code == EventCode::AlarmCondition && e.detail == static_cast<int>(AlarmRow::BmsStale);
+  EXPECT_EQ(n, 0u);
+}
+
 TEST(Alarms, TempAlarmLowZeroAndVoltageAlarmLowAtFloorAreOff) {
   Params p = alarmParams();
   p.TempAlarmLow = 0.0;

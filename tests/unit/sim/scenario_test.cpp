@@ -17,6 +17,15 @@ std::string errorOf(std::string_view text) {
   return "";
 }
 
+// set_up = false: the boat as delivered, before its set-up page; a scenario's
+// boat is otherwise set up; anything but a boolean is refused with its line.
+TEST(Scenario, SetUpFalseIsTheBoatAsDelivered) {
+  EXPECT_TRUE(parseScenario("name = \"a\"\n", "t.toml").set_up);
+  EXPECT_FALSE(parseScenario("name = \"a\"\nset_up = false\n", "t.toml").set_up);
+  EXPECT_NE(errorOf("set_up = 0\n").find("t.toml:1: 'set_up' must be true or false"), std::string::npos)
+      << errorOf("set_up = 0\n");
+}
+
 TEST(Scenario, ParsesTheDesignExample) {
   const char* text = R"(name = "load dump in absorption"
 duration_s = 1800

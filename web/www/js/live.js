@@ -100,6 +100,8 @@ export function socDisplay(s, b = {}) {
 export function renderLive(s) {
   lastStatus = s;
   lastFrameAt = Date.now();
+  // The regulator's one notice (owner.notice): what the bank reads and which size to choose.
+  $("first-run-bank").textContent = (s.owner && s.owner.notice) || "";
   const p = s.protection || {};
   const b = s.battery || {};
   const currentStale = on(p.current_stale);
