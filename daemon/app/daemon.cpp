@@ -95,10 +95,12 @@ int Daemon::run() {
   // One clock (docs/architecture.md): in simulation the store, the events and
   // the summaries read the simulated time since the loop started.
   if (cli_.sim)
-    start.clock.followSimulation([&h = *handoffs] {
-      const rt::RuntimeSnapshot s = h.latest();
-      return s.tick > 0 ? s.telemetry.now - s.start : TimeNs{0};
-    });
+    start.clock.followSimulation(
+        [&h = *handoffs] {
+          const rt::RuntimeSnapshot s = h.latest();
+          return s.tick > 0 ? s.telemetry.now - s.start : TimeNs{0};
+        },
+        cli_.speed);
   if (start.store) start.store->useClock(start.clock, cli_.speed);
   OutputFiles files;
   if (!openOutputFiles(cli_, *handoffs, files)) return kExitConfig;

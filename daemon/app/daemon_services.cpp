@@ -25,7 +25,7 @@ DaemonServices::DaemonServices(const CliOptions& cli, const StartState& start, c
   if (csv_) csv_->start();
 
   // The boat's network (docs/integrations.md): its own thread, reading the snapshot only.
-  integrations_ = startIntegrations(settings, handoffs, store);
+  integrations_ = startIntegrations(settings, handoffs, store, start.clock);
   // CAN (docs/integrations.md): on a board the xr-can thread; the sim rig runs its own.
   if (BoardRig* board = rig.board())
     can_ = startCanThread(settings, handoffs, board->loopClock(), std::move(canLog));

@@ -8,7 +8,8 @@ namespace xr::app {
 
 std::unique_ptr<integrations::IntegrationsService> startIntegrations(const Settings& s,
                                                                      rt::Handoffs& handoffs,
-                                                                     StoreService* store) {
+                                                                     StoreService* store,
+                                                                     const rt::WallClock& clock) {
   // Commands from the network take the same queue as POST /api/commands; the
   // regulator applies or refuses them between ticks and its event says which.
   auto sink = [&handoffs](const Command& c, const std::string& source) {
@@ -39,7 +40,7 @@ std::unique_ptr<integrations::IntegrationsService> startIntegrations(const Setti
   }
   try {
     auto service = std::make_unique<integrations::IntegrationsService>(s.integrations, handoffs, sink, tokens,
-                                                                       XR_VERSION_STRING, bmsLimits);
+                                                                       XR_VERSION_STRING, clock, bmsLimits);
     if (!service->anyEnabled()) return nullptr;
     service->start();
     return service;

@@ -18,7 +18,8 @@ namespace xr::app {
 // (a Signal K token then lasts for this run only).
 std::unique_ptr<integrations::IntegrationsService> startIntegrations(const Settings& s,
                                                                      rt::Handoffs& handoffs,
-                                                                     StoreService* store);
+                                                                     StoreService* store,
+                                                                     const rt::WallClock& clock);
 
 // For WebApiContext::integrations; an empty list when service is null.
 std::function<std::vector<web::IntegrationState>()> integrationsView(

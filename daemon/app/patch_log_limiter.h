@@ -1,6 +1,6 @@
 #pragma once
-// The journal's rate limit for settings changes through the API (docs/security.md,
-// item 12: 2,000 PATCHes wrote 2,000 lines). The first change after a quiet
+// The journal's rate limit for settings changes through the API (docs/security.md):
+// without it 2,000 PATCHes wrote 2,000 lines. The first change after a quiet
 // interval is logged at once; the ones that follow within the interval are
 // counted, and one summary line says how many were held back once the
 // interval has passed (at the next change, or from the once-a-second

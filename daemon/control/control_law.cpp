@@ -125,8 +125,8 @@ void ControlLaw::reseedAfterLoadDump(const ControlSensors& s) noexcept {
   // now. Their sum holds the target. The inner loop's filtered current
   // still carries the dumped load (~1 s behind): seeding from it drove the
   // bank back over the target and kept the field off while an AGM's charge
-  // overpotential relaxed (cruising 11, 12). Without a battery current the
-  // seed's bumpless reseed stands.
+  // overpotential relaxed (an engine dropped to idle while cruising). Without a
+  // battery current the original firmware's bumpless reseed stands.
   if (finite(dumpAcceptA_) && finite(s.Bcur) && finite(MeasuredAmps_)) {
     cv_.requestReseedAt(std::max(0.0, dumpAcceptA_ + (MeasuredAmps_ - s.Bcur)));
   } else {

@@ -5,6 +5,8 @@
 #include <boost/asio/post.hpp>
 #include <chrono>
 
+#include "integrations/clock_wait.h"
+
 namespace xr::integrations {
 
 namespace {
@@ -27,8 +29,9 @@ MqttOptions optionsFor(const MqttSettings& s, const HaTopics& t) {
 
 HomeAssistantBridge::HomeAssistantBridge(boost::asio::io_context& io, const MqttSettings& s,
                                          const rt::Handoffs& handoffs, CommandSink commands,
-                                         std::string version)
+                                         std::string version, const rt::WallClock& clock)
     : io_(io),
+      clock_(clock),
       settings_(s),
       handoffs_(handoffs),
       commands_(std::move(commands)),
@@ -36,10 +39,10 @@ HomeAssistantBridge::HomeAssistantBridge(boost::asio::io_context& io, const Mqtt
       topics_{s.discovery_prefix, s.node_id},
       // The loader refuses commands without credentials; this is the second lock.
       withCommands_(s.commands_enabled && !s.username.empty() && !s.password.empty()),
-      health_("mqtt"),
-      probeHealth_("mqtt anonymous check"),
+      health_("mqtt", clock),
+      probeHealth_("mqtt anonymous check", clock),
       timer_(io) {
-  link_ = std::make_unique<MqttLink>(io_, optionsFor(s, topics_), health_);
+  link_ = std::make_unique<MqttLink>(io_, optionsFor(s, topics_), health_, clock_);
 }
 
 void HomeAssistantBridge::start() {
@@ -60,7 +63,7 @@ void HomeAssistantBridge::checkAnonymousAccess() {
   o.username.clear();
   o.password.clear();
   o.willTopic.clear();
-  anonymousProbe_ = std::make_unique<MqttLink>(io_, o, probeHealth_);
+  anonymousProbe_ = std::make_unique<MqttLink>(io_, o, probeHealth_, clock_);
   anonymousProbe_->start([this] { boost::asio::post(io_, [this] { anonymousAccepted(); }); }, {},
                          [this](int) { boost::asio::post(io_, [this] { anonymousRefused(); }); });
 }
@@ -111,11 +114,10 @@ void HomeAssistantBridge::publishState() {
 
 void HomeAssistantBridge::tick() {
   if (link_->connected()) publishState();
-  timer_.expires_after(std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-      std::chrono::duration<double>(1.0 / settings_.state_rate_hz)));
-  timer_.async_wait([this](const boost::system::error_code& ec) {
-    if (!ec) tick();
-  });
+  afterOnClock(
+      clock_, timer_,
+      std::chrono::duration_cast<ClockDuration>(std::chrono::duration<double>(1.0 / settings_.state_rate_hz)),
+      [this] { tick(); });
 }
 
 void HomeAssistantBridge::onMessage(const std::string& topic, std::string_view payload, bool retained) {

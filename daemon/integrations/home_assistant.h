@@ -31,7 +31,7 @@ using CommandSink = std::function<void(const Command& c, const std::string& sour
 class HomeAssistantBridge {
  public:
   HomeAssistantBridge(boost::asio::io_context& io, const MqttSettings& s, const rt::Handoffs& handoffs,
-                      CommandSink commands, std::string version);
+                      CommandSink commands, std::string version, const rt::WallClock& clock);
   void start();
   void stop();
   IntegrationStatus status() const { return health_.status(); }
@@ -47,6 +47,7 @@ class HomeAssistantBridge {
   void tick();
 
   boost::asio::io_context& io_;
+  const rt::WallClock& clock_;  // the state period runs on it (clock_wait.h)
   MqttSettings settings_;
   const rt::Handoffs& handoffs_;
   CommandSink commands_;

@@ -4,7 +4,8 @@
 
 namespace xr::integrations {
 
-IntegrationHealth::IntegrationHealth(std::string name, bool enabled) : name_(std::move(name)) {
+IntegrationHealth::IntegrationHealth(std::string name, const rt::WallClock& clock, bool enabled)
+    : name_(std::move(name)), clock_(clock) {
   s_.name = name_;
   s_.enabled = enabled;
 }
@@ -20,8 +21,7 @@ void IntegrationHealth::connected() {
   s_.connected = true;
   if (inOutage_) {
     const auto secs =
-        std::chrono::duration_cast<std::chrono::seconds>(std::chrono::steady_clock::now() - outageSince_)
-            .count();
+        std::chrono::duration_cast<std::chrono::seconds>(clock_.steadyNow() - outageSince_).count();
     spdlog::info("{}: connected again after {} s ({} attempts so far)", name_, secs, s_.connect_attempts);
   } else {
     spdlog::info("{}: connected", name_);
@@ -35,7 +35,7 @@ void IntegrationHealth::failed(const std::string& error) {
   s_.connected = false;
   if (inOutage_) return;  // the outage is already in the journal
   inOutage_ = true;
-  outageSince_ = std::chrono::steady_clock::now();
+  outageSince_ = clock_.steadyNow();
   ++s_.outages;
   spdlog::warn("{}: {}; retrying with backoff (logged again when it is back)", name_, error);
 }
@@ -58,7 +58,7 @@ void IntegrationHealth::dropped(std::uint64_t n) {
 void IntegrationHealth::refused(const std::string& why) {
   std::lock_guard lock(m_);
   ++s_.values_refused;
-  const auto now = std::chrono::steady_clock::now();
+  const auto now = clock_.steadyNow();
   if (s_.values_refused == 1 || now - lastRefusalLog_ >= std::chrono::minutes(1)) {
     lastRefusalLog_ = now;
     spdlog::warn("{}: refused a value: {} ({} refused so far)", name_, why, s_.values_refused);

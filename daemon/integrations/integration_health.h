@@ -13,6 +13,8 @@
 #include <mutex>
 #include <string>
 
+#include "runtime/wall_clock.h"
+
 namespace xr::integrations {
 
 struct IntegrationStatus {
@@ -32,7 +34,8 @@ struct IntegrationStatus {
 
 class IntegrationHealth {
  public:
-  explicit IntegrationHealth(std::string name, bool enabled = true);
+  // clock: the one clock below the core (outage lengths, the refusal log's pace).
+  IntegrationHealth(std::string name, const rt::WallClock& clock, bool enabled = true);
 
   void attempt();                         // a connection attempt starts
   void connected();                       // logs the first connection and each recovery
@@ -49,6 +52,7 @@ class IntegrationHealth {
  private:
   mutable std::mutex m_;
   const std::string name_;
+  const rt::WallClock& clock_;
   IntegrationStatus s_;
   bool inOutage_ = false;
   std::chrono::steady_clock::time_point outageSince_{};

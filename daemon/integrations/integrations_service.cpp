@@ -11,19 +11,21 @@ namespace xr::integrations {
 
 IntegrationsService::IntegrationsService(const IntegrationsSettings& s, rt::Handoffs& handoffs,
                                          CommandSink commands, TokenStore tokens, std::string version,
-                                         VictronLimitsSink bmsLimits)
+                                         const rt::WallClock& clock, VictronLimitsSink bmsLimits)
     : settings_(s) {
-  if (s.mqtt.enabled) ha_ = std::make_unique<HomeAssistantBridge>(io_, s.mqtt, handoffs, commands, version);
+  if (s.mqtt.enabled)
+    ha_ = std::make_unique<HomeAssistantBridge>(io_, s.mqtt, handoffs, commands, version, clock);
   if (s.signalk.enabled)
-    signalk_ = std::make_unique<SignalKClient>(io_, s.signalk, handoffs, std::move(tokens),
+    signalk_ = std::make_unique<SignalKClient>(io_, s.signalk, handoffs, std::move(tokens), clock,
                                                s.weather.enabled ? &signalkPosition_ : nullptr);
   if (s.victron.enabled) {
     // One staleness limit for every BMS source: the BmsStaleS parameter.
-    victron_ = std::make_unique<VictronGxBridge>(io_, s.victron, std::move(bmsLimits),
-                                                 [&handoffs] { return handoffs.acceptedParams().BmsStaleS; });
+    victron_ = std::make_unique<VictronGxBridge>(
+        io_, s.victron, std::move(bmsLimits), [&handoffs] { return handoffs.acceptedParams().BmsStaleS; },
+        clock);
   }
   if (s.weather.enabled)
-    weather_ = std::make_unique<WeatherClient>(io_, s.weather, handoffs, commands,
+    weather_ = std::make_unique<WeatherClient>(io_, s.weather, handoffs, commands, clock,
                                                signalk_ ? &signalkPosition_ : nullptr);
 }
 

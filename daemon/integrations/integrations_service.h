@@ -15,13 +15,15 @@
 #include "integrations/victron_gx.h"
 #include "integrations/weather_client.h"
 #include "runtime/handoffs.h"
+#include "runtime/wall_clock.h"
 
 namespace xr::integrations {
 
 class IntegrationsService {
  public:
   IntegrationsService(const IntegrationsSettings& s, rt::Handoffs& handoffs, CommandSink commands,
-                      TokenStore tokens, std::string version, VictronLimitsSink bmsLimits = {});
+                      TokenStore tokens, std::string version, const rt::WallClock& clock,
+                      VictronLimitsSink bmsLimits = {});
   ~IntegrationsService();
   IntegrationsService(const IntegrationsService&) = delete;
   IntegrationsService& operator=(const IntegrationsService&) = delete;

@@ -8,6 +8,8 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "integrations/clock_wait.h"
+
 namespace xr::integrations {
 
 namespace {
@@ -28,8 +30,9 @@ std::string errorText(int rc) {
 
 }  // namespace
 
-MqttLink::MqttLink(boost::asio::io_context& io, MqttOptions opts, IntegrationHealth& health)
-    : io_(io), opts_(std::move(opts)), health_(health), pollTimer_(io), retryTimer_(io) {
+MqttLink::MqttLink(boost::asio::io_context& io, MqttOptions opts, IntegrationHealth& health,
+                   const rt::WallClock& clock)
+    : io_(io), opts_(std::move(opts)), health_(health), clock_(clock), pollTimer_(io), retryTimer_(io) {
   initLibraryOnce();
   mosq_ = mosquitto_new(opts_.clientId.empty() ? nullptr : opts_.clientId.c_str(), true, this);
   if (!mosq_) throw std::runtime_error("mqtt: cannot create a client: " + std::string(std::strerror(errno)));
@@ -89,7 +92,7 @@ void MqttLink::connectNow() {
   if (stopping_) return;
   health_.attempt();
   connecting_ = true;
-  connectStarted_ = std::chrono::steady_clock::now();
+  connectStarted_ = clock_.steadyNow();
   inFlight_ = 0;
   // Non-blocking TCP connect; the CONNACK arrives through poll(). Only the
   // name lookup can block, and only this thread.
@@ -99,10 +102,7 @@ void MqttLink::connectNow() {
 
 void MqttLink::scheduleConnect() {
   if (stopping_) return;
-  retryTimer_.expires_after(backoff_.next());
-  retryTimer_.async_wait([this](const boost::system::error_code& ec) {
-    if (!ec) connectNow();
-  });
+  afterOnClock(clock_, retryTimer_, backoff_.next(), [this] { connectNow(); });
 }
 
 void MqttLink::lost(const std::string& why) {
@@ -119,7 +119,7 @@ void MqttLink::poll() {
     const int rc = mosquitto_loop(mosq_, 0, 1);
     if (rc != MOSQ_ERR_SUCCESS && (connecting_ || connected_))
       lost(opts_.host + ":" + std::to_string(opts_.port) + ": " + errorText(rc));
-    else if (connecting_ && std::chrono::steady_clock::now() - connectStarted_ > kConnectTimeout)
+    else if (connecting_ && clock_.steadyNow() - connectStarted_ > kConnectTimeout)
       lost(opts_.host + ":" + std::to_string(opts_.port) + ": no answer within 10 s");
   }
   pollTimer_.expires_after(kPollPeriod);

@@ -46,7 +46,9 @@ class MqttLink {
   // The broker answered the CONNECT and refused it (bad or missing credentials).
   using OnRefused = std::function<void(int connackCode)>;
 
-  MqttLink(boost::asio::io_context& io, MqttOptions opts, IntegrationHealth& health);
+  // clock: the backoff and the connect timeout run on it (clock_wait.h).
+  MqttLink(boost::asio::io_context& io, MqttOptions opts, IntegrationHealth& health,
+           const rt::WallClock& clock);
   ~MqttLink();
   MqttLink(const MqttLink&) = delete;
   MqttLink& operator=(const MqttLink&) = delete;
@@ -75,6 +77,7 @@ class MqttLink {
   boost::asio::io_context& io_;
   MqttOptions opts_;
   IntegrationHealth& health_;
+  const rt::WallClock& clock_;
   mosquitto* mosq_ = nullptr;
   boost::asio::steady_timer pollTimer_, retryTimer_;
   Backoff backoff_;

@@ -16,6 +16,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "integrations/clock_wait.h"
 #include "integrations/integration_sample.h"
 #include "integrations/signalk_delta.h"
 
@@ -51,11 +52,6 @@ constexpr const char* kPositionSubscription =
 struct NeedsToken : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
-
-long long wallMsNow() {
-  using namespace std::chrono;
-  return duration_cast<milliseconds>(system_clock::now().time_since_epoch()).count();
-}
 
 std::string newClientId() {
   // A version-4 UUID, as the access-request API expects for clientId.
@@ -128,13 +124,14 @@ std::optional<WsUrl> parseWsUrl(const std::string& url) {
 }
 
 SignalKClient::SignalKClient(asio::io_context& io, const SignalKSettings& s, const rt::Handoffs& handoffs,
-                             TokenStore tokens, SignalKPosition* position)
+                             TokenStore tokens, const rt::WallClock& clock, SignalKPosition* position)
     : io_(io),
       settings_(s),
+      clock_(clock),
       handoffs_(handoffs),
       tokens_(std::move(tokens)),
       position_(position),
-      health_("signalk") {
+      health_("signalk", clock) {
   auto u = parseWsUrl(s.url);
   if (!u) throw std::runtime_error("signalk: url '" + s.url + "' is not ws://host:port/path");
   url_ = *u;
@@ -149,7 +146,6 @@ void SignalKClient::start() { asio::co_spawn(io_, run(), asio::detached); }
 void SignalKClient::stop() { stopping_ = true; }
 
 asio::awaitable<void> SignalKClient::run() {
-  asio::steady_timer wait(co_await asio::this_coro::executor);
   while (!stopping_) {
     health_.attempt();
     std::string needsToken;  // why, when the server wants a token
@@ -175,9 +171,7 @@ asio::awaitable<void> SignalKClient::run() {
     }
     if (stopping_) break;
     if (again) continue;
-    wait.expires_after(backoff_.next());
-    beast::error_code ec;
-    co_await wait.async_wait(asio::redirect_error(use_awaitable, ec));
+    co_await waitOnClock(clock_, backoff_.next(), stopping_);
   }
 }
 
@@ -255,7 +249,7 @@ asio::awaitable<void> SignalKClient::readDeltas(SignalKStream& ws) {
     }
     if (!pec && position_)
       if (auto p = positionFromSignalKDelta(v))
-        position_->post(p->latitudeDeg, p->longitudeDeg, std::chrono::steady_clock::now());
+        position_->post(p->latitudeDeg, p->longitudeDeg, clock_.steadyNow());
   }
 }
 
@@ -263,16 +257,17 @@ asio::awaitable<void> SignalKClient::readDeltas(SignalKStream& ws) {
 asio::awaitable<void> SignalKClient::writeDeltas(SignalKStream& ws) {
   asio::steady_timer t(co_await asio::this_coro::executor);
   const auto period = std::chrono::duration<double>(1.0 / settings_.rate_hz);
-  auto lastSent = std::chrono::steady_clock::now() - 1h;
+  auto lastSent = clock_.steadyNow() - 1h;
   std::string lastState;
   for (;;) {
     const IntegrationSample s = sampleOf(handoffs_.latest(), {handoffs_.setUp.load(), ""});
     if (s.valid) {
       const std::string state = std::string(signalKChargingMode(s.stageValue, s.field_on)) + s.stage + s.mode;
-      const auto now = std::chrono::steady_clock::now();
+      const auto now = clock_.steadyNow();
       if (state != lastState || now - lastSent >= period) {
         const auto values = signalKValues(s, settings_.alternator_id, settings_.battery_id);
-        co_await ws.async_write(asio::buffer(signalKDelta(values, isoTimeUtc(wallMsNow()))), use_awaitable);
+        co_await ws.async_write(asio::buffer(signalKDelta(values, isoTimeUtc(clock_.unixMs()))),
+                                use_awaitable);
         health_.sent();
         lastSent = now;
         lastState = state;
@@ -303,9 +298,8 @@ asio::awaitable<void> SignalKClient::requestAccess() {
         "admin (Security > Access Requests) with read/write",
         clientId_);
   }
-  asio::steady_timer t(co_await asio::this_coro::executor);
-  const auto giveUp = std::chrono::steady_clock::now() + kAccessWaitLimit;
-  while (!stopping_ && std::chrono::steady_clock::now() < giveUp) {
+  const auto giveUp = clock_.steadyNow() + kAccessWaitLimit;
+  while (!stopping_ && clock_.steadyNow() < giveUp) {
     const json::value r = co_await httpJson(url_, http::verb::get, pendingHref_, {});
     if (stringAt(r, {"state"}) == "COMPLETED") {
       pendingHref_.clear();
@@ -317,8 +311,7 @@ asio::awaitable<void> SignalKClient::requestAccess() {
       spdlog::info("signalk: access approved; token kept in the state database");
       co_return;
     }
-    t.expires_after(kAccessPollPeriod);
-    co_await t.async_wait(use_awaitable);
+    co_await waitOnClock(clock_, kAccessPollPeriod, stopping_);
   }
   pendingHref_.clear();
   throw std::runtime_error("access request not approved within 10 minutes");

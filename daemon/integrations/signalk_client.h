@@ -45,7 +45,7 @@ class SignalKClient {
   // `position`, when given, receives navigation.position from the server
   // (the weather forecast's position; docs/integrations.md "Weather").
   SignalKClient(boost::asio::io_context& io, const SignalKSettings& s, const rt::Handoffs& handoffs,
-                TokenStore tokens, SignalKPosition* position = nullptr);
+                TokenStore tokens, const rt::WallClock& clock, SignalKPosition* position = nullptr);
   void start();
   void stop();
   IntegrationStatus status() const { return health_.status(); }
@@ -62,6 +62,7 @@ class SignalKClient {
 
   boost::asio::io_context& io_;
   SignalKSettings settings_;
+  const rt::WallClock& clock_;  // backoff, delta period, access polling (clock_wait.h)
   const rt::Handoffs& handoffs_;
   TokenStore tokens_;
   SignalKPosition* position_;

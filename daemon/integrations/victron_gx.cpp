@@ -4,6 +4,8 @@
 
 #include <algorithm>
 
+#include "integrations/clock_wait.h"
+
 namespace xr::integrations {
 
 namespace {
@@ -19,18 +21,19 @@ constexpr VictronField kFields[] = {VictronField::MaxChargeVoltage, VictronField
 }  // namespace
 
 VictronGxBridge::VictronGxBridge(boost::asio::io_context& io, const VictronSettings& s,
-                                 VictronLimitsSink sink, StaleSeconds staleS)
+                                 VictronLimitsSink sink, StaleSeconds staleS, const rt::WallClock& clock)
     : settings_(s),
+      clock_(clock),
       topics_{s.portal_id, s.battery_instance},
       sink_(std::move(sink)),
       staleS_(std::move(staleS)),
-      health_("victron"),
+      health_("victron", clock),
       timer_(io) {
   MqttOptions o;
   o.host = s.host;
   o.port = s.port;
   o.clientId = "xregulator_victron_" + s.portal_id;
-  link_ = std::make_unique<MqttLink>(io, o, health_);
+  link_ = std::make_unique<MqttLink>(io, o, health_, clock_);
 }
 
 void VictronGxBridge::start() {
@@ -81,7 +84,7 @@ void VictronGxBridge::onMessage(const std::string& topic, std::string_view paylo
     // Only a limit that is known refreshes: a null or a vanished battery
     // leaves the old arrival time, so the limits go stale after BmsStaleS.
     if (limit && r->known) {
-      lastLimits_ = std::chrono::steady_clock::now();
+      lastLimits_ = clock_.steadyNow();
       ++limits_.limitUpdates;
       limits_.stale = false;
       limits_.ageS = 0;
@@ -109,12 +112,14 @@ void VictronGxBridge::requestLimits() {
 }
 
 void VictronGxBridge::tick() {
-  const auto now = std::chrono::steady_clock::now();
+  const auto now = clock_.steadyNow();
   const double staleS = staleS_ ? staleS_() : 10.0;
   if (link_->connected()) {
-    if (now - lastKeepalive_ >= kKeepalivePeriod) {
+    // Venus forgets a subscriber after 60 s of its own time: real time.
+    const auto realNow = std::chrono::steady_clock::now();
+    if (realNow - lastKeepalive_ >= kKeepalivePeriod) {
       link_->publish(topics_.keepalive(), kKeepaliveQuiet, false);
-      lastKeepalive_ = now;
+      lastKeepalive_ = realNow;
     }
     requestLimits();
   }
@@ -135,10 +140,7 @@ void VictronGxBridge::tick() {
   // At least four polls within BmsStaleS, so one lost answer is not stale;
   // never faster than 4 Hz (five small publishes each).
   const auto period = std::chrono::duration<double>(std::clamp(staleS / 4.0, 0.25, 1.0));
-  timer_.expires_after(std::chrono::duration_cast<std::chrono::steady_clock::duration>(period));
-  timer_.async_wait([this](const boost::system::error_code& ec) {
-    if (!ec) tick();
-  });
+  afterOnClock(clock_, timer_, std::chrono::duration_cast<ClockDuration>(period), [this] { tick(); });
 }
 
 void VictronGxBridge::publishToSink() {

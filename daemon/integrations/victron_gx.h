@@ -44,7 +44,7 @@ using StaleSeconds = std::function<double()>;
 class VictronGxBridge {
  public:
   VictronGxBridge(boost::asio::io_context& io, const VictronSettings& s, VictronLimitsSink sink,
-                  StaleSeconds staleS);
+                  StaleSeconds staleS, const rt::WallClock& clock);
   void start();
   void stop();
   IntegrationStatus status() const;
@@ -58,6 +58,7 @@ class VictronGxBridge {
   void publishToSink();
 
   VictronSettings settings_;
+  const rt::WallClock& clock_;  // staleness and the poll period run on it (clock_wait.h)
   VictronTopics topics_;
   VictronLimitsSink sink_;
   StaleSeconds staleS_;
@@ -66,8 +67,8 @@ class VictronGxBridge {
   boost::asio::steady_timer timer_;
   mutable std::mutex m_;  // limits_ are read by the web threads
   VictronLimits limits_;
-  std::chrono::steady_clock::time_point lastLimits_{};  // last known CVL/CCL accepted
-  std::chrono::steady_clock::time_point lastKeepalive_{};
+  std::chrono::steady_clock::time_point lastLimits_{};     // last known CVL/CCL accepted
+  std::chrono::steady_clock::time_point lastKeepalive_{};  // real time: Venus's own deadline
   bool staleLogged_ = false;
   bool goneLogged_ = false;
 };

@@ -5,6 +5,7 @@
 
 #include <boost/asio/co_spawn.hpp>
 #include <boost/asio/detached.hpp>
+#include <boost/asio/experimental/awaitable_operators.hpp>
 #include <boost/asio/redirect_error.hpp>
 #include <boost/asio/steady_timer.hpp>
 #include <boost/asio/use_awaitable.hpp>
@@ -12,6 +13,9 @@
 #include <boost/beast/http.hpp>
 #include <cmath>
 #include <stdexcept>
+#include <variant>
+
+#include "integrations/clock_wait.h"
 
 namespace xr::integrations {
 namespace asio = boost::asio;
@@ -20,6 +24,7 @@ namespace http = beast::http;
 using asio::use_awaitable;
 using tcp = asio::ip::tcp;
 using namespace std::chrono_literals;
+using namespace asio::experimental::awaitable_operators;
 
 namespace {
 constexpr auto kIoTimeout = 10s;      // the whole request: connect, write, read
@@ -59,13 +64,14 @@ std::string forecastTarget(const std::string& path, double latitude, double long
 }
 
 WeatherClient::WeatherClient(asio::io_context& io, const WeatherSettings& s, rt::Handoffs& handoffs,
-                             CommandSink commands, const SignalKPosition* signalk)
+                             CommandSink commands, const rt::WallClock& clock, const SignalKPosition* signalk)
     : io_(io),
       settings_(s),
+      clock_(clock),
       handoffs_(handoffs),
       commands_(std::move(commands)),
       signalk_(signalk),
-      health_("weather"),
+      health_("weather", clock),
       backoff_(std::chrono::milliseconds(30s), std::chrono::minutes(s.refresh_min)) {
   auto u = parseHttpUrl(s.url);
   if (!u) throw std::runtime_error("weather: url '" + s.url + "' is not http://host[:port]/path");
@@ -96,15 +102,13 @@ asio::awaitable<void> WeatherClient::run() {
       if (!parsed.forecast)
         throw ForecastError(WeatherMissing::AnswerRefused, "answer refused: " + parsed.error);
       // Today's forecast for the place asked, or none at all.
-      const auto unixNow = std::chrono::duration_cast<std::chrono::seconds>(
-                               std::chrono::system_clock::now().time_since_epoch())
-                               .count();
-      if (const std::string bad = forecastMismatch(*parsed.forecast, asked_->latitudeDeg,
-                                                   asked_->longitudeDeg, static_cast<std::int64_t>(unixNow));
+      const std::int64_t unixNow = clock_.unixMs() / 1000;
+      if (const std::string bad =
+              forecastMismatch(*parsed.forecast, asked_->latitudeDeg, asked_->longitudeDeg, unixNow);
           !bad.empty())
         throw ForecastError(WeatherMissing::AnswerRefused, "answer refused: " + bad);
       forecast_ = parsed.forecast;
-      forecastAt_ = std::chrono::steady_clock::now();
+      forecastAt_ = clock_.steadyNow();
       health_.received();
       health_.connected();
       backoff_.reset();
@@ -122,7 +126,7 @@ asio::awaitable<void> WeatherClient::run() {
       next = backoff_.next();
     }
     if (stopping_) break;
-    decide(std::chrono::steady_clock::now());
+    decide(clock_.steadyNow());
     report(error, why, status, next);
     co_await waitForNextRefresh(next);
   }
@@ -131,14 +135,11 @@ asio::awaitable<void> WeatherClient::run() {
 // Until the next refresh, or sooner when a position appears or the boat
 // moved out of the forecast's cell (boat_position.h needsNewForecast).
 asio::awaitable<void> WeatherClient::waitForNextRefresh(std::chrono::steady_clock::duration next) {
-  asio::steady_timer wait(co_await asio::this_coro::executor);
-  const auto due = std::chrono::steady_clock::now() + next;
+  const auto due = clock_.steadyNow() + next;
   while (!stopping_) {
-    const auto left = due - std::chrono::steady_clock::now();
-    if (left <= std::chrono::steady_clock::duration::zero()) break;
-    wait.expires_after(std::min<std::chrono::steady_clock::duration>(left, kPositionCheck));
-    beast::error_code ec;
-    co_await wait.async_wait(asio::redirect_error(use_awaitable, ec));
+    const auto left = due - clock_.steadyNow();
+    if (left <= ClockDuration::zero()) break;
+    co_await waitOnClock(clock_, std::min<ClockDuration>(left, kPositionCheck), stopping_);
     if (needsNewForecast(asked_, currentPosition())) break;
   }
 }
@@ -154,7 +155,7 @@ void WeatherClient::report(const std::string& error, WeatherMissing why, int sta
     if (error.empty())
       failedAt_.reset();
     else
-      failedAt_ = std::chrono::steady_clock::now();
+      failedAt_ = clock_.steadyNow();
   }
   if (error.empty()) {
     if (outage_)
@@ -183,16 +184,38 @@ std::optional<ChosenPosition> WeatherClient::currentPosition() const {
     boat.push_back({"nmea2000", n2k.latitudeDeg, n2k.longitudeDeg, toSec(canNow - n2k.stamp)});
   }
   if (signalk_)
-    if (auto r = signalk_->report(std::chrono::steady_clock::now())) boat.push_back(*r);
+    if (auto r = signalk_->report(clock_.steadyNow())) boat.push_back(*r);
   return choosePosition(boat, settings_.latitude, settings_.longitude);
 }
 
+// One deadline for connect, write and read, on the clock: the request that
+// loses the race is cancelled. The request's failure is caught and thrown
+// again here: `||` waits for a success, so a request that fails must not
+// end in an exception, or the failure would wait for the deadline.
 asio::awaitable<std::string> WeatherClient::fetch(const ChosenPosition& at) {
+  auto r = co_await (fetchCaught(at) || waitOnClock(clock_, kIoTimeout, stopping_));
+  if (r.index() == 1)
+    throw ForecastError(WeatherMissing::NoAnswer, fmt::format("timeout: no answer within {} s",
+                                                              std::chrono::seconds(kIoTimeout).count()));
+  auto [body, error] = std::get<0>(std::move(r));
+  if (error) std::rethrow_exception(error);
+  co_return body;
+}
+
+asio::awaitable<std::pair<std::string, std::exception_ptr>> WeatherClient::fetchCaught(
+    const ChosenPosition& at) {
+  try {
+    co_return std::make_pair(co_await fetchUntimed(at), std::exception_ptr{});
+  } catch (...) {
+    co_return std::make_pair(std::string{}, std::current_exception());
+  }
+}
+
+asio::awaitable<std::string> WeatherClient::fetchUntimed(const ChosenPosition& at) {
   auto ex = co_await asio::this_coro::executor;
   tcp::resolver resolver(ex);
   const auto hosts = co_await resolver.async_resolve(url_.host, url_.port, use_awaitable);
   beast::tcp_stream stream(ex);
-  stream.expires_after(kIoTimeout);  // one deadline for connect, write and read
   co_await stream.async_connect(hosts, use_awaitable);
   http::request<http::empty_body> req{http::verb::get,
                                       forecastTarget(url_.target, at.latitudeDeg, at.longitudeDeg), 11};
@@ -267,7 +290,7 @@ IntegrationStatus WeatherClient::status() const {
   s.texts = texts_;
   // Ages now, not at the last decision: the dashboard shows how old the
   // forecast in force is and when a fetch last failed (docs/integrations.md).
-  const auto now = std::chrono::steady_clock::now();
+  const auto now = clock_.steadyNow();
   if (shownForecastAt_) s.values["age_s"] = std::chrono::duration<double>(now - *shownForecastAt_).count();
   s.values["failed_s_ago"] =
       failedAt_ ? std::chrono::duration<double>(now - *failedAt_).count() : std::nan("");

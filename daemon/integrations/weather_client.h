@@ -14,10 +14,12 @@
 #include <boost/asio/awaitable.hpp>
 #include <boost/asio/io_context.hpp>
 #include <chrono>
+#include <exception>
 #include <map>
 #include <mutex>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "config/settings.h"
 #include "integrations/backoff.h"
@@ -44,8 +46,10 @@ inline constexpr std::size_t kForecastBodyLimit = 64 * 1024;
 class WeatherClient {
  public:
   // `signalk`: the Signal K client's navigation.position, or null.
+  // `clock`: refreshes, retries, the request's timeout, the forecast's age
+  // and today's date run on it (clock_wait.h).
   WeatherClient(boost::asio::io_context& io, const WeatherSettings& s, rt::Handoffs& handoffs,
-                CommandSink commands, const SignalKPosition* signalk = nullptr);
+                CommandSink commands, const rt::WallClock& clock, const SignalKPosition* signalk = nullptr);
   void start();
   void stop();
   // The forecast, the decision and why, in values (uv_day1.., radiation_day1..,
@@ -57,6 +61,8 @@ class WeatherClient {
  private:
   boost::asio::awaitable<void> run();
   boost::asio::awaitable<std::string> fetch(const ChosenPosition& at);
+  boost::asio::awaitable<std::pair<std::string, std::exception_ptr>> fetchCaught(const ChosenPosition& at);
+  boost::asio::awaitable<std::string> fetchUntimed(const ChosenPosition& at);
   boost::asio::awaitable<void> waitForNextRefresh(std::chrono::steady_clock::duration next);
   std::optional<ChosenPosition> currentPosition() const;
   void report(const std::string& error, WeatherMissing why, int status,
@@ -67,6 +73,7 @@ class WeatherClient {
 
   boost::asio::io_context& io_;
   WeatherSettings settings_;
+  const rt::WallClock& clock_;
   rt::Handoffs& handoffs_;  // reads, and posts events (SideEvents)
   CommandSink commands_;
   const SignalKPosition* signalk_;

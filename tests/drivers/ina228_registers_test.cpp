@@ -1,4 +1,4 @@
-// INA228 encodings against the worked example of datasheet-facts §1.4 (TI
+// INA228 encodings against the worked example of docs/sources.md, datasheet facts §1.4 (TI
 // INA229 sibling: Imax 10 A) and the register layout facts.
 #include "drivers/ina228/ina228_registers.h"
 

@@ -1,4 +1,4 @@
-// DS18B20 over w1 sysfs: the w1_slave parser (datasheet-facts §3) and the
+// DS18B20 over w1 sysfs: the w1_slave parser (docs/sources.md, datasheet facts §3) and the
 // reader on a fake /sys/bus/w1/devices tree.
 #include <gtest/gtest.h>
 

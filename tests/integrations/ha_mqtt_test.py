@@ -11,7 +11,10 @@ homeassistant/status "online"; a command topic that is ignored because
 commands are off; the last will "offline" when the daemon is killed -9.
 Part B, broker with a password, commands on: the select and button configs,
 off and auto through the select, limp home through the button, a bad payload
-refused and counted, and "offline" said by a clean stop."""
+refused and counted, and "offline" said by a clean stop.
+
+The daemon runs at --speed SPEED: its state period and reconnect backoff are
+simulated time (docs/architecture.md "One clock")."""
 import json
 import sys
 import time
@@ -25,6 +28,7 @@ SENSORS = {"battery_voltage": "V", "battery_current": "A", "alternator_current":
            "alternator_run_hours": "h", "alternator_life_used": "%", "belt_slips": None,
            "charging_state": None, "limited_by": None}
 BINARY = ["field", "alarm", "weather_mode"]
+SPEED = 5
 
 
 def config_topic(component, obj):
@@ -72,7 +76,8 @@ def check_discovery(c, h, commands):
     # config; a subscriber that comes first gets them live and
     # --retained-only stops at the first. Read again until they are stored.
     for _ in range(10):
-        msgs = h.sub("homeassistant/#", 50, timeout=4, retained_only=True)
+        # As many as expected: mosquitto_sub returns when it has them all.
+        msgs = h.sub("homeassistant/#", len(expected_topics(commands)), timeout=2, retained_only=True)
         topics = {t for t, _ in msgs}
         if topics == expected_topics(commands):
             break
@@ -99,7 +104,7 @@ enabled = true
 host = "127.0.0.1"
 port = {h.broker_port}
 node_id = "{NODE}"
-""")
+""", speed=SPEED)
         wait_until("mqtt connected", lambda: h.integration("mqtt")["connected"], 20)
         check_discovery(c, h, commands=False)
         avail = h.sub(f"xregulator/{NODE}/availability", 1, timeout=5, retained_only=True)
@@ -122,14 +127,14 @@ node_id = "{NODE}"
 
         # Commands are off: a command topic changes nothing.
         h.pub(f"xregulator/{NODE}/set/mode", "off")
-        time.sleep(2)
+        h.wait_sim(5)
         c.check(states(h, 1)[0]["regulator_mode"] == "auto", "commands off: 'off' ignored")
         c.check("from Home Assistant" not in h.log_text(), "commands off: no command logged")
 
         # Re-announce when Home Assistant comes back online.
         listener = h.sub_start("homeassistant/+/+/+/config")
         h.pub("homeassistant/status", "online")
-        time.sleep(2)
+        time.sleep(1)
         fresh = {t for t, _ in h.sub_collect(listener)}
         c.check(fresh == expected_topics(False), f"re-announce after online: {len(fresh)} configs")
 
@@ -137,7 +142,7 @@ node_id = "{NODE}"
         overruns0, ticks0 = h.overruns(), h.status()["loop"]["ticks"]
         h.kill_broker()
         wait_until("mqtt to notice the dead broker", lambda: not h.integration("mqtt")["connected"], 20)
-        time.sleep(4)  # several reconnect attempts
+        h.wait_sim(4)  # several reconnect attempts (backoff 1 s, 2 s: simulated time)
         i = h.integration("mqtt")
         c.check(i["last_error"] != "", f"last_error while down: {i['last_error']!r}")
         c.check(h.daemon.poll() is None, "daemon alive with the broker dead")
@@ -156,7 +161,7 @@ node_id = "{NODE}"
         listener = h.sub_start(f"xregulator/{NODE}/availability")
         h.daemon.kill()
         h.daemon.wait()
-        time.sleep(2)
+        time.sleep(1)
         got = h.sub_collect(listener)
         c.check((f"xregulator/{NODE}/availability", "offline") in got, f"LWT offline after kill -9: {got}")
     finally:
@@ -175,7 +180,7 @@ node_id = "{NODE}"
 username = "ha"
 password = "s3cret-pass"
 commands_enabled = true
-""")
+""", speed=SPEED)
         wait_until("mqtt connected with credentials", lambda: h.integration("mqtt")["connected"], 20)
         check_discovery(c, h, commands=True)
         h.pub(f"xregulator/{NODE}/set/mode", "off")

@@ -126,14 +126,17 @@ class Harness:
     # ---- the daemon ----
     def start_daemon(self, integrations_toml, extra_args=(), speed=1):
         """xregulatord --sim --speed `speed` with this configuration text
-        added to the default one. The control period is 20 ms of wall time
-        (20 ms x speed simulated): the loop's own timing is not what these
-        tests measure, and an overrun (a wake-up one wall period late) must
-        mean the same thing at every speed on a busy build machine."""
+        added to the default one. The integrations' refreshes, backoffs and
+        timeouts run on the simulated clock, so a faster speed shortens the
+        test. The control period is 20 ms of wall time (20 ms x speed
+        simulated, at most the 100 ms the loader allows): the loop's own
+        timing is not what these tests measure, and an overrun (a wake-up one
+        wall period late) must mean the same thing at every speed on a busy
+        build machine."""
         self.http_port = free_port()
         conf = os.path.join(self.dir, "xregulator.toml")
         with open(conf, "w") as f:
-            f.write(f"[runtime]\ncontrol_period_us = {int(20000 * speed)}\n\n" + integrations_toml)
+            f.write(f"[runtime]\ncontrol_period_us = {min(int(20000 * speed), 100000)}\n\n" + integrations_toml)
         self.daemon_log = os.path.join(self.dir, "daemon.log")
         log = open(self.daemon_log, "a")
         args = [self.daemon_bin, "--sim", "--speed", str(speed), "--config", conf,
@@ -172,6 +175,12 @@ class Harness:
                 k, _, v = line.rpartition(" ")
                 out[k] = float(v)
         return out
+
+    def wait_sim(self, seconds, timeout=60):
+        """Waits until `seconds` of the daemon's simulated time have passed
+        (t_s in /api/status): a wait on the daemon's clock, not a sleep."""
+        t0 = self.status()["t_s"]
+        wait_until(f"{seconds} s of simulated time", lambda: self.status()["t_s"] >= t0 + seconds, timeout)
 
     def overruns(self):
         return self.status()["loop"]["overruns"]

@@ -26,7 +26,8 @@ TEST(Backoff, DoublesUpToTheCapAndResets) {
 }
 
 TEST(IntegrationHealth, ManyFailedAttemptsAreOneOutage) {
-  IntegrationHealth h("test");
+  const rt::WallClock clock;
+  IntegrationHealth h("test", clock);
   for (int i = 0; i < 5; ++i) {
     h.attempt();
     h.failed("connection refused");
@@ -43,7 +44,8 @@ TEST(IntegrationHealth, ManyFailedAttemptsAreOneOutage) {
 }
 
 TEST(IntegrationHealth, CountsSentDroppedRefused) {
-  IntegrationHealth h("test");
+  const rt::WallClock clock;
+  IntegrationHealth h("test", clock);
   h.sent(3);
   h.dropped();
   h.refused("NaN");

@@ -31,6 +31,7 @@ password = "s3cret-pass"
 commands_enabled = true
 """
 COMMANDS_ON = "commands from Home Assistant are on"
+SPEED = 5  # the backoff and state period are simulated time
 
 
 def state(h):
@@ -39,7 +40,8 @@ def state(h):
 
 
 def retained(h, topic):
-    return h.sub(topic, 1, timeout=3, retained_only=True)
+    # A retained message comes with the subscription's answer: 1 s is ample.
+    return h.sub(topic, 1, timeout=1, retained_only=True)
 
 
 def retained_command_is_not_replayed_at_start(c, daemon):
@@ -48,10 +50,10 @@ def retained_command_is_not_replayed_at_start(c, daemon):
         h.start_broker(users={"ha": "s3cret-pass"})
         h.pub(LIMP, "PRESS", retain=True)
         c.check(retained(h, LIMP) == [(LIMP, "PRESS")], "the broker holds the retained press before the start")
-        h.start_daemon(CONF.format(port=h.broker_port, node=NODE))
+        h.start_daemon(CONF.format(port=h.broker_port, node=NODE), speed=SPEED)
         wait_until("commands on", lambda: COMMANDS_ON in h.log_text(), 20)
         wait_until("the retained press refused", lambda: h.integration("mqtt")["values_refused"] >= 1, 10)
-        time.sleep(2)
+        h.wait_sim(5)
         c.check(state(h)["mode"] != "MODE_LIMP_HOME", f"no limp home from a retained press: {state(h)['mode']}")
         c.check("command 'limp_home'" not in h.log_text(), "no limp-home command logged")
         c.check("retained command on" in h.log_text(), "the ignored retained command is logged")
@@ -70,9 +72,9 @@ def retained_command_is_not_replayed_at_start(c, daemon):
         h.pub(MODE, "auto")
         wait_until("auto before the restart", lambda: state(h)["regulator_mode"] == "auto", 15)
         h.stop_daemon()
-        h.start_daemon(CONF.format(port=h.broker_port, node=NODE))
+        h.start_daemon(CONF.format(port=h.broker_port, node=NODE), speed=SPEED)
         wait_until("commands on after the restart", lambda: COMMANDS_ON in h.log_text(), 20)
-        time.sleep(2)
+        h.wait_sim(5)
         c.check(state(h)["regulator_mode"] == "auto", "the restart replays no command")
     finally:
         h.stop()
@@ -82,7 +84,7 @@ def commands_stay_off_when_the_broker_accepts_anonymous_clients(c, daemon):
     h = Harness(daemon)
     try:
         h.start_broker(users={"ha": "s3cret-pass"}, anonymous=True)
-        h.start_daemon(CONF.format(port=h.broker_port, node=NODE))
+        h.start_daemon(CONF.format(port=h.broker_port, node=NODE), speed=SPEED)
         wait_until("the anonymous broker reported",
                    lambda: "accepts clients without a user name" in h.log_text(), 20)
         c.check(COMMANDS_ON not in h.log_text(), "commands not switched on")
@@ -91,7 +93,8 @@ def commands_stay_off_when_the_broker_accepts_anonymous_clients(c, daemon):
         found = {}
 
         def discovery_published():
-            found["configs"] = {t for t, _ in h.sub("homeassistant/#", 50, timeout=4, retained_only=True)}
+            # 20 sensors and binary sensors; 22 would be the two command entities too.
+            found["configs"] = {t for t, _ in h.sub("homeassistant/#", 22, timeout=1, retained_only=True)}
             return bool(found["configs"])
 
         wait_until("the discovery configs published", discovery_published, 30)
@@ -100,7 +103,7 @@ def commands_stay_off_when_the_broker_accepts_anonymous_clients(c, daemon):
                 f"no command entities announced ({len(configs)} configs)")
         h.pub(MODE, "off")
         h.pub(LIMP, "PRESS")
-        time.sleep(3)
+        h.wait_sim(10)
         s = state(h)
         c.check(s["regulator_mode"] == "auto" and s["mode"] != "MODE_LIMP_HOME",
                 f"commands ignored: {s['regulator_mode']} {s['mode']}")

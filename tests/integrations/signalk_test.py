@@ -14,19 +14,21 @@ it in the state database. Both: the server killed mid-run, no control
 overrun, reconnect when it is back.
 plain: a navigation.position published to the server by another client
 reaches the daemon's subscription, and the weather forecast is asked for it
-(docs/integrations.md "Where the forecast is asked for")."""
+(docs/integrations.md "Where the forecast is asked for").
+The daemon runs at --speed SPEED: its backoff, delta period and position
+checks are simulated time (docs/architecture.md "One clock")."""
 import json
 import os
 import signal
 import subprocess
 import sys
-import time
 import urllib.request
 
 from harness import Checks, Harness, free_port, wait_until
 from weather_test import Server as ForecastServer
 
 ADMIN = ("admin", "admin-pass-1234")
+SPEED = 5
 
 
 class SignalK:
@@ -187,7 +189,7 @@ url = "ws://127.0.0.1:{sk.port}/signalk/v1/stream?subscribe=none"
 rate_hz = 2.0
 alternator_id = "main"
 battery_id = "house"
-""")
+""", speed=SPEED)
         if secured:
             # The daemon asks for access; the admin approves it.
             admin = sk.admin_token()
@@ -217,7 +219,7 @@ battery_id = "house"
         overruns0, ticks0 = h.overruns(), h.status()["loop"]["ticks"]
         sk.kill()
         wait_until("signalk to notice", lambda: not h.integration("signalk")["connected"], 30)
-        time.sleep(3)
+        h.wait_sim(5)  # several reconnect attempts (backoff 1 s, 2 s: simulated time)
         c.check(h.daemon.poll() is None, "daemon alive with the server dead")
         c.check(h.status()["loop"]["ticks"] > ticks0, "control loop ticks on")
         c.check(h.integration("signalk")["last_error"] != "", "last_error while down")

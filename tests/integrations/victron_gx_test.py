@@ -42,7 +42,7 @@ portal_id = "{PORTAL}"
 battery_instance = 512
 """)
         wait_until("victron connected", lambda: h.integration("victron")["connected"], 20)
-        time.sleep(1.5)
+        h.wait_sim(1.5)  # a poll or two on the daemon's clock
         got = h.sub_collect(keepalive)
         c.check(any(t == f"R/{PORTAL}/keepalive" for t, _ in got), f"keepalive written on connect: {got}")
         c.check(any(t == f"R/{PORTAL}/battery/512/Info/MaxChargeCurrent" for t, _ in got),

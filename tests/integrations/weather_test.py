@@ -4,11 +4,15 @@ in --sim reads recorded Open-Meteo answers from a local HTTP server.
 
   weather_test.py XREGULATORD [refresh|floor|broken ...]   (all by default)
 
+  The daemon runs at --speed SPEED: its refreshes, retries and request
+  timeout are simulated time (docs/architecture.md "One clock"), so a
+  one-minute refresh passes in a few seconds.
+
   - a sunny forecast puts the regulator in MODE_DISABLED_RAMP with
     REASON_WEATHER_MODE; a cloudy one, served at the next refresh (1 min),
     brings charging back; a mixed one (1 sunny day of 3) charges;
   - below WeatherModeMinSoC it charges in sunshine, and rests just above it;
-  - a broken server (500, no answer for 15 s, bad JSON, a wrong shape, a 10 MB
+  - a broken server (500, no answer at all, bad JSON, a wrong shape, a 10 MB
     body) leaves charging untouched, says why once with the next try, and the
     daemon keeps running;
   - scenarios/weather-gps.toml: with no position in the file, the forecast is
@@ -30,6 +34,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 TOKEN = "weather-test-token-0123456789abcdef"
 WEATHER = "REASON_WEATHER_MODE"
+SPEED = 20  # simulated seconds per second: a 1 min refresh in 3 s
 
 
 def recorded(name, path="", start=None, shift_deg=0.0):
@@ -63,8 +68,14 @@ class Server:
                 if a == "500":
                     return self._send(500, b"oops")
                 if a == "timeout":
-                    time.sleep(15)
-                    return self._send(200, recorded("sunny", self.path))
+                    # No answer: hold the connection until the client gives
+                    # up (its 10 s of simulated time) and closes it.
+                    self.connection.settimeout(60)
+                    try:
+                        self.rfile.read(1)
+                    except OSError:
+                        pass
+                    return None
                 if a == "badjson":
                     return self._send(200, b'{"daily": {"time": [')
                 if a == "shape":
@@ -128,7 +139,7 @@ def sunny_then_cloudy(c, srv, daemon):
     h = Harness(daemon)
     try:
         srv.answer = "sunny"
-        h.start_daemon(config(srv.port))
+        h.start_daemon(config(srv.port), speed=SPEED)
         command(h, {"command": "set_soc", "soc_pct": 80})
         wait_until("weather mode from the sunny forecast", lambda: reason(h) == WEATHER, 20)
         st = h.status()
@@ -140,12 +151,12 @@ def sunny_then_cloudy(c, srv, daemon):
         c.check(abs(w["values"]["uv_day2"] - 8.9) < 1e-9, "the dashboard sees day 2's UV index")
         srv.answer = "cloudy"
         wait_until("the cloudy forecast read (one refresh)",
-                   lambda: h.integration("weather")["values"]["sunny_days"] == 0, 75)
+                   lambda: h.integration("weather")["values"]["sunny_days"] == 0, 15)
         wait_until("charging again after the cloudy forecast", lambda: reason(h) != WEATHER, 5)
         srv.answer = "mixed"
         n = len(srv.requests)
-        wait_until("the mixed forecast", lambda: len(srv.requests) > n, 75)
-        time.sleep(1)
+        wait_until("the mixed forecast", lambda: len(srv.requests) > n, 15)
+        time.sleep(0.5)
         c.check(reason(h) != WEATHER, "mixed (1 sunny day of 3, one null): charging")
         c.check(h.integration("weather")["values"]["sunny_days"] == 1, "mixed: one sunny day")
         c.check(weather_events(h) == [], "a server that answers: no weather event")
@@ -157,10 +168,10 @@ def soc_floor(c, srv, daemon):
     h = Harness(daemon)
     try:
         srv.answer = "sunny"
-        h.start_daemon(config(srv.port, min_soc=50))
+        h.start_daemon(config(srv.port, min_soc=50), speed=SPEED)
         command(h, {"command": "set_soc", "soc_pct": 49.5})
         wait_until("the forecast read", lambda: h.integration("weather")["values"].get("active") == 1, 20)
-        time.sleep(2)
+        time.sleep(1)
         c.check(reason(h) != WEATHER, f"SoC 49.5 % < 50 %: charging in sunshine ({reason(h)})")
         # Just above the floor: the house load discharges the sim's battery
         # from the moment the SoC is set (the exact threshold is
@@ -183,11 +194,11 @@ def broken(c, srv, daemon, answer, why, event_why):
     h = Harness(daemon)
     try:
         srv.answer = answer
-        h.start_daemon(config(srv.port))
+        h.start_daemon(config(srv.port), speed=SPEED)
         command(h, {"command": "set_soc", "soc_pct": 80})
         wait_until(f"{answer}: the failure reported",
                    lambda: why in (h.integration("weather")["last_error"] or ""), 30)
-        time.sleep(1)
+        time.sleep(0.5)
         c.check(reason(h) != WEATHER, f"{answer}: charging untouched ({reason(h)})")
         c.check(h.daemon.poll() is None, f"{answer}: the daemon runs")
         lines = [l for l in h.log_text().splitlines() if "weather:" in l and "next try in" in l]
@@ -218,7 +229,7 @@ UVThresholdHigh = 6.0
 
 [can]
 n2k_interface = "can1"
-""", extra_args=["--scenario", scenario])
+""", extra_args=["--scenario", scenario], speed=SPEED)
         command(h, {"command": "set_soc", "soc_pct": 80})
         wait_until("a forecast asked for the GPS's position",
                    lambda: any("latitude=-33.8568&longitude=151.2153" in r for r in srv.requests[n:]), 30)

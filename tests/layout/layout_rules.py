@@ -10,7 +10,12 @@ generated from this table, so the two cannot drift apart.
                                   includes a .cpp, no non-test source over
                                   MAX_LINES lines, no function over
                                   MAX_FUNCTION_LINES, no clock in the pure
-                                  layers (exit 1 and a list if not)
+                                  layers; and in every CMake file, the
+                                  README, docs/, the tests, the dashboard's
+                                  JavaScript: no reference to a file outside
+                                  the repository, no "seed"/"Ours" for the
+                                  original firmware or this project beyond
+                                  SPEC_WORD_ALLOWANCE (exit 1 and a list if not)
   layout_rules.py dot             print the Graphviz source of the picture
   layout_rules.py dot-check ROOT  docs/architecture.dot matches this table
   layout_rules.py self-test       the checks catch a planted violation of each
@@ -111,7 +116,109 @@ ISSUE_TAG_RE = re.compile(r"\b[Ii]ssues? #?\d+")
 # project started from are not part of it (docs/control.md, docs/protections.md,
 # docs/batteries.md and docs/sources.md say the same in the repository).
 OUTSIDE_REF_RE = re.compile(r"\b(field-control|safeties-and-protections|architecture-legacy|battery-management|"
-                            r"DESIGN)\.md|\b(plant|datasheet)-facts\b")
+                            r"DESIGN)\.md|\b[\w-]+-facts\b|\.\./shared\b|/work/\w|\bseeds/")
+# The words "seed" and "Ours" for the original firmware and for this project:
+# a reader who clones the repository has neither; say "the original
+# firmware", "the specification" or what was added here. A random
+# generator's seed is not meant.
+SPEC_WORD_RE = re.compile(r"\b[Ss]eeds?\b(?!\s*(=|\(|:\s*\d|corpus|files?\b|value|for the|of the (noise|PRNG|random)))"
+                          r"|\bOurs\b|\(ours\b")
+SPEC_WORD_CONTEXT_OK = re.compile(r"random|PRNG|prng|rng\b|corpus|fuzz|--seed|seed_|determinis|same seed|"
+                                  r"mt19937|splitmix|xorshift|Seed\(|seed\)", re.I)
+# Files that still use those words, with how many lines may (a ratchet: the
+# count may only go down). The parameter texts (daemon/params/catalogue.def
+# and what is generated from it) are reworded in one change of their own.
+SPEC_WORD_ALLOWANCE = {
+    "config/xregulator.toml": 39,
+    "daemon/app/cli.cpp": 1,
+    "daemon/app/cli.h": 1,
+    "daemon/app/daemon_start.cpp": 1,
+    "daemon/battery/battery_monitor.h": 7,
+    "daemon/battery/battery_soc.cpp": 3,
+    "daemon/battery/ledger.h": 2,
+    "daemon/config/settings_schema.cpp": 2,
+    "daemon/control/charging_stage.h": 1,
+    "daemon/control/control_law.cpp": 4,
+    "daemon/control/control_law.h": 3,
+    "daemon/control/control_law_telemetry.cpp": 1,
+    "daemon/control/control_modes.cpp": 2,
+    "daemon/control/control_targets.cpp": 5,
+    "daemon/control/control_telemetry.h": 1,
+    "daemon/control/cv_loop.cpp": 5,
+    "daemon/control/cv_loop.h": 3,
+    "daemon/control/cv_tuning_mode.cpp": 2,
+    "daemon/control/field_rest.cpp": 1,
+    "daemon/control/pid.h": 1,
+    "daemon/control/slew.h": 1,
+    "daemon/control/thermal_derate.cpp": 1,
+    "daemon/control/thermal_derate.h": 1,
+    "daemon/core/events.cpp": 2,
+    "daemon/core/events.h": 2,
+    "daemon/core/modes.h": 1,
+    "daemon/logging/journal.h": 1,
+    "daemon/logging/logging.cpp": 1,
+    "daemon/logging/logging.h": 1,
+    "daemon/params/catalogue.def": 33,
+    "daemon/params/constants.h": 5,
+    "daemon/params/derived.cpp": 2,
+    "daemon/params/derived.h": 1,
+    "daemon/protection/alarm_rows.h": 1,
+    "daemon/protection/detectors.cpp": 10,
+    "daemon/protection/fast_ov.cpp": 1,
+    "daemon/protection/mode_selection.cpp": 4,
+    "daemon/protection/protection_supervisor.h": 1,
+    "daemon/protection/shutdown_sequencer.cpp": 3,
+    "daemon/protection/tick_snapshot.h": 3,
+    "daemon/sim_rig/sim_rig.h": 1,
+    "daemon/sim_rig/sim_runner.cpp": 1,
+    "daemon/sim_rig/sim_runner.h": 1,
+    "daemon/store/checkpoint_policy.h": 1,
+    "docs/architecture.md": 1,
+    "docs/batteries.md": 1,
+    "docs/configuration.md": 10,
+    "docs/control.md": 1,
+    "docs/dashboard.md": 1,
+    "docs/deviations.md": 44,
+    "docs/parameters.md": 35,
+    "docs/performance.md": 1,
+    "docs/protections.md": 16,
+    "docs/simulator.md": 2,
+    "drivers/ina228/ina228_registers.h": 3,
+    "drivers/sim/prng.h": 1,
+    "drivers/sim/scenario.cpp": 2,
+    "tests/sim/health_ordinary_test.cpp": 2,
+    "tests/sim/health_test.cpp": 6,
+    "tests/sim/modes_test.cpp": 2,
+    "tests/unit/battery/battery_calibration_test.cpp": 1,
+    "tests/unit/can/n2k_codec_test.cpp": 2,
+    "tests/unit/control/charging_stage_test.cpp": 1,
+    "tests/unit/control/command_path_test.cpp": 1,
+    "tests/unit/control/cv_loop_test.cpp": 2,
+    "tests/unit/control/handover_test.cpp": 1,
+    "tests/unit/control/override_modes_test.cpp": 3,
+    "tests/unit/params/seed_defaults_test.cpp": 18,
+    "tests/unit/protection/alarms_test.cpp": 1,
+    "tests/unit/protection/bank_mismatch_test.cpp": 2,
+    "tests/unit/protection/detectors_test.cpp": 2,
+    "tests/unit/protection/event_wording_test.cpp": 1,
+    "tests/unit/protection/fast_ov_test.cpp": 1,
+    "tests/unit/protection/heat_soak_test.cpp": 3,
+    "tests/unit/protection/mode_selection_test.cpp": 2,
+    "tests/unit/protection/protections_table_test.cpp": 1,
+    "tests/unit/protection/shutdown_paths_test.cpp": 1,
+    "tests/unit/runtime/cli_test.cpp": 1,
+    "tests/unit/sim/scenario_test.cpp": 1,
+    "tests/web/browser/units.mjs": 5,
+    "tools/xr_gendocs.cpp": 2,
+    "web/server/json_format.cpp": 1,
+    "web/www/js/settings.js": 6,
+    "web/www/js/settings_units.js": 1,
+}
+# Beyond the C++ sources, these files are read for references outside the
+# repository and for those words: every CMake file, the README, docs/, the
+# tests, the scenarios, the dashboard's JavaScript and the packaging.
+TEXT_ROOTS = ["docs", "tests", "scenarios", "web/www", "config", "debian", "systemd", "venus", "cmake", "tools"]
+TEXT_EXT = (".md", ".txt", ".cmake", ".py", ".mjs", ".js", ".sh", ".toml", ".cpp", ".h", ".def", ".service")
 SIGNATURE_SKIP = ("#", "//", "namespace", "}", "using", "class", "struct", "enum", "extern", "template", "static_assert")
 
 
@@ -177,7 +284,66 @@ def sources(root):
                     yield os.path.relpath(path, root).replace(os.sep, "/"), path
 
 
+def text_files(root):
+    """Every file read for outside references and the specification's words."""
+    seen = set()
+    for top in [""] + TEXT_ROOTS + SOURCE_ROOTS:
+        base = os.path.join(root, top)
+        if top == "":
+            names = ["README.md", "CMakeLists.txt", "Makefile"]
+            for n in names:
+                if os.path.isfile(os.path.join(root, n)):
+                    seen.add(n)
+                    yield n, os.path.join(root, n)
+            continue
+        for d, dirs, files in os.walk(base):
+            dirs[:] = sorted(x for x in dirs if x not in ("node_modules", "__pycache__", "build"))
+            for f in sorted(files):
+                if f == "CMakeLists.txt" or f.endswith(TEXT_EXT) or f.endswith(SOURCE_EXT):
+                    path = os.path.join(d, f)
+                    rel = os.path.relpath(path, root).replace(os.sep, "/")
+                    if rel not in seen:
+                        seen.add(rel)
+                        yield rel, path
+
+
+def spec_word_lines(text):
+    out = []
+    for i, line in enumerate(text.split("\n"), 1):
+        if SPEC_WORD_RE.search(line) and not SPEC_WORD_CONTEXT_OK.search(line):
+            out.append(i)
+    return out
+
+
+def check_text(root):
+    """References outside the repository and the specification's words,
+    in every file text_files() reads."""
+    problems = []
+    for rel, path in text_files(root):
+        if rel == "tests/layout/layout_rules.py":
+            continue  # the rules name what they look for
+        try:
+            with open(path, encoding="utf-8") as fh:
+                text = fh.read()
+        except (UnicodeDecodeError, OSError):
+            continue
+        for m in OUTSIDE_REF_RE.finditer(text):
+            line = text.count("\n", 0, m.start()) + 1
+            problems.append(f"{rel}:{line}: a file outside the repository ({m.group(0)}): cite docs/")
+        lines = spec_word_lines(text)
+        allowed = SPEC_WORD_ALLOWANCE.get(rel, 0)
+        if len(lines) > allowed:
+            problems.append(f"{rel}:{lines[0]}: 'seed'/'Ours' for the original firmware or this project on "
+                            f"{len(lines)} line(s) (allowed {allowed}): say 'the original firmware', "
+                            f"'the specification' or 'added here'")
+    return problems
+
+
 def check(root):
+    return check_code(root) + check_text(root)
+
+
+def check_code(root):
     allowed = {f: set(deps) | {f} for f, _, deps in LAYERS}
     problems = []
     for rel, path in sources(root):
@@ -207,9 +373,6 @@ def check(root):
         for m in ISSUE_TAG_RE.finditer(text):
             line = text.count("\n", 0, m.start()) + 1
             problems.append(f"{rel}:{line}: an issue number ({m.group(0)}): say the reason and cite docs/")
-        for m in OUTSIDE_REF_RE.finditer(text):
-            line = text.count("\n", 0, m.start()) + 1
-            problems.append(f"{rel}:{line}: a file outside the repository ({m.group(0)}): cite docs/")
         if here in PURE_FOLDERS:
             for m in CLOCK_RE.finditer(text):
                 line = text.count("\n", 0, m.start()) + 1
@@ -283,6 +446,10 @@ def self_test():
         "daemon/battery/g.cpp": "auto t = std::chrono::system_clock::now();\n",  # a clock in the core
         "daemon/app/h.cpp": "// The retry (issue 12, item 3).\n",  # an issue number instead of a reason
         "drivers/sim/i.h": "// 1.2 A (plant-facts 2.4).\n",  # a file outside the repository
+        "daemon/battery/CMakeLists.txt": "# Pure battery management (plant-facts 3.1).\n",  # outside, in CMake
+        "README.md": "The design is in ../shared/DESIGN notes.\n",  # outside, in the README
+        "docs/new-page.md": "The seed's gain is 3.\n",  # the specification's word
+        "tests/unit/x_test.cpp": "// Ours: a margin the original firmware lacks.\n",  # and this project's
     }
     failures = []
     with tempfile.TemporaryDirectory() as tmp:
@@ -300,6 +467,18 @@ def self_test():
             found = [p for p in check(tmp) if p.startswith(rel)]
             if len(found) != 1:
                 failures.append(f"{rel}: expected one problem, got {found}")
+            os.remove(path)
+        # Not violations: a random generator's seed, and the words the
+        # project uses for its sources.
+        for rel, text in {"tests/unit/y_test.cpp": "// The same random seed twice: byte for byte.\n",
+                          "docs/other.md": "The original firmware's gain is 3 (docs/sources.md).\n"}.items():
+            path = os.path.join(tmp, rel)
+            os.makedirs(os.path.dirname(path), exist_ok=True)
+            with open(path, "w") as fh:
+                fh.write(text)
+            found = [p for p in check(tmp) if p.startswith(rel)]
+            if found:
+                failures.append(f"{rel}: not a violation, reported: {found}")
             os.remove(path)
     return failures
 

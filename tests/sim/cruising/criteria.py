@@ -1,6 +1,6 @@
 """How the cruising-day suite judges one run (docs/deviations.md).
 
-Every figure comes from the daemon's telemetry CSV (DESIGN.md columns) and
+Every figure comes from the daemon's telemetry CSV (docs/simulator.md columns) and
 the plant's truth columns; nothing here knows how the regulator works.
 """
 from __future__ import annotations

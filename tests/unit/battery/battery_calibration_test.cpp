@@ -1,5 +1,5 @@
 // Full-charge detection, auto shunt-gain correction and the alternator
-// current auto-zero (seeds/battery-management.md).
+// current auto-zero (docs/batteries.md).
 #include <gtest/gtest.h>
 
 #include <cmath>

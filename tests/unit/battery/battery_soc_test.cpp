@@ -1,5 +1,5 @@
 // SoC, Peukert, energy, averages, predictions and current source
-// (seeds/battery-management.md).
+// (docs/batteries.md).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -18,7 +18,7 @@ CanFrame fromCandump(const char* line) {
 }
 
 TEST(BmsCodec, Decodes351FromTheDocumentedExample) {
-  // DESIGN.md's line: CVL 0x008C = 14.0 V, CCL 0x01F4 = 50.0 A, DCL 50.0 A.
+  // the design's example line: CVL 0x008C = 14.0 V, CCL 0x01F4 = 50.0 A, DCL 50.0 A.
   BmsDecoder d(BmsProtocol::Victron);
   EXPECT_EQ(d.feed(fromCandump("(1700000000.000000) can0 351#8C00F401F4010000"), fromSec(3)),
             BmsFrameResult::Accepted);
@@ -135,7 +135,7 @@ TEST(BmsCodec, RecRoundTripsAndRejectsBadCells) {
   EXPECT_EQ(d.feed(shortDlc, 2), BmsFrameResult::Rejected);
   EXPECT_EQ(d.feed(encode373(3.1, 16.1, 20, 20), 2), BmsFrameResult::Rejected);  // over 16 V
   EXPECT_EQ(d.feed(encode373(0.4, 3.3, 20, 20), 2), BmsFrameResult::Rejected);   // under 0.5 V
-  EXPECT_EQ(d.feed(encode373(3.4, 3.3, 20, 20), 2), BmsFrameResult::Rejected);  // min above max
+  EXPECT_EQ(d.feed(encode373(3.4, 3.3, 20, 20), 2), BmsFrameResult::Rejected);   // min above max
   EXPECT_EQ(d.feed(encode373(3.1, 3.3, 20, 130), 2), BmsFrameResult::Rejected);
   EXPECT_EQ(d.lastRejectWhy(), "temperature out of range");
   CanFrame disagree = encode355Rec(40.0, 99);

@@ -1,5 +1,5 @@
 // Battery profiles (docs/batteries.md): each profile's effective values at 12, 24 and
-// 48 V against the published figures of plant-facts.md §3.7-3.8, overrides,
+// 48 V against the published figures (docs/sources.md P3.6-3.8), overrides,
 // provenance, and the profile limits that refuse a file.
 #include "config/battery_profiles.h"
 
@@ -26,7 +26,7 @@ std::vector<ConfigError> errorsOf(const std::string& text) {
 }
 
 // The published 12 V value at 25 degC of each profile, and its source
-// (plant-facts.md): absorption, float, rebulk, tail as % of C, absorption
+// (docs/sources.md P3.6-3.8): absorption, float, rebulk, tail as % of C, absorption
 // hours, C-rate, mV/degC/cell, min / full-current / max charge degC.
 struct Row {
   const char* profile;

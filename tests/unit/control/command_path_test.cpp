@@ -1,4 +1,4 @@
-// The seed's command path, stage by stage (field-control.md "Command Path").
+// The seed's command path, stage by stage (the field-control specification "Command Path").
 #include <gtest/gtest.h>
 
 #include <cmath>

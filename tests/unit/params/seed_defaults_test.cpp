@@ -1,7 +1,7 @@
 // Every default in the seeds' quick-reference tables is the catalogue's default
 // (docs/parameters.md). One row per seed entry: name, seed value in the
 // catalogue's unit, and where the seed states it. Newer seeds win over
-// architecture-legacy.md where they disagree (DESIGN.md); the legacy "Key
+// the original firmware's description where they disagree (docs/architecture.md); the legacy "Key
 // Parameters Reference" column is labelled "Example Default" and its rows that
 // newer seeds replaced are listed in SupersededLegacyExamples below.
 #include <gtest/gtest.h>
@@ -22,7 +22,7 @@ struct SeedDefault {
 
 // Values converted to the catalogue unit (e.g. FIELD_COLLAPSE_DELAY 30 s -> 30000 ms).
 constexpr SeedDefault kScalarDefaults[] = {
-    // safeties-and-protections.md "Quick Reference — User-Settable Parameters": Voltage OV throttling
+    // the protections specification "Quick Reference — User-Settable Parameters": Voltage OV throttling
     {"OvGroup1Enable", 1, "S&P quick ref: on"},
     {"OvGroup2Enable", 1, "S&P quick ref: on"},
     {"OvPredMarginV", 0.150, "S&P quick ref"},
@@ -41,18 +41,19 @@ constexpr SeedDefault kScalarDefaults[] = {
     {"ProtectionProxGateV", 0.5, "S&P quick ref"},
     {"AwBleedRate", 2.0, "S&P quick ref"},
     {"AwRecoverRate", 0.1, "S&P quick ref"},
-    {"AwSeedProtectMs", 150, "S&P quick ref; field-control.md quick ref"},
+    {"AwSeedProtectMs", 150, "S&P quick ref; the field-control specification quick ref"},
     {"SlopeBleedThresh", 0.5, "S&P quick ref"},
     {"SlopeBleedK", 50, "S&P quick ref"},
     {"SlopeBleedProxV", 0.5, "S&P quick ref"},
     // Voltage shutdown / sensor health
     {"VoltageDisagreeThreshold", 0.15, "S&P quick ref"},
     {"VoltageDisagreeTimeout", 10, "S&P quick ref: 10 s"},
-    {"FIELD_COLLAPSE_DELAY", 30000, "S&P quick ref: 30 s; field-control.md quick ref: 30000 ms"},
-    {"SettleTimeBeforeCut", 1000, "S&P quick ref; field-control.md quick ref"},
+    {"FIELD_COLLAPSE_DELAY", 30000,
+     "S&P quick ref: 30 s; the field-control specification quick ref: 30000 ms"},
+    {"SettleTimeBeforeCut", 1000, "S&P quick ref; the field-control specification quick ref"},
     // Shutdown ramp shape
-    {"DutyRampRate", 50, "S&P quick ref; field-control.md quick ref"},
-    {"DutySlowRampRate", 1, "S&P quick ref; field-control.md quick ref"},
+    {"DutyRampRate", 50, "S&P quick ref; the field-control specification quick ref"},
+    {"DutySlowRampRate", 1, "S&P quick ref; the field-control specification quick ref"},
     {"ShutdownPhase2HoldMs", 0, "S&P quick ref: 0 (skip)"},
     // Temperature
     {"TemperatureLimitF", 150, "S&P quick ref"},
@@ -60,15 +61,15 @@ constexpr SeedDefault kScalarDefaults[] = {
     {"TempCritExcess", 10, "S&P quick ref (legacy example 30 superseded)"},
     {"TempSustainedTimeout", 120, "S&P quick ref: 120 s; legacy 120000 ms"},
     {"TempAlarmLow", 32, "S&P quick ref"},
-    {"ThermalLookaheadSec", 450, "ours; seed S&P quick ref and field-control.md quick ref 90"},
+    {"ThermalLookaheadSec", 450, "ours; seed S&P quick ref and the field-control specification quick ref 90"},
     // Ours (docs/deviations.md "Thermal loop"): the seed's 3 and 0.025
     // (S&P quick ref) overshot the limit on an idle-to-cruise step.
     {"TempPIDKp", 5.0, "ours; seed S&P quick ref 3"},
     {"TempPIDKi", 0.06, "ours; seed S&P quick ref 0.025"},
-    {"TempPIDFilterAlpha", 0.2, "S&P quick ref; field-control.md quick ref"},
-    {"TempPIDIntervalMs", 5000, "S&P quick ref; field-control.md quick ref"},
-    {"ThermalPenaltyRiseRate", 60, "S&P quick ref; field-control.md quick ref"},
-    {"ThermalPenaltyFallRate", 20, "S&P quick ref; field-control.md quick ref"},
+    {"TempPIDFilterAlpha", 0.2, "S&P quick ref; the field-control specification quick ref"},
+    {"TempPIDIntervalMs", 5000, "S&P quick ref; the field-control specification quick ref"},
+    {"ThermalPenaltyRiseRate", 60, "S&P quick ref; the field-control specification quick ref"},
+    {"ThermalPenaltyFallRate", 20, "S&P quick ref; the field-control specification quick ref"},
     {"IgnoreTemperature", 0, "S&P quick ref"},
     // Overcurrent / RPM
     {"HardOCDebounceMs", 20, "S&P quick ref"},
@@ -78,20 +79,20 @@ constexpr SeedDefault kScalarDefaults[] = {
     {"MaximumAllowedBatteryAmps", 150, "S&P quick ref"},
     {"MinRPMForField", 200, "S&P quick ref"},
     {"IgnoreRPM", 0, "S&P quick ref"},
-    // field-control.md "Slew Rates and Time Constants — Quick Reference"
+    // the field-control specification "Slew Rates and Time Constants — Quick Reference"
     {"SetpointRiseRate", 30, "FC quick ref"},
     {"SetpointFallRate", 50, "FC quick ref"},
     {"StartupRiseRate", 3, "FC quick ref"},
     {"VoltageLoopInterval", 100, "FC quick ref; Three Control Loops (legacy example 500 superseded)"},
     {"DvdtTC", 58, "FC quick ref"},
-    // field-control.md text defaults
+    // the field-control specification text defaults
     {"PIDTrackingGain", 4.0, "FC Output Current PID: 4.0/sec"},
     {"bulkVoltageHoldMs", 30000, "FC BULK: default 30 s"},
     {"absorptionCompleteTime", 30000, "FC ABSORPTION: default 30 s"},
     {"AbsorptionTimeoutMs", 3600000, "FC ABSORPTION: default 60 min"},
     {"MinFloatTime", 300000, "FC FLOAT: default 5 min"},
     {"rebulkDebounceTime", 60000, "FC FLOAT: default 60 s"},
-    // battery-management.md
+    // the battery specification
     {"SOCUpdateInterval", 2000, "BM: every 2 s (SOCUpdateInterval)"},
     // the seeds imply BulkVoltage = 14.5 V (hard shutdown 14.8 V = Bulk + 0.3)
     {"BulkVoltage", 14.5, "S&P Cascade (Default 12 V Settings)"},
@@ -102,7 +103,7 @@ struct SeedTable {
   RpmTable value;
 };
 
-// field-control.md "RPM Tables".
+// the field-control specification "RPM Tables".
 const SeedTable kTableDefaults[] = {
     {"rpmTableRPMPoints", {100, 600, 1100, 1600, 2100, 2600, 3100, 3600, 4100, 4600}},
     {"rpmCurrentTable", {0, 50, 50, 50, 50, 50, 50, 50, 50, 50}},

@@ -1,4 +1,4 @@
-// One row per protection of safeties-and-protections.md: fires at its
+// One row per protection of the protections specification: fires at its
 // threshold, not just below, takes its shutdown path, clears as specified,
 // and acts in AUTO / MANUAL / LIMP HOME exactly as "Mode-by-Mode Active
 // Protections" says.

@@ -1,4 +1,4 @@
-// ADS1115 model against datasheet-facts §2.
+// ADS1115 model against docs/sources.md, datasheet facts §2.
 #include "drivers/sim/ads1115_model.h"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// INA228 model against datasheet-facts §1 (register map, encodings, alerts).
+// INA228 model against docs/sources.md, datasheet facts §1 (register map, encodings, alerts).
 #include "drivers/sim/ina228_model.h"
 
 #include <gtest/gtest.h>

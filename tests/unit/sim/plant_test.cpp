@@ -195,7 +195,7 @@ TEST(Plant, RiseWithoutBatteryIsFast) {
   EXPECT_GT(p.truth().battery_v - v0, 1.0);  // volts in half a millisecond
 }
 
-// Load dump against ISO 16750-2 test A (plant-facts §2.12.1, ISO16): the BMS
+// Load dump against ISO 16750-2 test A (docs/sources.md P2.12.1, ISO16): the BMS
 // opens at the rated point (6000 shaft rpm, full field, 14 V = U_A) with no
 // suppression, and the regulator cuts the field at once. The machine's
 // Thevenin resistance must lie in the standard's 0.5-4 Ω and within a

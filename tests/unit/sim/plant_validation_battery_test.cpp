@@ -1,5 +1,5 @@
 // Battery, alternator thermal and load-dump models against published data
-// (docs/simulator.md); sources by their plant-facts keys.
+// (docs/simulator.md); sources by their docs/sources.md keys.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -34,7 +34,7 @@ void expectWithin10Pct(const LundellParams& m, const std::vector<CurvePoint>& pt
 }
 
 // SARA: Bosch LiX 180 A at 25 °C, 13.5 V, full field (5 A); and the six
-// part-field points of plant-facts §2.7 (measured field, load and voltage).
+// part-field points of docs/sources.md P2.7 (measured field, load and voltage).
 TEST(PlantValidation, BoschLix180FullAndPartFieldWithin10Pct) {
   const LundellParams m = presetParams(AlternatorPreset::bosch_lix_180);
   EXPECT_NEAR(fullFieldAmps(m, kRatingV, 25.0), 5.0, 0.01);  // SARA's 5.00 A max
@@ -100,7 +100,7 @@ TEST(PlantValidation, HotOutputLowerAndMoreSoAtLowSpeed) {
   }
 }
 
-// RIVAS: Ford 130 A from published parameters only. plant-facts §2.7
+// RIVAS: Ford 130 A from published parameters only. docs/sources.md P2.7
 // derives the minimum field for conduction into 13.5 V + 2 x 0.9 V and a
 // cut-in near 1,100 rpm at 3.6 A (linear EMF). The model must agree within
 // 10 % (its bridge factor π/2 vs the table's 3√3/π differs by 5 %).

@@ -1,4 +1,4 @@
-// Scenario files: DESIGN.md format, file:line errors.
+// Scenario files: the format of docs/simulator.md, file:line errors.
 #include "drivers/sim/scenario.h"
 
 #include <gtest/gtest.h>

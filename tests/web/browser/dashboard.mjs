@@ -63,7 +63,10 @@ try {
 
   // 3. The live chart draws; its legend shows values without hovering; the
   //    voltage axis spans at least 1 V (noise does not look like swings).
-  await page.waitForFunction(() => window.xrDebug && window.xrDebug.livePoints() >= 3);
+  // Each chart says what it shows (role="img", its label and data-* attributes).
+  const chartData = (id, key) => page.evaluate(([i, k]) => document.getElementById(i).dataset[k], [id, key]);
+  await page.waitForFunction(() => Number(document.getElementById("chart-live").dataset.points || 0) >= 3);
+  assert.match(await page.getAttribute("#chart-live", "aria-label"), /^Live chart, battery volts and amps: \d+ points from /);
   const painted = await page.evaluate(() => {
     const c = document.querySelector("#chart-live canvas");
     const d = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
@@ -72,13 +75,18 @@ try {
     return n;
   });
   assert.ok(painted > 500, `live chart canvas painted ${painted} pixels`);
-  await page.waitForFunction(() => window.xrDebug.legend().length === 3 && window.xrDebug.legend().every((t) => /\d/.test(t)));
-  assert.ok((await page.evaluate(() => window.xrDebug.voltSpan())) >= 1.0);
+  await page.waitForFunction(() => {
+    const legend = [...document.querySelectorAll("#chart-live .u-legend .u-value")].slice(1).map((e) => e.textContent);
+    return legend.length === 3 && legend.every((t) => /\d/.test(t));
+  });
+  assert.ok(Number(await chartData("chart-live", "vspan")) >= 1.0);
   if (mode === "fake") {
-    await page.waitForFunction(() => window.xrDebug.historyPoints() > 100 && window.xrDebug.envPoints() > 100);
+    await page.waitForFunction(() => Number(document.getElementById("chart-history").dataset.points || 0) > 100 &&
+      Number(document.getElementById("chart-env").dataset.points || 0) > 100);
     console.log("ok - history charts draw volts/amps and temperature/SoC/RPM from /api/history");
   } else {
-    await page.waitForFunction(() => document.getElementById("hist-msg").textContent !== "" || window.xrDebug.historyPoints() > 0);
+    await page.waitForFunction(() => document.getElementById("hist-msg").textContent !== "" ||
+      Number(document.getElementById("chart-history").dataset.points || 0) > 0);
     assert.doesNotMatch(await page.textContent("#hist-msg"), /unknown series/);
   }
   await shot("dashboard-live", { fullPage: true });

@@ -15,9 +15,11 @@ const freePort = () => new Promise((resolve, reject) => {
 // daemon sees the first one's events, history and saved parameters.
 // extraConfig: more TOML for the daemon's configuration file. shipped: start
 // from config/xregulator.toml (needs args.root) instead of a minimal file.
-// extraArgs: more daemon command-line arguments.
+// extraArgs: more daemon command-line arguments. speed: --speed (the
+// integrations' refreshes run on the simulated clock: a faster speed makes a
+// one-minute forecast refresh a few seconds).
 export async function startServer({ mode, args, token, stateDir, scenario, extraConfig = "", shipped = false,
-                                    extraArgs = [] }) {
+                                    extraArgs = [], speed = 1 }) {
   let port;
   let argv;
   if (mode === "fake") {
@@ -40,7 +42,7 @@ export async function startServer({ mode, args, token, stateDir, scenario, extra
       fs.writeFileSync(cfg, `[web]\ntoken = "${token}"\nwww_root = "${args.www}"\n[sensor_health]\nCurrentStaleMs = 3000\n` +
                        extraConfig);
     }
-    argv = [args.server, "--sim", "--speed", "1", "--config", cfg, "--state-db", path.join(stateDir, "state.db"),
+    argv = [args.server, "--sim", "--speed", String(speed), "--config", cfg, "--state-db", path.join(stateDir, "state.db"),
             "--http", `127.0.0.1:${port}`];
     if (scenario) {
       const file = path.join(stateDir, "scenario.toml");
@@ -61,7 +63,7 @@ export async function startServer({ mode, args, token, stateDir, scenario, extra
       const m = out.match(/LISTENING (\d+)/);
       if (m) { port = Number(m[1]); up = true; break; }
     } else {
-      try { const r = await fetch(`http://127.0.0.1:${port}/api/status`); if (r.ok) { up = true; break; } } catch {}
+      try { const r = await fetch(`http://127.0.0.1:${port}/api/status`); if (r.ok) { up = true; break; } } catch { /* not listening yet */ }
     }
     await new Promise((r) => setTimeout(r, 100));
   }

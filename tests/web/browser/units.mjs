@@ -487,16 +487,36 @@ await test("the one-tap capacity offer never proposes a value the set-up would r
 });
 
 const SH = await mod("web/www/js/setup_hardware.js");
-await test("the set-up result table's hardware rows are escaped before they meet innerHTML", () => {
+const FMT = await mod("web/www/js/format.js");
+await test("html`` escapes every value: the set-up result table's hardware rows", () => {
   const hostile = { running: "<img src=x onerror=alert(1)>", next: "<b>x</b>", restart_needed: true };
   const rows = SH.hardwareRows({ battery_temp_sensor: hostile, bms_interface: hostile,
     pulley_ratio: { running: 2.5, next: 2.5, restart_needed: false } });
-  const html = rows.map(([k, x]) => `<tr><th>${SH.esc(k)}</th><td>${SH.esc(x)}</td></tr>`).join("");
+  const html = FMT.html`${rows.map(([k, x]) => FMT.html`<tr><th>${k}</th><td>${x}</td></tr>`)}`.text;
   assert.ok(!/<img|<b>/.test(html), html);
   assert.match(html, /&lt;img src=x onerror=alert\(1\)&gt;/);
-  // setup.js builds its table with exactly this helper, for every cell.
-  const src = fs.readFileSync(path.join(root, "web/www/js/setup.js"), "utf8");
-  assert.match(src, /<th>\$\{esc\(k\)\}<\/th><td>\$\{esc\(x\)\}<\/td>/);
+  assert.match(html, /<tr><th>Battery temperature probe<\/th>/, "the template's own markup stays");
+});
+await test("the set-up's hardware step shows probe ids and interface names as text, never as markup", () => {
+  const step = SH.renderHardwareStep({
+    probes: ["28-<img src=x onerror=alert(1)>", "28-ok"], alternator_sensor: "<b>alt</b>",
+    can_interfaces: ['can0"><script>alert(1)</script>'], victron_bms: false, savable: true,
+    battery_temp_sensor: { next: "", file: "" }, bms_interface: { next: "", file: "" },
+    pulley_ratio: { next: "2\" onfocus=\"alert(1)", file: 1 } }, 5, null).text;
+  assert.ok(!/<img|<script|<b>|" onfocus=/.test(step), step);
+  assert.match(step, /28-&lt;img src=x onerror=alert\(1\)&gt;/);
+  assert.match(step, /can0&quot;&gt;&lt;script&gt;/);
+  assert.match(step, /\(&lt;b&gt;alt&lt;\/b&gt;\)/);
+});
+await test("setHtml takes only an html`` template, never a plain string", () => {
+  assert.throws(() => FMT.setHtml({}, "<b>raw</b>"), TypeError);
+});
+await test("no file of the dashboard assigns innerHTML but setHtml", () => {
+  const dir = path.join(root, "web/www/js");
+  for (const f of fs.readdirSync(dir).filter((x) => x.endsWith(".js"))) {
+    const uses = (fs.readFileSync(path.join(dir, f), "utf8").match(/\.innerHTML\s*=/g) || []).length;
+    assert.equal(uses, f === "format.js" ? 1 : 0, `${f}: innerHTML assignments`);
+  }
 });
 
 console.log(`${n} dashboard unit tests passed`);

@@ -4,7 +4,8 @@
 // points the forecast client at a local server answering the recorded sunny
 // forecast. The owner sees the three days, that the alternator is held off
 // and why, and where the position came from; then a cloudy forecast, and
-// the panel says it charges again.
+// the panel says it charges again. The daemon runs at --speed 10: the
+// one-minute refresh is simulated time (docs/architecture.md "One clock").
 import fs from "node:fs";
 import http from "node:http";
 import path from "node:path";
@@ -36,8 +37,10 @@ await new Promise((r) => forecast.listen(0, "127.0.0.1", r));
 const scenario = fs.readFileSync(path.join(root, "scenarios/weather-gps.toml"), "utf8")
   .replace("127.0.0.1:8099", `127.0.0.1:${forecast.address().port}`);
 
-await runDaemonBrowserTest({ args, prefix: "xr-weather-", token, scenario,
-  extraConfig: "[modes]\nweatherModeEnabled = true\nUVThresholdHigh = 6.0\n[can]\nn2k_interface = \"can1\"\n" },
+await runDaemonBrowserTest({ args, prefix: "xr-weather-", token, scenario, speed: 10,
+  // 100 ms ticks: 10 ms of wall time at speed 10, lighter than speed 1 at 400 Hz.
+  extraConfig: "[modes]\nweatherModeEnabled = true\nUVThresholdHigh = 6.0\n[can]\nn2k_interface = \"can1\"\n" +
+    "[runtime]\ncontrol_period_us = 100000\n" },
 async ({ server, browser, stateDir }) => {
   const r = await fetch(server.base + "/api/commands", { method: "POST",
     headers: { Authorization: "Bearer " + token, "Content-Type": "application/json" },
@@ -54,7 +57,7 @@ async ({ server, browser, stateDir }) => {
       await page.waitForSelector("#weather-panel:not([hidden]) #weather-verdict");
       if (re.test(await page.textContent("#weather-verdict"))) return;
       assert.ok(Date.now() < end, `the verdict never matched ${re}: ${await page.textContent("#weather-verdict")}`);
-      await page.waitForTimeout(2000);
+      await page.waitForTimeout(1000);
       await page.reload();
     }
   };

@@ -1,6 +1,6 @@
 // xregulator dashboard: WebSocket, routing, commands with confirmation.
 import { command, getJson, toast } from "./api.js";
-import { backfillLive, chartDebug, drawLive, initCharts, loadHistory, pushLive } from "./charts.js";
+import { backfillLive, drawLive, initCharts, loadHistory, pushLive } from "./charts.js";
 import { CONFIRM_TEXT, confirmAction } from "./confirm.js";
 import { parseDecimal } from "./format.js";
 import { latestStatus, renderLive, renderSetupState, tempUnit, tick } from "./live.js";
@@ -155,8 +155,6 @@ function init() {
   initSettings();
   initSetup(runCommand);
   initCharts();
-  // Read-only hooks for the browser tests.
-  window.xrDebug = chartDebug;
   window.addEventListener("hashchange", route);
   setInterval(() => { if (currentPage() === "live") loadHistory(); }, 60000);
   // The event list follows new events while it is open.

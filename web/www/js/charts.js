@@ -106,6 +106,7 @@ export function drawLive() {
     pending = false;
     liveChart.setData([live.t, live.v, live.a, live.b]);
     showLatest(liveChart);
+    describe(liveChart, $("chart-live"), "Live chart, battery volts and amps");
   });
 }
 
@@ -139,18 +140,26 @@ export async function loadHistory() {
     const temps = (s.temp_f || []).map((f) => (f == null ? null : tempUnit() === "F" ? f : fToC(f)));
     if (histChart) { histChart.setData([h.t, s.ibv_v, s.alt_a, s.bcur_a]); showLatest(histChart); }
     if (envChart) { envChart.setData([h.t, temps, s.soc_pct || [], s.rpm || []]); showLatest(envChart); }
+    describe(histChart, $("chart-history"), "History, battery volts and amps");
+    describe(envChart, $("chart-env"), "History, alternator temperature, SoC and RPM");
     $("hist-msg").textContent = h.t.length ? "" : "no history stored yet";
   } catch (e) {
     $("hist-msg").textContent = "history: " + e.message;
   }
 }
 
-export const chartDebug = {
-  livePoints: () => (liveChart ? liveChart.data[0].length : 0),
-  historyPoints: () => (histChart ? histChart.data[0].length : 0),
-  envPoints: () => (envChart ? envChart.data[0].length : 0),
-  markers: () => marks.length,
-  liveFirst: () => (live.t.length ? live.t[0] : Infinity),
-  voltSpan: () => (liveChart ? liveChart.scales.V.max - liveChart.scales.V.min : 0),
-  legend: () => [...document.querySelectorAll("#chart-live .u-legend .u-value")].slice(1).map((e) => e.textContent),
-};
+// What a chart shows, for a screen reader (role="img" with a label) and in
+// data-* attributes: how many points, from when (unix s), how many event
+// markers, and the voltage axis's span. The browser tests read the same.
+function describe(u, el, what) {
+  if (!u) return;
+  const t = u.data[0];
+  const span = u.scales.V ? u.scales.V.max - u.scales.V.min : null;
+  el.setAttribute("role", "img");
+  el.setAttribute("aria-label", t.length ? `${what}: ${t.length} points from ${clock(t[0])} to ${clock(t[t.length - 1])}` +
+    (marks.length && u !== liveChart ? `, ${marks.length} event markers` : "") : `${what}: no data yet`);
+  el.dataset.points = String(t.length);
+  el.dataset.first = t.length ? String(t[0]) : "";
+  el.dataset.markers = String(u === liveChart ? 0 : marks.length);
+  if (span !== null && isFinite(span)) el.dataset.vspan = span.toFixed(2);
+}

@@ -3,6 +3,25 @@
 
 export const isNum = (v) => typeof v === "number" && isFinite(v);
 
+// ---- HTML from data: the one escaping helper (docs/dashboard.md "Code
+// standard"). Text goes in through textContent; where a piece of page is
+// built as HTML, it is an html`` template, whose every ${value} is escaped
+// (a nested html`` or an array of them stays as built), and only setHtml
+// puts it in the page. The lint (web/eslint.config.js) refuses innerHTML
+// anywhere else.
+export const esc = (s) => String(s).replace(/[&<>"']/g, (c) => ({ "&": "&amp;", "<": "&lt;", ">": "&gt;", '"': "&quot;", "'": "&#39;" })[c]);
+class SafeHtml {
+  constructor(text) { this.text = text; }
+}
+const htmlPart = (v) => (v instanceof SafeHtml ? v.text : Array.isArray(v) ? v.map(htmlPart).join("") : esc(v ?? ""));
+export function html(strings, ...values) {
+  return new SafeHtml(strings.reduce((out, s, i) => out + htmlPart(values[i - 1]) + s));
+}
+export function setHtml(el, safe) {
+  if (!(safe instanceof SafeHtml)) throw new TypeError("setHtml takes an html`` template");
+  el.innerHTML = safe.text;  // eslint-disable-line no-restricted-syntax -- escaped by html``
+}
+
 // A fixed number of decimals, or "—" for no value (null, NaN, a -999 sentinel).
 export function num(v, d = 1) {
   if (!isNum(v) || v <= -999) return "—";

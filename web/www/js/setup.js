@@ -2,10 +2,10 @@
 // charging") and the configuration's export / import as TOML. Every step
 // is sent as ONE change: the server checks it all or applies nothing.
 import { getJson, toast, write } from "./api.js";
-import { fToC, parseDecimal } from "./format.js";
+import { fToC, html, parseDecimal, setHtml } from "./format.js";
 import { latestStatus, limitText, renderSetupState, tempUnit } from "./live.js";
 import { choicesOf, loadSettings } from "./settings.js";
-import { collectHardware, esc, hardwareRows, renderHardwareStep, restartNeeded, rpmHint } from "./setup_hardware.js";
+import { collectHardware, hardwareRows, renderHardwareStep, restartNeeded, rpmHint } from "./setup_hardware.js";
 import { exportToml, parseParamsToml } from "./toml.js";
 
 const $ = (id) => document.getElementById(id);
@@ -25,39 +25,40 @@ const CELLS_PER_12V = { lifepo4: 4, agm: 6, flooded: 6, gel: 6 };
 const bankOf = (bulk) => (bulk < 18 ? 12 : bulk <= 36 ? 24 : 48);
 
 function field(label, id, value, unit, help) {
-  return `<label class="field"><span>${label}</span><span class="row"><input id="${id}" inputmode="decimal" value="${value ?? ""}">` +
-    `<span class="unit">${unit}</span></span>${help ? `<small>${help}</small>` : ""}</label>`;
+  return html`<label class="field"><span>${label}</span><span class="row"><input id="${id}" inputmode="decimal" value="${value}">
+    <span class="unit">${unit}</span></span>${help ? html`<small>${help}</small>` : ""}</label>`;
 }
 
 // Builds the steps from what the daemon offers (the profile step only when
-// the BatteryProfile parameter exists).
+// the BatteryProfile parameter exists). Every value is escaped (html``).
 function renderSteps() {
   const unit = tempUnit();
   const tLimit = find("TemperatureLimitF").value;
   const profile = find("BatteryProfile");
   const steps = [];
   if (profile) {
-    const opts = (choicesOf(profile) || []).map(([v, l]) => `<option value="${v}" ${v === profile.value ? "selected" : ""}>${l}</option>`).join("");
-    steps.push(`<h3>1 · Battery type</h3><label class="field"><span>Battery profile</span><select id="su-profile">${opts}</select>` +
-      `<small>Sets the charge voltages, currents and temperature limits for the chemistry and the bank voltage; custom keeps the values in Settings.</small></label>`);
+    const opts = (choicesOf(profile) || []).map(([v, l]) => html`<option value="${v}" ${v === profile.value ? "selected" : ""}>${l}</option>`);
+    steps.push(html`<h3>1 · Battery type</h3><label class="field"><span>Battery profile</span><select id="su-profile">${opts}</select>
+      <small>Sets the charge voltages, currents and temperature limits for the chemistry and the bank voltage; custom keeps the values in Settings.</small></label>`);
   }
   const bank = bankOf(find("BulkVoltage").value);
-  steps.push(`<h3>${steps.length + 1} · Battery bank</h3>` +
-    `<label class="field"><span>Bank voltage</span><select id="su-bank">${[12, 24, 48].map((b) => `<option ${b === bank ? "selected" : ""}>${b}</option>`).join("")}</select></label>` +
-    field("Capacity", "su-capacity", find("BatteryCapacity_Ah").value, "Ah", "The nameplate capacity of the whole bank."));
+  const banks = [12, 24, 48].map((b) => html`<option ${b === bank ? "selected" : ""}>${b}</option>`);
+  steps.push(html`<h3>${steps.length + 1} · Battery bank</h3>
+    <label class="field"><span>Bank voltage</span><select id="su-bank">${banks}</select></label>
+    ${field("Capacity", "su-capacity", find("BatteryCapacity_Ah").value, "Ah", "The nameplate capacity of the whole bank.")}`);
   const table = find("rpmCapCurrentTable").value;
   const cap = Math.max(...table);
-  steps.push(`<h3>${steps.length + 1} · Alternator and belt</h3>` +
-    field("Alternator rating", "su-rating", find("MaxTableValue").value, "A", "The rated output on its label: the most current the regulator ever asks for.") +
-    field("Belt limit", "su-belt", cap, "A", "The most the belt takes for long (a single V-belt about 80 A, a serpentine belt about 150 A); caps every engine speed.") +
-    `<label class="field"><span>Small alternator</span><span class="row"><input type="checkbox" id="su-small" ${table[1] < cap ? "checked" : ""}>` +
-    `<span>less current at idle</span></span><small>Half the limit at the lowest engine speeds, where a small alternator runs hot.</small></label>` +
-    field("Lowest engine speed to charge", "su-minrpm", find("MinRPMForField").value, "rpm", ""));
-  steps.push(`<h3>${steps.length + 1} · Temperature limit</h3>` +
-    field("Alternator temperature limit", "su-templimit", unit === "F" ? Math.round(tLimit) : Math.round(fToC(tLimit)), unit === "F" ? "°F" : "°C",
-      "Current is reduced above it; charging stops well above it."));
+  steps.push(html`<h3>${steps.length + 1} · Alternator and belt</h3>
+    ${field("Alternator rating", "su-rating", find("MaxTableValue").value, "A", "The rated output on its label: the most current the regulator ever asks for.")}
+    ${field("Belt limit", "su-belt", cap, "A", "The most the belt takes for long (a single V-belt about 80 A, a serpentine belt about 150 A); caps every engine speed.")}
+    <label class="field"><span>Small alternator</span><span class="row"><input type="checkbox" id="su-small" ${table[1] < cap ? "checked" : ""}>
+    <span>less current at idle</span></span><small>Half the limit at the lowest engine speeds, where a small alternator runs hot.</small></label>
+    ${field("Lowest engine speed to charge", "su-minrpm", find("MinRPMForField").value, "rpm", "")}`);
+  steps.push(html`<h3>${steps.length + 1} · Temperature limit</h3>
+    ${field("Alternator temperature limit", "su-templimit", unit === "F" ? Math.round(tLimit) : Math.round(fToC(tLimit)), unit === "F" ? "°F" : "°C",
+      "Current is reduced above it; charging stops well above it.")}`);
   if (hardware) steps.push(renderHardwareStep(hardware, steps.length + 1, rpmNow));
-  $("setup-steps").innerHTML = steps.join("");
+  setHtml($("setup-steps"), html`${steps}`);
   const pulley = $("su-pulley");
   if (pulley) pulley.addEventListener("input", () => { $("su-pulley-hint").textContent = rpmHint(hardware, rpmNow, pulley.value); });
 }
@@ -152,9 +153,9 @@ function renderResult() {
     ["Battery current limit", `${v("MaximumAllowedBatteryAmps")} A`],
     ["Alternator limit", `${Math.max(...v("rpmCapCurrentTable"))} A`], ...(hardware ? hardwareRows(hardware) : [])];
   const pinned = params.filter((p) => p.profile_owned && p.source === "file").map((p) => p.name);
-  $("setup-result").innerHTML = `<h3>Now in effect</h3><table class="kv">${rows.map(([k, x]) => `<tr><th>${esc(k)}</th><td>${esc(x)}</td></tr>`).join("")}</table>` +
-    `<table class="kv" id="setup-now"></table>` +
-    (pinned.length ? `<p class="msg warn">Still set by the configuration file, not by the profile: ${esc(pinned.join(", "))}. Comment them out in xregulator.toml to let the profile decide.</p>` : "");
+  setHtml($("setup-result"), html`<h3>Now in effect</h3><table class="kv">${rows.map(([k, x]) => html`<tr><th>${k}</th><td>${x}</td></tr>`)}</table>
+    <table class="kv" id="setup-now"></table>
+    ${pinned.length ? html`<p class="msg warn">Still set by the configuration file, not by the profile: ${pinned.join(", ")}. Comment them out in xregulator.toml to let the profile decide.</p>` : ""}`);
   $("setup-result").hidden = false;
   renderSetupOwner(latestStatus());
 }
@@ -206,7 +207,6 @@ async function exportConfig() {
   document.body.appendChild(a);
   a.click();
   a.remove();
-  window.xrDebug && (window.xrDebug.lastExport = text);
 }
 
 // Everything in the file is checked here and by the server; one PATCH, so

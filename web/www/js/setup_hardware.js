@@ -3,14 +3,12 @@
 // "Set-up: hardware choices"). The daemon opens these devices at start, so a
 // choice is used from its next start and the page says so; it lists what is
 // present on the board now.
-import { parseDecimal } from "./format.js";
-
-export const esc = (s) => String(s).replace(/[&<>"]/g, (c) => ({ "&": "&amp;", "<": "&lt;", ">": "&gt;", '"': "&quot;" })[c]);
+import { html, parseDecimal } from "./format.js";
 
 function options(current, found, noneLabel, label) {
   const list = [["", noneLabel], ...found.map((v) => [v, label(v)])];
   if (current && !found.includes(current)) list.push([current, `${label(current)} (not found now)`]);
-  return list.map(([v, l]) => `<option value="${esc(v)}" ${v === current ? "selected" : ""}>${esc(l)}</option>`).join("");
+  return list.map(([v, l]) => html`<option value="${v}" ${v === current ? "selected" : ""}>${l}</option>`);
 }
 
 // The pulley ratio scales the tach: the page shows the engine speed read now
@@ -28,19 +26,18 @@ export function renderHardwareStep(hw, n, rpmNow) {
   const probes = hw.probes.filter((p) => p !== hw.alternator_sensor);
   const lock = hw.savable ? "" : "disabled";
   const gx = hw.victron_bms;
-  return `<h3>${n} · Battery temperature and BMS</h3>` +
-    `<label class="field"><span>Battery temperature probe</span><select id="su-battprobe" ${lock}>` +
-    options(hw.battery_temp_sensor.next, probes, "No probe on the battery", (p) => p) + `</select>` +
-    `<small>A DS18B20 taped to a battery case. ${probes.length ? `${probes.length} probe(s) found besides the alternator's` : "No probe found besides the alternator's"}` +
-    `${hw.alternator_sensor ? ` (${esc(hw.alternator_sensor)})` : ""}.</small></label>` +
-    `<label class="field"><span>BMS</span><select id="su-bms" ${lock || (gx ? "disabled" : "")}>` +
-    options(hw.bms_interface.next, hw.can_interfaces, "No BMS on CAN", (i) => `BMS on CAN ${i}`) + `</select>` +
-    `<small>${gx ? "The BMS's limits come from the Victron GX ([integrations.victron] in the file): one source only." :
-      hw.can_interfaces.length ? "The regulator obeys the BMS's charge limits." : "No CAN interface found on this board (a CAN HAT shows as can0)."}</small></label>` +
-    `<label class="field"><span>Pulley ratio</span><span class="row"><input id="su-pulley" inputmode="decimal" value="${hw.pulley_ratio.next}" ${lock}>` +
-    `<span class="unit">: 1</span></span><small id="su-pulley-hint">${esc(rpmHint(hw, rpmNow, hw.pulley_ratio.next))}</small>` +
-    `<small>Alternator turns per engine turn: the crank pulley's diameter over the alternator's (1 when the tach is calibrated at the crank).</small></label>` +
-    (hw.savable ? "" : `<p class="msg warn">No state database: set these in the configuration file.</p>`);
+  return html`<h3>${n} · Battery temperature and BMS</h3>
+    <label class="field"><span>Battery temperature probe</span><select id="su-battprobe" ${lock}>
+    ${options(hw.battery_temp_sensor.next, probes, "No probe on the battery", (p) => p)}</select>
+    <small>A DS18B20 taped to a battery case. ${probes.length ? `${probes.length} probe(s) found besides the alternator's` : "No probe found besides the alternator's"}${hw.alternator_sensor ? ` (${hw.alternator_sensor})` : ""}.</small></label>
+    <label class="field"><span>BMS</span><select id="su-bms" ${lock || (gx ? "disabled" : "")}>
+    ${options(hw.bms_interface.next, hw.can_interfaces, "No BMS on CAN", (i) => `BMS on CAN ${i}`)}</select>
+    <small>${gx ? "The BMS's limits come from the Victron GX ([integrations.victron] in the file): one source only." :
+      hw.can_interfaces.length ? "The regulator obeys the BMS's charge limits." : "No CAN interface found on this board (a CAN HAT shows as can0)."}</small></label>
+    <label class="field"><span>Pulley ratio</span><span class="row"><input id="su-pulley" inputmode="decimal" value="${hw.pulley_ratio.next}" ${lock}>
+    <span class="unit">: 1</span></span><small id="su-pulley-hint">${rpmHint(hw, rpmNow, hw.pulley_ratio.next)}</small>
+    <small>Alternator turns per engine turn: the crank pulley's diameter over the alternator's (1 when the tach is calibrated at the crank).</small></label>
+    ${hw.savable ? "" : html`<p class="msg warn">No state database: set these in the configuration file.</p>`}`;
 }
 
 // The PUT body for what changed ({} when nothing did): a choice equal to the
