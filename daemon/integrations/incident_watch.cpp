@@ -19,8 +19,16 @@ void IncidentWatch::hand(const IncidentEdge& e) {
 }
 
 void IncidentWatch::tick() {
+  std::vector<IncidentEdge> edges;
   for (const auto& [event, wallS] : source_.feed->take())
-    for (const auto& edge : tracker_.onEvent(event, wallS)) hand(edge);
+    for (const auto& edge : tracker_.onEvent(event, wallS)) edges.push_back(edge);
+  // A protection's trips come in one tick (a warning, then the critical one):
+  // the start names the worst of what arrived with it, as the Events row does.
+  for (auto& edge : edges) {
+    if (edge.start && tracker_.open() && tracker_.open()->id == edge.incident.id)
+      edge.incident = *tracker_.open();
+    hand(edge);
+  }
   if (auto end = tracker_.poll(source_.wallNow())) hand(*end);
   timer_.expires_after(std::chrono::milliseconds(250));
   timer_.async_wait([this](const boost::system::error_code& ec) {

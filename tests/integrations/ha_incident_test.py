@@ -61,8 +61,8 @@ node_id = "{NODE}"
         on = [d for d in docs if d["incident"] == "ON"]
         if on:
             detail = on[0]["incident_detail"]
-            c.check(detail.get("title") == "Alternator too hot", f"ON with the title: {detail}")
-            c.check(detail.get("what_to_do", "").startswith("Check belt and airflow"), f"and what to do: {detail}")
+            c.check(detail.get("title") == "Alternator far too hot", f"ON with the title: {detail}")
+            c.check(detail.get("what_to_do", "").startswith("Let it cool"), f"and what to do: {detail}")
         c.check(docs and docs[-1]["incident_detail"] == {}, "OFF carries no stale words")
         fired = [json.loads(p) for _, p in h.sub_collect(events)]
         c.check([e["event_type"] for e in fired] == ["start", "end"], f"one start and one end fire: {fired}")
