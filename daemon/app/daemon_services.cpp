@@ -21,11 +21,17 @@ DaemonServices::DaemonServices(const CliOptions& cli, const StartState& start, c
     recent_.add(e, static_cast<double>(clock->unixMs()) / 1000.0, describe(e));
   });
   if (store) pump_.addSink([store](const Event& e) { store->appendEvent(e); });
+  // Incidents for the owner away (docs/integrations.md "Alarms that reach the owner"), on the same clock.
+  pump_.addSink([this, clock = &start.clock](const Event& e) {
+    incidents_.post(e, static_cast<double>(clock->unixMs()) / 1000.0);
+  });
   pump_.start();
   if (csv_) csv_->start();
 
   // The boat's network (docs/integrations.md): its own thread, reading the snapshot only.
-  integrations_ = startIntegrations(settings, handoffs, store, start.clock);
+  integrations_ = startIntegrations(
+      settings, handoffs, store, start.clock,
+      {&incidents_, [clock = &start.clock] { return static_cast<double>(clock->unixMs()) / 1000.0; }});
   // CAN (docs/integrations.md): on a board the xr-can thread; the sim rig runs its own.
   if (BoardRig* board = rig.board())
     can_ = startCanThread(settings, handoffs, board->loopClock(), std::move(canLog));

@@ -44,6 +44,7 @@ class DaemonServices {
 
  private:
   RecentEvents recent_;
+  integrations::IncidentFeed incidents_;  // before pump_: its sink fills it
   rt::EventPump pump_;
   std::unique_ptr<CsvWriter> csv_;
   std::unique_ptr<integrations::IntegrationsService> integrations_;

@@ -9,7 +9,8 @@ namespace xr::app {
 std::unique_ptr<integrations::IntegrationsService> startIntegrations(const Settings& s,
                                                                      rt::Handoffs& handoffs,
                                                                      StoreService* store,
-                                                                     const rt::WallClock& clock) {
+                                                                     const rt::WallClock& clock,
+                                                                     integrations::IncidentSource incidents) {
   // Commands from the network take the same queue as POST /api/commands; the
   // regulator applies or refuses them between ticks and its event says which.
   auto sink = [&handoffs](const Command& c, const std::string& source) {
@@ -39,8 +40,8 @@ std::unique_ptr<integrations::IntegrationsService> startIntegrations(const Setti
           "victron: monitor only (BmsLimitsEnabled = 0): the GX's battery limits are shown, not followed");
   }
   try {
-    auto service = std::make_unique<integrations::IntegrationsService>(s.integrations, handoffs, sink, tokens,
-                                                                       XR_VERSION_STRING, clock, bmsLimits);
+    auto service = std::make_unique<integrations::IntegrationsService>(
+        s.integrations, handoffs, sink, tokens, XR_VERSION_STRING, clock, bmsLimits, std::move(incidents));
     if (!service->anyEnabled()) return nullptr;
     service->start();
     return service;

@@ -15,11 +15,11 @@
 namespace xr::app {
 
 // Null when no integration is enabled; otherwise started. store may be null
-// (a Signal K token then lasts for this run only).
-std::unique_ptr<integrations::IntegrationsService> startIntegrations(const Settings& s,
-                                                                     rt::Handoffs& handoffs,
-                                                                     StoreService* store,
-                                                                     const rt::WallClock& clock);
+// (a Signal K token then lasts for this run only). `incidents`: the events the
+// push and Home Assistant's incident sensor tell the owner about.
+std::unique_ptr<integrations::IntegrationsService> startIntegrations(
+    const Settings& s, rt::Handoffs& handoffs, StoreService* store, const rt::WallClock& clock,
+    integrations::IncidentSource incidents = {});
 
 // For WebApiContext::integrations; an empty list when service is null.
 std::function<std::vector<web::IntegrationState>()> integrationsView(

@@ -2,6 +2,8 @@
 
 #include <cctype>
 
+#include "config/notify_target.h"
+
 namespace xr {
 
 namespace {
@@ -78,6 +80,14 @@ std::vector<std::pair<std::string, std::string>> checkIntegrations(const Integra
   if (!w.url.starts_with("http://") || w.url.size() <= 7 || w.url[7] == '/' || w.url[7] == ':')
     bad("integrations.weather.url",
         "'" + w.url + "' must be http://host[:port]/path (https:// is not supported yet)");
+
+  // [notify]: a URL the sender could not use is refused at start, with why.
+  const auto& n = s.notify;
+  std::string why;
+  if (!n.url.empty() && !parseNotifyUrl(n.url, &why)) bad("notify.url", "'" + n.url + "' " + why);
+  if (!n.header.empty() && !parseNotifyHeader(n.header, &why)) bad("notify.header", why);
+  if (n.header.empty() && n.url.empty()) return out;
+  if (n.url.empty()) bad("notify.url", "is empty, so the header would go nowhere");
   return out;
 }
 

@@ -126,11 +126,23 @@ struct WeatherSettings {
   int refresh_min = 60;
 };
 
+// [notify] (docs/integrations.md "Alarms that reach the owner"): one HTTP
+// POST per incident start and end, to a push service or the owner's own
+// receiver. Off while url is empty.
+struct NotifySettings {
+  std::string url;              // http://host[:port]/path or https://...; empty = off
+  std::string header;           // one extra header, "Name: value" (a token); empty = none
+  std::string format = "json";  // json | text (the body push services such as ntfy show as it is)
+  std::string name;             // the regulator's name in the message; empty = the board's host name
+  int timeout_s = 10;           // one attempt: connect, send, answer
+};
+
 struct IntegrationsSettings {
   SignalKSettings signalk;
   MqttSettings mqtt;
   VictronSettings victron;
   WeatherSettings weather;
+  NotifySettings notify;  // the [notify] table
 };
 
 // [can] (docs/integrations.md "CAN"): the two buses and what is spoken on

@@ -229,6 +229,19 @@ const SettingSpec kSchema[] = {
              "Where the boat is, for the forecast (east positive)."),
     XR_S_INT("integrations.weather", integrations.weather.refresh_min, "refresh_min", "min", 1, 1440, false,
              "Minutes between forecasts."),
+    // [notify] (docs/integrations.md "Alarms that reach the owner")
+    XR_S_STR("notify", integrations.notify.url, "url", "",
+             "Where each incident's start and end is POSTed (http://host[:port]/path or https://...; empty = "
+             "no push)."),
+    XR_S_STR(
+        "notify", integrations.notify.header, "header", "",
+        "One extra request header, \"Name: value\" (e.g. \"Authorization: Bearer <token>\"); empty = none."),
+    XR_S_STR("notify", integrations.notify.format, "format", "json,text",
+             "json: one JSON document; text: a plain-text body with a Title header (ntfy and similar)."),
+    XR_S_STR("notify", integrations.notify.name, "name", "",
+             "The regulator's name in each message; empty = the board's host name."),
+    XR_S_INT("notify", integrations.notify.timeout_s, "timeout_s", "s", 2, 120, false,
+             "Seconds one delivery may take (connect, send, answer) before it is retried."),
 };
 
 #undef XR_S_STR
@@ -236,7 +249,7 @@ const SettingSpec kSchema[] = {
 #undef XR_S_FLT
 #undef XR_S_BOOL
 
-constexpr std::array<std::string_view, 10> kTables{"hardware",
+constexpr std::array<std::string_view, 11> kTables{"hardware",
                                                    "hardware.frontend",
                                                    "runtime",
                                                    "web",
@@ -245,7 +258,8 @@ constexpr std::array<std::string_view, 10> kTables{"hardware",
                                                    "integrations.signalk",
                                                    "integrations.mqtt",
                                                    "integrations.victron",
-                                                   "integrations.weather"};
+                                                   "integrations.weather",
+                                                   "notify"};
 
 std::string rangeText(const SettingSpec& spec) {
   std::string r = "allowed " + formatNumber(spec.min) + " to " + formatNumber(spec.max);

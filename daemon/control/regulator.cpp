@@ -87,6 +87,9 @@ bool Regulator::command(const Command& cmd) noexcept {
     case CommandType::WeatherMode:
       s.currentWeatherMode = cmd.flag;
       break;
+    case CommandType::AcknowledgeAlarm:
+      s.prot.acknowledgeAlarm();
+      break;
   }
   EventCode code = ok ? EventCode::CommandApplied : EventCode::CommandRejected;
   if (ok && (cmd.type == CommandType::TuningCommit || cmd.type == CommandType::CvTuningCommit))

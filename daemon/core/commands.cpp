@@ -25,6 +25,7 @@ constexpr std::array kCommands{
     CommandName{CommandType::TuningCommit, "tuning_commit", ""},
     CommandName{CommandType::CvTuningCommit, "cv_tuning_commit", ""},
     CommandName{CommandType::WeatherMode, "weather_mode", "active"},
+    CommandName{CommandType::AcknowledgeAlarm, "acknowledge_alarm", ""},
 };
 }  // namespace
 

@@ -17,11 +17,14 @@ enum class CommandType {
   ResetAlarmLatch,
   ResetSocGain,
   ResetAltZero,
-  SetSoc,         // value = soc %
+  SetSoc,  // value = soc %
   SystemIdStart,
   TuningCommit,
   CvTuningCommit,
-  WeatherMode,    // flag = active
+  WeatherMode,  // flag = active
+  // "acknowledge_alarm": silences the buzzer for the alarm sounding now, not
+  // the protection (docs/protections.md "Acknowledging an alarm").
+  AcknowledgeAlarm,
 };
 
 struct Command {

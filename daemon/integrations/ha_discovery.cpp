@@ -115,6 +115,23 @@ std::vector<MqttMessage> discoveryConfigs(const HaTopics& t, bool withCommands, 
     if (*b.deviceClass) o["device_class"] = b.deviceClass;
     out.push_back({t.config("binary_sensor", b.object), json::serialize(o)});
   }
+  // Alarms that reach the owner (docs/integrations.md): the incident acting
+  // now, with its title and what to do as attributes, and an event entity
+  // that fires at each start and end, for the owner's own automations.
+  json::object inc = common(t, "incident", "Incident", version);
+  inc["state_topic"] = t.state();
+  inc["value_template"] = "{{ value_json.incident }}";
+  inc["payload_on"] = "ON";
+  inc["payload_off"] = "OFF";
+  inc["device_class"] = "problem";
+  inc["json_attributes_topic"] = t.state();
+  inc["json_attributes_template"] = "{{ value_json.incident_detail | tojson }}";
+  out.push_back({t.config("binary_sensor", "incident"), json::serialize(inc)});
+  json::object ev = common(t, "incident", "Incident", version);
+  ev["state_topic"] = t.incidentEvent();
+  ev["event_types"] = json::array{"start", "end"};
+  ev["icon"] = "mdi:alert";
+  out.push_back({t.config("event", "incident"), json::serialize(ev)});
   if (withCommands) {
     json::object sel = common(t, "regulator_mode", "Regulator on/off", version);
     sel["command_topic"] = t.modeCommand();
@@ -136,8 +153,26 @@ std::vector<MqttMessage> discoveryConfigs(const HaTopics& t, bool withCommands, 
 
 std::string regulatorModeOption(const IntegrationSample& s) { return s.operatorOff ? "off" : "auto"; }
 
-std::string stateJson(const IntegrationSample& s) {
+namespace {
+json::object incidentDetail(const IncidentWords& w) {
+  return json::object{
+      {"title", w.title},         {"what_happened", w.whatHappened},
+      {"what_to_do", w.whatToDo}, {"severity", w.severity},
+      {"start", w.startIso},      {"end", w.endIso.empty() ? json::value(nullptr) : json::value(w.endIso)}};
+}
+}  // namespace
+
+std::string incidentEventJson(const IncidentEdge& e) {
+  json::object o = incidentDetail(incidentWords(e));
+  o["event_type"] = e.start ? "start" : "end";
+  o["incident_id"] = e.incident.id;
+  return json::serialize(o);
+}
+
+std::string stateJson(const IntegrationSample& s, const IncidentWords* incident) {
   json::object o;
+  o["incident"] = incident ? "ON" : "OFF";
+  o["incident_detail"] = incident ? json::value(incidentDetail(*incident)) : json::value(json::object{});
   o["battery_voltage"] = number(s.battery_v, 3);
   o["battery_current"] = number(s.battery_a, 2);
   o["alternator_current"] = number(s.alt_a, 2);

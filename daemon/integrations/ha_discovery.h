@@ -15,6 +15,7 @@
 
 #include "core/commands.h"
 #include "integrations/integration_sample.h"
+#include "integrations/push_message.h"
 
 namespace xr::integrations {
 
@@ -29,6 +30,8 @@ struct HaTopics {
   std::string availability() const { return "xregulator/" + id + "/availability"; }
   std::string modeCommand() const { return "xregulator/" + id + "/set/mode"; }
   std::string limpHomeCommand() const { return "xregulator/" + id + "/set/limp_home"; }
+  // An incident's start and end, for the event entity (docs/integrations.md "Alarms that reach the owner").
+  std::string incidentEvent() const { return "xregulator/" + id + "/incident"; }
   std::string birth() const { return prefix + "/status"; }  // Home Assistant's own online/offline
   std::string config(const std::string& component, const std::string& object) const {
     return prefix + "/" + component + "/xregulator_" + id + "/" + object + "/config";
@@ -48,8 +51,12 @@ HaCommandDecision decodeHaCommand(const HaTopics& t, std::string_view topic, std
 // the select (off/auto) and the button (limp home) only when withCommands.
 std::vector<MqttMessage> discoveryConfigs(const HaTopics& t, bool withCommands, const std::string& version);
 
-// The state document for one sample.
-std::string stateJson(const IntegrationSample& s);
+// The state document for one sample. `incident`: the incident acting now
+// (the "incident" binary sensor is ON and carries its words), or null.
+std::string stateJson(const IntegrationSample& s, const IncidentWords* incident = nullptr);
+
+// One incident edge for the event entity: event_type start|end and the words.
+std::string incidentEventJson(const IncidentEdge& e);
 
 // "off" when the regulator is switched off by the operator, else "auto"
 // (the select's current option).

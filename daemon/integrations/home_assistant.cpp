@@ -109,7 +109,18 @@ void HomeAssistantBridge::announce() {
 void HomeAssistantBridge::publishState() {
   const IntegrationSample s = sampleOf(handoffs_.latest(), {handoffs_.setUp.load(), ""});
   if (!s.valid) return;
-  link_->publish(topics_.state(), stateJson(s), false);
+  link_->publish(topics_.state(), stateJson(s, incident_ ? &*incident_ : nullptr), false);
+}
+
+void HomeAssistantBridge::onIncident(const IncidentEdge& e) {
+  if (e.start)
+    incident_ = incidentWords(e);
+  else
+    incident_.reset();
+  if (!link_->connected()) return;  // the next state after the reconnect says where it stands
+  // Not retained: an event is a moment; a new subscriber must not see an old one fire.
+  link_->publish(topics_.incidentEvent(), incidentEventJson(e), false, 1);
+  publishState();
 }
 
 void HomeAssistantBridge::tick() {

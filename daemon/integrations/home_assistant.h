@@ -13,6 +13,7 @@
 #include <boost/asio/steady_timer.hpp>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "config/settings.h"
@@ -20,6 +21,7 @@
 #include "integrations/ha_discovery.h"
 #include "integrations/integration_health.h"
 #include "integrations/mqtt_link.h"
+#include "integrations/push_message.h"
 #include "runtime/handoffs.h"
 
 namespace xr::integrations {
@@ -35,6 +37,9 @@ class HomeAssistantBridge {
   void start();
   void stop();
   IntegrationStatus status() const { return health_.status(); }
+  // On the io_context's thread: an incident started or ended; the state
+  // goes out at once and the event entity fires.
+  void onIncident(const IncidentEdge& e);
 
  private:
   void announce();
@@ -61,6 +66,7 @@ class HomeAssistantBridge {
   std::unique_ptr<MqttLink> anonymousProbe_;
   boost::asio::steady_timer timer_;
   std::uint64_t announcements_ = 0;
+  std::optional<IncidentWords> incident_;  // the incident acting now
 };
 
 }  // namespace xr::integrations

@@ -11,7 +11,8 @@ namespace xr::integrations {
 
 IntegrationsService::IntegrationsService(const IntegrationsSettings& s, rt::Handoffs& handoffs,
                                          CommandSink commands, TokenStore tokens, std::string version,
-                                         const rt::WallClock& clock, VictronLimitsSink bmsLimits)
+                                         const rt::WallClock& clock, VictronLimitsSink bmsLimits,
+                                         IncidentSource incidents)
     : settings_(s) {
   if (s.mqtt.enabled)
     ha_ = std::make_unique<HomeAssistantBridge>(io_, s.mqtt, handoffs, commands, version, clock);
@@ -27,6 +28,13 @@ IntegrationsService::IntegrationsService(const IntegrationsSettings& s, rt::Hand
   if (s.weather.enabled)
     weather_ = std::make_unique<WeatherClient>(io_, s.weather, handoffs, commands, clock,
                                                signalk_ ? &signalkPosition_ : nullptr);
+  if (!s.notify.url.empty()) push_ = std::make_unique<PushNotifier>(io_, s.notify, s.notify.name);
+  // Incidents for whoever tells the owner (docs/integrations.md "Alarms that reach the owner").
+  if (incidents.feed && incidents.wallNow && (push_ || ha_)) {
+    incidents_ = std::make_unique<IncidentWatch>(io_, std::move(incidents));
+    if (push_) incidents_->addListener([p = push_.get()](const IncidentEdge& e) { p->notify(e); });
+    if (ha_) incidents_->addListener([h = ha_.get()](const IncidentEdge& e) { h->onIncident(e); });
+  }
 }
 
 IntegrationsService::~IntegrationsService() { stop(); }
@@ -54,6 +62,12 @@ void IntegrationsService::start() {
                  settings_.weather.refresh_min);
     boost::asio::post(io_, [this] { weather_->start(); });
   }
+  if (push_) {
+    spdlog::info("notify: each incident's start and end to {} as {} (from '{}')", settings_.notify.url,
+                 settings_.notify.format, push_->regulator());
+    boost::asio::post(io_, [this] { push_->start(); });
+  }
+  if (incidents_) boost::asio::post(io_, [this] { incidents_->start(); });
   thread_ = std::thread([this] {
     pthread_setname_np(pthread_self(), "xr-integrations");
     auto guard = boost::asio::make_work_guard(io_);
@@ -75,6 +89,8 @@ void IntegrationsService::stop() {
     if (signalk_) signalk_->stop();
     if (victron_) victron_->stop();
     if (weather_) weather_->stop();
+    if (incidents_) incidents_->stop();
+    if (push_) push_->stop();
     done.set_value();
   });
   if (!io_.stopped()) done.get_future().wait_for(std::chrono::seconds(3));
@@ -93,6 +109,7 @@ std::vector<IntegrationStatus> IntegrationsService::statuses() const {
   out.push_back(ha_ ? ha_->status() : disabled("mqtt"));
   out.push_back(victron_ ? victron_->status() : disabled("victron"));
   out.push_back(weather_ ? weather_->status() : disabled("weather"));
+  out.push_back(push_ ? push_->status() : disabled("notify"));
   return out;
 }
 

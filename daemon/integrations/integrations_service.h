@@ -10,7 +10,9 @@
 
 #include "config/settings.h"
 #include "integrations/home_assistant.h"
+#include "integrations/incident_watch.h"
 #include "integrations/integration_health.h"
+#include "integrations/push_notifier.h"
 #include "integrations/signalk_client.h"
 #include "integrations/victron_gx.h"
 #include "integrations/weather_client.h"
@@ -21,14 +23,16 @@ namespace xr::integrations {
 
 class IntegrationsService {
  public:
+  // `incidents`: the event feed for the push and Home Assistant's incident
+  // sensor; without a feed there are no incidents to tell.
   IntegrationsService(const IntegrationsSettings& s, rt::Handoffs& handoffs, CommandSink commands,
                       TokenStore tokens, std::string version, const rt::WallClock& clock,
-                      VictronLimitsSink bmsLimits = {});
+                      VictronLimitsSink bmsLimits = {}, IncidentSource incidents = {});
   ~IntegrationsService();
   IntegrationsService(const IntegrationsService&) = delete;
   IntegrationsService& operator=(const IntegrationsService&) = delete;
 
-  bool anyEnabled() const { return ha_ || signalk_ || victron_ || weather_; }
+  bool anyEnabled() const { return ha_ || signalk_ || victron_ || weather_ || push_; }
   void start();
   void stop();  // idempotent; says "offline" to the brokers it is connected to
 
@@ -43,6 +47,8 @@ class IntegrationsService {
   std::unique_ptr<SignalKClient> signalk_;
   std::unique_ptr<VictronGxBridge> victron_;
   std::unique_ptr<WeatherClient> weather_;
+  std::unique_ptr<PushNotifier> push_;
+  std::unique_ptr<IncidentWatch> incidents_;
   std::thread thread_;
   bool running_ = false;
 };

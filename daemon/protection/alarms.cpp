@@ -69,7 +69,8 @@ bool ProtectionSupervisor::checkAlarms(bool effAnomalyAlarmActive, EventBatch& e
   const bool cond = gated || row[static_cast<std::size_t>(AlarmRow::TempTaskHung)];
   if (p_.AlarmLatchEnabled && cond) alarmLatched_ = true;
   if (!p_.AlarmLatchEnabled) alarmLatched_ = false;
-  buzzer_ = cond || alarmLatched_;
+  updateAcknowledgement(cond);
+  buzzer_ = (cond || alarmLatched_) && !ackActive_;
   // Log the buzzer's edges, but an alarm hovering on its threshold (the
   // buzzer follows it check by check) is one alarm: "Alarm OFF" only after
   // the buzzer stayed off for kEventClearHold.
@@ -88,6 +89,22 @@ bool ProtectionSupervisor::checkAlarms(bool effAnomalyAlarmActive, EventBatch& e
     }
   }
   return buzzer_;
+}
+
+// An acknowledgement silences the rows it saw; a new row sounds again, and it
+// ends once all have been quiet for the message hold (30 s: a row hovering on
+// its threshold stays acknowledged), so the next alarm is heard.
+void ProtectionSupervisor::updateAcknowledgement(bool cond) noexcept {
+  if (!ackActive_) return;
+  for (std::size_t i = 0; i < kAlarmRowCount; ++i)
+    if (alarmRowOn_[i] && !ackRows_[i]) ackActive_ = false;
+  if (cond)
+    ackQuietSince_ = -1;
+  else if (ackQuietSince_ < 0)
+    ackQuietSince_ = now_;
+  if (ackQuietSince_ >= 0 && now_ - ackQuietSince_ >= fromMs(k::ALARM_MESSAGE_THROTTLE_MS))
+    ackActive_ = false;
+  if (ackActive_) alarmLatched_ = false;
 }
 
 }  // namespace xr

@@ -51,6 +51,14 @@ void ProtectionSupervisor::reenableField() noexcept {
 
 void ProtectionSupervisor::resetAlarmLatch() noexcept { alarmLatched_ = false; }
 
+void ProtectionSupervisor::acknowledgeAlarm() noexcept {
+  ackRows_ = alarmRowOn_;
+  ackActive_ = true;
+  ackQuietSince_ = -1;
+  alarmLatched_ = false;
+  nextAlarmCheck_ = now_;  // quiet at the next tick, not up to 250 ms later
+}
+
 ProtectionTelemetry ProtectionSupervisor::telemetry() const noexcept {
   ProtectionTelemetry t;
   fillTelemetry(t);

@@ -144,6 +144,12 @@ class ProtectionSupervisor {
   // Commands.
   void reenableField() noexcept;    // clears the T2 latch (and restarts its timer)
   void resetAlarmLatch() noexcept;  // ResetAlarmLatch
+  // AcknowledgeAlarm: the buzzer goes quiet for the rows sounding now (and a
+  // latch is released); the protections act on untouched. A row that was not
+  // sounding starts it again; once every row is quiet the acknowledgement
+  // ends, so the next alarm sounds (docs/protections.md "Acknowledging an alarm").
+  void acknowledgeAlarm() noexcept;
+  bool alarmAcknowledged() const noexcept { return ackActive_; }
 
   ProtectionTelemetry telemetry() const noexcept;
   // Same, written in place (Regulator::step fills its persistent Outputs
@@ -268,7 +274,11 @@ class ProtectionSupervisor {
   std::array<TimeNs, kAlarmRowCount> alarmMsgAt_{};
   std::array<bool, kAlarmRowCount> alarmRowOn_{};
   bool lastBuzzerEvent_ = false;
-  TimeNs buzzerOffSince_ = -1;  // buzzer off since (AlarmOff logging hold)
+  bool ackActive_ = false;                         // acknowledged from the dashboard
+  std::array<bool, kAlarmRowCount> ackRows_{};     // the rows that were sounding then
+  TimeNs ackQuietSince_ = -1;                      // every row quiet since
+  void updateAcknowledgement(bool cond) noexcept;  // CheckAlarms' acknowledgement step
+  TimeNs buzzerOffSince_ = -1;                     // buzzer off since (AlarmOff logging hold)
 
   Reason lastTripReason_ = Reason::NONE;
   TimeNs lastTripTime_ = 0;

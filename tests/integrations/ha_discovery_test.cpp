@@ -25,8 +25,11 @@ TEST(HaDiscovery, SensorsAndBinarySensorsWithoutCommands) {
   const auto all = discoveryConfigs(topics(), false, "1.2.3");
   std::set<std::string> names;
   for (const auto& m : all) names.insert(m.topic);
-  EXPECT_EQ(all.size(), 20u);
-  EXPECT_EQ(names.size(), 20u);
+  EXPECT_EQ(all.size(), 22u);
+  EXPECT_EQ(names.size(), 22u);
+  // The incident acting now and its start/end events (docs/integrations.md "Alarms that reach the owner").
+  EXPECT_TRUE(names.count("homeassistant/binary_sensor/xregulator_boat1/incident/config"));
+  EXPECT_TRUE(names.count("homeassistant/event/xregulator_boat1/incident/config"));
   EXPECT_TRUE(names.count("homeassistant/sensor/xregulator_boat1/capacity_measured/config"));
   EXPECT_TRUE(names.count("homeassistant/sensor/xregulator_boat1/alternator_life_used/config"));
   EXPECT_TRUE(names.count("homeassistant/sensor/xregulator_boat1/battery_voltage/config"));
@@ -37,7 +40,7 @@ TEST(HaDiscovery, SensorsAndBinarySensorsWithoutCommands) {
 
 TEST(HaDiscovery, CommandsAddSelectAndButton) {
   const auto all = discoveryConfigs(topics(), true, "1.2.3");
-  EXPECT_EQ(all.size(), 22u);
+  EXPECT_EQ(all.size(), 24u);
   auto sel = find(all, "homeassistant/select/xregulator_boat1/regulator_mode/config");
   EXPECT_EQ(sel.at("command_topic").as_string(), "xregulator/boat1/set/mode");
   EXPECT_EQ(json::serialize(sel.at("options")), R"(["off","auto"])");

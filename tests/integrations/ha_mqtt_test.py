@@ -27,7 +27,7 @@ SENSORS = {"battery_voltage": "V", "battery_current": "A", "alternator_current":
            "mode": None, "charged_energy": "kWh", "capacity_measured": "Ah", "battery_resistance": "mΩ",
            "alternator_run_hours": "h", "alternator_life_used": "%", "belt_slips": None,
            "charging_state": None, "limited_by": None}
-BINARY = ["field", "alarm", "weather_mode"]
+BINARY = ["field", "alarm", "weather_mode", "incident"]
 SPEED = 5
 
 
@@ -37,6 +37,7 @@ def config_topic(component, obj):
 
 def expected_topics(commands):
     t = {config_topic("sensor", s) for s in SENSORS} | {config_topic("binary_sensor", b) for b in BINARY}
+    t.add(config_topic("event", "incident"))  # an incident's start and end (docs/integrations.md)
     if commands:
         t |= {config_topic("select", "regulator_mode"), config_topic("button", "limp_home")}
     return t

@@ -29,6 +29,7 @@ constexpr std::array kAllCommands{
     CommandType::TuningCommit,
     CommandType::CvTuningCommit,
     CommandType::WeatherMode,
+    CommandType::AcknowledgeAlarm,
 };
 
 }  // namespace

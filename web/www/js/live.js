@@ -3,6 +3,7 @@
 // offline state nobody can take for live.
 import { ago, hmin, isNum, num, temp } from "./format.js";
 import { activeProblems, ownerMode, plainStage, reasonInfo } from "./names.js";
+import { command, toast } from "./api.js";
 
 const $ = (id) => document.getElementById(id);
 const STALE_AFTER_S = 3;  // no frame for this long = not live (frames come at 2..20 Hz)
@@ -80,6 +81,28 @@ function renderBanners(s) {
   root.querySelectorAll(".countdown").forEach((c) => { c.textContent = countdown; });
 }
 
+// Acknowledging the alarm (docs/protections.md "Acknowledging an alarm"):
+// while the buzzer sounds, one button silences it; the protection acts on.
+// A write like any other: a device that is not paired is asked to pair.
+function renderAlarmAck(s) {
+  const row = $("alarm-ack-row");
+  if (!row) return;
+  row.hidden = !on(s.alarm);
+  const btn = $("alarm-ack");
+  if (btn.onclick) return;
+  btn.onclick = async () => {
+    btn.disabled = true;
+    try {
+      await command("acknowledge_alarm");
+      toast("Alarm silenced; the protection keeps acting.");
+    } catch (e) {
+      toast(`Not silenced: ${e.message}`, true);
+    } finally {
+      btn.disabled = false;
+    }
+  };
+}
+
 // The SoC tile (docs/dashboard.md, "State of charge"): a BMS that reports a
 // SoC is THE SoC; a SoC the regulator does not know (soc_pct null or
 // soc_source "unknown") is the word "unknown", never a number; a start-up
@@ -141,6 +164,7 @@ export function renderLive(s) {
   $("headline").textContent = headline(s);
   renderHero(s);
   renderBanners(s);
+  renderAlarmAck(s);
   renderHeader(s, alarms.length > 0);
   tick();
 }

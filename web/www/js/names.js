@@ -194,7 +194,7 @@ export const MODES = {
 };
 // The commands (POST /api/commands) as their buttons say them.
 export const COMMANDS = { auto: "Auto", manual: "Manual", off: "Off", limp_home: "Limp home", limp_home_off: "Limp home off",
-  reenable_field: "Re-enable field", reset_alarm_latch: "Reset alarm latch", reset_soc_gain: "Reset SoC gain",
+  reenable_field: "Re-enable field", reset_alarm_latch: "Reset alarm latch", acknowledge_alarm: "Acknowledge alarm", reset_soc_gain: "Reset SoC gain",
   reset_alt_zero: "Reset alternator zero", set_soc: "Set SoC", system_id_start: "Start SystemID",
   tuning_commit: "Commit current-loop tuning", cv_tuning_commit: "Commit voltage-loop tuning", weather_mode: "Weather mode" };
 export const plainCommand = (c) => COMMANDS[c] || String(c || "—").replace(/_/g, " ");
