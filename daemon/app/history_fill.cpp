@@ -6,16 +6,19 @@
 //
 //   xr_history_fill --state-db FILE [--days N] [--fine-days N] [--seed N]
 //
-// The last --fine-days days are fed every 10 s, the older ones every 60 s
+// The last --fine-days days are fed every 30 s, the older ones every 300 s
 // (trend rows are the same; day totals integrate the same currents). A day
-// of the model: at anchor overnight with an 8 A house load; on two days of
+// of the model: at anchor overnight with a 4 A house load; on two days of
 // three the engine runs 1-4 h from the morning and the alternator charges
 // the 300 Ah bank (bulk, absorption, float) and warms up; at the engine stop
 // the field goes off with REASON_RPM_LOW. The last sample is a minute before
 // now, so "today" holds the morning so far.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
+#include <numbers>
 #include <string>
 
 #include "app/store_service.h"
@@ -41,7 +44,7 @@ bool engineRuns(long d, double secOfDay, unsigned seed) {
 
 // One sample of the model after `dt` seconds, filled into t.
 void step(Boat& b, Telemetry& t, bool running, double dt, double seasonC) {
-  const double house = 8.0;
+  const double house = 4.0;
   double alt = 0.0;
   ChargeStage stage = b.socPct < 85.0   ? ChargeStage::BULK
                       : b.socPct < 99.0 ? ChargeStage::ABSORPTION
@@ -114,18 +117,18 @@ int main(int argc, char** argv) {
                  store.openResult().message.c_str());
     return 74;
   }
-  store.useClock(clock, 60.0);
+  store.useClock(clock, 60.0);  // the summaries integrate steps up to 300 s
   Boat boat;
   rt::RuntimeSnapshot snap;
   BatteryLedger ledger;
   long samples = 0;
   while (nowMs <= endMs) {
-    const double dt = nowMs < fineFromMs ? 60.0 : 10.0;
+    const double dt = nowMs < fineFromMs ? 300.0 : 30.0;
     const std::time_t ts = static_cast<std::time_t>(nowMs / 1000);
     std::tm tm{};
     localtime_r(&ts, &tm);
     const double secOfDay = tm.tm_hour * 3600.0 + tm.tm_min * 60.0 + tm.tm_sec;
-    const double seasonC = 18.0 + 8.0 * std::sin(2.0 * M_PI * tm.tm_yday / 365.0);
+    const double seasonC = 18.0 + 8.0 * std::sin(2.0 * std::numbers::pi * tm.tm_yday / 365.0);
     step(boat, snap.telemetry, engineRuns(static_cast<long>(nowMs / 86'400'000), secOfDay, seed), dt,
          seasonC);
     store.housekeeping(snap, ledger, false);

@@ -12,6 +12,7 @@
 #include "web/server/api_handler.h"
 #include "web/server/api_reply.h"
 #include "web/server/json_status.h"
+#include "web/server/json_text.h"
 
 namespace xr::web {
 
@@ -72,7 +73,7 @@ std::string utcText(std::int64_t s) {
 // One CSV cell: the JSON number's rounding, empty when not known.
 std::string cell(std::string_view name, double v) {
   const json::value j = statusNumber(name, v);
-  return j.is_null() ? std::string() : json::serialize(j);
+  return j.is_null() ? std::string() : jsonText(j);  // plain decimals, never 1.2E1
 }
 
 }  // namespace
