@@ -41,6 +41,12 @@ std::int64_t localMidnightS(std::int64_t unixMs) {
   return midnightS(tm.tm_year + 1900, tm.tm_mon + 1, tm.tm_mday);
 }
 
+// How often today's running totals and the open charge are saved: a power
+// cut loses at most this much of them, as the chart history loses at most one
+// flush (StoreOptions::historyFlushS); a day or a charge that ends is saved
+// at once (docs/performance.md "Storage writes").
+constexpr std::int64_t kSummarySaveMs = 600'000;
+
 }  // namespace
 
 std::optional<std::pair<std::int64_t, std::int64_t>> StoreService::dayBoundsMs(const std::string& day) {
@@ -126,17 +132,26 @@ void StoreService::tallySummaries(const rt::RuntimeSnapshot& s, std::int64_t now
   x.engineRunning = t.rpm >= wear_k::kRunningRpm;
   x.reason = t.reason;
   ChargeTally::Ended ended = tally_.add(x);
-  const bool due = nowMs - lastSummarySaveMs_ >= 60'000 || nowMs < lastSummarySaveMs_;
-  if (ended.day) store_.saveDay(*ended.day);
-  if (ended.charge) store_.saveCharge(*ended.charge);
+  const bool due = nowMs - lastSummarySaveMs_ >= kSummarySaveMs || nowMs < lastSummarySaveMs_;
   if (!due && !ended.day && !ended.charge) return;
   lastSummarySaveMs_ = nowMs;
-  if (const StoreStatus st = store_.saveDay(tally_.day()); !st)
-    spdlog::warn("store: day summary: {}", st.error);
-  if (auto open = tally_.charge()) {
-    ChargeSummary c = *open;
-    if (const StoreStatus st = store_.saveCharge(c); st) tally_.setChargeId(c.id);
-  }
+  // One transaction for the day's and the charge's rows: one commit (a few
+  // pages of the card) every 10 minutes, not two a minute.
+  const StoreStatus st = store_.inTransaction([&]() -> StoreStatus {
+    if (ended.day)
+      if (StoreStatus r = store_.saveDay(*ended.day); !r) return r;
+    if (ended.charge)
+      if (StoreStatus r = store_.saveCharge(*ended.charge); !r) return r;
+    if (StoreStatus r = store_.saveDay(tally_.day()); !r) return r;
+    if (auto open = tally_.charge()) {
+      ChargeSummary c = *open;
+      StoreStatus r = store_.saveCharge(c);
+      if (r) tally_.setChargeId(c.id);
+      return r;
+    }
+    return StoreStatus{};
+  });
+  if (!st) spdlog::warn("store: day and charge summaries: {}", st.error);
 }
 
 // The stored rows with today's and the open charge's running totals over

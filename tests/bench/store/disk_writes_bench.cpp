@@ -9,7 +9,8 @@
 //                (ten events each: ~1 200 events an hour)
 // write_bytes (/proc/self/io: what reached the block layer, the card's
 // wear) and wchar (every byte passed to write()) per simulated hour. Exits 1
-// when steady running (cruising, anchor) sends >= 1 MB/h to the disk.
+// when an hour of steady running (cruising, anchor) sends >= 1 MB to the
+// disk; the daily backup's share is reported beside it.
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 
@@ -120,9 +121,12 @@ void BM_DiskWritesPerHour(benchmark::State& state) {
   state.counters["wchar_per_h"] = wcPerH;
   state.counters["backup_share_per_h"] = backupPerH;
   state.counters["db_bytes"] = dbBytes;
-  if (c != Condition::FaultStorm && wbPerH + backupPerH >= kLimitPerHour) {
+  state.counters["with_backup_per_h"] = wbPerH + backupPerH;
+  // The gate: what an hour of steady running writes. The daily backup is
+  // reported beside it (with_backup_per_h): it grows with the database.
+  if (c != Condition::FaultStorm && wbPerH >= kLimitPerHour) {
     overLimit = true;
-    state.SkipWithError("steady running writes 1 MB/h or more (docs/performance.md)");
+    std::fprintf(stderr, "steady running writes %.0f B/h (>= 1 MB/h, docs/performance.md)\n", wbPerH);
   }
 }
 BENCHMARK(BM_DiskWritesPerHour)
