@@ -469,6 +469,7 @@ await test("the History page: days oldest first, blanks where unknown, the displ
     "2026-07-01 · 4.2 Ah · 0.06 kWh · battery —–— · SoC — → — · engine — · alternator up to —");
   assert.equal(H.duration(80), "1 h 20 min");
   assert.equal(H.duration(45), "45 min");
+  assert.equal(H.duration(119.7), "2 h 0 min");
   assert.equal(H.endedBy({ open: true }), "still charging");
   assert.equal(H.endedBy({ open: false, ended_by: "STOPPED" }), "the regulator stopped");
   assert.equal(H.endedBy({ open: false, ended_by: "REASON_RPM_LOW" }), N.REASONS.REASON_RPM_LOW.title);

@@ -24,7 +24,8 @@ export function endedBy(c) {
 // "1 h 20 min", "45 min".
 export function duration(minutes) {
   if (!(minutes >= 0)) return "—";
-  const h = Math.floor(minutes / 60), m = Math.round(minutes - 60 * h);
+  const total = Math.round(minutes);  // 119.7 min is "2 h 0 min", never "1 h 60 min"
+  const h = Math.floor(total / 60), m = total - 60 * h;
   return h ? `${h} h ${m} min` : `${m} min`;
 }
 
