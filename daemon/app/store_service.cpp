@@ -10,22 +10,14 @@
 #include <cstring>
 #include <map>
 
-#include "core/wall_time_text.h"
 #include "store/param_overrides.h"
 
 namespace xr::app {
 
 std::int64_t unixMsNow() { return rt::WallClock::systemUnixMs(); }
 
-namespace {
-
-// The owner's calendar day, "YYYY-MM-DD", in the board's time zone.
-std::string localDay(std::int64_t unixMs) { return wallTimeText(unixMs, "%Y-%m-%d", TimeZone::Local); }
-
-}  // namespace
-
-StoreService::StoreService(const std::string& path, int checkpointIntervalS)
-    : policy_(checkpointIntervalS), series_(defaultHistorySeries()) {
+StoreService::StoreService(const std::string& path, int checkpointIntervalS, StoreOptions options)
+    : store_(std::move(options)), policy_(checkpointIntervalS), series_(defaultHistorySeries()) {
   // The database holds the web token: never readable by other users, with or
   // without systemd's UMask (docs/security.md). umask is process-wide, but
   // this runs before any other thread of the daemon exists; SQLite gives the
@@ -46,8 +38,7 @@ StoreService::StoreService(const std::string& path, int checkpointIntervalS)
   recordOpenAlarm();
   // Today's totals so far keep counting; a charge the last run left open
   // ended when it stopped.
-  if (auto d = store_.findDay(localDay(unixMsNow()))) tally_.restoreDay(*d);
-  store_.closeOpenCharges("STOPPED");
+  restoreSummaries(unixMsNow());
 }
 
 void StoreService::useClock(const rt::WallClock& clock, double speed) {
@@ -196,6 +187,7 @@ void StoreService::housekeeping(const rt::RuntimeSnapshot& s, const BatteryLedge
     if (!st) spdlog::warn("store: history not saved: {}", st.error);
   }
   tallySummaries(s, now);
+  tallyTrends(s, now);
   const CheckpointReason why =
       policy_.poll(s.telemetry.now, s.telemetry.field_enable, s.telemetry.stage, false);
   if (why != CheckpointReason::None && ledgerValid) {
@@ -206,68 +198,9 @@ void StoreService::housekeeping(const rt::RuntimeSnapshot& s, const BatteryLedge
     spdlog::error("store: {} (the previous backup stays; retried in an hour)", st.error);
 }
 
-void StoreService::tallySummaries(const rt::RuntimeSnapshot& s, std::int64_t nowMs) {
-  const Telemetry& t = s.telemetry;
-  TallySample x;
-  x.unixMs = nowMs;
-  x.day = localDay(nowMs);
-  x.altA = t.alt_a;
-  x.batteryV = t.battery_v;
-  x.batteryA = t.bcur_a;
-  x.altTempC = std::isfinite(t.temp_f) && t.temp_f > -40.0 ? (t.temp_f - 32.0) / 1.8 : NAN;
-  x.socPct = socShown(t).pct;
-  x.stage = t.stage;
-  x.fieldOn = t.field_enable;
-  x.reason = t.reason;
-  ChargeTally::Ended ended = tally_.add(x);
-  const bool due = nowMs - lastSummarySaveMs_ >= 60'000 || nowMs < lastSummarySaveMs_;
-  if (ended.day) store_.saveDay(*ended.day);
-  if (ended.charge) store_.saveCharge(*ended.charge);
-  if (!due && !ended.day && !ended.charge) return;
-  lastSummarySaveMs_ = nowMs;
-  if (const StoreStatus st = store_.saveDay(tally_.day()); !st)
-    spdlog::warn("store: day summary: {}", st.error);
-  if (auto open = tally_.charge()) {
-    ChargeSummary c = *open;
-    if (const StoreStatus st = store_.saveCharge(c); st) tally_.setChargeId(c.id);
-  }
-}
-
-// The stored rows with today's and the open charge's running totals over
-// them: the page shows this second's figures, not the last minute's save.
-std::vector<DaySummary> StoreService::days(std::size_t n) {
-  std::lock_guard lock(m_);
-  std::vector<DaySummary> out = store_.days(n);
-  const DaySummary& today = tally_.day();
-  if (today.day.empty()) return out;
-  if (!out.empty() && out.front().day == today.day)
-    out.front() = today;
-  else if (out.empty() || out.front().day < today.day)
-    out.insert(out.begin(), today);
-  if (out.size() > n) out.resize(n);
-  return out;
-}
-
-std::vector<ChargeSummary> StoreService::charges(std::size_t n) {
-  std::lock_guard lock(m_);
-  std::vector<ChargeSummary> out = store_.charges(n);
-  const auto& open = tally_.charge();
-  if (!open) return out;
-  if (!out.empty() && open->id != 0 && out.front().id == open->id)
-    out.front() = *open;
-  else
-    out.insert(out.begin(), *open);
-  if (out.size() > n) out.resize(n);
-  return out;
-}
-
 void StoreService::stop(const BatteryLedger& ledger, bool ledgerValid) {
   std::lock_guard lock(m_);
-  if (!tally_.day().day.empty()) store_.saveDay(tally_.day());
-  if (auto open = tally_.charge()) {
-    ChargeSummary c = *open;  // stays open: the next start closes it as STOPPED
-    store_.saveCharge(c);
-  }
+  saveSummaries();
   if (ledgerValid) {
     const StoreStatus st = store_.checkpoint(ledger, "stop", nowMs());
     if (!st) spdlog::error("store: final checkpoint failed: {}", st.error);

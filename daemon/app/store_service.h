@@ -22,6 +22,7 @@
 #include "runtime/wall_clock.h"
 #include "store/checkpoint_policy.h"
 #include "store/store.h"
+#include "store/trend_tally.h"
 
 namespace xr::app {
 
@@ -29,7 +30,8 @@ std::int64_t unixMsNow();
 
 class StoreService {
  public:
-  StoreService(const std::string& path, int checkpointIntervalS);
+  // options: the store's (tools/history_fill.cpp turns the daily backup off).
+  StoreService(const std::string& path, int checkpointIntervalS, StoreOptions options = {});
   const OpenResult& openResult() const { return open_; }
   // The one wall clock (runtime/wall_clock.h) for every row from now on:
   // the simulated one in --sim. speed: how many clock seconds pass per
@@ -79,6 +81,14 @@ class StoreService {
   // The History page's summaries, newest first (store/charge_tally.h).
   std::vector<DaySummary> days(std::size_t n);
   std::vector<ChargeSummary> charges(std::size_t n);
+  // The charges that started in [fromMs, toMs), oldest first, the open one too.
+  std::vector<ChargeSummary> chargesBetween(std::int64_t fromMs, std::int64_t toMs);
+  // [start, end) of a local calendar day "YYYY-MM-DD" in Unix ms; nullopt
+  // when the text is no such day.
+  static std::optional<std::pair<std::int64_t, std::int64_t>> dayBoundsMs(const std::string& day);
+  // Trend rows with a start in [fromS, toS], hourly (this hour's so far
+  // included) or daily (core/trend_rows.h).
+  std::vector<TrendRow> trends(std::int64_t fromS, std::int64_t toS, bool daily);
   std::string token();
   // Small named strings kept with the state (the Signal K token).
   std::optional<std::string> loadValue(const std::string& key);
@@ -103,6 +113,10 @@ class StoreService {
   // Once a second: the day and charge summaries, saved every minute and
   // whenever a day or a charge ends (caller holds m_).
   void tallySummaries(const rt::RuntimeSnapshot& s, std::int64_t nowMs);
+  // Once a second: the hourly trend row, saved when its hour ends.
+  void tallyTrends(const rt::RuntimeSnapshot& s, std::int64_t nowMs);
+  void restoreSummaries(std::int64_t nowMs);  // at open (caller holds m_ or is the constructor)
+  void saveSummaries();                       // at stop (caller holds m_)
 
   std::mutex m_;
   Store store_;
@@ -111,6 +125,7 @@ class StoreService {
   std::vector<std::string> series_;
   std::int64_t lastHistoryS_ = -1;
   ChargeTally tally_;  // the History page's day and charge summaries
+  TrendTally trends_;  // the hour's trend row
   std::int64_t lastSummarySaveMs_ = 0;
   const rt::WallClock* clock_ = nullptr;  // nullptr: the system clock
 };

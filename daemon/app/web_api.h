@@ -73,6 +73,15 @@ class WebApi final : public web::DaemonApi {
   std::vector<ChargeSummary> historyCharges(std::size_t n) override {
     return ctx_.store ? ctx_.store->charges(n) : std::vector<ChargeSummary>{};
   }
+  std::optional<std::vector<ChargeSummary>> historyChargesOn(const std::string& day) override {
+    const auto bounds = StoreService::dayBoundsMs(day);
+    if (!bounds) return std::nullopt;
+    return ctx_.store ? ctx_.store->chargesBetween(bounds->first, bounds->second)
+                      : std::vector<ChargeSummary>{};
+  }
+  std::vector<TrendRow> historyTrends(std::int64_t fromS, std::int64_t toS, bool daily) override {
+    return ctx_.store ? ctx_.store->trends(fromS, toS, daily) : std::vector<TrendRow>{};
+  }
   std::vector<web::ProbeResult> probeResults() override;
   web::VersionMap versions() override;
   web::Health health() override;

@@ -11,10 +11,14 @@ struct DaySummary {
   std::string day;
   double altAh = 0.0, altWh = 0.0;                      // from the alternator, field on
   double batteryAhIn = 0.0, batteryAhOut = 0.0;         // through the battery shunt
+  double batteryWhIn = 0.0;                             // into the bank, by the shunt and its voltage
   double bulkS = 0.0, absorptionS = 0.0, floatS = 0.0;  // field on, by stage
   double idleS = 0.0;                                   // resting after a full charge
   double fieldOnS = 0.0;
   double peakAltTempC = NAN, minSocPct = NAN, maxSocPct = NAN;
+  double minBatteryV = NAN, maxBatteryV = NAN;
+  double socStartPct = NAN, socEndPct = NAN;  // the first and last known SoC of the day
+  double engineS = NAN;                       // engine running (NaN: a row older than the count)
 };
 
 struct ChargeSummary {

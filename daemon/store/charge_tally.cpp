@@ -54,9 +54,17 @@ void ChargeTally::addToDay(const TallySample& s, double dt) {
   if (s.stage == ChargeStage::IDLE && !s.fieldOn) day_.idleS += dt;
   const double ba = orZero(s.batteryA);
   (ba >= 0.0 ? day_.batteryAhIn : day_.batteryAhOut) += std::abs(ba) * hours;
+  if (ba > 0.0) day_.batteryWhIn += ba * orZero(s.batteryV) * hours;
+  day_.engineS = orZero(day_.engineS) + (s.engineRunning ? dt : 0.0);
   day_.peakAltTempC = maxKnown(day_.peakAltTempC, s.altTempC);
   day_.minSocPct = minKnown(day_.minSocPct, s.socPct);
   day_.maxSocPct = maxKnown(day_.maxSocPct, s.socPct);
+  // A battery voltage of 0 or less is no reading (a sensor not answering).
+  const double v = s.batteryV > 0.0 ? s.batteryV : NAN;
+  day_.minBatteryV = minKnown(day_.minBatteryV, v);
+  day_.maxBatteryV = maxKnown(day_.maxBatteryV, v);
+  if (std::isnan(day_.socStartPct)) day_.socStartPct = s.socPct;
+  if (!std::isnan(s.socPct)) day_.socEndPct = s.socPct;
 }
 
 std::optional<ChargeSummary> ChargeTally::addToCharge(const TallySample& s, double dt) {

@@ -21,6 +21,7 @@ struct TallySample {
   double altA = NAN, batteryV = NAN, batteryA = NAN, altTempC = NAN, socPct = NAN;  // NaN: not known
   ChargeStage stage = ChargeStage::BULK;
   bool fieldOn = false;
+  bool engineRunning = false;
   Reason reason = Reason::NONE;
 };
 

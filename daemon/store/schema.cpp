@@ -4,6 +4,8 @@
 
 #include <string>
 
+#include "core/trend_rows.h"
+
 namespace xr::store {
 
 namespace {
@@ -62,6 +64,36 @@ CREATE TABLE history_charges(id INTEGER PRIMARY KEY, start_ms INTEGER NOT NULL, 
   alt_wh REAL NOT NULL, start_soc REAL, end_soc REAL, end_reason TEXT NOT NULL, open INTEGER NOT NULL);
 )sql";
 
+// v4 -> v5: the History page's day rows gain what an owner reads at a
+// glance (energy into the bank, the battery's lowest and highest voltage,
+// the SoC at the start and end of the day, engine hours; NULL in the rows
+// written before: not known), and the trends over a season: one row per
+// hour and one per local day of min/mean/max (core/trend_rows.h).
+constexpr const char* kV5 = R"sql(
+ALTER TABLE history_days ADD COLUMN batt_wh_in REAL;
+ALTER TABLE history_days ADD COLUMN v_min REAL;
+ALTER TABLE history_days ADD COLUMN v_max REAL;
+ALTER TABLE history_days ADD COLUMN soc_start REAL;
+ALTER TABLE history_days ADD COLUMN soc_end REAL;
+ALTER TABLE history_days ADD COLUMN engine_s REAL;
+CREATE TABLE trends_hourly(t_s INTEGER PRIMARY KEY, day_s INTEGER NOT NULL, samples INTEGER NOT NULL,
+  TREND_COLUMNS);
+CREATE INDEX trends_hourly_day ON trends_hourly(day_s);
+CREATE TABLE trends_daily(t_s INTEGER PRIMARY KEY, day_s INTEGER NOT NULL, samples INTEGER NOT NULL,
+  TREND_COLUMNS);
+)sql";
+
+// The min/mean/max columns of every trended value (core/trend_rows.h).
+std::string withTrendColumns(std::string sqlText) {
+  std::string cols;
+  for (const auto& t : kTrendSeries)
+    for (const char* k : {"_min", "_mean", "_max"})
+      cols += (cols.empty() ? "" : ", ") + std::string(t.name) + k + " REAL";
+  for (auto at = sqlText.find("TREND_COLUMNS"); at != std::string::npos; at = sqlText.find("TREND_COLUMNS"))
+    sqlText.replace(at, 13, cols);
+  return sqlText;
+}
+
 }  // namespace
 
 int createV1(sql::Db& db) {
@@ -85,6 +117,10 @@ int migrateStep(sql::Db& db, int from) {
     case 3: {
       int rc = db.exec(kV4);
       return rc == SQLITE_OK ? setVersion(db, 4) : rc;
+    }
+    case 4: {
+      int rc = db.exec(withTrendColumns(kV5));
+      return rc == SQLITE_OK ? setVersion(db, 5) : rc;
     }
     default:
       return db.setError(SQLITE_MISMATCH, "no migration from version " + std::to_string(from));
@@ -121,8 +157,12 @@ std::string missingForReading(sql::Db& db) {
       "SELECT id, name FROM series",
       "SELECT key, data FROM history_1s",
       "SELECT key, data FROM history_1m",
-      "SELECT day, alt_ah, alt_wh, batt_ah_in, batt_ah_out, bulk_s, absorption_s, float_s, idle_s, field_on_s, "
-      "peak_alt_temp_c, min_soc, max_soc FROM history_days",
+      "SELECT day, alt_ah, alt_wh, batt_ah_in, batt_ah_out, bulk_s, absorption_s, float_s, idle_s, "
+      "field_on_s, "
+      "peak_alt_temp_c, min_soc, max_soc, batt_wh_in, v_min, v_max, soc_start, soc_end, engine_s FROM "
+      "history_days",
+      "SELECT t_s, day_s, samples, battery_v_min, soc_pct_max FROM trends_hourly",
+      "SELECT t_s, day_s, samples, battery_v_min, soc_pct_max FROM trends_daily",
       "SELECT id, start_ms, end_ms, bulk_s, absorption_s, float_s, alt_ah, alt_wh, start_soc, end_soc, "
       "end_reason, open FROM history_charges",
   };

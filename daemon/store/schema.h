@@ -11,13 +11,15 @@
 //   v4  kv 'set_up_before_upgrade' for an install that had already run (it keeps
 //       its file's values rather than the not-set-up limits); history_days and
 //       history_charges (the History page's summaries)
+//   v5  history_days gain batt_wh_in, v_min, v_max, soc_start, soc_end, engine_s;
+//       trends_hourly / trends_daily (min/mean/max per hour and per local day)
 #include <string>
 
 #include "store/sqlite_db.h"
 
 namespace xr::store {
 
-inline constexpr int kSchemaVersion = 4;
+inline constexpr int kSchemaVersion = 5;
 // History rows: rowid = bucket start (s) * kSeriesSlots + series id.
 inline constexpr int kSeriesSlots = 64;
 

@@ -30,6 +30,7 @@
 
 #include "battery/ledger.h"
 #include "core/events.h"
+#include "core/trend_rows.h"
 #include "store/charge_tally.h"
 #include "store/sqlite_db.h"
 
@@ -55,7 +56,10 @@ struct StoreOptions {
   int historyFlushS = 600;
   std::int64_t history1sKeepS = 48 * 3600;          // 1 s resolution kept 48 h
   std::int64_t history1mKeepS = 366LL * 24 * 3600;  // 1 min resolution kept a year
-  std::int64_t maxEvents = 50000;                   // events table bounded too
+  // Hourly trend rows kept two years (a season compared with the last);
+  // daily rows are never trimmed (~100 KB a decade).
+  std::int64_t trendsHourlyKeepS = 731LL * 24 * 3600;
+  std::int64_t maxEvents = 50000;  // events table bounded too
   std::vector<std::string> historySeries = defaultHistorySeries();
   // Tests: PRAGMA max_page_count, to simulate a full disk (0 = unlimited).
   std::int64_t maxPageCount = 0;
@@ -153,6 +157,8 @@ class Store {
   // Inserts (c.id == 0: c.id is set) or updates the charge's row.
   StoreStatus saveCharge(ChargeSummary& c);
   std::vector<ChargeSummary> charges(std::size_t n);  // newest first
+  // The charges that started in [fromMs, toMs), oldest first (at most 1000).
+  std::vector<ChargeSummary> chargesBetween(std::int64_t fromMs, std::int64_t toMs);
   // A charge still open when the daemon stopped ended then: `reason`.
   StoreStatus closeOpenCharges(std::string_view reason);
 
@@ -180,6 +186,14 @@ class Store {
                                          std::int64_t stepMs);
   // Deletes history and events beyond their retention.
   StoreStatus compact(std::int64_t nowUnixMs);
+
+  // ---- trends over a season (core/trend_rows.h, store_trends.cpp) -------------
+  // Saves one hourly row (replacing that hour's) and refreshes its day's row
+  // from the day's hours, in one transaction.
+  StoreStatus saveTrendHour(const TrendRow& r);
+  std::optional<TrendRow> findTrendHour(std::int64_t startS);
+  // Rows with startS in [fromS, toS], oldest first: hourly, or daily.
+  std::vector<TrendRow> trends(std::int64_t fromS, std::int64_t toS, bool daily);
 
   // ---- web token -------------------------------------------------------------
   // The stored token, or a new random 32-byte hex token stored now.

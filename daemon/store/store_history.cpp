@@ -178,6 +178,10 @@ StoreStatus Store::compact(std::int64_t nowUnixMs) {
     rc = st.bind(1, (nowS - opt_.history1mKeepS - 3600) * store::kSeriesSlots).step();
   }
   if (rc == SQLITE_DONE) {
+    sql::Stmt st(db_, "DELETE FROM trends_hourly WHERE t_s < ?1");
+    rc = st.bind(1, nowS - opt_.trendsHourlyKeepS).step();
+  }
+  if (rc == SQLITE_DONE) {
     sql::Stmt st(db_, "DELETE FROM events WHERE id <= (SELECT max(id) FROM events) - ?1");
     rc = st.bind(1, opt_.maxEvents).step();
   }

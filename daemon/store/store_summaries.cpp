@@ -20,7 +20,7 @@ double colKnown(const sql::Stmt& st, int i) { return st.colIsNull(i) ? NAN : st.
 
 constexpr const char* kDayColumns =
     "day, alt_ah, alt_wh, batt_ah_in, batt_ah_out, bulk_s, absorption_s, float_s, idle_s, field_on_s, "
-    "peak_alt_temp_c, min_soc, max_soc";
+    "peak_alt_temp_c, min_soc, max_soc, batt_wh_in, v_min, v_max, soc_start, soc_end, engine_s";
 constexpr const char* kChargeColumns =
     "id, start_ms, end_ms, bulk_s, absorption_s, float_s, alt_ah, alt_wh, start_soc, end_soc, end_reason, "
     "open";
@@ -40,6 +40,12 @@ DaySummary dayFrom(const sql::Stmt& st) {
   d.peakAltTempC = colKnown(st, 10);
   d.minSocPct = colKnown(st, 11);
   d.maxSocPct = colKnown(st, 12);
+  d.batteryWhIn = colKnown(st, 13);
+  d.minBatteryV = colKnown(st, 14);
+  d.maxBatteryV = colKnown(st, 15);
+  d.socStartPct = colKnown(st, 16);
+  d.socEndPct = colKnown(st, 17);
+  d.engineS = colKnown(st, 18);
   return d;
 }
 
@@ -64,13 +70,21 @@ ChargeSummary chargeFrom(const sql::Stmt& st) {
 
 StoreStatus Store::saveDay(const DaySummary& d) {
   const std::lock_guard<std::recursive_mutex> lock(mu_);
-  sql::Stmt st(db_, std::string("INSERT OR REPLACE INTO history_days(") + kDayColumns +
-                        ") VALUES(?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13)");
+  sql::Stmt st(
+      db_,
+      std::string("INSERT OR REPLACE INTO history_days(") + kDayColumns +
+          ") VALUES(?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18, ?19)");
   st.bind(1, d.day).bind(2, d.altAh).bind(3, d.altWh).bind(4, d.batteryAhIn).bind(5, d.batteryAhOut);
   st.bind(6, d.bulkS).bind(7, d.absorptionS).bind(8, d.floatS).bind(9, d.idleS).bind(10, d.fieldOnS);
   bindKnown(st, 11, d.peakAltTempC);
   bindKnown(st, 12, d.minSocPct);
   bindKnown(st, 13, d.maxSocPct);
+  bindKnown(st, 14, d.batteryWhIn);
+  bindKnown(st, 15, d.minBatteryV);
+  bindKnown(st, 16, d.maxBatteryV);
+  bindKnown(st, 17, d.socStartPct);
+  bindKnown(st, 18, d.socEndPct);
+  bindKnown(st, 19, d.engineS);
   return status(st.step(), "saveDay");
 }
 
@@ -117,6 +131,17 @@ std::vector<ChargeSummary> Store::charges(std::size_t n) {
   sql::Stmt st(db_,
                std::string("SELECT ") + kChargeColumns + " FROM history_charges ORDER BY id DESC LIMIT ?1");
   st.bind(1, static_cast<std::int64_t>(n));
+  while (st.ok() && st.step() == SQLITE_ROW) out.push_back(chargeFrom(st));
+  return out;
+}
+
+std::vector<ChargeSummary> Store::chargesBetween(std::int64_t fromMs, std::int64_t toMs) {
+  const std::lock_guard<std::recursive_mutex> lock(mu_);
+  std::vector<ChargeSummary> out;
+  sql::Stmt st(
+      db_, std::string("SELECT ") + kChargeColumns +
+               " FROM history_charges WHERE start_ms >= ?1 AND start_ms < ?2 ORDER BY start_ms LIMIT 1000");
+  st.bind(1, fromMs).bind(2, toMs);
   while (st.ok() && st.step() == SQLITE_ROW) out.push_back(chargeFrom(st));
   return out;
 }

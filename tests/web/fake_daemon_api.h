@@ -154,6 +154,34 @@ class FakeDaemonApi : public DaemonApi {
     c.altAh = 0.000042;
     return {c};
   }
+  // Two hours of trend rows from fromS (the battery temperature not known),
+  // and the range asked for (web_trends_test.cpp).
+  std::vector<TrendRow> historyTrends(std::int64_t fromS, std::int64_t toS, bool daily) override {
+    std::lock_guard lock(m_);
+    lastTrends_ = {fromS, toS, daily};
+    std::vector<TrendRow> out;
+    for (int i = 0; i < 2; ++i) {
+      TrendRow r;
+      r.startS = r.dayS = fromS + i * 3600;
+      r.samples = 3600;
+      r.stat[0] = {12.4567, 13.1234567, 14.4};
+      r.stat[1] = {-20.0, 5.55555, 80.0};
+      out.push_back(r);
+    }
+    return out;
+  }
+  std::optional<std::vector<ChargeSummary>> historyChargesOn(const std::string& day) override {
+    if (day == "2026-02-30") return std::nullopt;
+    return historyCharges(1);
+  }
+  struct TrendAsk {
+    std::int64_t fromS = 0, toS = 0;
+    bool daily = false;
+  };
+  TrendAsk lastTrends() {
+    std::lock_guard lock(m_);
+    return lastTrends_;
+  }
   HistoryResult history(const HistoryQuery& q) override {
     HistoryResult r;
     for (const auto& s : q.series)
@@ -227,6 +255,7 @@ class FakeDaemonApi : public DaemonApi {
   std::vector<Command> commands_;
   std::vector<EventRecord> events_;
   HistoryQuery lastHistory_;
+  TrendAsk lastTrends_;
   int patchCalls_ = 0;
   std::string lastPatchSource_;
   std::vector<std::string> securityEvents_;

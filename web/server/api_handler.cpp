@@ -148,6 +148,8 @@ Response ApiHandler::route(const Request& req, const Peer& peer) {
   if (path == "/api/history") return onlyGet([&] { return getHistory(req, query); });
   if (path == "/api/history/days") return onlyGet([&] { return getHistoryDays(req, query); });
   if (path == "/api/history/charges") return onlyGet([&] { return getHistoryCharges(req, query); });
+  if (path == "/api/history/trends") return onlyGet([&] { return getHistoryTrends(req, query); });
+  if (path == "/api/history/export") return onlyGet([&] { return getHistoryExport(req, query); });
   if (path == "/api/system") return onlyGet([&] { return getSystem(req); });
   if (path == "/metrics") return onlyGet([&] { return getMetrics(req); });
   if (path == "/api/params" || path == "/api/commands") {

@@ -56,6 +56,8 @@ class ApiHandler {
   Response getHistory(const Request& req, std::string_view query);
   Response getHistoryDays(const Request& req, std::string_view query);
   Response getHistoryCharges(const Request& req, std::string_view query);
+  Response getHistoryTrends(const Request& req, std::string_view query);  // api_trends.cpp
+  Response getHistoryExport(const Request& req, std::string_view query);
   Response getSystem(const Request& req);
   Response getCommands(const Request& req);
   Response getMetrics(const Request& req);

@@ -122,6 +122,12 @@ json::object dayToJson(const DaySummary& d) {
   o["peak_alt_temp_c"] = statusNumber("peak_alt_temp_c", d.peakAltTempC);
   o["min_soc_pct"] = statusNumber("min_soc_pct", d.minSocPct);
   o["max_soc_pct"] = statusNumber("max_soc_pct", d.maxSocPct);
+  o["battery_wh_in"] = statusNumber("battery_wh_in", d.batteryWhIn);
+  o["v_min"] = statusNumber("v_min", d.minBatteryV);
+  o["v_max"] = statusNumber("v_max", d.maxBatteryV);
+  o["soc_start_pct"] = statusNumber("soc_start_pct", d.socStartPct);
+  o["soc_end_pct"] = statusNumber("soc_end_pct", d.socEndPct);
+  o["engine_h"] = statusNumber("engine_h", hours(d.engineS));
   return o;
 }
 
@@ -164,6 +170,16 @@ Response ApiHandler::getHistoryDays(const Request& req, std::string_view query) 
 }
 
 Response ApiHandler::getHistoryCharges(const Request& req, std::string_view query) {
+  if (const auto day = queryParam(query, "day")) {
+    const auto list = api_.historyChargesOn(*day);
+    if (!list) return error(req, http::status::bad_request, "day must be a calendar day, YYYY-MM-DD");
+    json::array a;
+    for (const auto& c : *list) a.push_back(chargeToJson(c));
+    json::object o;
+    o["day"] = *day;
+    o["charges"] = std::move(a);
+    return jsonReply(req, http::status::ok, o);
+  }
   const auto n = rowsParam(query, "limit", 20);
   if (!n) return error(req, http::status::bad_request, "limit must be a whole number from 1 to 366");
   json::array a;

@@ -24,6 +24,7 @@
 #include "core/commands.h"
 #include "core/events.h"
 #include "core/time.h"
+#include "core/trend_rows.h"
 #include "params/params.h"
 
 namespace xr::web {
@@ -297,6 +298,15 @@ class DaemonApi {
   // "History"); empty without a state database.
   virtual std::vector<DaySummary> historyDays(std::size_t /*n*/) { return {}; }
   virtual std::vector<ChargeSummary> historyCharges(std::size_t /*n*/) { return {}; }
+  // The charges that started on a local day "YYYY-MM-DD", oldest first;
+  // nullopt when there is no such day (2026-02-30).
+  virtual std::optional<std::vector<ChargeSummary>> historyChargesOn(const std::string& /*day*/) {
+    return std::vector<ChargeSummary>{};
+  }
+  // Trend rows starting in [fromS, toS], oldest first (core/trend_rows.h).
+  virtual std::vector<TrendRow> historyTrends(std::int64_t /*fromS*/, std::int64_t /*toS*/, bool /*daily*/) {
+    return {};
+  }
 
   virtual std::vector<ProbeResult> probeResults() = 0;
   virtual VersionMap versions() = 0;

@@ -450,19 +450,26 @@ await test("an incident ends: a trip after its clears and settle time, or long a
 });
 
 const H = await mod("web/www/js/history.js");
-await test("the History page: bars scaled to the best day, charges in words", () => {
-  const rows = H.dayRows([
-    { day: "2026-07-02", alt_ah: 40, alt_wh: 560, bulk_h: 1.25, absorption_h: 0.5, float_h: 2, peak_alt_temp_c: 88.4 },
-    { day: "2026-07-01", alt_ah: 4.2, alt_wh: 58, bulk_h: 0.1, absorption_h: 0, float_h: 0, peak_alt_temp_c: null },
-  ]);
-  assert.deepEqual(rows.map((r) => r.barPct), [100, 11]);
-  assert.equal(rows[0].amount, "40 Ah · 0.56 kWh");
-  assert.equal(rows[1].amount, "4.2 Ah · 0.06 kWh");
-  assert.equal(rows[0].peak, "88 °C");
-  assert.equal(rows[1].peak, "—");
-  assert.equal(rows[0].stages, "bulk 1.3 h · absorption 0.5 h · float 2.0 h");
+await test("the History page: days oldest first, blanks where unknown, the display unit, a line per day", () => {
+  const days = [
+    { day: "2026-07-02", alt_ah: 40, alt_wh: 560, battery_ah_in: 35, battery_wh_in: 480, bulk_h: 1.25, absorption_h: 0.5,
+      float_h: 2, engine_h: 3.8, v_min: 12.41, v_max: 14.4, soc_start_pct: 61, soc_end_pct: 97, peak_alt_temp_c: 88.4 },
+    { day: "2026-07-01", alt_ah: 4.2, alt_wh: 58, bulk_h: 0.1, absorption_h: 0, float_h: 0, peak_alt_temp_c: null,
+      soc_start_pct: null, soc_end_pct: null, engine_h: null },
+  ];
+  const c = H.dayColumns(days, "F");
+  assert.deepEqual(c.days, ["2026-07-01", "2026-07-02"]);
+  assert.deepEqual(c.kwhIn, [null, 0.48]);
+  assert.deepEqual(c.socStart, [null, 61]);
+  assert.deepEqual(c.peak, [null, 88.4 * 1.8 + 32]);
+  assert.ok(c.x[1] - c.x[0] >= 23 * 3600 && c.x[1] - c.x[0] <= 25 * 3600);
+  assert.equal(H.dayLine(days[0], "C"),
+    "2026-07-02 · 40 Ah · 0.56 kWh · battery 12.41 V–14.40 V · SoC 61 % → 97 % · engine 3.8 h · alternator up to 88 °C");
+  assert.equal(H.dayLine(days[1], "F"),
+    "2026-07-01 · 4.2 Ah · 0.06 kWh · battery —–— · SoC — → — · engine — · alternator up to —");
   assert.equal(H.duration(80), "1 h 20 min");
   assert.equal(H.duration(45), "45 min");
+  assert.equal(H.duration(119.7), "2 h 0 min");
   assert.equal(H.endedBy({ open: true }), "still charging");
   assert.equal(H.endedBy({ open: false, ended_by: "STOPPED" }), "the regulator stopped");
   assert.equal(H.endedBy({ open: false, ended_by: "REASON_RPM_LOW" }), N.REASONS.REASON_RPM_LOW.title);

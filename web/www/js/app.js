@@ -10,6 +10,7 @@ import { initPairing, loadDevices } from "./pairing.js";
 import { initSettings, loadSettings, setParam } from "./settings.js";
 import { initSetup, renderSetupOwner } from "./setup.js";
 import { loadHistoryPage } from "./history.js";
+import { initTrends, loadTrendsPage } from "./trends.js";
 import { renderGuardBanner } from "./guards.js";
 import { loadCapacitySetting, renderAlternator, renderHealth, useMeasuredCapacity } from "./health.js";
 
@@ -54,7 +55,7 @@ function connect() {
 }
 
 // ---------------------------------------------------------------- routing
-const PAGES = ["live", "settings", "protections", "battery", "alternator", "history", "tuning", "events", "system", "setup"];
+const PAGES = ["live", "settings", "protections", "battery", "alternator", "history", "trends", "tuning", "events", "system", "setup"];
 const currentPage = () => { const h = location.hash.slice(1); return PAGES.includes(h) ? h : "live"; };
 function route() {
   const page = currentPage();
@@ -69,6 +70,7 @@ function route() {
   if (page === "settings") loadSettings().catch(fail);
   if (page === "events") loadEvents().catch(fail);
   if (page === "history") loadHistoryPage().catch(fail);
+  if (page === "trends") loadTrendsPage().catch(fail);
   if (page === "system") { loadSystem().catch(fail); loadDevices().catch(fail); }
   if (page === "tuning") loadSettingsFlags().catch(fail);
   if (page === "battery") loadCapacitySetting().then(() => latestStatus() && renderHealth(latestStatus())).catch(fail);
@@ -155,6 +157,7 @@ function init() {
   initSettings();
   initSetup(runCommand);
   initCharts();
+  initTrends(toast);
   window.addEventListener("hashchange", route);
   setInterval(() => { if (currentPage() === "live") loadHistory(); }, 60000);
   // The event list follows new events while it is open.
