@@ -9,6 +9,7 @@
 #include <ctime>
 
 #include "app/store_service.h"
+#include "core/freshness.h"
 #include "core/wall_time_text.h"
 
 namespace xr::app {
@@ -129,7 +130,7 @@ void StoreService::tallySummaries(const rt::RuntimeSnapshot& s, std::int64_t now
   x.socPct = socShown(t).pct;
   x.stage = t.stage;
   x.fieldOn = t.field_enable;
-  x.engineRunning = t.rpm >= wear_k::kRunningRpm;
+  x.engineRunning = fresh::engineTurning(t.rpm);
   x.reason = t.reason;
   ChargeTally::Ended ended = tally_.add(x);
   const bool due = nowMs - lastSummarySaveMs_ >= kSummarySaveMs || nowMs < lastSummarySaveMs_;

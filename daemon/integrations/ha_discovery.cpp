@@ -162,8 +162,8 @@ json::object incidentDetail(const IncidentWords& w) {
 }
 }  // namespace
 
-std::string incidentEventJson(const IncidentEdge& e) {
-  json::object o = incidentDetail(incidentWords(e));
+std::string incidentEventJson(const IncidentEdge& e, const IncidentWords& words) {
+  json::object o = incidentDetail(words);
   o["event_type"] = e.start ? "start" : "end";
   o["incident_id"] = e.incident.id;
   return json::serialize(o);

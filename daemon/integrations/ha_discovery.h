@@ -56,7 +56,7 @@ std::vector<MqttMessage> discoveryConfigs(const HaTopics& t, bool withCommands, 
 std::string stateJson(const IntegrationSample& s, const IncidentWords* incident = nullptr);
 
 // One incident edge for the event entity: event_type start|end and the words.
-std::string incidentEventJson(const IncidentEdge& e);
+std::string incidentEventJson(const IncidentEdge& e, const IncidentWords& words);
 
 // "off" when the regulator is switched off by the operator, else "auto"
 // (the select's current option).

@@ -119,7 +119,7 @@ void HomeAssistantBridge::onIncident(const IncidentEdge& e) {
     incident_.reset();
   if (!link_->connected()) return;  // the next state after the reconnect says where it stands
   // Not retained: an event is a moment; a new subscriber must not see an old one fire.
-  link_->publish(topics_.incidentEvent(), incidentEventJson(e), false, 1);
+  link_->publish(topics_.incidentEvent(), incidentEventJson(e, incidentWords(e)), false, 1);
   publishState();
 }
 

@@ -28,7 +28,7 @@ IntegrationsService::IntegrationsService(const IntegrationsSettings& s, rt::Hand
   if (s.weather.enabled)
     weather_ = std::make_unique<WeatherClient>(io_, s.weather, handoffs, commands, clock,
                                                signalk_ ? &signalkPosition_ : nullptr);
-  if (!s.notify.url.empty()) push_ = std::make_unique<PushNotifier>(io_, s.notify, s.notify.name);
+  if (!s.notify.url.empty()) push_ = std::make_unique<PushNotifier>(io_, s.notify, s.notify.name, clock);
   // Incidents for whoever tells the owner (docs/integrations.md "Alarms that reach the owner").
   if (incidents.feed && incidents.wallNow && (push_ || ha_)) {
     incidents_ = std::make_unique<IncidentWatch>(io_, std::move(incidents));

@@ -48,11 +48,12 @@ std::string boardName() {
   return host;
 }
 
-PushNotifier::PushNotifier(asio::io_context& io, const NotifySettings& s, std::string regulator)
+PushNotifier::PushNotifier(asio::io_context& io, const NotifySettings& s, std::string regulator,
+                           const rt::WallClock& clock)
     : io_(io),
       settings_(s),
       regulator_(regulator.empty() ? boardName() : std::move(regulator)),
-      health_("notify"),
+      health_("notify", clock),
       backoff_(std::chrono::milliseconds(2s), std::chrono::milliseconds(5min)),
       wake_(io) {
   std::string why;

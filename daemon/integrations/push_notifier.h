@@ -32,7 +32,8 @@ class PushNotifier {
   static constexpr std::size_t kQueueLimit = 64;
 
   // Throws std::runtime_error on a URL or header the loader would refuse.
-  PushNotifier(boost::asio::io_context& io, const NotifySettings& s, std::string regulator);
+  PushNotifier(boost::asio::io_context& io, const NotifySettings& s, std::string regulator,
+               const rt::WallClock& clock);
   void start();
   void stop();
   // On the io_context's thread: queue one edge for delivery.

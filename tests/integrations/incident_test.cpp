@@ -153,7 +153,7 @@ TEST(HaIncident, StateCarriesTheIncidentAndTheEventFires) {
   EXPECT_EQ(on.at("incident").as_string(), "ON");
   EXPECT_EQ(on.at("incident_detail").as_object().at("title").as_string(), "Alternator too hot");
   EXPECT_EQ(json::parse(stateJson(s)).as_object().at("incident").as_string(), "OFF");
-  auto fired = json::parse(incidentEventJson(f.edges[0])).as_object();
+  auto fired = json::parse(incidentEventJson(f.edges[0], incidentWords(f.edges[0]))).as_object();
   EXPECT_EQ(fired.at("event_type").as_string(), "start");
   EXPECT_EQ(fired.at("what_to_do").as_string(),
             "Check belt and airflow; lower the alternator's current limit.");
