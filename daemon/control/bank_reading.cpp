@@ -38,6 +38,12 @@ bool Regulator::settleBankClass(const Tick& t) noexcept {
     s.out.inaFastMode = false;
     s.out.inaBovlVolts = kBankReadingBovlV;
     s.out.telemetry.now = t.in.now;
+    // What the screens and the boat's network read meanwhile: no battery
+    // reading yet (not 0 V), and the regulator in automatic (nobody turned it
+    // off: the owner model must not say "Off").
+    s.out.telemetry.ibv_v = kNoValue;
+    s.out.telemetry.battery_v = kNoValue;
+    s.out.telemetry.control.sysMode = SysMode::SYS_MODE_AUTO;
     return false;
   }
   const std::optional<SystemClass> c = reading ? bankClassOfReading(v.value) : std::nullopt;

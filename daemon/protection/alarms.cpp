@@ -51,10 +51,8 @@ bool ProtectionSupervisor::checkAlarms(bool effAnomalyAlarmActive, EventBatch& e
     const bool counts = row[i] && (r == AlarmRow::TempTaskHung || p_.AlarmActivate);
     if (counts && r != AlarmRow::TempTaskHung) gated = true;
     // One console message per row per 30 s while it holds; the rows with an
-    // event of their own (once per episode) add none: a mismatch that lasts
-    // hours is not 120 journal lines an hour.
-    // A silent BMS has its trip and clear (REASON_BMS_STALE, bms_limiter.cpp):
-    // one incident, not a row every 30 s.
+    // event of their own (once per episode; a silent BMS its REASON_BMS_STALE
+    // trip and clear) add none: a mismatch lasting hours is one incident.
     const bool ownEvent =
         r == AlarmRow::BmsMismatch || r == AlarmRow::ChargingHeld || r == AlarmRow::BmsStale;
     if (counts && !ownEvent &&

@@ -395,6 +395,7 @@ TEST_F(WebApiTest, Commands_EveryCommandReachesTheDaemon) {
       {R"({"command":"tuning_commit"})", CommandType::TuningCommit},
       {R"({"command":"cv_tuning_commit"})", CommandType::CvTuningCommit},
       {R"({"command":"weather_mode","active":true})", CommandType::WeatherMode},
+      {R"({"command":"acknowledge_alarm"})", CommandType::AcknowledgeAlarm},
   };
   for (const auto& [body, type] : cases) {
     const auto r = command(body);

@@ -16,10 +16,10 @@ const args = parseArgs();
 const token = "browser-test-token-0123456789";
 // Filled in memory (/dev/shm where there is one): the store's commits are
 // durable on a disk, and a year of them would wait on the disk for minutes.
-const seedDir = fs.mkdtempSync(path.join(fs.existsSync("/dev/shm") ? "/dev/shm" : os.tmpdir(), "xr-history-seed-"));
-const seed = path.join(seedDir, "state.db");
+const fillDir = fs.mkdtempSync(path.join(fs.existsSync("/dev/shm") ? "/dev/shm" : os.tmpdir(), "xr-history-fill-"));
+const filledDb = path.join(fillDir, "state.db");
 const t0 = Date.now();
-console.log(execFileSync(args.fill, ["--state-db", seed, "--days", "365", "--fine-days", "30"]).toString().trim());
+console.log(execFileSync(args.fill, ["--state-db", filledDb, "--days", "365", "--fine-days", "30"]).toString().trim());
 console.log(`# filled in ${((Date.now() - t0) / 1000).toFixed(1)} s`);
 
 // Pixels of a chart's canvas in a colour (r, g, b within 60): what was drawn.
@@ -36,7 +36,7 @@ const BLUE = [0x3f, 0x7f, 0xff];
 const ticks = (page, title) => page.evaluate((title) =>
   document.querySelector(`.history-chart[data-title="${title}"]`).uplot.axes.map((a) => (a._values || []).join(" ")), title);
 
-await runDaemonBrowserTest({ args, token, prefix: "xr-history-", seedState: seed }, async ({ server, browser, stateDir, get }) => {
+await runDaemonBrowserTest({ args, token, prefix: "xr-history-", seedState: filledDb }, async ({ server, browser, stateDir, get }) => {
   const api = await get("/api/history/days?n=30");
   assert.equal(api.days.length, 30, "30 days in the store");
   const charged = api.days.filter((d) => d.alt_ah > 1);
@@ -113,4 +113,4 @@ await runDaemonBrowserTest({ args, token, prefix: "xr-history-", seedState: seed
   assert.deepEqual(errors, [], "no script error");
   console.log(`ok - export: ${lines.length - 1} hourly rows for 30 days; bad ranges refused`);
 });
-fs.rmSync(seedDir, { recursive: true, force: true });
+fs.rmSync(fillDir, { recursive: true, force: true });
