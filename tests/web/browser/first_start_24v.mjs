@@ -8,7 +8,7 @@
 // limits for 24 V. The owner then chooses AGM 24 V on the set-up page and
 // the regulator aims for the profile's 28.8 V.
 import assert from "node:assert/strict";
-import { parseArgs, runDaemonBrowserTest, until } from "./server.mjs";
+import { parseArgs, runDaemonBrowserTest, saveSetup, until } from "./server.mjs";
 
 const args = parseArgs();
 const token = "browser-test-token-0123456789";
@@ -67,15 +67,7 @@ await runDaemonBrowserTest({ args, token, scenario, shipped: true, prefix: "xr-f
   console.log("ok - Live shows one calm notice naming 24 V and the set-up page, no banner");
 
   await page.click("#first-run a[href='#setup']");
-  await page.waitForSelector("#page-setup:not([hidden]) #su-profile");
-  await page.selectOption("#su-profile", { label: "agm" });
-  await page.selectOption("#su-bank", "24");
-  await page.fill("#su-capacity", "200");
-  await page.fill("#su-rating", "120");
-  await page.fill("#su-belt", "100");
-  await page.click("#setup-save");
-  await page.waitForSelector("#setup-result:not([hidden])");
-  const msg = await page.textContent("#setup-msg");
+  const msg = await saveSetup(page, { profile: "agm", bank: "24", capacity: 200, rating: 120, belt: 100 });
   assert.match(msg, /^Saved\./, `saved with no error: ${msg}`);
   const p = Object.fromEntries((await get("/api/params")).params.map((x) => [x.name, x]));
   assert.equal(p.AbsorptionVoltage.value, 28.8);

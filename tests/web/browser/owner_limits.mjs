@@ -8,7 +8,7 @@
 // Live ("Aiming for" and the headline), Protections and the set-up's "Now in
 // effect" show the same words and amps.
 import assert from "node:assert/strict";
-import { parseArgs, runDaemonBrowserTest, until } from "./server.mjs";
+import { parseArgs, runDaemonBrowserTest, saveSetup, until } from "./server.mjs";
 
 const args = parseArgs();
 const token = "browser-test-token-0123456789";
@@ -41,14 +41,7 @@ await runDaemonBrowserTest({ args, token, scenario, shipped: true, prefix: "xr-o
   await page.goto(server.base + "/#setup");
   await page.evaluate((t) => localStorage.setItem("xregulator.token", t), token);
   await page.reload();
-  await page.waitForSelector("#page-setup:not([hidden]) #su-profile");
-  await page.selectOption("#su-profile", { label: "lifepo4" });
-  await page.fill("#su-capacity", "280");
-  await page.fill("#su-rating", "120");
-  await page.fill("#su-belt", "100");
-  await page.click("#setup-save");
-  await page.waitForSelector("#setup-result:not([hidden])");
-  assert.match(await page.textContent("#setup-msg"), /^Saved\./);
+  assert.match(await saveSetup(page, { profile: "lifepo4", capacity: 280, rating: 120, belt: 100 }), /^Saved\./);
 
   // The regulator's own account: the C/10 cap first, its amps and its cause.
   await until("the C/10 cap in owner.limits", async () => {

@@ -6,7 +6,7 @@
 // model: 40 % from the BMS, the BMS talking; no page shows another SoC
 // (the counted one's "unknown until the first full charge" or its averages).
 import assert from "node:assert/strict";
-import { parseArgs, runDaemonBrowserTest, until } from "./server.mjs";
+import { parseArgs, runDaemonBrowserTest, saveSetup, until } from "./server.mjs";
 
 const args = parseArgs();
 const token = "browser-test-token-0123456789";
@@ -65,11 +65,7 @@ await runDaemonBrowserTest({ args, token, scenario, shipped: true, prefix: "xr-s
   console.log("ok - System: Battery BMS " + owner.bms.words);
 
   await page.goto(server.base + "/#setup");
-  await page.waitForSelector("#page-setup:not([hidden]) #su-profile");
-  await page.selectOption("#su-profile", { label: "lifepo4" });
-  await page.fill("#su-capacity", "280");
-  await page.click("#setup-save");
-  await page.waitForSelector("#setup-result:not([hidden])");
+  await saveSetup(page, { profile: "lifepo4", capacity: 280 });
   await page.waitForFunction((w) => document.getElementById("setup-now")?.textContent.includes("BMS now" + w), owner.bms.words);
   console.log("ok - set-up \"Now in effect\": BMS now " + owner.bms.words);
   await ctx.close();

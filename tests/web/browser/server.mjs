@@ -122,3 +122,18 @@ export async function runDaemonBrowserTest({ args, prefix, seedState, ...serverO
   }
   process.exit(failed ? 1 : 0);
 }
+
+// The set-up page as an owner fills it: the page must be open; each field
+// given is set (bank: "12"/"24"/"48"; numbers as the owner types them), then
+// Save. Returns the page's message ("Saved. ..." or the refusal).
+export async function saveSetup(page, { profile, bank, capacity, rating, belt, tempLimit }) {
+  await page.waitForSelector("#page-setup:not([hidden]) #su-profile");
+  if (profile) await page.selectOption("#su-profile", { label: profile });
+  if (bank) await page.selectOption("#su-bank", bank);
+  for (const [id, value] of [["#su-capacity", capacity], ["#su-rating", rating], ["#su-belt", belt],
+    ["#su-templimit", tempLimit]])
+    if (value !== undefined) await page.fill(id, String(value));
+  await page.click("#setup-save");
+  await page.waitForSelector("#setup-result:not([hidden])");
+  return page.textContent("#setup-msg");
+}

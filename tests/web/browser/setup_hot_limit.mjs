@@ -5,7 +5,7 @@
 // follows the limit (TempAlarm 0 = TemperatureLimitF + 40 °F), so the save
 // meets no refusal naming a field that is not on the page.
 import assert from "node:assert/strict";
-import { parseArgs, runDaemonBrowserTest } from "./server.mjs";
+import { parseArgs, runDaemonBrowserTest, saveSetup } from "./server.mjs";
 
 const args = parseArgs();
 const token = "browser-test-token-0123456789";
@@ -36,16 +36,8 @@ await runDaemonBrowserTest({ args, token, scenario, shipped: true, prefix: "xr-s
   await page.evaluate((t) => localStorage.setItem("xregulator.token", t), token);
   await page.reload();
   await page.goto(server.base + "/#setup");
-  await page.waitForSelector("#page-setup:not([hidden]) #su-profile");
-  await page.selectOption("#su-profile", { label: "agm" });
-  await page.selectOption("#su-bank", "12");
-  await page.fill("#su-capacity", "200");
-  await page.fill("#su-rating", "100");
-  await page.fill("#su-belt", "90");
-  await page.fill("#su-templimit", "90");
-  await page.click("#setup-save");
-  await page.waitForSelector("#setup-result:not([hidden])");
-  const msg = await page.textContent("#setup-msg");
+  const msg = await saveSetup(page,
+    { profile: "agm", bank: "12", capacity: 200, rating: 100, belt: 90, tempLimit: 90 });
   assert.match(msg, /^Saved\./, `saved with no error: ${msg}`);
   assert.doesNotMatch(msg, /TempAlarm|degF/, msg);
   const p = Object.fromEntries((await get("/api/params")).params.map((x) => [x.name, x]));

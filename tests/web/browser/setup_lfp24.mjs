@@ -11,7 +11,7 @@
 import fs from "node:fs";
 import path from "node:path";
 import assert from "node:assert/strict";
-import { parseArgs, runDaemonBrowserTest, startServer, until } from "./server.mjs";
+import { parseArgs, runDaemonBrowserTest, saveSetup, startServer, until } from "./server.mjs";
 
 const args = parseArgs();
 const token = "browser-test-token-0123456789";
@@ -53,15 +53,7 @@ await runDaemonBrowserTest({ args, token, scenario, shipped: true, prefix: "xr-s
   console.log("ok - before the set-up the page says the settings are for another bank size; field off");
 
   await page.goto(server.base + "/#setup");
-  await page.waitForSelector("#page-setup:not([hidden]) #su-profile");
-  await page.selectOption("#su-profile", { label: "lifepo4" });
-  await page.selectOption("#su-bank", "24");
-  await page.fill("#su-capacity", "400");
-  await page.fill("#su-rating", "120");
-  await page.fill("#su-belt", "100");
-  await page.click("#setup-save");
-  await page.waitForSelector("#setup-result:not([hidden])");
-  const msg = await page.textContent("#setup-msg");
+  const msg = await saveSetup(page, { profile: "lifepo4", bank: "24", capacity: 400, rating: 120, belt: 100 });
   assert.match(msg, /^Saved\./, `saved with no error: ${msg}`);
   const shown = await page.textContent("#setup-result");
   assert.match(shown, /Absorption28\.4 V/, shown);
