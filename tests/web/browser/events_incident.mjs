@@ -73,6 +73,12 @@ await runDaemonBrowserTest({ args, token, scenario, prefix: "xr-incident-" }, as
   const api = await get("/api/history/days?n=30");
   assert.equal(api.days.length, 1);
   assert.ok(api.days[0].alt_ah > 0 && api.days[0].field_on_h > 0, JSON.stringify(api.days[0]));
+  // One day of history: the time axis names that day and no other (not 1 Jan).
+  await page.waitForSelector('.history-chart[data-title="Into the bank"] canvas');
+  const dayTicks = await page.evaluate(() =>
+    document.querySelector('.history-chart[data-title="Into the bank"]').uplot.axes[0]._values);
+  const todayShort = await page.evaluate((d) => new Date(`${d}T12:00:00`).toLocaleDateString([], { day: "numeric", month: "short" }), api.days[0].day);
+  assert.deepEqual([...new Set(dayTicks)], [todayShort], `the day axis of one day: ${dayTicks}`);
   const charges = await page.locator("#history-charges tr").allTextContents();
   assert.equal(charges.length, 1, charges.join(" | "));
   assert.match(charges[0], /still charging$/);

@@ -60,6 +60,10 @@ await runDaemonBrowserTest({ args, token, prefix: "xr-history-", seedState: fill
   const axes = await ticks(page, "Into the bank");
   assert.ok(axes.some((a) => / Ah/.test(a)) && axes.some((a) => / kWh/.test(a)), `units on the axes: ${axes}`);
   assert.ok(axes.some((a) => /\d{1,2} [A-Z][a-z]{2}/.test(a)), `dates on the time axis: ${axes}`);
+  const dayLabels = new Set(api.days.map((d) => new Date(`${d.day}T12:00:00`).toLocaleDateString("en-GB", { day: "numeric", month: "short" })));
+  const timeTicks = await page.evaluate(() =>
+    document.querySelector('.history-chart[data-title="Into the bank"]').uplot.axes[0]._values);
+  assert.ok(timeTicks.length >= 3 && timeTicks.every((t) => dayLabels.has(t)), `the time axis names days of the store: ${timeTicks}`);
   assert.match(await page.locator("#history-days .day-line").first().textContent(),
     /^\d{4}-\d\d-\d\d · .* Ah · .* kWh · battery .*V–.*V · SoC .* → .* · engine .* h · alternator up to .* °C$/);
 

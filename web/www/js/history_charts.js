@@ -35,6 +35,14 @@ function sideBySide(k, n, spanS) {
   });
 }
 
+// The days themselves as the time axis's ticks, at most `n`, the newest
+// always: uPlot's own time ticks fall between days, and with a single day
+// of history at 1 Jan 1970 (docs/dashboard.md "History").
+function daySplits(x, n) {
+  const every = Math.max(1, Math.ceil(x.length / n));
+  return x.filter((t, i) => (x.length - 1 - i) % every === 0);
+}
+
 function chart(host, title, x, series, axes, opts) {
   if (!window.uPlot) { host.textContent = "charts unavailable (uPlot not installed: run make deps)"; return null; }
   const box = document.createElement("div");
@@ -51,7 +59,10 @@ function chart(host, title, x, series, axes, opts) {
   const u = new uPlot({
     width: width(box), height: 200, scales, legend: { live: true },
     cursor: { drag: { x: false, y: false } },
-    axes: [{ stroke: css("--dim"), grid: { stroke: css("--grid") }, values: (p, v) => v.map((t) => dateText(t, opts.hours)) }, ...axes],
+    axes: [{
+      stroke: css("--dim"), grid: { stroke: css("--grid") }, values: (p, v) => v.map((t) => dateText(t, opts.hours)),
+      splits: opts.hours ? undefined : () => daySplits(x, 5),
+    }, ...axes],
     series: [{ value: (p, t) => (t == null ? "—" : dateText(t, opts.hours)) }, ...series.map((s, i) => ({
       label: s.label, scale: s.scale, stroke: s.color || COLORS[i % COLORS.length],
       fill: s.bar !== undefined ? (s.color || COLORS[i % COLORS.length]) + "cc" : undefined,
