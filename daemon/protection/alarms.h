@@ -39,7 +39,11 @@ class AlarmPanel {
   AlarmPanel() noexcept { messageAt_.fill(-1); }
   // Returns the GPIO21 level.
   bool update(const AlarmInput& in, const Params& p, const ProtectionLog& log) noexcept;
-  ControlAlarmRows& controlRows() noexcept { return control_; }
+  void setBmsStale(bool stale) noexcept { control_.bmsStale = stale; }
+  void setChargeChecks(bool bmsMismatch, bool chargingHeld) noexcept {
+    control_.bmsMismatch = bmsMismatch;
+    control_.chargingHeld = chargingHeld;
+  }
 
   void resetLatch() noexcept { latched_ = false; }
   // The buzzer goes quiet for the rows sounding now (and a latch is

@@ -59,12 +59,11 @@ class ProtectionSupervisor {
   // and RPM_REST_GRACE_MS after, the RPM gate trusts the RPM seen before it.
   void setFieldResting(bool resting) noexcept { fieldResting_ = resting; }
   // The BMS limits went stale (BmsLimiter): an alarm row of its own.
-  void setBmsStale(bool stale) noexcept { alarms_.controlRows().bmsStale = stale; }
+  void setBmsStale(bool stale) noexcept { alarms_.setBmsStale(stale); }
   // The BMS's values do not fit the bank, and charging held for long
   // (docs/protections.md): rows whose own event tells the owner once.
   void setChargeChecks(bool bmsMismatch, bool chargingHeld) noexcept {
-    alarms_.controlRows().bmsMismatch = bmsMismatch;
-    alarms_.controlRows().chargingHeld = chargingHeld;
+    alarms_.setChargeChecks(bmsMismatch, chargingHeld);
   }
   const ProtectionFlags& flags() const noexcept { return flags_; }
 
