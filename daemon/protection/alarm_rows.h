@@ -1,5 +1,5 @@
 #pragma once
-// Rows of the seed's buzzer table (docs/protections.md "Protections"), in order; Event::detail of an
+// Rows of the specification's buzzer table (docs/protections.md "Protections"), in order; Event::detail of an
 // AlarmCondition event.
 #include <cstddef>
 #include <string_view>
@@ -18,9 +18,9 @@ enum class AlarmRow {
   EfficiencyAnomaly,   // effAnomalyAlarmActive
   FaultMode,           // critical / warning / lockout mode (docs/install.md, the buzzer on GPIO21)
   TempTaskHung,        // NOT gated by AlarmActivate
-  BmsStale,            // ours: BMS limits silent for BmsStaleS
-  BmsMismatch,         // ours: the BMS's values do not fit the bank (its own BmsMismatch event)
-  ChargingHeld,        // ours: charging held 15 min with the engine running (its own ChargingHeld event)
+  BmsStale,            // added here: BMS limits silent for BmsStaleS
+  BmsMismatch,         // added here: the BMS's values do not fit the bank (its own BmsMismatch event)
+  ChargingHeld,  // added here: charging held 15 min with the engine running (its own ChargingHeld event)
 };
 inline constexpr std::size_t kAlarmRowCount = 14;
 

@@ -34,15 +34,15 @@ bool latched(const ProtectionFlags& f, M m) { return f.rampLatched && f.rampLatc
 
 ModeDecision selectFieldMode(const TickSnapshot& s) {
   const ProtectionFlags& f = s.prot;
-  // 0. Ours: the bank is another size than the settings say, so every
+  // 0. Added here: the bank is another size than the settings say, so every
   // voltage threshold (the hard shutdown's and the INA228 limit too) is
   // wrong: cut in every mode, and name the cause first — 12 V settings on a
   // 24 V bank also latch the INA228 alert, which is a symptom of it.
   if (f.bankMismatch) return {M::MODE_CRITICAL_RAMP, Reason::REASON_BANK_MISMATCH};
   // 0b. INA228 latch: all modes, Limp Home included (pre-gate).
   if (f.inaOvervoltageLatched) return {M::MODE_CRITICAL_RAMP, Reason::REASON_INA_OVERVOLTAGE};
-  // 0c. Alternator hard shutdown: an immediate cut in every mode (ours, after
-  // the original firmware's later versions; the seed's warning ramp went on
+  // 0c. Alternator hard shutdown: an immediate cut in every mode (a deviation, after
+  // the original firmware's later versions; the specification's warning ramp went on
   // feeding a bank already over its trip for seconds).
   if (f.altHardShutdown) return {M::MODE_CRITICAL_RAMP, Reason::REASON_ALT_HARD_SHUTDOWN};
   // L. Limp Home bypasses the whole protection chain.
@@ -82,7 +82,7 @@ ModeDecision selectFieldMode(const TickSnapshot& s) {
   if (s.autoZeroActive) return {M::MODE_LOCKOUT_RAMP, Reason::REASON_AUTO_ZERO};
   // 7. Charging disabled: clean ramp, no alarm.
   if (Reason r = disableReason(s); r != Reason::NONE) return {M::MODE_DISABLED_RAMP, r};
-  // 7b. Ours: a heat-soaked alternator cools before the field returns (a
+  // 7b. Added here: a heat-soaked alternator cools before the field returns (a
   // clean hold, no alarm: nothing is wrong with it). After the disable
   // reasons, so an ignition that is off is named as such.
   if (f.tempSoakHold) return {M::MODE_DISABLED_RAMP, Reason::REASON_TEMP_SOAK};

@@ -1,54 +1,64 @@
-// runShutdownPath(): the three shutdown paths of docs/protections.md
-// ("Three shutdown paths", "Cooldown lockout") plus MODE_DISABLED_RAMP.
-//
-//   immediate cut  -> duty 0 and GPIO4 LOW this tick, phase jumps to PHASE_4,
-//                     no cooldown (INA OV, hard OC, T3, RPM gate); the
-//                     alternator hard shutdown (ours: an immediate cut) keeps
-//                     its lockout
-//   warning ramp   -> P1 slew to rpmMinDuty at DutyRampRate, P2 hold
-//                     ShutdownPhase2HoldMs, P3 slew to 0 at DutySlowRampRate,
-//                     P4 hold SettleTimeBeforeCut then GPIO4 LOW, then the
-//                     FIELD_COLLAPSE_DELAY lockout (T2: no lockout, no restart)
-//   critical ramp  -> straight to P4 (duty 0 at once, slew off), then lockout
-//   disabled ramp  -> the warning ramp's shape, no alarm, no lockout
+// ShutdownSequencer: the immediate cut, the ramps' phases and the lockout.
+#include "protection/shutdown_sequencer.h"
+
 #include <algorithm>
 #include <cmath>
 
 #include "params/constants.h"
 #include "params/derived.h"
-#include "protection/protection_supervisor.h"
 
 namespace xr {
 namespace {
 using M = FieldControlMode;
 }
 
-void ProtectionSupervisor::startLockout(EventBatch& ev) noexcept {
-  lockoutUntil_ = now_ + fromMs(p_.FIELD_COLLAPSE_DELAY);
-  flags_.lockoutActive = true;
-  flags_.rampLatched = false;
-  push(ev, EventCode::LockoutStarted, EventLevel::Warning, lastReason_, p_.FIELD_COLLAPSE_DELAY / 1000.0);
+void ShutdownSequencer::startLockout(const Params& p, const ProtectionLog& log) noexcept {
+  lockoutUntil_ = log.now() + fromMs(p.FIELD_COLLAPSE_DELAY);
+  lockoutActive_ = true;
+  rampLatched_ = false;
+  log.push(EventCode::LockoutStarted, EventLevel::Warning, reason_, p.FIELD_COLLAPSE_DELAY / 1000.0);
 }
 
-ShutdownCommand ProtectionSupervisor::runShutdownPath(const ModeDecision& d, double lastAppliedDuty,
-                                                      double rpmMinDuty, EventBatch& ev) noexcept {
+void ShutdownSequencer::expireLockout(const ProtectionLog& log) noexcept {
+  if (!lockoutActive_ || log.now() < lockoutUntil_) return;
+  lockoutActive_ = false;
+  log.push(EventCode::LockoutExpired, EventLevel::Info, Reason::REASON_LOCKOUT);
+}
+
+double ShutdownSequencer::lockoutRemainingS(TimeNs now) const noexcept {
+  return lockoutActive_ ? std::max(0.0, toSec(lockoutUntil_ - now)) : 0.0;
+}
+
+void ShutdownSequencer::releaseLatch(Reason r) noexcept {
+  if (rampLatched_ && rampReason_ == r) rampLatched_ = false;
+}
+
+void ShutdownSequencer::publish(ProtectionFlags& f) const noexcept {
+  f.rampLatched = rampLatched_;
+  f.rampLatchedMode = rampMode_;
+  f.rampLatchedReason = rampReason_;
+  f.lockoutActive = lockoutActive_;
+}
+
+ShutdownCommand ShutdownSequencer::update(const ShutdownInput& in, const Params& p,
+                                          const ProtectionLog& log) noexcept {
   // ModeChanged ("Entering normal mode" / "Exiting normal mode: <reason>") is
   // emitted by Regulator::step with its enterSys* transition, not here, so
   // the journal gets one line per transition.
-  lastMode_ = d.mode;
-  lastReason_ = d.reason;
-  firstSequencerTick_ = false;
+  const ModeDecision& d = in.d;
+  mode_ = d.mode;
+  reason_ = d.reason;
 
   ShutdownCommand c;
   if (isNormalMode(d.mode)) {
     phase_ = ShutdownPhase::PHASE_NONE;
     fieldCut_ = false;
-    flags_.rampLatched = false;
+    rampLatched_ = false;
     faultAlarm_ = false;
-    duty_ = lastAppliedDuty;
+    duty_ = in.lastAppliedDuty;
     c.active = false;
     c.fieldEnable = true;
-    c.dutyPct = lastAppliedDuty;
+    c.dutyPct = in.lastAppliedDuty;
     c.phase = phase_;
     return c;
   }
@@ -63,7 +73,7 @@ ShutdownCommand ProtectionSupervisor::runShutdownPath(const ModeDecision& d, dou
   c.faultAlarm = faultAlarm_;
 
   if (isImmediateCutReason(d.reason)) {
-    cutImmediately(d.reason, lastAppliedDuty, ev);
+    cutImmediately(d.reason, in.lastAppliedDuty, p, log);
     c.applyImmediateCut = true;
     c.govMode = GovMode::GOV_BYPASS_SLEW;
   } else if (lockoutHold && fieldCut_) {
@@ -76,10 +86,10 @@ ShutdownCommand ProtectionSupervisor::runShutdownPath(const ModeDecision& d, dou
       // the lockout expired): a new lockout.
       duty_ = 0.0;
       phase_ = ShutdownPhase::PHASE_DONE;
-      if (faultRamp && d.reason != Reason::REASON_TEMP_SUSTAINED) startLockout(ev);
+      if (faultRamp && d.reason != Reason::REASON_TEMP_SUSTAINED) startLockout(p, log);
     } else {
-      c.govMode = startRamp(d.mode, lastAppliedDuty);
-      stepRampPhases(std::max(0.0, rpmMinDuty), faultRamp, d.reason, ev);
+      c.govMode = startRamp(d.mode, in.lastAppliedDuty, log.now());
+      stepRampPhases(in, faultRamp, p, log);
     }
   }
   c.dutyPct = duty_;
@@ -89,86 +99,90 @@ ShutdownCommand ProtectionSupervisor::runShutdownPath(const ModeDecision& d, dou
 }
 
 // The immediate-cut reasons: GPIO4 LOW this tick, no ramp.
-void ProtectionSupervisor::cutImmediately(Reason reason, double lastAppliedDuty, EventBatch& ev) noexcept {
+void ShutdownSequencer::cutImmediately(Reason reason, double lastAppliedDuty, const Params& p,
+                                       const ProtectionLog& log) noexcept {
   // Duplicate logging suppressed when already cut; the INA228 alert has
   // already pulled GPIO4 LOW in hardware, its InaLatchSet line is the log.
   if (!fieldCut_ && reason != Reason::REASON_INA_OVERVOLTAGE)
-    push(ev, EventCode::ImmediateCut,
-         reason == Reason::REASON_RPM_LOW ? EventLevel::Info : EventLevel::Critical, reason, lastAppliedDuty);
-  // The hard over-voltage cut keeps the seed's cooldown lockout.
-  if (!fieldCut_ && reason == Reason::REASON_ALT_HARD_SHUTDOWN) startLockout(ev);
+    log.push(EventCode::ImmediateCut,
+             reason == Reason::REASON_RPM_LOW ? EventLevel::Info : EventLevel::Critical, reason,
+             lastAppliedDuty);
+  // The hard over-voltage cut keeps the specification's cooldown lockout.
+  if (!fieldCut_ && reason == Reason::REASON_ALT_HARD_SHUTDOWN) startLockout(p, log);
   fieldCut_ = true;
   duty_ = 0.0;
   phase_ = ShutdownPhase::PHASE_4;  // a later re-entry never re-runs the ramp
 }
 
 // A warning/critical ramp runs to its cut even if its trigger clears.
-void ProtectionSupervisor::latchRamp(const ModeDecision& d, bool faultRamp) noexcept {
-  if (faultRamp && !fieldCut_ && !flags_.rampLatched) {
-    flags_.rampLatched = true;
-    flags_.rampLatchedMode = d.mode;
-    flags_.rampLatchedReason = d.reason;
-  } else if (faultRamp && flags_.rampLatched && d.mode == M::MODE_CRITICAL_RAMP) {
-    flags_.rampLatchedMode = d.mode;  // escalation: a warning ramp became critical
-    flags_.rampLatchedReason = d.reason;
+void ShutdownSequencer::latchRamp(const ModeDecision& d, bool faultRamp) noexcept {
+  if (faultRamp && !fieldCut_ && !rampLatched_) {
+    rampLatched_ = true;
+    rampMode_ = d.mode;
+    rampReason_ = d.reason;
+  } else if (faultRamp && rampLatched_ && d.mode == M::MODE_CRITICAL_RAMP) {
+    rampMode_ = d.mode;  // escalation: a warning ramp became critical
+    rampReason_ = d.reason;
   }
 }
 
 // Ramp phases (GPIO4 still HIGH): the first tick of a ramp starts phase 1
 // from the applied duty; a critical ramp goes straight to phase 4 with the
 // slew limiter off. Returns the governor mode of the ramp.
-GovMode ProtectionSupervisor::startRamp(FieldControlMode mode, double lastAppliedDuty) noexcept {
+GovMode ShutdownSequencer::startRamp(FieldControlMode mode, double lastAppliedDuty, TimeNs now) noexcept {
   if (phase_ == ShutdownPhase::PHASE_NONE || phase_ == ShutdownPhase::PHASE_DONE) {
     phase_ = ShutdownPhase::PHASE_1;
-    phaseStart_ = now_;
+    phaseStart_ = now;
     duty_ = std::max(0.0, lastAppliedDuty);
   }
   const bool critical = mode == M::MODE_CRITICAL_RAMP;
   if (critical && phase_ != ShutdownPhase::PHASE_4) {
     phase_ = ShutdownPhase::PHASE_4;  // skip phases 1-3, slew limiter off
-    phaseStart_ = now_;
+    phaseStart_ = now;
   }
-  // (The seed's slew-bypass accelerator for the hard-shutdown warning ramp is
-  // gone with that ramp: the hard shutdown is an immediate cut.)
   return critical ? GovMode::GOV_BYPASS_SLEW : GovMode::GOV_NORMAL_SLEW;
 }
 
 // Phases 1-4 (docs/protections.md "Shutdown paths"): down to the RPM floor at
 // DutyRampRate, a hold, down to 0 at DutySlowRampRate, the settle, then the
 // cut. At most one ramp step per tick; a phase that ends passes on at once.
-void ProtectionSupervisor::stepRampPhases(double floorDuty, bool faultRamp, Reason reason,
-                                          EventBatch& ev) noexcept {
+void ShutdownSequencer::stepRampPhases(const ShutdownInput& in, bool faultRamp, const Params& p,
+                                       const ProtectionLog& log) noexcept {
+  const TimeNs now = log.now();
+  // The step's dt, computed only on the ticks that ramp.
+  auto dtSec = [&] { return std::clamp(toSec(now - in.prevNow), 0.0, 1.0); };
+  const double floorDuty = std::max(0.0, in.rpmMinDuty);
   bool rampedThisTick = false;
   if (phase_ == ShutdownPhase::PHASE_1) {
     if (duty_ > floorDuty) {
-      duty_ = std::max(floorDuty, duty_ - p_.DutyRampRate * dtSec());
+      duty_ = std::max(floorDuty, duty_ - p.DutyRampRate * dtSec());
       rampedThisTick = true;
     }
     if (duty_ > floorDuty) return;
     phase_ = ShutdownPhase::PHASE_2;
-    phaseStart_ = now_;
+    phaseStart_ = now;
   }
   if (phase_ == ShutdownPhase::PHASE_2) {
-    if (now_ - phaseStart_ < fromMs(p_.ShutdownPhase2HoldMs)) return;
+    if (now - phaseStart_ < fromMs(p.ShutdownPhase2HoldMs)) return;
     phase_ = ShutdownPhase::PHASE_3;
-    phaseStart_ = now_;
+    phaseStart_ = now;
   }
   if (phase_ == ShutdownPhase::PHASE_3) {
     if (duty_ > 0.0) {
       if (rampedThisTick) return;
-      duty_ = std::max(0.0, duty_ - p_.DutySlowRampRate * dtSec());
+      duty_ = std::max(0.0, duty_ - p.DutySlowRampRate * dtSec());
     }
     if (duty_ > 0.0) return;
     phase_ = ShutdownPhase::PHASE_4;
-    phaseStart_ = now_;
+    phaseStart_ = now;
   }
   if (phase_ == ShutdownPhase::PHASE_4) {
     duty_ = 0.0;
-    if (now_ - phaseStart_ >= fromMs(p_.SettleTimeBeforeCut)) {
+    if (now - phaseStart_ >= fromMs(p.SettleTimeBeforeCut)) {
       fieldCut_ = true;
       phase_ = ShutdownPhase::PHASE_DONE;
-      push(ev, EventCode::CutAfterSettle, faultRamp ? EventLevel::Warning : EventLevel::Info, reason);
-      if (faultRamp && reason != Reason::REASON_TEMP_SUSTAINED) startLockout(ev);
+      log.push(EventCode::CutAfterSettle, faultRamp ? EventLevel::Warning : EventLevel::Info, in.d.reason);
+      if (faultRamp && in.d.reason != Reason::REASON_TEMP_SUSTAINED) startLockout(p, log);
     }
   }
 }

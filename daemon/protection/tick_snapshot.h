@@ -33,11 +33,11 @@ struct ProtectionFlags {
   bool tempStale = false;                // T5
   bool currentStale = false;             // no fresh INA228 / CH1 sample in CurrentStaleMs
 
-  // Immediate cut in every mode, then the lockout (ours).
+  // Immediate cut in every mode, then the lockout (a deviation: docs/deviations.md).
   bool altHardShutdown = false;  // IBV > AlternatorHardShutdownV
   // Every voltage sensor reads another bank size than the settings are for
   // (a 24 V file on a 12 V bank): every voltage threshold is wrong, so the
-  // field is cut in every mode (ours: docs/deviations.md "Bank size check").
+  // field is cut in every mode (docs/deviations.md "Bank size check").
   bool bankMismatch = false;
   // INADisconnected: AUTO refuses to run without voltage feedback.
   bool inaAbsent = false;
@@ -46,7 +46,7 @@ struct ProtectionFlags {
   bool voltageDisagreeWarning = false;  // > VoltageDisagreeThreshold for VoltageDisagreeTimeout
   bool tempWarning = false;             // T1
   bool tempSustained = false;           // T2: latched until reenable_field
-  // Ours (docs/deviations.md "Heat soak after an engine stop"): the engine
+  // A deviation (docs/deviations.md "Heat soak after an engine stop"): the engine
   // restarted with the alternator above TemperatureLimitF; the field stays
   // off until the running fan has cooled it to the limit.
   bool tempSoakHold = false;

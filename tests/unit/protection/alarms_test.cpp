@@ -37,7 +37,7 @@ Params alarmParams() {
   Params p;
   p.IgnoreTemperature = true;
   p.MaxTableValue = 200.0;           // hard OC far above the current alarm
-  p.CurrentAlarmHigh = 100.0;        // the seed's figure, set (0 derives it from the cap)
+  p.CurrentAlarmHigh = 100.0;        // the specification's figure, set (0 derives it from the cap)
   p.AlternatorHardShutdownV = 15.5;  // the hard over-voltage cut (all modes) above the voltage alarm
   return p;
 }

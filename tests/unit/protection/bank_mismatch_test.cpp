@@ -1,4 +1,4 @@
-// Bank size check (ours, docs/deviations.md "Bank size check"): settings for
+// Bank size check (a deviation, docs/deviations.md "Bank size check"): settings for
 // one bank size on a bank of another — a whole 24 V [voltage] section on a
 // 12 V bank, which passes every per-value and set check because it is
 // consistent in itself. Every live voltage sensor reading another bank class
@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "params/derived.h"
+#include "part_log.h"
 #include "rig.h"
 
 namespace xr::test {
@@ -100,7 +101,7 @@ TEST(BankMismatch, WithoutTheIna228TheAdcAloneDecides) {
   EXPECT_FALSE(r.sc.fieldEnable);
 }
 
-// Unlike the voltage protections of the seed's table, it acts in MANUAL and
+// Unlike the voltage protections of the specification's table, it acts in MANUAL and
 // Limp Home: Limp Home's only voltage guard is the hard shutdown, which a
 // 24 V file puts at 29.1 V.
 TEST(BankMismatch, ActsInManualAndLimpHome) {
@@ -154,6 +155,36 @@ TEST(BankMismatch, TwelveVoltSettingsOnA24VoltBankAreHeldOffToo) {
   EXPECT_EQ(r.d.reason, Reason::REASON_BANK_MISMATCH);
   EXPECT_FALSE(r.sc.fieldEnable);
   EXPECT_EQ(r.sup.telemetry().lastTripReason, Reason::REASON_BANK_MISMATCH);
+}
+
+}  // namespace
+}  // namespace xr::test
+
+// The part on its own (BankMismatchCheck::update): held kHoldMs, not just
+// under it; one live sensor reading the configured bank keeps it off.
+namespace xr::test {
+namespace {
+
+TEST(BankMismatchPart, TripsAfterItsHoldNotJustBefore) {
+  Params p;  // a 12 V bank (BulkVoltage 14.5 V)
+  BankMismatchCheck check;
+  PartLog log;
+  auto tick = [&](double ibv, double batteryV, TimeNs dt) {
+    log.t += dt;
+    check.update({ibv, batteryV}, p, log.at());
+    log.collect();
+  };
+  tick(27.0, 13.0, fromMs(5));
+  tick(27.0, 13.0, fromMs(BankMismatchCheck::kHoldMs));
+  EXPECT_FALSE(check.mismatch());  // one sensor still reads the 12 V bank
+  tick(27.0, 27.0, fromMs(5));
+  tick(27.0, 27.0, fromMs(BankMismatchCheck::kHoldMs) - fromMs(10));
+  EXPECT_FALSE(check.mismatch());
+  tick(27.0, 27.0, fromMs(10));
+  EXPECT_TRUE(check.mismatch());
+  EXPECT_EQ(log.count(EventCode::ProtectionTrip, Reason::REASON_BANK_MISMATCH), 1u);
+  tick(13.0, 13.0, fromMs(5));
+  EXPECT_FALSE(check.mismatch());
 }
 
 }  // namespace

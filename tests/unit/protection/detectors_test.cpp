@@ -29,7 +29,7 @@ TEST(InaLatch, StillAssertedAt3sIsRecheckedEvery10s) {
   EXPECT_EQ(r.count(EventCode::InaLatchCleared), 1u);
 }
 
-// Ours: the alert is looked at on every tick (the chip's alert does not
+// A deviation: the alert is looked at on every tick (the chip's alert does not
 // latch): one 5 ms tick of it latches; no tick of it does not.
 TEST(InaLatch, ShortPulseLatches) {
   Rig r;
@@ -46,7 +46,7 @@ TEST(InaLatch, ShortPulseLatches) {
   EXPECT_FALSE(quiet.sup.flags().inaOvervoltageLatched);
 }
 
-// Ours: T3 that fired is not released by the reading going bad (MANUAL has
+// A deviation: T3 that fired is not released by the reading going bad (MANUAL has
 // no T5 to stop the field); a usable cooler reading releases it.
 TEST(Detectors, T3HeldWhileTheReadingIsStale) {
   Rig r;

@@ -1,4 +1,4 @@
-// describe(): the seeds' "Console Messages Reference" wording.
+// describe(): the specification's "Console Messages Reference" wording.
 #include <gtest/gtest.h>
 
 #include "core/events.h"

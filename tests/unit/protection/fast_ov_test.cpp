@@ -54,7 +54,7 @@ TEST(NearBulk, ArmsOnlyWithinProtectionProxGateVOfBulk) {
   EXPECT_TRUE(r.a.group2);
 }
 
-// Ours (docs/deviations.md): FLOAT arms the supervisors whatever the
+// A deviation (docs/deviations.md): FLOAT arms the supervisors whatever the
 // distance from BulkVoltage; outside FLOAT the nearBulk gate still decides.
 TEST(FastOv, ArmedInFloat) {
   FastRig r;

@@ -1,9 +1,9 @@
-// Heat soak after an engine stop (ours, docs/deviations.md "Heat soak after
+// Heat soak after an engine stop (a deviation, docs/deviations.md "Heat soak after
 // an engine stop", cruising scenario 18): with the engine stopped T1/T2 do
 // not count the soak; an engine that restarts above TemperatureLimitF keeps
 // the field off (REASON_TEMP_SOAK, no alarm, no lockout) until the case is
 // back at the limit. T3 and T5 act as always; a running engine keeps the
-// seed's T1/T2 unchanged.
+// specification's T1/T2 unchanged.
 #include <gtest/gtest.h>
 
 #include "rig.h"
@@ -84,7 +84,7 @@ TEST(HeatSoak, AfterTheHoldT1AndT2CountAgain) {
   r.tempF = kLimit - 1.0;  // cooled: hold released
   r.run(fromSec(1.0));
   ASSERT_EQ(r.d.reason, Reason::NONE);
-  r.tempF = kWarn + 0.5;  // the field heats it past T1: the seed's T1
+  r.tempF = kWarn + 0.5;  // the field heats it past T1: the specification's T1
   r.run(fromSec(1.0));
   EXPECT_TRUE(r.sup.flags().tempWarning);
   EXPECT_FALSE(r.sup.flags().tempSoakHold);

@@ -74,12 +74,12 @@ TEST(ModeSelection, ManualBypassesAutoOnlyProtectionsButNotPriorityOne) {
   EXPECT_EQ(selectFieldControlMode(s), M::MODE_NORMAL_MANUAL);
   s.prot.tempCritical = true;
   EXPECT_EQ(selectFieldEventReason(s), Reason::REASON_TEMP_CRITICAL);
-  s.prot.altHardShutdown = true;  // ours: the hard over-voltage cut acts in MANUAL too
+  s.prot.altHardShutdown = true;  // a deviation: the hard over-voltage cut acts in MANUAL too
   EXPECT_EQ(selectFieldEventReason(s), Reason::REASON_ALT_HARD_SHUTDOWN);
   EXPECT_EQ(selectFieldControlMode(s), M::MODE_CRITICAL_RAMP);
 }
 
-// Ours: the alternator hard shutdown cuts in every mode, Limp Home included.
+// A deviation: the alternator hard shutdown cuts in every mode, Limp Home included.
 TEST(ModeSelection, AltHardShutdownCutsInLimpHome) {
   TickSnapshot s = healthy();
   s.limpHome = true;
@@ -89,7 +89,7 @@ TEST(ModeSelection, AltHardShutdownCutsInLimpHome) {
   EXPECT_TRUE(isImmediateCutReason(selectFieldEventReason(s)));
 }
 
-// Ours: INADisconnected leaves AUTO without voltage feedback, so AUTO does
+// Added here: INADisconnected leaves AUTO without voltage feedback, so AUTO does
 // not run (a clean disabled ramp, no alarm); MANUAL still does.
 TEST(ModeSelection, NoInaMeansNoAuto) {
   TickSnapshot s = healthy();
@@ -162,7 +162,7 @@ TEST(ModeSelection, ImmediateCutReasons) {
   EXPECT_TRUE(isImmediateCutReason(Reason::REASON_HARD_OVERCURRENT));
   EXPECT_TRUE(isImmediateCutReason(Reason::REASON_TEMP_CRITICAL));
   EXPECT_TRUE(isImmediateCutReason(Reason::REASON_RPM_LOW));
-  EXPECT_TRUE(isImmediateCutReason(Reason::REASON_ALT_HARD_SHUTDOWN));  // ours
+  EXPECT_TRUE(isImmediateCutReason(Reason::REASON_ALT_HARD_SHUTDOWN));  // a deviation
   EXPECT_FALSE(isImmediateCutReason(Reason::REASON_TEMP_STALE));
 }
 

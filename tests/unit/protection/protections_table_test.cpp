@@ -15,7 +15,7 @@ namespace {
 
 using M = FieldControlMode;
 // ImmediateLockout: the immediate cut followed by the cooldown lockout (the
-// alternator hard shutdown, ours: docs/deviations.md).
+// alternator hard shutdown, a deviation: docs/deviations.md).
 enum class Path { Immediate, ImmediateLockout, Warning, Critical };
 
 struct Row {
@@ -227,7 +227,7 @@ TEST_P(ProtectionRow, ActsInLimpHomeExactlyAsTheTableSays) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Seed, ProtectionRow, ::testing::ValuesIn(kRows),
+INSTANTIATE_TEST_SUITE_P(Specification, ProtectionRow, ::testing::ValuesIn(kRows),
                          [](const ::testing::TestParamInfo<Row>& i) { return std::string(i.param.name); });
 
 }  // namespace

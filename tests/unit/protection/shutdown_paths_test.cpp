@@ -79,7 +79,7 @@ TEST(WarningRamp, DutyBelowRpmMinDutyNeverRampsUp) {
   EXPECT_LE(r.sc.dutyPct, 3.0);
 }
 
-// Ours (docs/deviations.md "Hard over-voltage"): the seed's warning ramp
+// A deviation (docs/deviations.md "Hard over-voltage"): the specification's warning ramp
 // with its slew-bypass accelerator is now an immediate cut at the trip, in
 // the very tick, with the lockout after it.
 TEST(HardOverVoltage, ImmediateCutInTheTickThenLockout) {
