@@ -1,6 +1,7 @@
 #include "integrations/mqtt_link.h"
 
 #include <mosquitto.h>
+#include <poll.h>
 #include <spdlog/spdlog.h>
 
 #include <cerrno>
@@ -17,6 +18,20 @@ namespace {
 using namespace std::chrono_literals;
 constexpr auto kPollPeriod = 50ms;
 constexpr auto kConnectTimeout = 10s;  // a host that never answers the SYN or the CONNECT
+// libmosquitto reads one packet per loop call when nothing of QoS > 0 is in
+// flight (lib/loop.c mosquitto_loop_read): without draining, a link took at
+// most 20 messages a second, and a burst beyond that (a GX answering read
+// requests faster, a keepalive that republishes every value) queued up in
+// the socket and was handed on seconds later as if fresh, so a GX that had
+// gone silent was not stale until its backlog was read. Bounded, so a flood
+// cannot hold the integrations thread.
+constexpr int kMaxPacketsPerPoll = 256;
+
+bool readable(int fd) {
+  if (fd < 0) return false;
+  pollfd p{fd, POLLIN, 0};
+  return ::poll(&p, 1, 0) == 1 && (p.revents & POLLIN) != 0;
+}
 
 void initLibraryOnce() {
   static std::once_flag once;
@@ -116,7 +131,11 @@ void MqttLink::lost(const std::string& why) {
 void MqttLink::poll() {
   if (stopping_) return;
   if (connecting_ || connected_) {
-    const int rc = mosquitto_loop(mosq_, 0, 1);
+    int rc = mosquitto_loop(mosq_, 0, 1);
+    for (int i = 1;
+         i < kMaxPacketsPerPoll && rc == MOSQ_ERR_SUCCESS && connected_ && readable(mosquitto_socket(mosq_));
+         ++i)
+      rc = mosquitto_loop(mosq_, 0, 1);
     if (rc != MOSQ_ERR_SUCCESS && (connecting_ || connected_))
       lost(opts_.host + ":" + std::to_string(opts_.port) + ": " + errorText(rc));
     else if (connecting_ && clock_.steadyNow() - connectStarted_ > kConnectTimeout)

@@ -6,6 +6,7 @@
 
 #include <boost/asio/co_spawn.hpp>
 #include <boost/asio/detached.hpp>
+#include <boost/asio/experimental/awaitable_operators.hpp>
 #include <boost/asio/redirect_error.hpp>
 #include <boost/asio/ssl.hpp>
 #include <boost/asio/use_awaitable.hpp>
@@ -13,6 +14,9 @@
 #include <boost/beast/http.hpp>
 #include <boost/beast/ssl.hpp>
 #include <stdexcept>
+#include <variant>
+
+#include "integrations/clock_wait.h"
 
 namespace xr::integrations {
 namespace asio = boost::asio;
@@ -22,6 +26,7 @@ namespace ssl = asio::ssl;
 using asio::use_awaitable;
 using tcp = asio::ip::tcp;
 using namespace std::chrono_literals;
+using namespace asio::experimental::awaitable_operators;
 
 namespace {
 // An answer is a few bytes; a larger one is not read.
@@ -40,6 +45,21 @@ asio::awaitable<int> exchange(Stream& stream, http::request<http::string_body>& 
   co_await http::async_read(stream, buf, parser, use_awaitable);
   co_return parser.get().result_int();
 }
+
+// Waits `d` of the clock (clock_wait.h) on `timer`, so notify() and stop(),
+// which cancel it, end the wait early.
+asio::awaitable<void> backoffOnClock(const rt::WallClock& clock, asio::steady_timer& timer, ClockDuration d,
+                                     const bool& stopping) {
+  const auto due = clock.steadyNow() + d;
+  while (!stopping) {
+    const auto left = due - clock.steadyNow();
+    if (left <= ClockDuration::zero()) co_return;
+    timer.expires_after(clock.realWait(left));
+    beast::error_code ec;
+    co_await timer.async_wait(asio::redirect_error(use_awaitable, ec));
+    if (ec == asio::error::operation_aborted) co_return;
+  }
+}
 }  // namespace
 
 std::string boardName() {
@@ -53,6 +73,7 @@ PushNotifier::PushNotifier(asio::io_context& io, const NotifySettings& s, std::s
     : io_(io),
       settings_(s),
       regulator_(regulator.empty() ? boardName() : std::move(regulator)),
+      clock_(clock),
       health_("notify", clock),
       backoff_(std::chrono::milliseconds(2s), std::chrono::milliseconds(5min)),
       wake_(io) {
@@ -135,13 +156,31 @@ asio::awaitable<void> PushNotifier::run() {
     const auto wait = backoff_.next();
     health_.failed((error.empty() ? "receiver answered HTTP " + std::to_string(status) : error) +
                    "; next try in " + std::to_string(wait.count() / 1000) + " s");
-    wake_.expires_after(wait);
-    beast::error_code ec;
-    co_await wake_.async_wait(asio::redirect_error(use_awaitable, ec));
+    co_await backoffOnClock(clock_, wake_, wait, stopping_);  // a new edge (notify) ends it early
   }
 }
 
+// One deadline for connect, write and read, timeout_s on the clock: the
+// attempt that loses the race is cancelled. Its failure is caught and thrown
+// again here, as `||` waits for a success (weather_client.cpp fetch).
 asio::awaitable<int> PushNotifier::deliver(const PushMessage& m) {
+  auto r = co_await (deliverCaught(m) ||
+                     waitOnClock(clock_, std::chrono::seconds(settings_.timeout_s), stopping_));
+  if (r.index() == 1) throw boost::system::system_error(beast::error::timeout);
+  auto [status, error] = std::get<0>(r);
+  if (error) std::rethrow_exception(error);
+  co_return status;
+}
+
+asio::awaitable<std::pair<int, std::exception_ptr>> PushNotifier::deliverCaught(const PushMessage& m) {
+  try {
+    co_return std::make_pair(co_await deliverUntimed(m), std::exception_ptr{});
+  } catch (...) {
+    co_return std::make_pair(0, std::current_exception());
+  }
+}
+
+asio::awaitable<int> PushNotifier::deliverUntimed(const PushMessage& m) {
   http::request<http::string_body> req{http::verb::post, url_.target, 11};
   const bool defaultPort = url_.port == (url_.tls ? "443" : "80");
   req.set(http::field::host, defaultPort ? url_.host : url_.host + ":" + url_.port);
@@ -154,11 +193,9 @@ asio::awaitable<int> PushNotifier::deliver(const PushMessage& m) {
 
   auto ex = co_await asio::this_coro::executor;
   tcp::resolver resolver(ex);
-  const auto timeout = std::chrono::seconds(settings_.timeout_s);
   const auto hosts = co_await resolver.async_resolve(url_.host, url_.port, use_awaitable);
   if (!url_.tls) {
     beast::tcp_stream stream(ex);
-    stream.expires_after(timeout);  // one deadline for connect, write and read
     co_await stream.async_connect(hosts, use_awaitable);
     const int status = co_await exchange(stream, req);
     beast::error_code ec;
@@ -173,7 +210,6 @@ asio::awaitable<int> PushNotifier::deliver(const PushMessage& m) {
   if (!SSL_set_tlsext_host_name(stream.native_handle(), url_.host.c_str()))
     throw std::runtime_error("TLS: cannot set the server name");
   stream.set_verify_callback(ssl::host_name_verification(url_.host));
-  beast::get_lowest_layer(stream).expires_after(timeout);
   co_await beast::get_lowest_layer(stream).async_connect(hosts, use_awaitable);
   co_await stream.async_handshake(ssl::stream_base::client, use_awaitable);
   const int status = co_await exchange(stream, req);

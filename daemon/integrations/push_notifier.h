@@ -9,15 +9,18 @@
 // network is down, the receiver answers 5xx, 408 or 429, or takes longer
 // than timeout_s, the edge stays first in line and is retried with backoff
 // (2 s, 4 s ... 5 min), so the owner gets the start and the end, in order,
-// once the receiver is back. The queue is bounded (kQueueLimit edges); an
-// edge that would overflow it is dropped and counted.
+// once the receiver is back. timeout_s and the backoff run on the clock of
+// clock_wait.h (simulated time in --sim). The queue is bounded (kQueueLimit
+// edges); an edge that would overflow it is dropped and counted.
 #include <atomic>
 #include <boost/asio/awaitable.hpp>
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/steady_timer.hpp>
 #include <deque>
+#include <exception>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "config/notify_target.h"
 #include "config/settings.h"
@@ -45,12 +48,15 @@ class PushNotifier {
   boost::asio::awaitable<void> run();
   // One attempt: the HTTP status, or throws on a network error or timeout.
   boost::asio::awaitable<int> deliver(const PushMessage& m);
+  boost::asio::awaitable<std::pair<int, std::exception_ptr>> deliverCaught(const PushMessage& m);
+  boost::asio::awaitable<int> deliverUntimed(const PushMessage& m);
 
   boost::asio::io_context& io_;
   NotifySettings settings_;
   NotifyUrl url_;
   std::optional<NotifyHeader> header_;
   std::string regulator_;
+  const rt::WallClock& clock_;  // timeout_s and the backoff run on it
   IntegrationHealth health_;
   Backoff backoff_;
   boost::asio::steady_timer wake_;

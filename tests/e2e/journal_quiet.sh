@@ -2,8 +2,8 @@
 # The journal says what changed, once (docs/operations.md "The journal"):
 # after start-up, 10 simulated minutes of healthy charging write at most 10
 # lines, and so does a 100 s alternator over-temperature fault. Run at
-# --speed 20 (30 s of wall time each), so a line written every wall minute
-# or every wall second would show as well as one every simulated second.
+# --speed 40 (15 s of wall time each), so a line written every wall second
+# (15 of them) would show as well as one every simulated second.
 # Usage: journal_quiet.sh XREGULATORD ROOT (healthy|thermal)
 set -eu
 bin=$1
@@ -45,7 +45,7 @@ clear = "temp_value"
 TOML
 fi
 
-"$bin" --sim --scenario "$tmp/scenario.toml" --speed 20 --duration 600 --http 127.0.0.1:0 \
+"$bin" --sim --scenario "$tmp/scenario.toml" --speed 40 --duration 600 --http 127.0.0.1:0 \
   --config "$root/config/xregulator.toml" >"$tmp/log" 2>&1 || fail "xregulatord exited $?"
 
 # Start-up ends with the control thread's line; what follows is counted,

@@ -2,7 +2,8 @@
 """An incident in Home Assistant through Debian's real mosquitto
 (docs/integrations.md "Alarms that reach the owner"): xregulatord --sim with
 [integrations.mqtt], one simulated thermal fault (the alternator's sensor
-reads 170 F from 4 s to 10 s of simulated time).
+reads 170 F from 12 s to 18 s of simulated time), at --speed SPEED: every
+wait is for a message, an event or the daemon's clock.
 
   ha_incident_test.py XREGULATORD
 
@@ -14,12 +15,19 @@ incident id."""
 import json
 import os
 import sys
-import time
 
 from harness import Checks, Harness, wait_until
 from notify_test import FAULT
 
 NODE = "boat1"
+SPEED = 5  # the fault, the settle and the state period are simulated time
+FAULT_AT_S = 12
+
+
+def incident_runs(docs):
+    """The binary sensor's state as runs: OFF, ON, OFF is one incident."""
+    seq = [d["incident"] for d in docs]
+    return [v for i, v in enumerate(seq) if i == 0 or seq[i - 1] != v]
 
 
 def main():
@@ -27,20 +35,22 @@ def main():
     h = Harness(sys.argv[1])
     try:
         h.start_broker()
-        events = None
+        # Listening before the daemon starts: every document from its first.
+        states = h.sub_start(f"xregulator/{NODE}/state")
+        events = h.sub_start(f"xregulator/{NODE}/incident")
         scenario = os.path.join(h.dir, "fault.toml")
         with open(scenario, "w") as f:
-            # Later than the push test's fault: the subscribers are listening first.
-            f.write(FAULT.replace("at_s = 4", "at_s = 12").replace("at_s = 10", "at_s = 18"))
+            # Later than the push test's fault: the bridge is connected first.
+            f.write(FAULT.replace("at_s = 4", f"at_s = {FAULT_AT_S}").replace("at_s = 10", f"at_s = {FAULT_AT_S + 6}"))
         h.start_daemon(f"""[integrations.mqtt]
 enabled = true
 host = "127.0.0.1"
 port = {h.broker_port}
 node_id = "{NODE}"
-""", ["--scenario", scenario], speed=2)
-        states = h.sub_start(f"xregulator/{NODE}/state")
-        events = h.sub_start(f"xregulator/{NODE}/incident")
+""", ["--scenario", scenario], speed=SPEED)
         wait_until("mqtt connected", lambda: h.integration("mqtt")["connected"], 20)
+        t_connected = h.status()["t_s"]
+        c.check(t_connected < FAULT_AT_S, f"connected at {t_connected:.1f} s, before the fault (simulated time)")
         configs = dict(h.sub(f"homeassistant/+/xregulator_{NODE}/incident/config", 2, timeout=10, retained_only=True))
         sensor = json.loads(configs.get(f"homeassistant/binary_sensor/xregulator_{NODE}/incident/config", "{}"))
         c.check(sensor.get("device_class") == "problem" and sensor.get("payload_on") == "ON",
@@ -52,11 +62,15 @@ node_id = "{NODE}"
         wait_until("the fault to come and go", lambda: any(
             e["code"] == "ProtectionClear" and e["reason"] == "REASON_TEMP_CRITICAL"
             for e in json.loads(h.get("/api/events?limit=200"))["events"]), 60)
-        time.sleep(6)  # the settle (5 s of simulated time) and the end's state document
+        # The end comes after the settle (5 s of simulated time), with its state document.
+        wait_until("the end fired", lambda: any('"end"' in p for _, p in h.sub_seen(events)), 30)
+        wait_until("the state OFF again after the end",
+                   lambda: incident_runs([json.loads(p) for _, p in h.sub_seen(states)])[-1:] == ["OFF"] and
+                   "ON" in incident_runs([json.loads(p) for _, p in h.sub_seen(states)]), 30)
+        h.wait_sim(2)  # a second start or end would come within the tracker's next polls
         docs = [json.loads(p) for _, p in h.sub_collect(states)]
-        seq = [d["incident"] for d in docs]
+        runs = incident_runs(docs)
         # OFF, then ON for the fault, then OFF: one run of ON.
-        runs = [v for i, v in enumerate(seq) if i == 0 or seq[i - 1] != v]
         c.check(runs == ["OFF", "ON", "OFF"], f"the binary sensor turns on and off once: {runs}")
         on = [d for d in docs if d["incident"] == "ON"]
         if on:

@@ -9,6 +9,7 @@ import signal
 import socket
 import subprocess
 import tempfile
+import threading
 import time
 import urllib.request
 
@@ -107,15 +108,27 @@ class Harness:
         args = ["mosquitto_sub", "-h", "127.0.0.1", "-p", str(self.broker_port), "-t", topic, "-v"] + self._auth()
         if fresh_only:
             args.append("-R")
-        p = subprocess.Popen(args, stdout=subprocess.PIPE, text=True)
+        p = subprocess.Popen(args, stdout=subprocess.PIPE, text=True, bufsize=1)
         self.procs.append(p)
+        p.got = []  # (topic, payload) as they arrive, for sub_seen
+
+        def read():
+            for line in p.stdout:
+                p.got.append(tuple(line.rstrip("\n").partition(" ")[::2]))
+        p.reader = threading.Thread(target=read, daemon=True)
+        p.reader.start()
         time.sleep(0.5)  # subscribed before anything is published
         return p
 
+    def sub_seen(self, p):
+        """The messages a background mosquitto_sub has printed so far."""
+        return list(p.got)
+
     def sub_collect(self, p):
         p.send_signal(signal.SIGTERM)
-        out, _ = p.communicate(timeout=10)
-        return [tuple(line.partition(" ")[::2]) for line in out.splitlines()]
+        p.wait(timeout=10)
+        p.reader.join(timeout=10)
+        return list(p.got)
 
     def pub(self, topic, payload, retain=False):
         args = ["mosquitto_pub", "-h", "127.0.0.1", "-p", str(self.broker_port), "-t", topic, "-m", payload]

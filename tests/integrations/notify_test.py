@@ -11,12 +11,16 @@ the clears).
            with the incident's words, the regulator's name and the token header;
   down:    nothing listens while the fault comes and goes; once the receiver is
            started, one start and one end arrive, in order;
-  failing: the receiver answers 500 twice, then takes 3 s to answer (within
-           timeout_s), then once holds its answer past timeout_s: every edge
-           is accepted exactly once and a repeat carries the same
-           Idempotency-Key; the control loop ticks on;
+  failing: the receiver answers 500 twice, then takes 2.5 s to answer (within
+           timeout_s = 10), then once holds its answer until the sender gives
+           up at timeout_s: every edge is accepted exactly once and a repeat
+           carries the same Idempotency-Key; the control loop ticks on;
   text:    format = "text": a plain-text body with a Title header, as ntfy
-           shows it; and a bad url or header is a configuration error (exit 78)."""
+           shows it; and a bad url or header is a configuration error (exit 78).
+
+The daemon runs at --speed SPEED: the fault, the incident's settle, the
+push's timeout_s and its backoff are simulated time (docs/architecture.md
+"One clock"), and every wait is for a condition or for the daemon's clock."""
 import http.server
 import json
 import os
@@ -47,12 +51,14 @@ value = 170
 at_s = 10
 clear = "temp_value"
 """
-SPEED = 2
+SPEED = 5
+SLOW = "slow"  # an answer after 2.5 s of simulated time: inside timeout_s = 10
+HOLD = "hold"  # no answer until the sender gives up (timeout_s) and closes
 
 
 class Receiver:
     """An HTTP receiver on 127.0.0.1:port; `plan` is what it does with each
-    request in turn (200, 500, a delay in s before a 200), then 200."""
+    request in turn (200, 500, SLOW or HOLD before a 200), then 200."""
 
     def __init__(self, port, plan=()):
         self.port = port
@@ -68,8 +74,16 @@ class Receiver:
                 step = outer.plan.pop(0) if outer.plan else 200
                 if step == 500:
                     return self._send(500)
-                if isinstance(step, float):
-                    time.sleep(step)
+                if step == SLOW:
+                    time.sleep(2.5 / SPEED)
+                elif step == HOLD:
+                    # Until the sender closes the connection: its timeout_s
+                    # passed (simulated time). The answer then reaches no one.
+                    self.connection.settimeout(60)
+                    try:
+                        self.rfile.read(1)
+                    except OSError:
+                        pass
                 outer.accepted.append((dict(self.headers), body))
                 return self._send(200)
 
@@ -138,7 +152,7 @@ def part_up(c, daemon):
     try:
         run_fault(h, port)
         wait_until("the start and the end", lambda: len(r.accepted) >= 2, 60)
-        time.sleep(2 * SPEED)  # nothing more may come
+        h.wait_sim(8)  # nothing more may come (a retry would, after 2 s)
         check_pair(c, r.docs(), "up")
         c.check(len(r.seen) == 2, f"up: exactly two requests, got {len(r.seen)}")
         headers = r.accepted[0][0]
@@ -159,7 +173,7 @@ def part_down(c, daemon):
         run_fault(h, port)
         wait_until("the fault to come and go", lambda: incident_over(h), 60)
         wait_until("a failed delivery", lambda: h.integration("notify")["outages"] >= 1, 30)
-        time.sleep(3)  # the end is due too, and waits
+        wait_until("the end to be due too and wait", lambda: h.integration("notify")["values"]["queued"] == 2, 30)
         st = h.integration("notify")
         c.check(st["values"]["queued"] == 2, f"down: start and end wait: {st}")
         c.check("Connection refused" in st["last_error"] or "refused" in st["last_error"],
@@ -167,7 +181,7 @@ def part_down(c, daemon):
         r = Receiver(port)
         try:
             wait_until("the start and the end after the receiver came back", lambda: len(r.accepted) >= 2, 60)
-            time.sleep(2)
+            h.wait_sim(8)  # nothing more may come (a retry would, after 2 s)
             check_pair(c, r.docs(), "down")
             c.check(len(r.seen) == 2, f"down: exactly two requests once back, got {len(r.seen)}")
             c.check(h.integration("notify")["values"]["queued"] == 0, "down: nothing left waiting")
@@ -181,12 +195,13 @@ def part_down(c, daemon):
 def part_failing(c, daemon):
     h = Harness(daemon)
     port = free_port()
-    # 500, 500, a 3 s answer (inside timeout_s = 5), then one held for 8 s (past it).
-    r = Receiver(port, [500, 500, 3.0, 8.0])
+    # 500, 500, a slow answer (inside timeout_s), then one held past it.
+    r = Receiver(port, [500, 500, SLOW, HOLD])
     try:
-        run_fault(h, port, "timeout_s = 5")
+        run_fault(h, port, "timeout_s = 10")
         wait_until("both edges accepted", lambda: len({json.loads(b)["event"] for _, b in r.accepted}) == 2, 90)
-        time.sleep(3)
+        wait_until("nothing left waiting", lambda: h.integration("notify")["values"]["queued"] == 0, 30)
+        h.wait_sim(8)  # nothing more may come (a retry would, after 2 s)
         docs = r.docs()
         events = [d["event"] for d in docs]
         keys = [hd.get("Idempotency-Key") for hd, _ in r.accepted]
@@ -198,9 +213,13 @@ def part_failing(c, daemon):
         c.check(len(set(ends)) == 1, f"failing: a repeated end has the same Idempotency-Key: {ends}")
         c.check(len(r.seen) >= 4, f"failing: the 500s were retried ({len(r.seen)} requests)")
         # The sender is on the integrations thread: the loop ticks on while it waits.
+        # (loop.ticks is published as the loop's statistics are: wait for it to move.)
         ticks = h.status()["loop"]["ticks"]
-        time.sleep(1)
-        c.check(h.status()["loop"]["ticks"] > ticks, "failing: the control loop ticks on")
+        try:
+            wait_until("the control loop to tick on", lambda: h.status()["loop"]["ticks"] > ticks, 10)
+            c.check(True, "failing: the control loop ticks on")
+        except AssertionError as e:
+            c.check(False, f"failing: {e} (ticks {ticks})")
     finally:
         h.stop()
         r.stop()

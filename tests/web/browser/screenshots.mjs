@@ -5,7 +5,7 @@
 import fs from "node:fs";
 import path from "node:path";
 import assert from "node:assert/strict";
-import { parseArgs, runDaemonBrowserTest } from "./server.mjs";
+import { parseArgs, runDaemonBrowserTest, until } from "./server.mjs";
 
 const args = parseArgs();
 const token = "browser-test-token-0123456789";
@@ -33,10 +33,12 @@ at_s = 12
 clear = "temp_value"
 `;
 
-await runDaemonBrowserTest({ args, token, scenario, prefix: "xr-shots-" }, async ({ server, browser, stateDir }) => {
+// At --speed 4 (the incident's settle and the charts' samples are simulated
+// time): 20 s of the daemon's clock give the charts data and the fault is over.
+await runDaemonBrowserTest({ args, token, scenario, prefix: "xr-shots-", speed: 4 }, async ({ server, browser, stateDir, get }) => {
   const outDir = args["docs-dir"] ? path.join(args["docs-dir"], "pages") : path.join(stateDir, "pages");
   fs.mkdirSync(outDir, { recursive: true });
-  await new Promise((r) => setTimeout(r, 20000));  // charts with data, the fault over
+  await until("20 s of simulated time: charts with data, the fault over", async () => (await get("/api/status")).t_s >= 20, 60000);
   for (const theme of ["light", "dark"]) {
     const ctx = await browser.newContext({ viewport: { width: 390, height: 844 }, colorScheme: theme, locale: "en-GB" });
     const page = await ctx.newPage();
