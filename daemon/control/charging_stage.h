@@ -1,5 +1,5 @@
 #pragma once
-// updateChargingStage(): BULK / ABSORPTION / FLOAT / IDLE as the seeds'
+// updateChargingStage(): BULK / ABSORPTION / FLOAT / IDLE as the specification's
 // charging-stage state machine, with the re-bulk and resume rules of
 // docs/deviations.md and docs/batteries.md. Drives inBulkStage,
 // inAbsorptionStage, inIdleStage, voltageControlActive and

@@ -14,7 +14,7 @@ struct CvLoopInputs {
   double ChargingVoltageTarget = 0.0;
   double IBV = 0.0;              // INA228 bus voltage
   double cvDSlope = 0.0;         // dV/dt of getFiltV() between fresh IBV samples (slope bleed only)
-  double g_pidI_filtered = 0.0;  // inner-loop feedback (bumpless seed / tracker)
+  double g_pidI_filtered = 0.0;  // inner-loop feedback (bumpless start value / tracker)
   double uTargetAmps = 0.0;      // ceiling after fastOvCurrentCap
   double uTargetRaw = 0.0;       // ceiling before fastOvCurrentCap (uTargetRaw_cached)
   bool fastOvClampActive = false;
@@ -32,7 +32,7 @@ class VoltageCvLoop {
   // Bumpless restore (SystemID): integrator and tracker to v.
   void restore(double v) noexcept;
   // After a protection event (fast-OV clamp cleared, back in AUTO): the next
-  // active update seeds cv_I as on CV entry (bumpless, AW cap cleared)
+  // active update starts cv_I afresh as on CV entry (bumpless, AW cap cleared)
   // instead of crawling back from the event's state.
   void requestReseed() noexcept { reseedPending_ = true; }
   // The same, with the current the alternator should make now (instead of
@@ -67,7 +67,7 @@ class VoltageCvLoop {
   int g_awState_ = 4;
   double cvDSlope_ = 0.0;
   bool reseedPending_ = false;
-  double reseedAmps_ = -1.0;  // < 0: seed from g_pidI_filtered
+  double reseedAmps_ = -1.0;  // < 0: start from g_pidI_filtered
   double g_voltLoopActualIntervalMs_ = 0.0;
 };
 

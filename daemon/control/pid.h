@@ -1,5 +1,5 @@
 #pragma once
-// Pid: our own PID with the semantics docs/control.md expects of the seed's
+// Pid: our own PID with the semantics docs/control.md expects of the specification's
 // PID_v1_xeng library (Brett Beauregard's PID_v1 plus extensions):
 //  - DIRECT / REVERSE action (REVERSE: rising input raises the output),
 //  - output limits clamp both the output and the integrator (outputSum),

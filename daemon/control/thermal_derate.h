@@ -2,7 +2,7 @@
 // T0: the temperature PID (docs/control.md "Temperature PID (T0)",
 // docs/protections.md "Protections"). REVERSE action on the
 // predictive projectedTempF; output thermalPenaltyAmps, slew-limited.
-// Ours (docs/deviations.md "Thermal loop"): it regulates at
+// This project's (docs/deviations.md "Thermal loop"): it regulates at
 // TemperatureLimitF - TempRegulationMarginF, on max(projected, present), with
 // a filter whose smoothing is per second (not per sample) and a slope that
 // ignores physically impossible jumps.
