@@ -58,17 +58,17 @@ class VoltageCvLoop {
   void fire(const CvLoopInputs& in, const Params& p, double dtSec) noexcept;
   double slewedTarget(const CvLoopInputs& in, const Params& p) const noexcept;
 
-  bool wasActive_ = false;
-  TimeNs lastVoltageLoopNs_ = 0;  // 0: fires on the enteringCV edge
-  TimeNs awSeedProtectStartNs_ = -1;
+  bool wasActive_ = false;            // the loop ran last tick (the CV-entry edge)
+  TimeNs lastVoltageLoopNs_ = 0;      // 0: fires on the enteringCV edge
+  TimeNs awSeedProtectStartNs_ = -1;  // the last entry / reseed: the AW cap is held off for a while
   double cv_I_ = 0.0, cv_I_track_ = 0.0, cv_I_aw_cap_ = -1.0;  // aw cap < 0: not initialised
-  double Icv_ = 0.0, e_ = 0.0;
-  double voltageTargetSlewed_ = 0.0;
-  int g_awState_ = 4;
-  double cvDSlope_ = 0.0;
-  bool reseedPending_ = false;
-  double reseedAmps_ = -1.0;  // < 0: start from g_pidI_filtered
-  double g_voltLoopActualIntervalMs_ = 0.0;
+  double Icv_ = 0.0, e_ = 0.0;        // the command and the voltage error of the last firing
+  double voltageTargetSlewed_ = 0.0;  // the target after its own slew (no step into the loop)
+  int g_awState_ = 4;                 // which anti-windup branch acted (telemetry)
+  double cvDSlope_ = 0.0;             // dV/dt taken in (slope bleed)
+  bool reseedPending_ = false;        // the next active update starts afresh (after a protection event)
+  double reseedAmps_ = -1.0;          // < 0: start from g_pidI_filtered
+  double g_voltLoopActualIntervalMs_ = 0.0;  // the real interval of the last firing (telemetry)
 };
 
 }  // namespace xr
