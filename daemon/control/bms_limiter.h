@@ -69,17 +69,18 @@ class BmsLimiter {
   void updateCellCeiling(const BmsLimits& b, double packV, double dt, const Params& p) noexcept;
   static double cellsInSeries(const BmsLimits& b, double packV, const Params& p) noexcept;
 
-  BmsState state_ = BmsState::OFF;
-  TimeNs enabledSince_ = -1;
-  TimeNs lastNow_ = -1;
-  double cap_ = kNone, cvl_ = kNone;
-  double warnCap_ = kNone;  // the warning ramp (kNone = not ramping)
-  double warnRate_ = 0.0;   // A/s of that ramp
-  bool chargeAllowed_ = true;
-  bool cellHigh_ = false;
-  double cellCeiling_ = kNone;  // the highest cell's pack ceiling (kNone = not holding)
-  BmsPlausibility plausibility_;
-  double shownCvl_ = kBmsNoValue, shownCcl_ = kBmsNoValue, shownSoc_ = kBmsNoValue;
+  BmsState state_ = BmsState::OFF;    // OFF / OK / WARNING / ALARM / STALE
+  TimeNs enabledSince_ = -1;          // when the BMS was first heard (-1: never)
+  TimeNs lastNow_ = -1;               // the last update (the ramp's dt)
+  double cap_ = kNone, cvl_ = kNone;  // the battery-current cap and voltage ceiling of this tick
+  double warnCap_ = kNone;            // the warning ramp (kNone = not ramping)
+  double warnRate_ = 0.0;             // A/s of that ramp
+  bool chargeAllowed_ = true;         // the BMS allows charging
+  bool cellHigh_ = false;             // the highest cell holds the ceiling
+  double cellCeiling_ = kNone;        // the highest cell's pack ceiling (kNone = not holding)
+  BmsPlausibility
+      plausibility_;  // the BMS's values against the bank (docs/protections.md "BMS plausibility")
+  double shownCvl_ = kBmsNoValue, shownCcl_ = kBmsNoValue, shownSoc_ = kBmsNoValue;  // what the screens show
 };
 
 }  // namespace xr

@@ -63,9 +63,9 @@ class BmsPlausibility {
   bool active() const noexcept { return reported_ != BmsMismatch::NONE; }
 
  private:
-  BmsMismatch reported_ = BmsMismatch::NONE;
-  TimeNs seenSince_ = -1;  // a mismatch seen continuously since
-  TimeNs fitSince_ = -1;   // all fitting continuously since (while reported)
+  BmsMismatch reported_ = BmsMismatch::NONE;  // the mismatch told
+  TimeNs seenSince_ = -1;                     // a mismatch seen continuously since
+  TimeNs fitSince_ = -1;                      // all fitting continuously since (while reported)
 };
 
 }  // namespace xr

@@ -38,9 +38,10 @@ class ChargeHoldDetector {
   ChargeHold cause() const noexcept { return held() ? cause_ : ChargeHold::NONE; }
 
  private:
-  double heldS_ = 0.0, notHeldS_ = 0.0;
-  ChargeHold cause_ = ChargeHold::NONE, reportedCause_ = ChargeHold::NONE;
-  bool reported_ = false;
+  double heldS_ = 0.0, notHeldS_ = 0.0;  // seconds held, and seconds free since
+  ChargeHold cause_ = ChargeHold::NONE,
+             reportedCause_ = ChargeHold::NONE;  // what holds now, what the alarm named
+  bool reported_ = false;                        // the alarm is raised
 };
 
 }  // namespace xr

@@ -53,7 +53,7 @@ void ChargingStageMachine::countRestDischarge(const StageInputs& in) noexcept {
 
 // FLOAT / IDLE re-bulk: after MinFloatTime, voltage sag OR a real discharge,
 // confirmed continuously for rebulkDebounceTime, with SOC gating. A real
-// discharge is a discharge current over RebulkCurrent_A (the seed) or, with
+// discharge is a discharge current over RebulkCurrent_A (the specification) or, with
 // RebulkDischarge_percent set, that share of the bank counted out: a house
 // load the alternator carries, or a short one it cannot, is not a discharge
 // (docs/batteries.md "After absorption").

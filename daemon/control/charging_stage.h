@@ -1,5 +1,5 @@
 #pragma once
-// updateChargingStage(): BULK / ABSORPTION / FLOAT / IDLE as the seeds'
+// updateChargingStage(): BULK / ABSORPTION / FLOAT / IDLE as the specification's
 // charging-stage state machine, with the re-bulk and resume rules of
 // docs/deviations.md and docs/batteries.md. Drives inBulkStage,
 // inAbsorptionStage, inIdleStage, voltageControlActive and
@@ -77,21 +77,21 @@ class ChargingStageMachine {
   void countRestDischarge(const StageInputs& in) noexcept;
   bool rebulkDue(const StageInputs& in, const Params& p) noexcept;
 
-  ChargeStage stage_ = ChargeStage::BULK;
-  ChargeStage previous_ = ChargeStage::BULK;
-  TimeNs stageStart_ = 0;
-  bool bulkHoldArmed_ = false;
-  TimeNs bulkVoltageHoldTimer_ = 0;
-  bool tailArmed_ = false;
-  TimeNs tailStart_ = 0;
-  bool tailThermalSuppressed_ = false;
-  TimeNs absorptionStartTime_ = 0;
-  bool rebulkArmed_ = false;
-  TimeNs rebulkStart_ = 0;
-  bool rebulkBlockedBySoc_ = false;
-  bool completedOnTail_ = false;
-  TimeNs lastNow_ = -1;
-  double restOutAh_ = 0.0;
+  ChargeStage stage_ = ChargeStage::BULK;     // the stage now
+  ChargeStage previous_ = ChargeStage::BULK;  // the stage before the last change (resume after an absence)
+  TimeNs stageStart_ = 0;                     // when the stage was entered
+  bool bulkHoldArmed_ = false;                // IBV reached BulkVoltage: the bulk hold counts
+  TimeNs bulkVoltageHoldTimer_ = 0;           // since when (bulkVoltageHoldMs)
+  bool tailArmed_ = false;                    // the tail current holds: the absorption exit counts
+  TimeNs tailStart_ = 0;                      // since when
+  bool tailThermalSuppressed_ = false;        // a thermal derate holds the tail off (not a full bank)
+  TimeNs absorptionStartTime_ = 0;            // absorption began (its timeout)
+  bool rebulkArmed_ = false;                  // the re-bulk condition holds (rebulkDebounceTime counts)
+  TimeNs rebulkStart_ = 0;                    // since when
+  bool rebulkBlockedBySoc_ = false;           // the SoC gate held a re-bulk back this tick
+  bool completedOnTail_ = false;              // absorption ended on the tail this tick (a full bank)
+  TimeNs lastNow_ = -1;                       // the last call (the discharge count's dt)
+  double restOutAh_ = 0.0;  // Ah discharged since float / idle began (RebulkDischarge_percent)
 };
 
 }  // namespace xr

@@ -1,4 +1,5 @@
-// ControlLaw's telemetry block: every loop variable under its seed name.
+// ControlLaw's telemetry block: every loop variable under the name the
+// specification gives it.
 #include <algorithm>
 #include <cmath>
 
@@ -14,23 +15,23 @@ void ControlLaw::fillTelemetry(ControlTelemetry& t) const noexcept {
 
 void ControlLaw::fillLoopTelemetry(ControlTelemetry& t) const noexcept {
   t.sysMode = sysMode_;
-  t.govMode = govMode_;
-  t.I_cap = I_cap_;
-  t.I_cmd = I_cmd_;
-  t.uTargetRaw = uTargetRaw_;
-  t.uTargetAmps = uTargetAmps_;
-  t.setpointCommand = setpointCommand_;
-  t.setpointLimited = setpointLimited_;
-  t.pidInput = currentPID_.input;
-  t.pidOutput = currentPID_.output;
-  t.innerTermP = currentPID_.pTerm();
-  t.innerTermI = currentPID_.iTerm();
-  t.innerTermD = currentPID_.dTerm();
-  t.dutyRequest = dutyRequest_;
-  t.lastAppliedDuty = lastAppliedDuty_;
-  t.rpmMinDuty = rpmMinDuty_;
-  t.voltageControlActive = voltageControlActive_;
-  t.ChargingVoltageTarget = ChargingVoltageTarget_;
+  t.govMode = inner_.govMode();
+  t.I_cap = command_.I_cap();
+  t.I_cmd = command_.I_cmd();
+  t.uTargetRaw = command_.uTargetRaw();
+  t.uTargetAmps = command_.uTargetAmps();
+  t.setpointCommand = slew_.setpointCommand();
+  t.setpointLimited = slew_.setpointLimited();
+  t.pidInput = inner_.pid().input;
+  t.pidOutput = inner_.pid().output;
+  t.innerTermP = inner_.pid().pTerm();
+  t.innerTermI = inner_.pid().iTerm();
+  t.innerTermD = inner_.pid().dTerm();
+  t.dutyRequest = inner_.dutyRequest();
+  t.lastAppliedDuty = inner_.lastAppliedDuty();
+  t.rpmMinDuty = inner_.rpmMinDuty();
+  t.voltageControlActive = targets_.voltageControlActive();
+  t.ChargingVoltageTarget = targets_.ChargingVoltageTarget();
   t.voltageTargetSlewed = cv_.voltageTargetSlewed();
   t.cv_I = cv_.cv_I();
   t.Icv = cv_.Icv();
@@ -39,48 +40,48 @@ void ControlLaw::fillLoopTelemetry(ControlTelemetry& t) const noexcept {
   t.g_awState = cv_.g_awState();
   t.cvDSlope = cv_.cvDSlope();
   t.g_voltLoopActualIntervalMs = cv_.g_voltLoopActualIntervalMs();
-  t.tempFiltered = thermal_.tempFiltered();
-  t.projectedTempF = thermal_.projectedTempF();
-  t.thermalSlopeFPerSec = thermal_.thermalSlopeFPerSec();
-  t.thermalPenaltyAmps = thermal_.thermalPenaltyAmps();
-  t.thermalPenaltyAmps_d = thermal_.penaltyTarget();
-  t.thermalHolding = thermal_.holding();
-  t.MeasuredAmps = MeasuredAmps_;
-  t.MeasuredAmps_filtered = emaInput_.value();
-  t.g_pidI_filtered = emaPid_.value();
-  t.g_pidMA_N = maPid_.value();
-  t.IBV_filtered = emaIBV_.value();
-  t.inStartupRamp = inStartupRamp_;
-  t.fastRiseActive = fastRiseActive_;
-  t.warmupActive = warmupActive_;
-  t.bulkVoltageLimitActive = bulkVoltageLimitActive_;
-  t.fastOvClampActive = fastOvClampActive_;
-  t.cvOvershootBypass = cvOvershootBypass_;
-  t.inBulkStage = stages_.inBulkStage();
-  t.inAbsorptionStage = stages_.inAbsorptionStage();
-  t.inFloatStage = stages_.inFloatStage();
-  t.inIdleStage = stages_.inIdleStage();
-  t.tailSuppressedByThermal = stages_.tailSuppressedByThermal();
-  t.rebulkBlockedBySoc = stages_.rebulkBlockedBySoc();
+  t.tempFiltered = thermal().tempFiltered();
+  t.projectedTempF = thermal().projectedTempF();
+  t.thermalSlopeFPerSec = thermal().thermalSlopeFPerSec();
+  t.thermalPenaltyAmps = thermal().thermalPenaltyAmps();
+  t.thermalPenaltyAmps_d = thermal().penaltyTarget();
+  t.thermalHolding = thermal().holding();
+  t.MeasuredAmps = filters_.measuredAmps();
+  t.MeasuredAmps_filtered = filters_.input().value();
+  t.g_pidI_filtered = filters_.pidFiltered().value();
+  t.g_pidMA_N = filters_.pidMovingAverage();
+  t.IBV_filtered = filters_.ibvFiltered().value();
+  t.inStartupRamp = slew_.inStartupRamp();
+  t.fastRiseActive = slew_.fastRiseActive();
+  t.warmupActive = command_.warmupActive();
+  t.bulkVoltageLimitActive = targets_.bulkVoltageLimitActive();
+  t.fastOvClampActive = fastOv_.clampActive();
+  t.cvOvershootBypass = fastOv_.overshootBypass();
+  t.inBulkStage = stages().inBulkStage();
+  t.inAbsorptionStage = stages().inAbsorptionStage();
+  t.inFloatStage = stages().inFloatStage();
+  t.inIdleStage = stages().inIdleStage();
+  t.tailSuppressedByThermal = stages().tailSuppressedByThermal();
+  t.rebulkBlockedBySoc = stages().rebulkBlockedBySoc();
 }
 
 void ControlLaw::fillCommandCaps(CommandCaps& c, const Params& p) const noexcept {
-  auto ifBelow = [](double cap) { return cap < kNoCeiling ? cap : kNoValue; };
+  auto ifBelow = [](double cap) { return cap < CurrentCommand::kNoCeiling ? cap : kNoValue; };
   c.ratingA = p.MaxTableValue;
-  c.rpmTableA = I_cap_;
+  c.rpmTableA = command_.I_cap();
   // The table's top is the belt limit the set-up writes (in amps only: the power table's top moves with
   // volts).
   const RpmTable& table = activeCapCurrentTable(p);
   c.rpmTableTopA = p.capLimitMode == 1 ? kNoValue : *std::max_element(table.begin(), table.end());
   c.batteryMaxA = p.MaximumAllowedBatteryAmps;
-  const double penalty = thermal_.thermalPenaltyAmps();
+  const double penalty = thermal().thermalPenaltyAmps();
   c.thermalPenaltyA = penalty > 0.0 ? penalty : kNoValue;
-  c.thermalA = penalty > 0.0 ? std::max(0.0, I_cap_ - penalty) : kNoValue;
-  c.warmupA = warmupActive_ ? p.WarmupCeilingAmps : kNoValue;
-  c.batteryCapAltA = ifBelow(bmsAltCap_);
-  c.fastOvA = fastOvClampActive_ ? ifBelow(fastOvCapA_) : kNoValue;
+  c.thermalA = penalty > 0.0 ? std::max(0.0, command_.I_cap() - penalty) : kNoValue;
+  c.warmupA = command_.warmupActive() ? p.WarmupCeilingAmps : kNoValue;
+  c.batteryCapAltA = ifBelow(command_.bmsAltCap());
+  c.fastOvA = fastOv_.clampActive() ? ifBelow(fastOv_.capA()) : kNoValue;
   c.zeroBatteryHold = holdsZeroBatteryCurrent(p);
-  c.commandA = I_cmd_;
+  c.commandA = command_.I_cmd();
 }
 
 void ControlLaw::fillTuningTelemetry(ControlTelemetry& t) const noexcept {
@@ -88,10 +89,10 @@ void ControlLaw::fillTuningTelemetry(ControlTelemetry& t) const noexcept {
   t.tuningHighPhase = tuning_.highPhase();
   t.tuningScore = tuning_.currentScore();
   t.tuningLogCount = tuning_.logCount();
-  t.cvTuningRunning = cvTuning_.running();
-  t.cvTuningScore = cvTuning_.currentScore();
-  t.cvTuningSettleSec = cvTuning_.lastSettleSec();
-  t.cvTuningLogCount = cvTuning_.logCount();
+  t.cvTuningRunning = cvTuning().running();
+  t.cvTuningScore = cvTuning().currentScore();
+  t.cvTuningSettleSec = cvTuning().lastSettleSec();
+  t.cvTuningLogCount = cvTuning().logCount();
   t.sysIDRunning = sysId_.systemIdRunning();
   t.sysIDDutyOut = sysIdDutyOut_;
   t.sysIDValid = sysId_.result().valid;

@@ -36,7 +36,7 @@ struct ControlTelemetry {
   bool inStartupRamp = false;
   bool fastRiseActive = false;          // FastSetpointRiseRate window
   bool warmupActive = false;            // warm-up ceiling applying
-  bool bulkVoltageLimitActive = false;  // CV engaged at BulkVoltage inside BULK (ours)
+  bool bulkVoltageLimitActive = false;  // CV engaged at BulkVoltage inside BULK (this project's)
   bool fastOvClampActive = false;
   bool cvOvershootBypass = false;  // GOV_BYPASS_SLEW latch (CV overshoot)
   bool inBulkStage = true, inAbsorptionStage = false, inFloatStage = false, inIdleStage = false;

@@ -33,9 +33,9 @@ void VoltageCvLoop::seedOnEntry(const CvLoopInputs& in, const Params& p) noexcep
   const double e = voltageTargetSlewed_ - in.IBV;
   const double base = reseedAmps_ >= 0.0 ? reseedAmps_ : in.g_pidI_filtered;
   reseedAmps_ = -1.0;
-  const double seed = clampd(base - p.VoltageKp * e, 0.0, std::max(0.0, in.uTargetAmps));
-  cv_I_ = seed;
-  cv_I_track_ = seed;
+  const double start = clampd(base - p.VoltageKp * e, 0.0, std::max(0.0, in.uTargetAmps));
+  cv_I_ = start;
+  cv_I_track_ = start;
   cv_I_aw_cap_ = p.MaxTableValue;  // clear any stale post-event cap
   awSeedProtectStartNs_ = in.now;
   e_ = e;
@@ -79,8 +79,8 @@ double VoltageCvLoop::update(const CvLoopInputs& in, const Params& p) noexcept {
   if (cv_I_aw_cap_ < 0.0) cv_I_aw_cap_ = p.MaxTableValue;
   const double uT = std::max(0.0, in.uTargetAmps);
 
-  // cvDSlope comes from the caller, taken between fresh IBV samples (ours:
-  // the seed's per-tick difference of a value that changes every ~4.5 ms
+  // cvDSlope comes from the caller, taken between fresh IBV samples (this project's:
+  // the specification's per-tick difference of a value that changes every ~4.5 ms
   // alternates between 0 and twice the slope).
   cvDSlope_ = std::isfinite(in.cvDSlope) ? in.cvDSlope : 0.0;
 
@@ -130,7 +130,7 @@ double VoltageCvLoop::update(const CvLoopInputs& in, const Params& p) noexcept {
   if (!entering && in.now - lastVoltageLoopNs_ >= interval) {
     const double actual = toSec(in.now - lastVoltageLoopNs_);
     g_voltLoopActualIntervalMs_ = actual * 1e3;
-    // Ours: a gap (the loop did not run) is not integrated as one long step;
+    // This project's: a gap (the loop did not run) is not integrated as one long step;
     // at most two intervals' worth (30 s of OnOff = 0 moved cv_I 9 -> 33 A).
     fire(in, p, std::min(actual, 2.0 * toSec(interval)));
     lastVoltageLoopNs_ = in.now;

@@ -14,7 +14,7 @@ struct CvLoopInputs {
   double ChargingVoltageTarget = 0.0;
   double IBV = 0.0;              // INA228 bus voltage
   double cvDSlope = 0.0;         // dV/dt of getFiltV() between fresh IBV samples (slope bleed only)
-  double g_pidI_filtered = 0.0;  // inner-loop feedback (bumpless seed / tracker)
+  double g_pidI_filtered = 0.0;  // inner-loop feedback (bumpless start value / tracker)
   double uTargetAmps = 0.0;      // ceiling after fastOvCurrentCap
   double uTargetRaw = 0.0;       // ceiling before fastOvCurrentCap (uTargetRaw_cached)
   bool fastOvClampActive = false;
@@ -32,7 +32,7 @@ class VoltageCvLoop {
   // Bumpless restore (SystemID): integrator and tracker to v.
   void restore(double v) noexcept;
   // After a protection event (fast-OV clamp cleared, back in AUTO): the next
-  // active update seeds cv_I as on CV entry (bumpless, AW cap cleared)
+  // active update starts cv_I afresh as on CV entry (bumpless, AW cap cleared)
   // instead of crawling back from the event's state.
   void requestReseed() noexcept { reseedPending_ = true; }
   // The same, with the current the alternator should make now (instead of
@@ -58,17 +58,17 @@ class VoltageCvLoop {
   void fire(const CvLoopInputs& in, const Params& p, double dtSec) noexcept;
   double slewedTarget(const CvLoopInputs& in, const Params& p) const noexcept;
 
-  bool wasActive_ = false;
-  TimeNs lastVoltageLoopNs_ = 0;  // 0: fires on the enteringCV edge
-  TimeNs awSeedProtectStartNs_ = -1;
+  bool wasActive_ = false;            // the loop ran last tick (the CV-entry edge)
+  TimeNs lastVoltageLoopNs_ = 0;      // 0: fires on the enteringCV edge
+  TimeNs awSeedProtectStartNs_ = -1;  // the last entry / reseed: the AW cap is held off for a while
   double cv_I_ = 0.0, cv_I_track_ = 0.0, cv_I_aw_cap_ = -1.0;  // aw cap < 0: not initialised
-  double Icv_ = 0.0, e_ = 0.0;
-  double voltageTargetSlewed_ = 0.0;
-  int g_awState_ = 4;
-  double cvDSlope_ = 0.0;
-  bool reseedPending_ = false;
-  double reseedAmps_ = -1.0;  // < 0: seed from g_pidI_filtered
-  double g_voltLoopActualIntervalMs_ = 0.0;
+  double Icv_ = 0.0, e_ = 0.0;        // the command and the voltage error of the last firing
+  double voltageTargetSlewed_ = 0.0;  // the target after its own slew (no step into the loop)
+  int g_awState_ = 4;                 // which anti-windup branch acted (telemetry)
+  double cvDSlope_ = 0.0;             // dV/dt taken in (slope bleed)
+  bool reseedPending_ = false;        // the next active update starts afresh (after a protection event)
+  double reseedAmps_ = -1.0;          // < 0: start from g_pidI_filtered
+  double g_voltLoopActualIntervalMs_ = 0.0;  // the real interval of the last firing (telemetry)
 };
 
 }  // namespace xr

@@ -31,9 +31,9 @@ double CvTuningModeRunner::target(TimeNs now, double normalTarget, const Params&
     settledThisPhase_ = false;
     consecutive_ = 0;
   }
-  // Ours (docs/deviations.md "CVTuningMode high target"): the HIGH phase
+  // This project's (docs/deviations.md "CVTuningMode high target"): the HIGH phase
   // never asks for more than the hard-shutdown trip less a margin for the
-  // loop's overshoot; the seed's 14.5 + 0.2 V sat 0.1 V under a 14.8 V trip.
+  // loop's overshoot; the specification's 14.5 + 0.2 V sat 0.1 V under a 14.8 V trip.
   // Not set up: never above the charge ceiling (config/setup_pending.h).
   double ceiling = alternatorHardShutdownV(p) - k::CV_TUNING_TRIP_MARGIN_V;
   if (p.SetupCeilingV > 0.0) ceiling = std::min(ceiling, p.SetupCeilingV);

@@ -44,15 +44,15 @@ class CvTuningModeRunner {
   }
 
  private:
-  bool running_ = false, high_ = false, settledThisPhase_ = false;
-  TimeNs start_ = 0, phaseStart_ = 0, now_ = 0;
-  double target_ = 0.0;
-  double ise_ = 0.0, T_ = 0.0;
-  int consecutive_ = 0;
-  double lastSettleSec_ = -1.0, settleSum_ = 0.0;
-  int settleCount_ = 0;
-  std::array<CvTuningRecord, k::TUNING_LOG_SIZE> cvTuningLog_{};
-  int logCount_ = 0, logHead_ = 0;
+  bool running_ = false, high_ = false, settledThisPhase_ = false;  // a run, its HIGH phase, settled in it
+  TimeNs start_ = 0, phaseStart_ = 0, now_ = 0;    // the run's, the phase's start, the last tick
+  double target_ = 0.0;                            // the target the wave asks now
+  double ise_ = 0.0, T_ = 0.0;                     // the squared error integrated, over this long
+  int consecutive_ = 0;                            // samples inside the settle band in a row
+  double lastSettleSec_ = -1.0, settleSum_ = 0.0;  // the last settle time, and their sum
+  int settleCount_ = 0;                            // settles counted
+  std::array<CvTuningRecord, k::TUNING_LOG_SIZE> cvTuningLog_{};  // committed runs (a ring)
+  int logCount_ = 0, logHead_ = 0;                                // the ring's fill and head
 };
 
 }  // namespace xr

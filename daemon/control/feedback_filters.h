@@ -31,8 +31,8 @@ class Ema {
   }
 
  private:
-  double value_ = 0.0;
-  bool primed_ = false;
+  double value_ = 0.0;   // the filtered value
+  bool primed_ = false;  // the first sample has set it
 };
 
 template <std::size_t Capacity>
@@ -60,9 +60,9 @@ class MovingAverage {
   double value() const { return count_ ? sum_ / static_cast<double>(count_) : 0.0; }
 
  private:
-  std::array<double, Capacity> buf_{};
-  std::size_t window_ = 0, count_ = 0, head_ = 0;
-  double sum_ = 0.0;
+  std::array<double, Capacity> buf_{};             // the window's samples (a ring)
+  std::size_t window_ = 0, count_ = 0, head_ = 0;  // its length, fill and head
+  double sum_ = 0.0;                               // the running sum
 };
 
 }  // namespace xr

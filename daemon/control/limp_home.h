@@ -25,8 +25,8 @@ class LimpHome {
   void reset() { logged_ = false; }
 
  private:
-  bool logged_ = false;
-  TimeNs lastLog_ = 0;
+  bool logged_ = false;  // the Limp Home event was told
+  TimeNs lastLog_ = 0;   // when (it repeats at a slow cadence)
 };
 
 }  // namespace xr

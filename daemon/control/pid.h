@@ -1,5 +1,5 @@
 #pragma once
-// Pid: our own PID with the semantics docs/control.md expects of the seed's
+// Pid: our own PID with the semantics docs/control.md expects of the specification's
 // PID_v1_xeng library (Brett Beauregard's PID_v1 plus extensions):
 //  - DIRECT / REVERSE action (REVERSE: rising input raises the output),
 //  - output limits clamp both the output and the integrator (outputSum),
@@ -93,14 +93,14 @@ class Pid {
 
  private:
   double clampOut(double v) const noexcept { return std::clamp(v, outMin_, outMax_); }
-  double kp_, ki_, kd_;
-  Direction direction_;
-  Mode mode_ = MANUAL;
-  double outMin_ = 0.0, outMax_ = 100.0;
-  double trackingGain_ = 0.0;
-  double outputSum_ = 0.0;
-  double lastInput_ = 0.0;
-  double pTerm_ = 0.0, dTerm_ = 0.0;
+  double kp_, ki_, kd_;                   // the gains, per second
+  Direction direction_;                   // DIRECT or REVERSE action
+  Mode mode_ = MANUAL;                    // MANUAL: the output is written from outside
+  double outMin_ = 0.0, outMax_ = 100.0;  // the output bounds
+  double trackingGain_ = 0.0;             // per second: how fast the integrator tracks the applied output
+  double outputSum_ = 0.0;                // the integrator
+  double lastInput_ = 0.0;                // the last input (derivative on measurement)
+  double pTerm_ = 0.0, dTerm_ = 0.0;      // the last compute's terms (telemetry)
 };
 
 }  // namespace xr

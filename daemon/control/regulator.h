@@ -18,6 +18,9 @@
 
 namespace xr {
 
+struct DutyDecision;
+struct ModeDecision;
+
 class Regulator {
  public:
   explicit Regulator(const Params& params);
@@ -43,23 +46,26 @@ class Regulator {
   void restoreLedger(const BatteryLedger& ledger);
 
  private:
-  // One step's stages, in order (regulator_step.cpp), on the real-time thread like step().
+  // One step's stages, in order (regulator_step.cpp), on the real-time thread
+  // like step(). Each returns what it decided; the Tick holds those for the
+  // later stages (docs/architecture.md "Control law and the step").
   struct Tick;
-  void beginTick(Tick& t) noexcept;
-  bool settleBankClass(const Tick& t) noexcept;  // bank_reading.cpp
+  void beginTick(const Tick& t) noexcept;
+  bool settleBankClass(const Tick& t) noexcept;    // regulator.cpp
+  bool applyToParts(const Command& cmd) noexcept;  // regulator.cpp, between ticks
   void readSensors(Tick& t) noexcept;
   void runProtections(Tick& t) noexcept;
-  void selectMode(Tick& t) noexcept;
-  void enterMode(Tick& t) noexcept;
-  void decideDuty(Tick& t) noexcept;
-  void runAuto(Tick& t) noexcept;
-  void applyField(Tick& t) noexcept;
-  void updateBattery(Tick& t) noexcept;
-  void updateChargeChecks(Tick& t) noexcept;  // regulator_hold.cpp
+  ModeDecision selectMode(Tick& t) noexcept;
+  void enterMode(const Tick& t) noexcept;
+  DutyDecision decideDuty(const Tick& t) noexcept;
+  DutyDecision runAuto(const Tick& t) noexcept;
+  void applyField(const Tick& t) noexcept;
+  void updateBattery(const Tick& t) noexcept;
+  void updateChargeChecks(const Tick& t) noexcept;  // regulator_hold.cpp
   ChargeHold chargeHoldCause(const Tick& t) const noexcept;
-  void updateHealth(Tick& t) noexcept;
+  void updateHealth(const Tick& t) noexcept;
   void fillInputTelemetry(const Tick& t) noexcept;
-  void fillStateTelemetry() noexcept;
+  void fillStateTelemetry(const Tick& t) noexcept;
   void fillCapsTelemetry(const Tick& t) noexcept;
 
   struct State;

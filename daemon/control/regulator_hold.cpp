@@ -54,7 +54,7 @@ ChargeHold Regulator::chargeHoldCause(const Tick& t) const noexcept {
   return ChargeHold::LIMIT;
 }
 
-void Regulator::updateChargeChecks(Tick& t) noexcept {
+void Regulator::updateChargeChecks(const Tick& t) noexcept {
   State& s = *s_;
   const Inputs& in = t.in;
   const double dt = s.lastHoldTick != 0 && in.now > s.lastHoldTick ? toSec(in.now - s.lastHoldTick) : 0.0;
@@ -73,11 +73,11 @@ void Regulator::updateChargeChecks(Tick& t) noexcept {
   // rests it too (the voltage over its target, no current asked).
   h.bankFull = st.inFloatStage() || st.inIdleStage() ||
                (s.bat.socKnown() && s.bat.socPercent() >= ChargeHoldDetector::kFullSocPct);
-  h.ownerChoice = t.manualMode || s.opOff || !s.p.OnOff || s.p.MaintainMode ||
+  h.ownerChoice = t.snap.manualMode || s.ops.off() || !s.p.OnOff || s.p.MaintainMode ||
                   t.d.reason == Reason::REASON_ONOFF_DISABLED || t.d.reason == Reason::REASON_SYS_OFF ||
                   t.d.mode == FieldControlMode::MODE_LIMP_HOME || t.d.reason == Reason::REASON_SYSTEM_ID ||
                   t.d.reason == Reason::REASON_AUTO_ZERO;
-  h.batteryA = t.Bcur;
+  h.batteryA = t.cs.Bcur;
   h.cause = chargeHoldCause(t);
   s.hold.update(in.now, dt, h, s.out.events);
   s.prot.setChargeChecks(s.law.bms().plausibility().active(), s.hold.alarm());

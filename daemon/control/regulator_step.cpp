@@ -37,25 +37,23 @@ const Outputs& Regulator::step(const Inputs& in) noexcept {
   if (s_->p.SetupBankFromBattery && !settleBankClass(t)) return s_->out;
   readSensors(t);
   runProtections(t);
-  selectMode(t);
+  t.d = selectMode(t);
   enterMode(t);
-  decideDuty(t);
+  t.act = decideDuty(t);
   applyField(t);
   updateBattery(t);
   updateHealth(t);
   fillInputTelemetry(t);
-  fillStateTelemetry();
+  fillStateTelemetry(t);
   fillCapsTelemetry(t);
   return s_->out;
 }
 
 // The events of commands applied since the last step open this step's batch.
-void Regulator::beginTick(Tick& t) noexcept {
+void Regulator::beginTick(const Tick& t) noexcept {
   State& s = *s_;
-  EventBatch& ev = s.out.events;
-  ev.clear();
-  for (std::size_t i = 0; i < s.pendingCount; ++i) ev.push(s.pending[i]);
-  s.pendingCount = 0;
+  s.out.events.clear();
+  s.pending.drainInto(s.out.events);
   s.now = t.in.now;
 }
 
@@ -68,17 +66,15 @@ void Regulator::readSensors(Tick& t) noexcept {
   EventBatch& ev = s.out.events;
   s.bat.checkAutoZeroTriggers(in, ev);
   t.autoZeroActive = s.bat.processAutoZero(in, ev);
-  t.MeasuredAmps =
-      std::isfinite(in.altCurrentRaw.value) ? s.bat.correctedAltAmps(in.altCurrentRaw.value) : kNoValue;
-  t.Bcur = std::isfinite(in.Bcur.value) ? s.bat.correctedBcur(in.Bcur.value) : kNoValue;
   t.temp = &alternatorTemperature(in, p.TempSource);
   ControlSensors& cs = t.cs;
   cs.now = in.now;
   cs.ch1Fresh = in.altCurrentRaw.fresh;
-  cs.MeasuredAmps = t.MeasuredAmps;
+  cs.MeasuredAmps =
+      std::isfinite(in.altCurrentRaw.value) ? s.bat.correctedAltAmps(in.altCurrentRaw.value) : kNoValue;
   cs.IBV = in.IBV.value;
   cs.ibvFresh = in.IBV.fresh;
-  cs.Bcur = t.Bcur;
+  cs.Bcur = std::isfinite(in.Bcur.value) ? s.bat.correctedBcur(in.Bcur.value) : kNoValue;
   cs.rpm = in.rpm.value;
   cs.TempToUse = t.temp->value;
   cs.tempStamp = t.temp->stamp;
@@ -96,7 +92,7 @@ void Regulator::runProtections(Tick& t) noexcept {
   EventBatch& ev = s.out.events;
   // A resting field (last tick) quiets the tach: the RPM gate must know it is not a stopped engine.
   s.prot.setFieldResting(s.law.fieldResting());
-  s.prot.updateDetectors(in, t.MeasuredAmps, ev);
+  s.prot.updateDetectors(in, t.cs.MeasuredAmps, ev);
   // Battery temperature (docs/batteries.md): cold/hot orders, current cap, and the
   // compensated targets the stage machine and the voltage loop see.
   const BatteryTempDecision& bt = s.batTemp.update(in, p, ev);
@@ -108,47 +104,46 @@ void Regulator::runProtections(Tick& t) noexcept {
     stageParams = &s.compensated;
   }
   // The charging stage is suppressed in override modes and manual.
-  s.law.updateBms(in.bms, in.now, t.Bcur, in.IBV.value, p, ev);
-  t.manualMode = p.ManualMode || s.opManual;
-  s.law.updateChargingStage(t.cs, *stageParams, t.manualMode, ev);
+  s.law.updateBms(in.bms, in.now, t.cs.Bcur, in.IBV.value, p, ev);
+  s.law.updateChargingStage(t.cs, *stageParams, s.ops.manualMode(p), ev);
 }
 
 // 5. Immutable snapshot and mode selection by priority.
-void Regulator::selectMode(Tick& t) noexcept {
+ModeDecision Regulator::selectMode(Tick& t) noexcept {
   State& s = *s_;
   const Params& p = s.p;
   const BatteryTempDecision& bt = s.batTemp.decision();
   TickSnapshot& snap = t.snap;
   snap.now = t.in.now;
   snap.prot = s.prot.flags();
-  snap.limpHome = s.limpHome;
-  snap.manualMode = t.manualMode;
-  snap.sysOff = s.opOff;
+  snap.limpHome = s.ops.limpHome();
+  snap.manualMode = s.ops.manualMode(p);
+  snap.sysOff = s.ops.off();
   snap.ignitionOn = t.in.ignitionOn;
   snap.OnOff = p.OnOff;
   snap.bmsChargeEnabled = t.in.bmsChargeEnabled && s.law.bms().chargeAllowed();
   // A floor the forecast does not get to argue with (docs/deviations.md
   // "Weather mode's SoC floor"): below it, or with the SoC unknown, charge.
-  snap.weatherModeActive = p.weatherModeEnabled && s.currentWeatherMode && t.cs.socKnown &&
-                           t.cs.SOC_percent >= p.WeatherModeMinSoC;
+  snap.weatherModeActive =
+      p.weatherModeEnabled && s.ops.weatherMode() && t.cs.socKnown && t.cs.SOC_percent >= p.WeatherModeMinSoC;
   // IDLE rests the field, unless the alternator carries the house loads
   // while the bank rests (IdleZeroCurrent).
   snap.idleStage = s.law.stages().inIdleStage() && !s.law.idleZeroCurrentHold(p);
   snap.batteryCold = bt.cold;
   snap.batteryHot = bt.hot;
   snap.autoZeroActive = t.autoZeroActive;
-  t.d = selectFieldMode(snap);
+  return selectFieldMode(snap);
 }
 
 // 6. Mode transitions: bumpless enterSys* and the mode-change event.
-void Regulator::enterMode(Tick& t) noexcept {
+void Regulator::enterMode(const Tick& t) noexcept {
   State& s = *s_;
   const ModeDecision& d = t.d;
-  if (s.firstTick || d.mode != s.lastMode) {
+  if (s.report.changes(d)) {
     switch (d.mode) {
       case FieldControlMode::MODE_NORMAL_AUTO_PID:
         s.law.enterSysAuto(t.cs, s.p);
-        if (!s.firstTick && isRampMode(s.lastMode)) s.law.onProtectionCleared(t.in.now);
+        if (!s.report.firstTick() && isRampMode(s.report.mode())) s.law.onProtectionCleared(t.in.now);
         break;
       case FieldControlMode::MODE_NORMAL_MANUAL:
       case FieldControlMode::MODE_LIMP_HOME:
@@ -161,61 +156,55 @@ void Regulator::enterMode(Tick& t) noexcept {
         s.law.enterSysFault();
         break;
     }
-    // The first tick before the first engine-speed reading: the field waits
-    // off, but no engine stopped (docs/protections.md "First readings").
-    const bool rpmUnread = d.reason == Reason::REASON_RPM_LOW && !std::isfinite(t.in.rpm.value);
-    if (!(s.firstTick && rpmUnread))
-      s.out.events.push(makeEvent(t.in.now, isNormalMode(d.mode) ? EventLevel::Info : EventLevel::Warning,
-                                  EventCode::ModeChanged, d.reason, static_cast<double>(s.lastMode), 0.0, 0,
-                                  d.mode));
   }
-  s.firstTick = false;
-  s.lastMode = d.mode;
-  s.lastReason = d.reason;
+  const bool rpmUnread = d.reason == Reason::REASON_RPM_LOW && !std::isfinite(t.in.rpm.value);
+  s.report.noteMode(d, rpmUnread, t.in.now, s.out.events);
 }
 
 // 7. The shutdown path every tick (it tracks transitions), else the mode's
 // control; the auto-zero and a non-finite duty leave the field off.
-void Regulator::decideDuty(Tick& t) noexcept {
+DutyDecision Regulator::decideDuty(const Tick& t) noexcept {
   State& s = *s_;
   const Params& p = s.p;
   EventBatch& ev = s.out.events;
+  DutyDecision a;
   const ShutdownCommand sc = s.prot.runShutdownPath(t.d, s.law.lastAppliedDuty(), s.law.rpmMinDuty(), ev);
   if (sc.applyImmediateCut) s.law.applyImmediateCut();
   if (sc.active) {
-    t.duty = sc.dutyPct;  // already slewed by the phase rates (effective minimum 0)
-    t.field = sc.fieldEnable;
-    t.govMode = sc.govMode;
-    s.law.trackShutdown(t.duty, p, t.cs.rpm);
+    a.duty = sc.dutyPct;  // already slewed by the phase rates (effective minimum 0)
+    a.field = sc.fieldEnable;
+    a.govMode = sc.govMode;
+    s.law.trackShutdown(a.duty, p, t.cs.rpm);
   } else if (t.d.mode == FieldControlMode::MODE_LIMP_HOME) {
-    t.duty = s.law.runLimpHome(t.cs, p, ev);
-    t.field = true;
+    a.duty = s.law.runLimpHome(t.cs, p, ev);
+    a.field = true;
   } else if (t.d.mode == FieldControlMode::MODE_NORMAL_MANUAL) {
-    t.duty = s.law.runManual(t.cs, p, s.opManual ? s.opManualDuty : p.ManualDutyTarget);
-    t.field = true;
+    a.duty = s.law.runManual(t.cs, p, s.ops.manualDuty(p));
+    a.field = true;
   } else if (t.d.mode == FieldControlMode::MODE_NORMAL_AUTO_PID) {
-    runAuto(t);
+    a = runAuto(t);
   } else {
     // A non-normal mode the sequencer did not take: the safe state.
-    t.duty = 0.0;
-    t.field = false;
+    a.duty = 0.0;
+    a.field = false;
     s.law.trackShutdown(0.0, p, t.cs.rpm);
   }
   if (t.autoZeroActive) {
     // The auto-zero owns the field: LOW for the whole measurement.
-    t.field = false;
-    t.duty = 0.0;
+    a.field = false;
+    a.duty = 0.0;
     s.law.trackShutdown(0.0, p, t.cs.rpm);
   }
-  if (!std::isfinite(t.duty)) {
-    t.duty = 0.0;
-    t.field = false;
+  if (!std::isfinite(a.duty)) {
+    a.duty = 0.0;
+    a.field = false;
   }
+  return a;
 }
 
 // AUTO: the current target, the fast over-voltage supervisors' say over it,
 // then the inner loop and the governor.
-void Regulator::runAuto(Tick& t) noexcept {
+DutyDecision Regulator::runAuto(const Tick& t) noexcept {
   State& s = *s_;
   const Params& p = s.p;
   const double uTargetRaw = s.law.computeUTarget(t.cs, p);
@@ -226,7 +215,7 @@ void Regulator::runAuto(Tick& t) noexcept {
   fi.uTargetAmps = uTargetRaw;
   fi.setpointLimited = s.law.setpointLimited();
   fi.cv_I = s.law.cv_I();
-  fi.MeasuredAmps = t.MeasuredAmps;
+  fi.MeasuredAmps = t.cs.MeasuredAmps;
   fi.MeasuredAmps_filtered = s.law.MeasuredAmps_filtered();
   fi.altCurrentFresh = t.in.altCurrentRaw.fresh;
   const FastOvAction fa = s.prot.runFastOvSupervisors(fi);
@@ -239,36 +228,31 @@ void Regulator::runAuto(Tick& t) noexcept {
   apply.zeroSetpointLimited = fa.zeroSetpointLimited;
   apply.forceBypassSlew = fa.forceBypassSlew;
   apply.sensorFailureBypass = t.snap.prot.voltageImplausible || t.snap.prot.voltageDisagreeCritical;
-  t.duty = s.law.finishAuto(t.cs, p, apply, s.out.events);
-  t.field = !s.law.fieldResting();  // a full bank at the RPM floor rests the field
-  t.fastOvActive = fa.fastOvClampActive;
-  t.govMode = s.law.govMode();
+  DutyDecision a;
+  a.duty = s.law.finishAuto(t.cs, p, apply, s.out.events);
+  a.field = !s.law.fieldResting();  // a full bank at the RPM floor rests the field
+  a.fastOvActive = fa.fastOvClampActive;
+  a.govMode = s.law.govMode();
+  return a;
 }
 
 // The field enable's edges, then the outputs the drivers write.
-void Regulator::applyField(Tick& t) noexcept {
+void Regulator::applyField(const Tick& t) noexcept {
   State& s = *s_;
   Outputs& out = s.out;
-  if (t.field && !s.lastField) {
-    s.law.onFieldTurnOn(t.in.now);
-    out.events.push(
-        makeEvent(t.in.now, EventLevel::Info, EventCode::FieldOn, Reason::NONE, 0.0, 0.0, 0, t.d.mode));
-  } else if (!t.field && s.lastField) {
-    out.events.push(
-        makeEvent(t.in.now, EventLevel::Info, EventCode::FieldOff, t.d.reason, 0.0, 0.0, 0, t.d.mode));
-  }
-  s.lastField = t.field;
-  out.dutyPct = t.field ? std::clamp(t.duty, 0.0, 100.0) : 0.0;
-  out.fieldEnable = t.field;
-  out.inaFastMode = t.field;  // fast conversions while the field is on (Group 1 dv/dt, ALERT speed)
+  const bool field = t.act.field;
+  if (s.report.noteField(field, t.d, t.in.now, out.events)) s.law.onFieldTurnOn(t.in.now);
+  out.dutyPct = field ? std::clamp(t.act.duty, 0.0, 100.0) : 0.0;
+  out.fieldEnable = field;
+  out.inaFastMode = field;  // fast conversions while the field is on (Group 1 dv/dt, ALERT speed)
   out.inaBovlVolts = voltageHardwareLimit(s.p);
 }
 
 // 8. SoC and energy; 9. alarms (250 ms cadence inside).
-void Regulator::updateBattery(Tick& t) noexcept {
+void Regulator::updateBattery(const Tick& t) noexcept {
   State& s = *s_;
   EventBatch& ev = s.out.events;
-  s.bat.updateBatterySoc(t.in, t.MeasuredAmps, ev);
+  s.bat.updateBatterySoc(t.in, t.cs.MeasuredAmps, ev);
   if (s.law.stages().completedOnTail()) s.bat.chargeCompletedOnTail(t.in.now, ev);
   s.prot.setBmsStale(s.law.bms().stale());
   updateChargeChecks(t);
@@ -277,23 +261,23 @@ void Regulator::updateBattery(Tick& t) noexcept {
 
 // 9b. What the regulator learns about the alternator: wear and belt slip
 // (docs/operations.md "Alternator wear", "Belt slip").
-void Regulator::updateHealth(Tick& t) noexcept {
+void Regulator::updateHealth(const Tick& t) noexcept {
   State& s = *s_;
   const Inputs& in = t.in;
   const double dt =
       s.lastHealthTick != 0 && in.now > s.lastHealthTick ? toSec(in.now - s.lastHealthTick) : 0.0;
   s.lastHealthTick = in.now;
   const bool turning = fresh::engineTurning(in.rpm.value) ||
-                       (std::isfinite(t.MeasuredAmps) && t.MeasuredAmps > s.p.CurrentThreshold);
+                       (std::isfinite(t.cs.MeasuredAmps) && t.cs.MeasuredAmps > s.p.CurrentThreshold);
   // The temperature the protections act on counts, and only that: a reading
   // out of the sensor's range must not add to the insulation life used.
   const bool tempKnown = fresh::alternatorTemp(*t.temp, in.now);
-  s.wear.update(dt, turning, tempKnown ? t.temp->value : kNoValue, t.MeasuredAmps, s.p);
+  s.wear.update(dt, turning, tempKnown ? t.temp->value : kNoValue, t.cs.MeasuredAmps, s.p);
   BeltSample b;
   b.rpm = in.rpm.value;
   const bool engineFresh = fresh::engineRpm(in.engineRpm, in.now);
   b.engineRpm = engineFresh ? in.engineRpm.value : kNoValue;
-  b.altAmps = t.MeasuredAmps;
+  b.altAmps = t.cs.MeasuredAmps;
   b.dutyPct = s.out.dutyPct;
   b.targetAmps = s.law.uTargetAmps();
   b.fieldOn = s.out.fieldEnable && t.d.mode == FieldControlMode::MODE_NORMAL_AUTO_PID;
@@ -314,32 +298,31 @@ void Regulator::fillInputTelemetry(const Tick& t) noexcept {
   tm.reason = t.d.reason == Reason::NONE && s.law.bms().stale() ? Reason::REASON_BMS_STALE : t.d.reason;
   tm.ibv_v = in.IBV.value;
   tm.battery_v = in.BatteryV.value;
-  tm.bcur_a = t.Bcur;
-  tm.alt_a = t.MeasuredAmps;
+  tm.bcur_a = t.cs.Bcur;
+  tm.alt_a = t.cs.MeasuredAmps;
   tm.rpm = in.rpm.value;
   tm.temp_f = t.temp->value;
   tm.battery_temp_c = in.batteryTempC.value;
   tm.duty_pct = s.out.dutyPct;
   tm.field_enable = s.out.fieldEnable;
   tm.ignition_on = in.ignitionOn;
-  tm.fast_ov_active = t.fastOvActive;
+  tm.fast_ov_active = t.act.fastOvActive;
   tm.alarm = s.out.buzzer;
-  s.tickGovMode = t.govMode;
 }
 
 // The telemetry that reads the modules' state after this step.
-void Regulator::fillStateTelemetry() noexcept {
+void Regulator::fillStateTelemetry(const Tick& tick) noexcept {
   State& s = *s_;
   Telemetry& t = s.out.telemetry;
   s.law.fillTelemetry(t.control);
-  t.control.govMode = s.tickGovMode;
-  t.control.limpHome = s.lastMode == FieldControlMode::MODE_LIMP_HOME;
+  t.control.govMode = tick.act.govMode;
+  t.control.limpHome = s.report.mode() == FieldControlMode::MODE_LIMP_HOME;
   s.prot.fillTelemetry(t.protection);
   s.bat.updateTelemetry(t.battery);
   s.wear.fillTelemetry(t.wear);
   t.wear.belt_slipping = s.belt.slipping();
   t.stage = s.law.stages().stage();
-  t.setupBank = s.bank;
+  t.setupBank = s.bank.shown();
   t.setpoint_a = s.law.setpointLimited();
   t.target_a = s.law.uTargetAmps();
   t.target_v = s.law.ChargingVoltageTarget();

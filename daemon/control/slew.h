@@ -1,5 +1,5 @@
 #pragma once
-// slewLimit(): the seeds' asymmetric rate limiter (docs/control.md
+// slewLimit(): the specification's asymmetric rate limiter (docs/control.md
 // "Slew Rates and Time Constants"). Moves `current` toward `target` by at most
 // riseRate*dt upward and fallRate*dt downward. Rates are per second.
 #include <algorithm>

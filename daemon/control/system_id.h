@@ -42,15 +42,15 @@ class SystemId {
  private:
   void analyse() noexcept;
   static constexpr int kSamples = 1024;
-  bool running_ = false, stepped_ = false;
-  TimeNs start_ = 0, stepAt_ = 0, lastSample_ = 0;
-  SystemIdSnapshot pre_;
-  SystemIdResult result_;
-  double baseSum_ = 0.0;
-  int baseCount_ = 0;
-  std::array<float, kSamples> amps_{};
-  std::array<float, kSamples> tMs_{};
-  int n_ = 0;
+  bool running_ = false, stepped_ = false;          // a run, past its duty step
+  TimeNs start_ = 0, stepAt_ = 0, lastSample_ = 0;  // the run's start, the step, the last sample
+  SystemIdSnapshot pre_;                            // the loops' state before the run (restored after)
+  SystemIdResult result_;                           // the last run's dead and rise time
+  double baseSum_ = 0.0;                            // the current before the step, summed
+  int baseCount_ = 0;                               // ... over this many samples
+  std::array<float, kSamples> amps_{};              // the current after the step
+  std::array<float, kSamples> tMs_{};               // ... and when
+  int n_ = 0;                                       // samples taken
 };
 
 }  // namespace xr

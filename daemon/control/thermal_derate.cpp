@@ -84,7 +84,7 @@ double ThermalDerate::update(const ThermalInputs& in, const Params& p) noexcept 
   const double outerError = (p.TemperatureLimitF - p.TempPIDMarginF) - tempFiltered_;
   if (in.impliedPenalty > thermalPenaltyAmps_ && outerError > 0.0) {
     const double trackTarget = std::max(0.0, in.impliedPenalty - p.TempPIDAntiWindupMarginA);
-    // The seed calls tempPID.TrackAppliedOutput(trackTarget) here; what it
+    // The specification calls tempPID.TrackAppliedOutput(trackTarget) here; what it
     // describes is parking the integrator, which is what we do (a
     // back-calculation on the output would wind the integrator far above the
     // implied penalty while the P term is strongly negative).

@@ -2,7 +2,7 @@
 // T0: the temperature PID (docs/control.md "Temperature PID (T0)",
 // docs/protections.md "Protections"). REVERSE action on the
 // predictive projectedTempF; output thermalPenaltyAmps, slew-limited.
-// Ours (docs/deviations.md "Thermal loop"): it regulates at
+// This project's (docs/deviations.md "Thermal loop"): it regulates at
 // TemperatureLimitF - TempRegulationMarginF, on max(projected, present), with
 // a filter whose smoothing is per second (not per sample) and a slope that
 // ignores physically impossible jumps.
@@ -43,17 +43,18 @@ class ThermalDerate {
   bool holding() const noexcept { return holding_; }
 
  private:
-  Pid tempPID_;
-  bool primed_ = false;
+  Pid tempPID_;          // REVERSE-acting on the projected temperature: the penalty
+  bool primed_ = false;  // the filter has its first sample
+  // The filtered and projected temperature and its slope.
   double tempFiltered_ = 0.0, projectedTempF_ = 0.0, thermalSlopeFPerSec_ = 0.0;
-  double thermalPenaltyAmps_ = 0.0;
-  TimeNs lastComputeNs_ = 0;
-  bool haveCompute_ = false;
-  std::array<double, k::THERMAL_SLOPE_BUF> thermalSlopeBuffer_{};
-  std::array<TimeNs, k::THERMAL_SLOPE_BUF> slopeStamps_{};
-  int slopeCount_ = 0, slopeHead_ = 0;
+  double thermalPenaltyAmps_ = 0.0;                                // the penalty, slew-limited
+  TimeNs lastComputeNs_ = 0;                                       // the last PID compute (its own cadence)
+  bool haveCompute_ = false;                                       // a compute has run
+  std::array<double, k::THERMAL_SLOPE_BUF> thermalSlopeBuffer_{};  // recent temperatures (the slope)
+  std::array<TimeNs, k::THERMAL_SLOPE_BUF> slopeStamps_{};         // ... and their times
+  int slopeCount_ = 0, slopeHead_ = 0;                             // the ring's fill and head
   TimeNs lastSampleNs_ = 0;  // the last temperature sample taken into tempFiltered
-  bool holding_ = false;
+  bool holding_ = false;     // the penalty holds on stale input
 };
 
 }  // namespace xr

@@ -42,13 +42,13 @@ class TuningModeRunner {
   }
 
  private:
-  bool running_ = false, high_ = false, scoringOpen_ = false;
-  TimeNs start_ = 0;
-  double lastSetpoint_ = 0.0;
-  bool haveLast_ = false;
-  double ise_ = 0.0, scoredSec_ = 0.0;
-  std::array<TuningRecord, k::TUNING_LOG_SIZE> tuningLog_{};
-  int logCount_ = 0, logHead_ = 0;
+  bool running_ = false, high_ = false, scoringOpen_ = false;  // a run, its HIGH phase, scoring open
+  TimeNs start_ = 0;                                           // the run's start (the wave's phase)
+  double lastSetpoint_ = 0.0;           // the setpoint of the last score (a step restarts it)
+  bool haveLast_ = false;               // a score has run
+  double ise_ = 0.0, scoredSec_ = 0.0;  // the squared error integrated, over this long
+  std::array<TuningRecord, k::TUNING_LOG_SIZE> tuningLog_{};  // committed runs (a ring)
+  int logCount_ = 0, logHead_ = 0;                            // the ring's fill and head
 };
 
 }  // namespace xr

@@ -2,6 +2,8 @@
 // reads the bank class from the battery before any voltage trip is armed,
 // scales the not-set-up limits to it, and stays at the 12 V limits when the
 // reading fits no bank.
+#include "control/bank_reading.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -216,6 +218,29 @@ TEST(FirstReadings, NoModeChangeRowBeforeTheFirstEngineSpeed) {
   for (std::size_t k = 0; k < o2.events.count; ++k)
     rpmLow = rpmLow || o2.events.items[k].reason == Reason::REASON_RPM_LOW;
   EXPECT_TRUE(rpmLow);
+}
+
+// The part on its own: it waits until kWait without a reading, not a
+// nanosecond less; a reading settles at once; restart() reads again.
+TEST(BankReadingPart, WaitsTheWholeWaitThenTheTwelveVoltClass) {
+  BankReading b;
+  const Reading none;
+  EXPECT_FALSE(b.update(none, fromSec(1.0)).has_value());
+  EXPECT_FALSE(b.update(none, fromSec(1.0) + BankReading::kWait - 1).has_value());
+  EXPECT_EQ(b.update(none, fromSec(1.0) + BankReading::kWait), std::optional<SystemClass>(SystemClass::V12));
+  EXPECT_TRUE(b.shown().fromBattery);
+  EXPECT_FALSE(b.shown().fits);
+}
+
+TEST(BankReadingPart, AReadingSettlesAtOnceAndRestartReadsAgain) {
+  BankReading b;
+  const Reading v24{25.6, fromSec(1.0), true};
+  EXPECT_EQ(b.update(v24, fromSec(1.0)), std::optional<SystemClass>(SystemClass::V24));
+  EXPECT_TRUE(b.shown().fits);
+  EXPECT_EQ(b.shown().classV, 24);
+  b.restart();
+  EXPECT_FALSE(b.shown().fromBattery);
+  EXPECT_FALSE(b.update(Reading{}, fromSec(2.0)).has_value());
 }
 
 }  // namespace

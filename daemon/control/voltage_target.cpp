@@ -1,77 +1,79 @@
-// ControlLaw::updateChargingStage(): the stage machine's step and the
-// voltage target / voltageControlActive of this tick, override modes
-// included (docs/control.md "Charging stages", "Override modes").
+// VoltageTarget: the stage machine's step and the voltage target /
+// voltageControlActive of this tick, override modes included (docs/control.md
+// "Charging stages", "Override modes").
+#include "control/voltage_target.h"
+
 #include <algorithm>
 #include <cmath>
 
-#include "control/control_law.h"
 #include "core/finite.h"
 #include "params/constants.h"
 #include "params/derived.h"
 
 namespace xr {
 
-void ControlLaw::updateChargingStage(const ControlSensors& s, const Params& p, bool manualMode,
-                                     EventBatch& ev) noexcept {
+void VoltageTarget::update(const TargetInputs& in, const Params& p, EventBatch& ev) noexcept {
   const bool overrideNow = p.MaintainMode || p.TargetVoltageMode || p.CVTuningMode;
   // The stage machine only advances while charging in AUTO (IDLE keeps its
   // re-bulk watch while the field is off); override modes and manual hold it.
-  const bool running = sysMode_ == SysMode::SYS_MODE_AUTO || stages_.inIdleStage();
+  const bool running = in.autoMode || stages_.inIdleStage();
   StageInputs si;
-  si.now = s.now;
-  si.v = s.IBV;
-  si.Bcur = s.Bcur;
-  si.thermalPenaltyAmps = thermal_.thermalPenaltyAmps();
-  si.uTargetAmps = uTargetAmps_;
-  si.SOC_percent = s.SOC_percent;
-  si.socValid = finite(s.SOC_percent) && s.socKnown;
+  si.now = in.now;
+  si.v = in.IBV;
+  si.Bcur = in.Bcur;
+  si.thermalPenaltyAmps = in.thermalPenaltyAmps;
+  si.uTargetAmps = in.uTargetAmps;
+  si.SOC_percent = in.SOC_percent;
+  si.socValid = finite(in.SOC_percent) && in.socKnown;
   // The tail counts only while the voltage loop holds the absorption target
   // (last tick's loop state): a bank discharging into a load the alternator
   // cannot carry is below its target with the CV loop at its ceiling.
-  si.voltageHeld = finite(s.IBV) && s.IBV >= p.AbsorptionVoltage - k::TAIL_HOLD_BAND_V &&
-                   (fieldResting_ || setpointCommand_ < uTargetAmps_ - kTailHeadroomA);
-  si.suppressed = overrideNow || manualMode || !running || !finite(s.IBV);
+  si.voltageHeld = finite(in.IBV) && in.IBV >= p.AbsorptionVoltage - k::TAIL_HOLD_BAND_V &&
+                   (in.fieldResting || in.setpointCommand < in.uTargetAmps - kTailHeadroomA);
+  si.suppressed = overrideNow || in.manualMode || !running || !finite(in.IBV);
   const ChargeStage before = stages_.stage();
   stages_.updateChargingStage(si, p);
-  // Leaving an override: the seed restarts in BULK (TargetVoltageMode exit ->
-  // enterSysAuto()); ours resumes the stage after a short one.
-  if (overrideNow && !overrideWasActive_) overrideSince_ = s.now;
-  if (overrideWasActive_ && !overrideNow) stages_.resumeOrBulk(s.now, s.now - overrideSince_, p);
+  // Leaving an override: the original firmware restarts in BULK
+  // (TargetVoltageMode exit -> enterSysAuto()); this one resumes the stage
+  // after a short one.
+  if (overrideNow && !overrideWasActive_) overrideSince_ = in.now;
+  if (overrideWasActive_ && !overrideNow) stages_.resumeOrBulk(in.now, in.now - overrideSince_, p);
   overrideWasActive_ = overrideNow;
   if (stages_.stage() != before) {
-    ev.push(makeEvent(s.now, EventLevel::Info, EventCode::StageChanged, Reason::NONE,
+    ev.push(makeEvent(in.now, EventLevel::Info, EventCode::StageChanged, Reason::NONE,
                       static_cast<double>(before), static_cast<double>(stages_.stage())));
   }
 
   voltageControlActive_ = stages_.voltageControlActive();
   ChargingVoltageTarget_ = stages_.ChargingVoltageTarget(p);
-  applyTargetOverrides(s, p, overrideNow);
+  applyOverrides(in, p, overrideNow);
 }
 
 // The voltage target and whether the voltage loop runs, after the stage's:
 // the bulk ceiling, the override modes, the idle hold and the BMS's CVL.
-void ControlLaw::applyTargetOverrides(const ControlSensors& s, const Params& p, bool overrideNow) noexcept {
-  // Bulk voltage ceiling (ours; the legacy seed's "voltage soft limiter (bulk
-  // only)" recast as a setpoint ceiling, as that seed's cap chain asks). The
-  // newer seed runs BULK as pure CC with the hold timer, so a small or
-  // high-resistance bank can climb from BulkVoltage to the hard-shutdown trip
-  // (Bulk + 0.3 V) before bulkVoltageHoldMs elapses and cycle through warning
-  // ramps and lockouts forever, never charging (seen in the simulator with a
-  // 40 Ah AGM bank at 50 A). Once IBV reaches BulkVoltage in BULK, the CV loop
-  // engages at the bulk target (bumpless seed, Groups 1-3 armed) until IBV
-  // falls BULK_V_BAND_EXIT below it; the stage machine is untouched.
+void VoltageTarget::applyOverrides(const TargetInputs& in, const Params& p, bool overrideNow) noexcept {
+  // Bulk voltage ceiling (this project's; the legacy specification's
+  // "voltage soft limiter (bulk only)" recast as a setpoint ceiling, as that
+  // specification's cap chain asks). The newer specification runs BULK as
+  // pure CC with the hold timer, so a small or high-resistance bank can climb
+  // from BulkVoltage to the hard-shutdown trip (Bulk + 0.3 V) before
+  // bulkVoltageHoldMs elapses and cycle through warning ramps and lockouts
+  // forever, never charging (seen in the simulator with a 40 Ah AGM bank at
+  // 50 A). Once IBV reaches BulkVoltage in BULK, the CV loop engages at the
+  // bulk target (bumpless, Groups 1-3 armed) until IBV falls
+  // BULK_V_BAND_EXIT below it; the stage machine is untouched.
   const bool overrideTargets = overrideNow || p.TuningMode;
-  if (stages_.inBulkStage() && !overrideTargets && finite(s.IBV)) {
-    if (!bulkVoltageLimitActive_ && s.IBV >= p.BulkVoltage)
+  if (stages_.inBulkStage() && !overrideTargets && finite(in.IBV)) {
+    if (!bulkVoltageLimitActive_ && in.IBV >= p.BulkVoltage)
       bulkVoltageLimitActive_ = true;
-    else if (bulkVoltageLimitActive_ && s.IBV < p.BulkVoltage - k::BULK_V_BAND_EXIT)
+    else if (bulkVoltageLimitActive_ && in.IBV < p.BulkVoltage - k::BULK_V_BAND_EXIT)
       bulkVoltageLimitActive_ = false;
   } else {
     bulkVoltageLimitActive_ = false;
   }
   if (bulkVoltageLimitActive_) voltageControlActive_ = true;
   if (p.CVTuningMode) {
-    ChargingVoltageTarget_ = cvTuning_.target(s.now, ChargingVoltageTarget_, p);
+    ChargingVoltageTarget_ = cvTuning_.target(in.now, ChargingVoltageTarget_, p);
     voltageControlActive_ = true;
   } else if (cvTuning_.running()) {
     cvTuning_.reset();  // nothing to clear unless a run is in progress (score/commit need one)
@@ -99,9 +101,8 @@ void ControlLaw::applyTargetOverrides(const ControlSensors& s, const Params& p, 
   // voltage loop runs under it from the start (it sits at its current ceiling
   // while below): engaging it only once IBV reached CVL overshoots by the
   // loop's reaction time.
-  if (std::isfinite(bms_.cvlCeilingV()) &&
-      bms_.cvlCeilingV() < ChargingVoltageTarget_ + k::BULK_V_BAND_EXIT) {
-    ChargingVoltageTarget_ = std::min(ChargingVoltageTarget_, bms_.cvlCeilingV());
+  if (std::isfinite(in.bmsCvlV) && in.bmsCvlV < ChargingVoltageTarget_ + k::BULK_V_BAND_EXIT) {
+    ChargingVoltageTarget_ = std::min(ChargingVoltageTarget_, in.bmsCvlV);
     voltageControlActive_ = true;
   }
   if (p.TuningMode) voltageControlActive_ = false;  // characterise the inner loop alone
