@@ -1,4 +1,4 @@
-// BatteryAverages (docs/batteries.md "Averages").
+// BatteryAverages (docs/batteries.md "Energy and averages").
 #include "battery/battery_averages.h"
 
 #include "battery/monitor_helpers.h"

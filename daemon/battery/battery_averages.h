@@ -1,7 +1,7 @@
 #pragma once
 // BatteryAverages: the time-weighted mean state of charge (this session and
 // lifetime) and the lifetime mean battery voltage (docs/batteries.md
-// "Averages"). Each tick adds its seconds; each SoC interval weighs the
+// "Energy and averages"). Each tick adds its seconds; each SoC interval weighs the
 // interval's SoC by them. Pure: no clock, no I/O.
 #include "battery/ledger.h"
 

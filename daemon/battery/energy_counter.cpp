@@ -1,4 +1,4 @@
-// EnergyCounter (docs/batteries.md "Energy").
+// EnergyCounter (docs/batteries.md "Energy and averages").
 #include "battery/energy_counter.h"
 
 #include <cmath>

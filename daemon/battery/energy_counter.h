@@ -1,7 +1,7 @@
 #pragma once
 // EnergyCounter: the energy in and out of the bank, the alternator's and
 // solar's share, the alternator's running time and the diesel it cost
-// (docs/batteries.md "Energy"). Each tick adds to the interval's integrals;
+// (docs/batteries.md "Energy and averages"). Each tick adds to the interval's integrals;
 // each SoC interval commits them to the session and lifetime totals. A
 // lifetime total is kept as whole Wh plus a retained fraction, so a 50 mW
 // draw is never rounded away against megawatt-hours. Pure: no clock, no I/O.
@@ -21,9 +21,9 @@ struct EnergySample {
 
 // One energy total: this session, and the lifetime as whole Wh + fraction.
 struct EnergyTotal {
-  double session_Wh = 0.0;
-  double lifetimeWhole_Wh = 0.0;
-  double lifetimeFraction_Wh = 0.0;
+  double session_Wh = 0.0;           // since the daemon started
+  double lifetimeWhole_Wh = 0.0;     // the bank's life, whole Wh
+  double lifetimeFraction_Wh = 0.0;  // below one Wh, not yet in lifetimeWhole_Wh
   double lifetime() const noexcept { return lifetimeWhole_Wh + lifetimeFraction_Wh; }
 };
 
