@@ -5,6 +5,7 @@
 
 #include "runtime/ds18b20_handoff.h"
 #include "runtime/fatal_guard.h"
+#include "runtime/vedirect_handoff.h"
 
 namespace xr::app {
 
@@ -72,10 +73,7 @@ BoardRig::BoardRig(const Settings& settings) {
   if (!hw.battery_temp_sensor.empty()) {
     batteryDs18b20_ = std::make_unique<Ds18b20Reader>(hw.w1_root, hw.battery_temp_sensor);
   }
-  if (!hw.vedirect_port.empty()) {
-    vedirect_ = std::make_unique<VeDirectReader>(hw.vedirect_port);
-    vedirect_->start();
-  }
+  if (!hw.vedirect_port.empty()) vedirect_ = std::make_unique<VeDirectReader>(hw.vedirect_port);
 }
 
 BoardRig::~BoardRig() {
@@ -93,7 +91,6 @@ rt::CycleDevices BoardRig::devices() {
   d.bms = gpio_.bms();
   d.ignition = gpio_.ignition();
   d.watchdog = watchdog_.isOpen() ? &watchdog_ : nullptr;
-  d.hook = this;
   d.adsReady = readyEdges_.get();
   return d;
 }
@@ -116,7 +113,6 @@ void BoardRig::registerFatalActions() {
 }
 
 void BoardRig::attach(rt::Handoffs& h) {
-  handoffs_ = &h;
   // One hand-off per reading: the reader thread stores it where the cycle
   // reads it (docs/architecture.md "Threads").
   ds18b20_->onSample([&h](const Ds18b20Sample& s) { h.temperature.store(temperatureHandoff(s)); });
@@ -128,23 +124,9 @@ void BoardRig::attach(rt::Handoffs& h) {
     batteryDs18b20_->onSample([&h](const Ds18b20Sample& s) { h.batteryTemp.store(batteryTempHandoff(s)); });
     batteryDs18b20_->start();
   }
-}
-
-void BoardRig::beforeTick(TimeNs) {
-  if (!handoffs_) return;
-  // Relay VE.Direct's lock-free sample into the cycle's hand-off, only when
-  // the reader moved on: an unchanged hand-off costs the cycle nothing.
   if (vedirect_) {
-    const VeDirectSample v = vedirect_->latest();
-    if (v.frames != lastVictronFrames_ && v.hasCurrent) {
-      rt::VictronHandoff vh;
-      vh.currentA = v.currentA;
-      vh.voltageV = v.hasVoltage ? v.voltageV : kNoValue;
-      vh.solarW = v.hasPpv ? v.ppvW : kNoValue;
-      vh.stamp = v.stamp;
-      handoffs_->victron.store(vh);
-      lastVictronFrames_ = v.frames;
-    }
+    vedirect_->onSample([&h](const VeDirectSample& s) { postVeDirect(h, s); });
+    vedirect_->start();
   }
 }
 

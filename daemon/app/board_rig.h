@@ -18,23 +18,22 @@
 
 namespace xr::app {
 
-class BoardRig final : public rt::TickHook {
+class BoardRig final {
  public:
   explicit BoardRig(const Settings& settings);
-  ~BoardRig() override;
+  ~BoardRig();
   rt::CycleDevices devices();
   Clock& loopClock() { return clock_; }
   rt::MonotonicClock& wall() { return clock_; }
   DriverSensors::StartReport startSensors(double bovlVolts);
-  // The hand-offs the cycle reads; starts the DS18B20 readers, which write
-  // their temperatures into them from their own thread.
+  // The hand-offs the cycle reads; starts the DS18B20 and VE.Direct
+  // readers, which write their samples into them from their own threads.
   void attach(rt::Handoffs& h);
   // Async-signal-safe fatal actions: PWM duty 0 + enable 0 via the
   // pre-opened sysfs descriptors, GPIO4 LOW via its requested line.
   void registerFatalActions();
   const std::string& watchdogWarning() const { return watchdogWarning_; }
   const std::string& readyLineWarning() const { return readyLineWarning_; }
-  void beforeTick(TimeNs now) override;
 
  private:
   rt::MonotonicClock clock_;
@@ -51,8 +50,6 @@ class BoardRig final : public rt::TickHook {
   std::unique_ptr<Ds18b20Reader> ds18b20_;
   std::unique_ptr<Ds18b20Reader> batteryDs18b20_;  // [hardware] battery_temp_sensor (docs/batteries.md)
   std::unique_ptr<VeDirectReader> vedirect_;
-  rt::Handoffs* handoffs_ = nullptr;
-  std::uint64_t lastVictronFrames_ = 0;
 };
 
 }  // namespace xr::app

@@ -1,8 +1,10 @@
 #pragma once
-// BatteryMonitor: SoC, energy accounting, full-charge detection, auto shunt
-// gain, alternator-current auto-zero and charge-time prediction
-// (docs/batteries.md). Pure core: no I/O, no clock, no allocation
-// after construction; time comes from Inputs::now.
+// BatteryMonitor: the battery's coordinator (docs/batteries.md,
+// docs/architecture.md "Battery monitor"). It holds the parts that each own
+// their state (auto-zero, SoC counter, shunt gain, rest re-anchor, health,
+// energy, averages), picks the battery's voltage and current for them each
+// tick, and calls them in a fixed order. Pure core: no I/O, no clock, no
+// allocation after construction; time comes from Inputs::now.
 //
 // How Regulator::step must call it, every tick, in this order:
 //
@@ -10,27 +12,31 @@
 //      const bool autoZeroActive = mon.processAutoZero(in, events);
 //      If autoZeroActive: mode = MODE_LOCKOUT_RAMP, fieldEnable = LOW,
 //      duty = MinDuty for this tick; the normal control path must not run
-//      ("Critical ordering note" of the seed).
+//      (the specification's "Critical ordering note").
 //   2. const double MeasuredAmps = mon.correctedAltAmps(in.altCurrentRaw.value);
 //      const double Bcur = mon.correctedBcur(in.Bcur.value);
-//      Use these everywhere the seeds use MeasuredAmps / Bcur (the control
-//      loop's MaintainMode path uses Bcur, never getBatteryCurrent()).
+//      Use these everywhere the specification uses MeasuredAmps / Bcur (the
+//      control loop's MaintainMode path uses Bcur, never getBatteryCurrent()).
 //   3. (control + protections step)
 //   4. mon.updateBatterySoc(in, MeasuredAmps, events);   // every tick; it
-//      integrates every tick and runs the seed's body each SOCUpdateInterval,
-//      and calculateChargeTimes() each INA_SLOW_INTERVAL_MS.
-//   5. mon.fillTelemetry(outputs.telemetry.battery);
-//      outputs.telemetry.soc_pct = mon.socPercent(); charged_wh_lifetime etc.
+//      integrates every tick, closes a SoC interval each SOCUpdateInterval
+//      and predicts the charge times each INA_SLOW_INTERVAL_MS.
+//   5. mon.updateTelemetry(outputs.telemetry.battery);
 //
 // Between ticks (command()): resetSocGain(), resetAltZero(), setSoc(pct).
 // setParams() whenever Params are replaced. ledger()/restoreLedger() for the
 // store (restoreLedger before the first step, or between ticks).
 #include <cstdint>
 
+#include "battery/battery_auto_zero.h"
+#include "battery/battery_averages.h"
+#include "battery/battery_health.h"
+#include "battery/battery_ocv.h"
 #include "battery/battery_telemetry.h"
-#include "battery/capacity_tracker.h"
+#include "battery/energy_counter.h"
 #include "battery/ledger.h"
-#include "battery/resistance_estimator.h"
+#include "battery/shunt_gain.h"
+#include "battery/soc_counter.h"
 #include "core/events.h"
 #include "core/inputs.h"
 #include "core/time.h"
@@ -38,78 +44,31 @@
 
 namespace xr {
 
-// Constants the seed uses but leaves unnamed or unvalued. Chosen here; each
-// one is a safety / plausibility decision, so it is not user-settable.
 namespace battery_k {
-// Field held off this long for an auto-zero (the first 2 s are the settle
-// window and are not sampled). 10 s gives ~8 s of samples: at the ADS1115's
-// CH1 rate that is hundreds of samples, enough to average Hall noise away,
-// while a 10 s charging gap once an hour costs < 0.3 % of charge.
-inline constexpr std::int64_t AUTO_ZERO_DURATION_MS = 10000;
-// Largest Hall zero offset accepted from an auto-zero. A bigger value means
-// current was really flowing (field not off, wiring fault): keep the old zero.
-inline constexpr double AUTO_ZERO_MAX_OFFSET_A = 10.0;
-// Auto shunt-gain correction (applySocGainCorrection guard clauses):
-// at most one correction per 24 h: full-charge detection repeats every
-// SOCUpdateInterval while it holds, and a calibration should average over a
-// whole cycle, not react to the same full charge twice.
-inline constexpr std::int64_t MIN_GAIN_CORRECTION_INTERVAL_MS = 24LL * 3600 * 1000;
-// |expected - calculated| / expected above this is a sensor or wiring fault,
-// not a calibration error: do nothing.
-inline constexpr double MAX_REASONABLE_ERROR = 0.20;
-// Per-event rate limit: the factor moves at most 2 % per full charge.
-inline constexpr double MAX_GAIN_ADJUSTMENT_PER_CYCLE = 0.02;
-// Absolute bounds: a shunt is never off by more than 10 % after manufacture.
-inline constexpr double MIN_DYNAMIC_GAIN_FACTOR = 0.90;
-inline constexpr double MAX_DYNAMIC_GAIN_FACTOR = 1.10;
-// Plausibility floor of both capacities (Ah), as the seed.
-inline constexpr double MIN_PLAUSIBLE_CAPACITY_AH = 10.0;
-// The seed commits the coulomb accumulator in 0.01 Ah steps, remainder kept.
-inline constexpr double COULOMB_COMMIT_AH = 0.01;
 // INA228 current older than this is treated as absent (no integration).
 inline constexpr std::int64_t INA_STALE_FOR_SOC_MS = 2000;
 // Solar PPV older than this is not integrated.
 inline constexpr std::int64_t SOLAR_STALE_MS = 10000;
 }  // namespace battery_k
 
-// SoC assumed before anything was restored or measured (see the constructor).
-inline constexpr double kUnknownSocPercent = 100.0;
-
-// Why an auto-gain correction was skipped (detail code of events/tests).
-enum class GainGuard {
-  Applied = 0,
-  FeatureOff,
-  TooSoon,      // MIN_GAIN_CORRECTION_INTERVAL
-  NoReference,  // no full charge / setSoc since boot: count is not a measurement
-  ImplausibleCapacity,
-  ErrorTooLarge,  // MAX_REASONABLE_ERROR
-};
-
 class BatteryMonitor {
  public:
   explicit BatteryMonitor(const Params& p);
   void setParams(const Params& p) noexcept;
 
-  // ---- auto-zero (before the control step) --------------------------------
-  // Starts an auto-zero when AutoAltCurrentZero, not running, RPM >= 200 and
-  // (hourly interval elapsed or temperature moved >= 20 degF). The hourly
-  // timer starts at the first tick; the temperature baseline is the first
-  // valid temperature. Emits AutoZeroStarted.
+  // ---- auto-zero (before the control step): AltCurrentAutoZero ------------
   void checkAutoZeroTriggers(const Inputs& in, EventBatch& ev) noexcept;
-  // Runs the field-off sampling window. Returns true while active (the caller
-  // forces MODE_LOCKOUT_RAMP, field LOW, duty MinDuty). On completion sets
-  // DynamicAltCurrentZero = mean raw CH1 after the 2 s settle and emits
-  // AutoZeroDone (a = new zero A, detail 0 = ok, 1 = no samples, 2 = rejected
-  // as implausible).
+  // True while the field-off window runs (the caller forces
+  // MODE_LOCKOUT_RAMP, field LOW, duty MinDuty).
   bool processAutoZero(const Inputs& in,
                        EventBatch& ev) noexcept {  // inline idle path: no call on almost every tick
-    return autoZeroActive_ && processActiveAutoZero(in, ev);
+    return autoZero_.active() && processActiveAutoZero(in, ev);
   }
-  bool autoZeroActive() const noexcept { return autoZeroActive_; }
+  bool autoZeroActive() const noexcept { return autoZero_.active(); }
 
   // ---- corrected sensor values ---------------------------------------------
-  double correctedAltAmps(double rawAmps) const noexcept { return rawAmps - ledger_.DynamicAltCurrentZero; }
-  double correctedBcur(double raw) const noexcept { return raw * ledger_.DynamicShuntGainFactor; }
+  double correctedAltAmps(double rawAmps) const noexcept { return autoZero_.corrected(rawAmps); }
+  double correctedBcur(double raw) const noexcept { return gain_.corrected(raw); }
   // IBV (INA228 bus voltage) always.
   double getBatteryVoltage(const Inputs& in) const noexcept;
   // INA228 Bcur x gain, or VictronCurrent when BatteryCurrentSource == 3 and
@@ -118,15 +77,12 @@ class BatteryMonitor {
   bool usingVictronCurrent(const Inputs& in) const noexcept;
 
   // ---- SoC and energy (after the control step, every tick) -----------------
-  // measuredAltAmps = correctedAltAmps(raw CH1). Integrates current and power
-  // every tick (zero-order hold of the latest sample), runs the seed's
-  // updateBatterySoc body every SOCUpdateInterval on the interval totals and
-  // calculateChargeTimes() every INA_SLOW_INTERVAL_MS.
+  // measuredAltAmps = correctedAltAmps(raw CH1).
   void updateBatterySoc(const Inputs& in, double measuredAltAmps, EventBatch& ev) noexcept;
 
   // ---- commands (between ticks) --------------------------------------------
-  void resetSocGain() noexcept;      // handleSocGainReset: DynamicShuntGainFactor = 1.0
-  void resetAltZero() noexcept;      // handleAltZeroReset: DynamicAltCurrentZero = 0
+  void resetSocGain() noexcept;      // DynamicShuntGainFactor = 1.0
+  void resetAltZero() noexcept;      // DynamicAltCurrentZero = 0
   bool setSoc(double pct) noexcept;  // false (unchanged) when pct is outside 0..100 or NaN
 
   // ---- persistence ---------------------------------------------------------
@@ -139,140 +95,72 @@ class BatteryMonitor {
   void fillTelemetry(BatteryTelemetry& t) const noexcept;
   // Per-tick telemetry for a struct that lives from tick to tick and that
   // only this call writes (Regulator's Outputs): nearly every field changes
-  // only when the SoC body, the charge-time prediction, an auto-zero, a
-  // command, setParams or restoreLedger runs, so the whole struct is
-  // refilled only then; otherwise only the per-tick fields are written.
-  // The result is always equal to fillTelemetry() (battery_test checks it).
+  // only when a SoC interval closes, the charge-time prediction, an
+  // auto-zero, a command, setParams or restoreLedger runs, so the whole
+  // struct is refilled only then; otherwise only the per-tick fields are
+  // written. The result is always equal to fillTelemetry() (battery_test checks it).
   void updateTelemetry(BatteryTelemetry& t) noexcept;
-  double socPercent() const noexcept {  // inline: read several times per tick
-    const double cap = p_.BatteryCapacity_Ah;
-    if (!(cap > 0.0)) return 0.0;
-    return ledger_.CoulombCount_Ah / cap * 100.0;
-  }
+  double socPercent() const noexcept {
+    return soc_.percent(p_.BatteryCapacity_Ah);
+  }  // read several times per tick
   // False while the SoC is the constructor's guess: no valid ledger restored,
   // no setSoc, no full-charge detection yet. Control may ignore SOC gating
   // (StageInputs::socValid) while this is false.
   bool socKnown() const noexcept { return socSource() == SocSource::Counted; }
-  SocSource socSource() const noexcept { return static_cast<SocSource>(static_cast<int>(ledger_.SocSource)); }
-  bool fullChargeDetected() const noexcept { return FullChargeDetected_; }
+  SocSource socSource() const noexcept { return soc_.source(); }
+  bool fullChargeDetected() const noexcept { return soc_.fullDetected(); }
   // The charging stage ended absorption on its tail current: the bank is
   // full, a detected full charge like the monitor's own (its voltage and
   // tail thresholds may differ from the stage's, and a bank that rests
   // after absorption never meets them again; docs/batteries.md).
   void chargeCompletedOnTail(TimeNs now, EventBatch& ev) noexcept;
-  double chargedEnergyLifetimeWh() const noexcept;
-  double alternatorChargedEnergyLifetimeWh() const noexcept;
+  double chargedEnergyLifetimeWh() const noexcept { return energy_.charged().lifetime(); }
+  double alternatorChargedEnergyLifetimeWh() const noexcept { return energy_.alternator().lifetime(); }
   // The bank's measured capacity (NaN until measured) and resistance at 25 degC
-  // (NaN until enough steps were seen): battery_health.cpp.
-  double capacityMeasuredAh() const noexcept { return capacity_.measuredAh(); }
-  int capacityCycles() const noexcept { return capacity_.cycles(); }
-  double batteryResistanceMohm() const noexcept { return resistance_.medianMohm(); }
-  // Last applySocGainCorrection outcome (tests, diagnostics).
-  GainGuard lastGainGuard() const noexcept { return lastGainGuard_; }
+  // (NaN until enough steps were seen).
+  double capacityMeasuredAh() const noexcept { return health_.capacity().measuredAh(); }
+  int capacityCycles() const noexcept { return health_.capacity().cycles(); }
+  double batteryResistanceMohm() const noexcept { return health_.resistance().medianMohm(); }
+  // Last shunt-gain correction outcome (tests, diagnostics).
+  GainGuard lastGainGuard() const noexcept { return gain_.lastGuard(); }
 
-  // Peukert factor of the seed, (PeukertRatedCurrent_A / I)^(n-1) clamped to
-  // 0.5..2.0, or 1 at or below C/100. Public for tests.
+  // SocCounter::peukertFactor (public for tests).
   static double peukertFactor(double dischargeCurrent_A, double capacity_Ah, double ratedCurrent_A,
-                              double exponent) noexcept;
+                              double exponent) noexcept {
+    return SocCounter::peukertFactor(dischargeCurrent_A, capacity_Ah, ratedCurrent_A, exponent);
+  }
 
  private:
-  bool processActiveAutoZero(const Inputs& in,
-                             EventBatch& ev) noexcept;  // processAutoZero while autoZeroActive_
-  struct Energy {  // one accumulator: session + lifetime (whole Wh + fraction)
-    double session_Wh = 0.0;
-    double lifetimeFraction_Wh = 0.0;
-  };
-  void runSocBody(TimeNs now, double elapsed_s, EventBatch& ev) noexcept;
-  void countCoulombs(double elapsed_s) noexcept;
-  void countFuel() noexcept;
-  void applySocGainCorrection(TimeNs now, EventBatch& ev) noexcept;
+  bool processActiveAutoZero(const Inputs& in, EventBatch& ev) noexcept;
+  AutoZeroInput autoZeroInput(const Inputs& in) const noexcept;
+  void startTimers(TimeNs now) noexcept;
+  // battery_monitor_tick.cpp: one SoC interval, a full charge, the rest
+  // re-anchor and the health figures.
+  void closeSocInterval(TimeNs now, double elapsed_s, EventBatch& ev) noexcept;
   void declareFullCharge(TimeNs now, EventBatch& ev) noexcept;
-  void setSocSource(SocSource s) noexcept {
-    ledger_.SocSource = static_cast<double>(s);
-    telemetryStale_ = true;
-  }
-  void estimateSocAtRest(double dt_s, double amps, double volts, double altAmps) noexcept;
-  // battery_ocv.cpp: a lead-acid bank at rest (little current, alternator
-  // off), and the SoC its rested voltage says.
-  bool leadAcidAtRest(double amps, double volts, double altAmps) const noexcept;
-  double socFromRestVolts(double volts) const noexcept;
-  void calculateChargeTimes(const Inputs& in) noexcept;
-  // battery_health.cpp: the measured capacity's points, the resistance.
-  void trackHealth(const Inputs& in, double dt_s, double amps, double volts, double altAmps) noexcept;
-  void restedVoltagePoint(double dt_s, double amps, double volts, double tempC, bool resting) noexcept;
   void capacityPoint(TimeNs now, double socPct, bool full, EventBatch& ev) noexcept;
-  void commitEnergy(Energy& e, double& lifetimeWhole, double delta_Wh) noexcept;
-  double temperatureF(const Inputs& in) const noexcept;
+  void trackRest(const Inputs& in, double dt_s, double amps, double volts, double altAmps) noexcept;
 
-  Params p_;
-  BatteryLedger ledger_;
-  // Something behind a slow telemetry field changed since the last
-  // updateTelemetry() (see there).
-  bool telemetryStale_ = true;
-
-  // Per-interval integrals (zero-order hold, reset each SOC body run).
-  bool started_ = false;
-  TimeNs lastTick_ = 0;
-  TimeNs lastSocUpdate_ = 0;
-  TimeNs lastChargeTimes_ = 0;
-  double intAh_ = 0.0;           // signed battery Ah (raw, before efficiency/Peukert)
-  double intChargeWh_ = 0.0;     // V*I > 0
-  double intDischargeWh_ = 0.0;  // |V*I| for V*I < 0
-  double intAltWh_ = 0.0;        // V * MeasuredAmps while alternatorIsOn
-  double intSolarWh_ = 0.0;      // PPV
-  double intAltOn_s_ = 0.0;
-  double intSoc_s_ = 0.0;    // seconds integrated this interval
-  double intV_s_ = 0.0;      // V*s
-  double intVtime_s_ = 0.0;  // seconds with a valid voltage
-
-  // Latest samples used by the body.
-  double currentBatteryVoltage_ = 0.0;
-  double batteryCurrentForSoC_ = 0.0;
-  bool usingVictron_ = false;
-  bool socInputsValid_ = false;
-  // The start-up estimate from the rested voltage (battery_ocv.cpp).
-  double restTimer_s_ = 0.0;
-  double restVoltSum_ = 0.0;
-  double lastValidVoltage_ = 0.0;
-
-  // Session energies and figures.
-  Energy charged_, discharged_, altCharged_, solar_;
-  double AlternatorOnTime_s_ = 0.0;
-  double AlternatorFuelUsed_L_ = 0.0;
-  double fuelFraction_L_ = 0.0;  // hundredths-of-a-litre commit (seed)
-  double socAccumulator_ = 0.0, totalSocSampleTime_ = 0.0;
-  int nominalVoltage_ = 12;
-
-  // Full charge / gain.
-  double FullChargeTimer_s_ = 0.0;
-  bool FullChargeDetected_ = false;
-  bool gainReferenceValid_ = false;  // a full charge or setSoc happened this session
-  double unclampedCount_Ah_ = 0.0;   // count since the reference, without the 0..cap clamp
-  bool haveGainCorrection_ = false;
-  TimeNs lastGainCorrectionTime_ = 0;
-  GainGuard lastGainGuard_ = GainGuard::FeatureOff;
-
-  // Auto-zero.
-  bool autoZeroActive_ = false;
-  TimeNs autoZeroStartTime_ = 0;
-  TimeNs lastAutoZeroTime_ = 0;
-  bool haveAutoZeroTemp_ = false;
-  double lastAutoZeroTemp_ = 0.0;
-  double autoZeroAccumulator_ = 0.0;
-  long autoZeroSampleCount_ = 0;
-
-  // Health (battery_health.cpp).
-  CapacityTracker capacity_;
-  ResistanceEstimator resistance_;
-  double bmsSocPct_ = kNoValue;  // a fresh SoC from a BMS, this interval
-  double healthRest_s_ = 0.0;    // lead-acid rest towards a rested-voltage point
-  double healthRestV_s_ = 0.0, healthRestA_s_ = 0.0, healthRestAvg_s_ = 0.0;
-  bool healthRestTaken_ = false;         // this rest gave its point
-  double pendingRestSocPct_ = kNoValue;  // a rested-voltage point for the next SoC body
-
-  // Predictions.
-  double timeToFullChargeMin_ = -999.0;
-  double timeToFullDischargeMin_ = -999.0;
+  Params p_;                    // the running set (capacity, thresholds, features)
+  bool telemetryStale_ = true;  // a slow telemetry field changed since updateTelemetry()
+  bool started_ = false;        // the first tick has set the timers below
+  TimeNs lastTick_ = 0;         // the previous updateBatterySoc: dt of the zero-order hold
+  TimeNs lastSocUpdate_ = 0;    // the last SoC interval's end (SOCUpdateInterval)
+  TimeNs lastChargeTimes_ = 0;  // the last charge-time prediction (INA_SLOW_INTERVAL_MS)
+  // The latest battery sample the SoC interval and the telemetry use.
+  double lastValidVoltage_ = 0.0;      // the last measured voltage (held while absent)
+  double batteryCurrentForSoC_ = 0.0;  // the current counted this tick (0 when absent)
+  bool usingVictron_ = false;          // that current came from VE.Direct
+  bool socInputsValid_ = false;        // both current and voltage were measured this tick
+  int nominalVoltage_ = 12;  // the bank class from the voltage (docs/deviations.md "One bank-class rule")
+  // The parts, in the order one tick runs them.
+  AltCurrentAutoZero autoZero_;  // the alternator current sensor's zero
+  ShuntGainCorrector gain_;      // the battery shunt's gain
+  SocCounter soc_;               // the count, its source, full charge, charge times
+  EnergyCounter energy_;         // energies, alternator time and fuel
+  BatteryAverages averages_;     // mean SoC and voltage
+  OcvReanchor rest_;             // rested-voltage points of known SoC
+  BatteryHealth health_;         // measured capacity and resistance
 };
 
 }  // namespace xr

@@ -1,14 +1,11 @@
-// The first SoC of a lead-acid bank from its rested voltage (docs/batteries.md
-// "State of charge at first start"). A fresh ledger does not know the SoC;
-// a lead-acid bank's open-circuit voltage tells it within some points, so
-// once the bank has rested the monitor starts counting from that estimate
-// and says it is one. LiFePO4's voltage is flat from 20 % to 90 % (docs/sources.md
-// §3.1: 12.85-13.24 V), so a LiFePO4 or custom bank stays unknown until its
-// first full charge or a value set by hand.
-#include <algorithm>
-#include <cmath>
+// OcvReanchor: the SoC of a lead-acid bank from its rested voltage
+// (docs/batteries.md "State of charge at first start", "Measured capacity").
+#include "battery/battery_ocv.h"
 
-#include "battery/battery_monitor.h"
+#include <cmath>
+#include <iterator>
+
+#include "battery/resistance_estimator.h"
 
 namespace xr {
 namespace {
@@ -23,12 +20,27 @@ struct OcvPoint {
 constexpr OcvPoint kLeadAcidOcv[] = {
     {11.52, 0.0}, {11.75, 25.0}, {12.20, 50.0}, {12.55, 75.0}, {12.80, 100.0}};
 
-// "At rest" for the estimate: at most 2 % of the capacity flowing (a few
-// amps of house load on a 200 Ah bank move the voltage by hundredths), the
-// alternator not charging, for 30 s. A true OCV wants hours of rest
-// (docs/sources.md P3.5); the figure is shown as an estimate for that reason.
+// "At rest" for the first-start estimate: at most 2 % of the capacity
+// flowing (a few amps of house load on a 200 Ah bank move the voltage by
+// hundredths), the alternator not charging, for 30 s. A true OCV wants hours
+// of rest (docs/sources.md P3.5); the figure is shown as an estimate for that reason.
 constexpr double kRestCurrentC = 0.02;
 constexpr double kRestSeconds = 30.0;
+
+// A rested voltage is a point of known SoC for lead-acid after this long at
+// rest: the slow polarisation decays over hours (docs/sources.md P3.5 asks
+// for 6 h or more; after 4 h what is left is ~1 % of SoC for an AGM bank,
+// docs/batteries.md). The voltage is the mean of the last hour of it.
+constexpr double kPointRestS = 4.0 * 3600.0;
+constexpr double kPointAverageS = 3600.0;
+// "At rest" for this point is wider than the first-start estimate's: a
+// fridge compressor on a boat draws 4 to 6 A while it runs, 2 to 3 % of C,
+// and the bank rests only with it. Any second within kPointPeakC
+// (discharge) or kPointChargeC (charge) counts, with the alternator off;
+// the hour the voltage is averaged over must average within kPointMeanC,
+// and what still flows is taken off with the measured resistance
+// (docs/batteries.md "Measured capacity").
+constexpr double kPointPeakC = 0.05, kPointChargeC = 0.02, kPointMeanC = 0.02;
 
 bool isLeadAcid(const Params& p) {
   // BatteryProfile: 0 lifepo4, 1 agm, 2 flooded, 3 gel, 4 custom.
@@ -47,34 +59,62 @@ double socFromRestVoltage12(double v) {
 
 }  // namespace
 
-bool BatteryMonitor::leadAcidAtRest(double amps, double volts, double altAmps) const noexcept {
-  const bool alternatorOff = !std::isfinite(altAmps) || altAmps <= p_.CurrentThreshold;
-  return isLeadAcid(p_) && std::isfinite(amps) && std::isfinite(volts) &&
-         std::fabs(amps) <= kRestCurrentC * p_.BatteryCapacity_Ah && alternatorOff;
+bool OcvReanchor::leadAcidAtRest(double amps, double volts, double altAmps, const Params& p) noexcept {
+  const bool alternatorOff = !std::isfinite(altAmps) || altAmps <= p.CurrentThreshold;
+  return isLeadAcid(p) && std::isfinite(amps) && std::isfinite(volts) &&
+         std::fabs(amps) <= kRestCurrentC * p.BatteryCapacity_Ah && alternatorOff;
 }
 
-double BatteryMonitor::socFromRestVolts(double volts) const noexcept {
-  // Per 12 V of bank: BatteryCells when set, else the bank class's 6 per 12 V.
-  const double cells = p_.BatteryCells > 0 ? p_.BatteryCells : 6.0 * nominalVoltage_ / 12.0;
+double OcvReanchor::socFromRestVolts(double volts, const Params& p, int nominalVoltage) noexcept {
+  const double cells = p.BatteryCells > 0 ? p.BatteryCells : 6.0 * nominalVoltage / 12.0;
   return socFromRestVoltage12(volts * 6.0 / cells);
 }
 
-void BatteryMonitor::estimateSocAtRest(double dt_s, double amps, double volts, double altAmps) noexcept {
-  if (socSource() != SocSource::Unknown || !isLeadAcid(p_) || !(dt_s > 0.0)) {
-    restTimer_s_ = restVoltSum_ = 0.0;
+double OcvReanchor::firstStartEstimate(const RestInput& in, bool socUnknown, const Params& p) noexcept {
+  if (!socUnknown || !isLeadAcid(p) || !(in.dt_s > 0.0) ||
+      !leadAcidAtRest(in.amps, in.volts, in.altAmps, p)) {
+    startRest_s_ = startVolt_s_ = 0.0;
+    return kNoValue;
+  }
+  startRest_s_ += in.dt_s;
+  startVolt_s_ += in.volts * in.dt_s;
+  if (startRest_s_ < kRestSeconds) return kNoValue;
+  const double pct = socFromRestVolts(startVolt_s_ / startRest_s_, p, in.nominalVoltage);
+  startRest_s_ = startVolt_s_ = 0.0;
+  return pct;
+}
+
+void OcvReanchor::trackRestedPoint(const RestInput& in, const Params& p,
+                                   const ResistanceEstimator& r) noexcept {
+  const double c = p.BatteryCapacity_Ah;
+  // leadAcidAtRest with no current: a lead-acid bank, a voltage, the alternator off.
+  const bool resting = leadAcidAtRest(0.0, in.volts, in.altAmps, p) && std::isfinite(in.amps) &&
+                       in.amps <= kPointChargeC * c && in.amps >= -kPointPeakC * c;
+  if (!resting) {
+    rest_s_ = restV_s_ = restA_s_ = restAvg_s_ = 0.0;
+    restTaken_ = false;
     return;
   }
-  if (!leadAcidAtRest(amps, volts, altAmps)) {
-    restTimer_s_ = restVoltSum_ = 0.0;
-    return;
+  if (!(in.dt_s > 0.0) || restTaken_) return;
+  rest_s_ += in.dt_s;
+  if (rest_s_ > kPointRestS - kPointAverageS) {
+    restV_s_ += in.volts * in.dt_s;
+    restA_s_ += in.amps * in.dt_s;
+    restAvg_s_ += in.dt_s;
   }
-  restTimer_s_ += dt_s;
-  restVoltSum_ += volts * dt_s;
-  if (restTimer_s_ < kRestSeconds) return;
-  ledger_.CoulombCount_Ah = p_.BatteryCapacity_Ah * socFromRestVolts(restVoltSum_ / restTimer_s_) / 100.0;
-  ledger_.coulombAccumulator_Ah = 0.0;
-  setSocSource(SocSource::OcvEstimate);
-  restTimer_s_ = restVoltSum_ = 0.0;
+  if (rest_s_ < kPointRestS || !(restAvg_s_ > 0.0)) return;
+  restTaken_ = true;
+  const double ohms = r.ohmsAt(in.tempC);
+  const double a = restA_s_ / restAvg_s_;
+  if (std::fabs(a) > kPointMeanC * c) return;  // not a rest on average
+  const double ocv = restV_s_ / restAvg_s_ - (std::isfinite(ohms) ? a * ohms : 0.0);
+  pendingSocPct_ = socFromRestVolts(ocv, p, in.nominalVoltage);
+}
+
+double OcvReanchor::takeRestedPoint() noexcept {
+  const double pct = pendingSocPct_;
+  pendingSocPct_ = kNoValue;
+  return pct;
 }
 
 }  // namespace xr

@@ -74,7 +74,7 @@ struct BatteryLedger {
   bool operator==(const BatteryLedger&) const = default;
 };
 
-// The health figures' fields (names ours: the seeds have none).
+// The health figures' fields (names of this project: the specification has none).
 template <typename L, typename F>
 void visitHealthLedgerFields(L& l, F&& f) {
   f("CapacitySumAh", l.capacity.SumAh);
@@ -100,7 +100,7 @@ void visitHealthLedgerFields(L& l, F&& f) {
   f("BeltSlipEvents", l.wear.BeltSlipEvents);
 }
 
-// Calls f(name, double&) for each numeric field (names are the seeds').
+// Calls f(name, double&) for each numeric field (names are the specification's).
 template <typename L, typename F>
 void visitLedgerFields(L& l, F&& f) {
   f("CoulombCount_Ah", l.CoulombCount_Ah);

@@ -1,6 +1,6 @@
 #pragma once
-// Small checks shared by the BatteryMonitor's source files
-// (battery_monitor.cpp, battery_auto_zero.cpp, battery_soc.cpp).
+// Small checks shared by the BatteryMonitor's source files and its parts
+// (battery_*.cpp, soc_counter.cpp, shunt_gain.cpp, energy_counter.cpp).
 #include <algorithm>
 #include <cstdint>
 

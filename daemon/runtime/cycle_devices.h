@@ -60,9 +60,9 @@ class TruthSource {
   virtual void fill(SimTruth& t) noexcept = 0;
 };
 
-// Called on the control thread at the start of every tick, before anything
-// else: the simulation plays its scenario events here and the slow sensor
-// readers are relayed into the hand-offs. An exception thrown here leaves
+// Called on the control thread at the start of every tick: the simulation plays its scenario
+// events and simulated 1-Wire readings here (the board's slow sensor readers post into their
+// hand-offs from their own threads; nothing is relayed here). An exception thrown here leaves
 // the loop through the control thread's exception path (safe state, exit 70).
 class TickHook {
  public:

@@ -101,9 +101,11 @@ void VeDirectReader::run() {
     if (n > 0 && (fds[0].revents & POLLIN)) {
       const ssize_t r = ::read(fd, buf, sizeof(buf));
       if (r > 0) {
+        const std::uint32_t framesBefore = state_.frames;
         parser_.feed(std::string_view(buf, static_cast<std::size_t>(r)), &VeDirectReader::onFrame, this);
         state_.badChecksums = parser_.badChecksums();
         out_.store(state_);
+        if (sink_ && state_.frames != framesBefore) sink_(state_);
       } else if (r == 0 || (errno != EAGAIN && errno != EINTR)) {
         lost = true;
       }

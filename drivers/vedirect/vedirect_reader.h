@@ -1,9 +1,10 @@
 #pragma once
 // VE.Direct reader (docs/install.md, wiring): a non-RT thread opens the serial port
 // (termios 19200 8N1, raw), parses blocks and publishes {current A, voltage V,
-// ppv W, stamp} through a SeqLock for the control thread
-// (Inputs::VictronCurrent/VictronVoltage/solarPowerW; BatteryCurrentSource = 3
-// and solar energy). Unplug (read error/EOF/hang-up) closes the port and
+// ppv W, stamp} through a SeqLock (latest(): status, tests) and, with each new
+// block, to its sink, which writes the control cycle's hand-off from this
+// thread (Inputs::VictronCurrent/VictronVoltage/solarPowerW; BatteryCurrentSource
+// = 3 and solar energy). Unplug (read error/EOF/hang-up) closes the port and
 // re-opens it every `reopenPeriod`.
 #include <atomic>
 #include <functional>
@@ -38,6 +39,12 @@ class VeDirectReader {
   VeDirectReader(const VeDirectReader&) = delete;
   VeDirectReader& operator=(const VeDirectReader&) = delete;
 
+  // Called on the reader's thread with the sample after each new valid
+  // block, after latest() has it: the consumer's own hand-off is written
+  // once, by this thread. Set before start().
+  using Sink = std::function<void(const VeDirectSample&)>;
+  void onSample(Sink sink) { sink_ = std::move(sink); }
+
   void start();
   void stop() noexcept;
   // RT-safe: the newest published sample.
@@ -53,6 +60,7 @@ class VeDirectReader {
   vedirect::Parser parser_;
   VeDirectSample state_;
   SeqLock<VeDirectSample> out_;
+  Sink sink_;
   std::atomic<bool> stop_{false};
   int wakeFd_[2] = {-1, -1};
   std::thread thread_;

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <string>
 #include <thread>
@@ -13,22 +14,14 @@
 
 #include "drivers/vedirect/vedirect_parser.h"
 #include "drivers/vedirect/vedirect_reader.h"
+#include "vedirect_pty.h"
 
 namespace xr {
 namespace {
 
-// One text block with a correct checksum byte (sum of all bytes = 0 mod 256).
-std::string block(const std::vector<std::pair<std::string, std::string>>& fields, int corruptBy = 0) {
-  std::string s;
-  for (const auto& [l, v] : fields) s += "\r\n" + l + "\t" + v;
-  s += "\r\nChecksum\t";
-  unsigned sum = 0;
-  for (unsigned char c : s) sum += c;
-  s += static_cast<char>(((256 - sum % 256) + corruptBy) % 256);
-  return s;
-}
-const std::vector<std::pair<std::string, std::string>> kFields = {
-    {"PID", "0xA053"}, {"V", "13250"}, {"I", "-1500"}, {"VPV", "36010"}, {"PPV", "120"}, {"CS", "3"}};
+using test::block;
+using test::kFields;
+using test::Pty;
 
 struct Collect {
   std::vector<vedirect::Frame> frames;
@@ -106,27 +99,6 @@ TEST(VeDirectParser, HexMessagesInterleavedAreSkipped) {
   EXPECT_EQ(p.badChecksums(), 0u);
 }
 
-class Pty {
- public:
-  Pty() {
-    master_ = ::posix_openpt(O_RDWR | O_NOCTTY);
-    if (master_ >= 0 && ::grantpt(master_) == 0 && ::unlockpt(master_) == 0) name_ = ::ptsname(master_);
-  }
-  ~Pty() { closeMaster(); }
-  const std::string& slave() const { return name_; }
-  bool write(const std::string& s) {
-    return ::write(master_, s.data(), s.size()) == static_cast<ssize_t>(s.size());
-  }
-  void closeMaster() {
-    if (master_ >= 0) ::close(master_);
-    master_ = -1;
-  }
-
- private:
-  int master_ = -1;
-  std::string name_;
-};
-
 template <typename Pred>
 bool waitFor(Pred p) {
   // Bounded wait for the reader thread; no duration is asserted.
@@ -168,6 +140,32 @@ TEST(VeDirectReader, UnplugClosesThePortAndKeepsTheLastStamp) {
   ASSERT_TRUE(waitFor([&] { return !r.latest().portOpen; }));
   EXPECT_EQ(r.latest().stamp, stamp) << "no new data: the consumer sees it go stale";
   r.stop();
+}
+
+TEST(VeDirectReader, TheSinkGetsEachNewBlockOnceOnTheReadersThread) {
+  Pty pty;
+  VeDirectReader r(pty.slave(), {}, 50'000'000);
+  std::atomic<int> calls{0};
+  std::atomic<bool> onReaderThread{true};
+  std::atomic<bool> latestHadIt{true};
+  const auto testThread = std::this_thread::get_id();
+  r.onSample([&](const VeDirectSample& s) {
+    if (std::this_thread::get_id() == testThread) onReaderThread = false;
+    if (r.latest().frames != s.frames) latestHadIt = false;
+    ++calls;
+  });
+  r.start();
+  ASSERT_TRUE(waitFor([&] { return r.latest().portOpen; }));
+  ASSERT_TRUE(pty.write(block(kFields) + block(kFields)));  // the first block only synchronises
+  ASSERT_TRUE(waitFor([&] { return calls.load() >= 1; }));
+  ASSERT_TRUE(pty.write(block(kFields, 3)));  // a bad checksum: no new block, no call
+  ASSERT_TRUE(pty.write(block({{"V", "12500"}, {"I", "800"}})));
+  ASSERT_TRUE(waitFor([&] { return calls.load() >= 2; }));
+  r.stop();
+  EXPECT_EQ(calls.load(), 2);
+  EXPECT_EQ(r.latest().frames, 2u);
+  EXPECT_TRUE(onReaderThread.load());
+  EXPECT_TRUE(latestHadIt.load()) << "latest() has the block before the sink is told";
 }
 
 TEST(VeDirectReader, MissingPortStaysClosedAndStopsPromptly) {

@@ -70,7 +70,7 @@ TEST(FullCharge, NeedsChargedVoltage) {
   r.ina(13.7, 1.0);
   r.run(600.0, 1.0);
   EXPECT_FALSE(r.mon.fullChargeDetected());
-  // Discharging at the tail magnitude counts too (|current|), as the seed.
+  // Discharging at the tail magnitude counts too (|current|), as the specification says.
   r.ina(13.9, -3.0);
   r.run(64.0, 1.0);
   EXPECT_TRUE(r.mon.fullChargeDetected());

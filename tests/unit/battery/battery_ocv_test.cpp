@@ -2,9 +2,14 @@
 // at first start"): a lead-acid bank at rest gets an estimate from the
 // Lifeline AGM table; a LiFePO4 or custom bank stays unknown until a full
 // charge or a value set; the source survives a restart.
+#include "battery/battery_ocv.h"
+
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "battery/battery_monitor.h"
+#include "battery/resistance_estimator.h"
 #include "battery_fixture.h"
 
 namespace xr {
@@ -89,6 +94,53 @@ TEST(SocAtFirstStart, TheSourceSurvivesARestartAndOldLedgersCountAsKnown) {
   BatteryRig damaged(agm200());
   damaged.mon.restoreLedger(old);
   EXPECT_EQ(damaged.mon.socSource(), SocSource::Unknown);
+}
+
+// OcvReanchor on its own: the first-start estimate at 30 s of rest and not
+// before, a load above the rest limit restarts it; the rested point at 4 h.
+RestInput restAt(double volts, double amps, double dt = 1.0) {
+  RestInput in;
+  in.dt_s = dt;
+  in.volts = volts;
+  in.amps = amps;
+  in.altAmps = 0.0;
+  in.tempC = kNoValue;
+  return in;
+}
+
+TEST(OcvReanchor, FirstStartEstimateAtThirtySecondsOfRestNotBefore) {
+  const Params p = agm200();
+  OcvReanchor o;
+  for (int i = 0; i < 29; ++i) EXPECT_TRUE(std::isnan(o.firstStartEstimate(restAt(12.20, 0.0), true, p)));
+  EXPECT_NEAR(o.firstStartEstimate(restAt(12.20, 0.0), true, p), 50.0, 1e-9);
+  // Not while the SoC is known, nor under a load above 2 % of C.
+  OcvReanchor known, loaded;
+  for (int i = 0; i < 40; ++i) {
+    EXPECT_TRUE(std::isnan(known.firstStartEstimate(restAt(12.20, 0.0), false, p)));
+    EXPECT_TRUE(std::isnan(loaded.firstStartEstimate(restAt(12.20, i == 20 ? -4.01 : 0.0), true, p))) << i;
+  }
+}
+
+TEST(OcvReanchor, ARestedPointAfterFourHoursIsTakenOnce) {
+  const Params p = agm200();
+  OcvReanchor o;
+  ResistanceEstimator r;  // no resistance known: the terminal voltage is the OCV
+  for (int i = 0; i < 4 * 3600 - 1; ++i) o.trackRestedPoint(restAt(12.55, -1.0), p, r);
+  EXPECT_TRUE(std::isnan(o.takeRestedPoint())) << "one second short of 4 h";
+  o.trackRestedPoint(restAt(12.55, -1.0), p, r);
+  EXPECT_NEAR(o.takeRestedPoint(), 75.0, 1e-9);
+  EXPECT_TRUE(std::isnan(o.takeRestedPoint())) << "taking it clears it";
+  for (int i = 0; i < 3600; ++i) o.trackRestedPoint(restAt(12.55, -1.0), p, r);
+  EXPECT_TRUE(std::isnan(o.takeRestedPoint())) << "one point per rest";
+}
+
+TEST(OcvReanchor, NoRestedPointForLiFePO4) {
+  Params p = agm200();
+  p.BatteryProfile = 0;
+  OcvReanchor o;
+  ResistanceEstimator r;
+  for (int i = 0; i < 4 * 3600 + 10; ++i) o.trackRestedPoint(restAt(13.2, 0.0), p, r);
+  EXPECT_TRUE(std::isnan(o.takeRestedPoint()));
 }
 
 }  // namespace
