@@ -1,13 +1,14 @@
 #include "logging/logging.h"
 
-#include <spdlog/sinks/base_sink.h>
-#include <spdlog/sinks/stdout_color_sinks.h>
-#include <spdlog/spdlog.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cstdlib>
 #include <mutex>
+
+#include <spdlog/sinks/base_sink.h>
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
 
 #include "logging/journal.h"
 
@@ -23,8 +24,7 @@ class JournalSink final : public spdlog::sinks::base_sink<std::mutex> {
   void sink_it_(const spdlog::details::log_msg& msg) override {
     logging::JournalRecord r;
     r.fields.push_back("MESSAGE=" + std::string(msg.payload.data(), msg.payload.size()));
-    r.fields.push_back("PRIORITY=" +
-                       std::to_string(logging::journalPriorityForSpdlog(static_cast<int>(msg.level))));
+    r.fields.push_back("PRIORITY=" + std::to_string(logging::journalPriorityForSpdlog(static_cast<int>(msg.level))));
     r.fields.push_back("SYSLOG_IDENTIFIER=xregulatord");
     logging::sendToJournal(r);
   }
@@ -33,16 +33,11 @@ class JournalSink final : public spdlog::sinks::base_sink<std::mutex> {
 
 spdlog::level::level_enum toSpdlog(EventLevel l) {
   switch (l) {
-    case EventLevel::Debug:
-      return spdlog::level::debug;
-    case EventLevel::Info:
-      return spdlog::level::info;
-    case EventLevel::Warning:
-      return spdlog::level::warn;
-    case EventLevel::Error:
-      return spdlog::level::err;
-    case EventLevel::Critical:
-      return spdlog::level::critical;
+    case EventLevel::Debug: return spdlog::level::debug;
+    case EventLevel::Info: return spdlog::level::info;
+    case EventLevel::Warning: return spdlog::level::warn;
+    case EventLevel::Error: return spdlog::level::err;
+    case EventLevel::Critical: return spdlog::level::critical;
   }
   return spdlog::level::info;
 }
@@ -60,12 +55,10 @@ std::optional<int> parseLogLevel(std::string_view s) {
   return std::nullopt;
 }
 
-std::string initLogging(const LogSettings& settings, std::optional<std::string_view> cliLevel,
-                        LogTarget target) {
+std::string initLogging(const LogSettings& settings, std::optional<std::string_view> cliLevel, LogTarget target) {
   bool journal = false;
   if (target == LogTarget::Journal) journal = true;
-  if (target == LogTarget::Auto)
-    journal = logging::journalStreamMatches(std::getenv("JOURNAL_STREAM"), STDERR_FILENO);
+  if (target == LogTarget::Auto) journal = logging::journalStreamMatches(std::getenv("JOURNAL_STREAM"), STDERR_FILENO);
 
   spdlog::sink_ptr sink;
   if (journal) {
@@ -84,8 +77,7 @@ std::string initLogging(const LogSettings& settings, std::optional<std::string_v
   const std::string_view wanted = cliLevel ? *cliLevel : std::string_view(settings.level);
   auto lvl = parseLogLevel(wanted);
   if (!lvl) {
-    error = "unknown log level \"" + std::string(wanted) +
-            "\" (use trace, debug, info, warn, error, critical or off)";
+    error = "unknown log level \"" + std::string(wanted) + "\" (use trace, debug, info, warn, error, critical or off)";
     lvl = spdlog::level::info;
   }
   logger->set_level(static_cast<spdlog::level::level_enum>(*lvl));

@@ -27,15 +27,12 @@ command = "limp_home"
 at_s = 300
 command = "limp_home_off"
 )");
-  const double tLimp =
-      firstTime(r, [](const SimRow& x) { return x.telemetry.mode == FieldControlMode::MODE_LIMP_HOME; });
+  const double tLimp = firstTime(r, [](const SimRow& x) { return x.telemetry.mode == FieldControlMode::MODE_LIMP_HOME; });
   ASSERT_GE(tLimp, 100.0) << trace(r, 10);
   EXPECT_LT(tLimp, 102.0);
   // Limp home still charges, and the true voltage stays below the hard limit.
   EXPECT_GT(at(r, 250)->plant.alt_a, 1.0) << trace(r, 10);
-  EXPECT_LT(maxOf(
-                r, [](const SimRow& x) { return x.plant.battery_v; }, 100, 300),
-            14.8);
+  EXPECT_LT(maxOf(r, [](const SimRow& x) { return x.plant.battery_v; }, 100, 300), 14.8);
   EXPECT_EQ(r.rows.back().telemetry.mode, FieldControlMode::MODE_NORMAL_AUTO_PID) << trace(r, 10);
 }
 
@@ -62,11 +59,9 @@ house_a = 3
 )",
                          1.0);
   for (double t0 : {0.0, 300.0, 600.0}) {
-    const double worst = maxOf(
-        r, [](const SimRow& x) { return std::fabs(x.plant.battery_a); }, t0 + 60, t0 + 299);
+    const double worst = maxOf(r, [](const SimRow& x) { return std::fabs(x.plant.battery_a); }, t0 + 60, t0 + 299);
     EXPECT_LT(worst, 2.0) << "after step at " << t0 << "\n" << trace(r, 20);
-    const double seen = maxOf(
-        r, [](const SimRow& x) { return std::fabs(x.telemetry.bcur_a); }, t0 + 60, t0 + 299);
+    const double seen = maxOf(r, [](const SimRow& x) { return std::fabs(x.telemetry.bcur_a); }, t0 + 60, t0 + 299);
     EXPECT_LT(seen, 2.5);
   }
   // The alternator carried the house load.
@@ -96,9 +91,7 @@ set = { TargetVoltageMode = 1, TargetVoltageSetpoint = 13.7 }
     EXPECT_NEAR(x->plant.battery_v, 13.7, 0.1) << trace(r, 20);
     EXPECT_NEAR(x->telemetry.target_v, 13.7, 1e-6);
   }
-  EXPECT_LT(maxOf(
-                r, [](const SimRow& x) { return x.plant.battery_v; }, 60),
-            13.7 + 0.2);
+  EXPECT_LT(maxOf(r, [](const SimRow& x) { return x.plant.battery_v; }, 60), 13.7 + 0.2);
 }
 
 TEST(ClosedLoopMode, AutoZeroCorrectsHallDrift) {
@@ -127,8 +120,7 @@ value = 4.0
   // After the auto-zero the measured alternator current matches the truth.
   const SimRow* late = &r.rows.back();
   EXPECT_NEAR(late->telemetry.alt_a, late->plant.alt_a, 1.0) << trace(r, 300);
-  const double tZero =
-      firstTime(r, [](const SimRow& x) { return x.telemetry.reason == Reason::REASON_AUTO_ZERO; });
+  const double tZero = firstTime(r, [](const SimRow& x) { return x.telemetry.reason == Reason::REASON_AUTO_ZERO; });
   EXPECT_GT(tZero, 0.0) << trace(r, 300);
   EXPECT_GT(std::fabs(early->telemetry.alt_a - early->plant.alt_a), 3.0) << trace(r, 300);
 }
@@ -163,7 +155,7 @@ TEST(ClosedLoopDeterminism, SameSeedGivesByteIdenticalTelemetry) {
   const std::string a = csvOf(5), b = csvOf(5), c = csvOf(6);
   EXPECT_GT(a.size(), 1000u);
   EXPECT_EQ(a, b);
-  EXPECT_NE(a, c);  // the specification really drives the noise
+  EXPECT_NE(a, c);  // the random seed really drives the noise
   EXPECT_EQ(a.substr(0, a.find('\n')).find("t_s,mode,stage,reason"), 0u);
   EXPECT_NE(a.find("sim_battery_v,sim_alt_a,sim_alt_temp_f,sim_soc_pct,sim_bms_connected,sim_field_on"),
             std::string::npos);
