@@ -161,7 +161,7 @@ std::string tomlText() {
        "# here; a value in this file wins over the profile (docs/configuration.md).\n"
        "# Check an edited file with `xregulatord --config FILE --check-config`\n"
        "# (exit 0 = OK, 78 = errors, all of them listed with file:line:column).\n"
-       "# Parameter names are the seeds' names and each is unique across tables.\n"
+       "# Parameter names are the specification's names and each is unique across tables.\n"
        "#\n"
        "# A wrong voltage or current limit can destroy an alternator or a battery bank.\n"
        "# Change one value at a time and watch the result on the dashboard.\n";
@@ -218,7 +218,7 @@ std::string markdownText() {
        "     daemon/config/settings_schema.cpp. Do not edit: run\n"
        "     `cmake --build build --target regen-docs`. A test fails when this file is stale. -->\n\n"
        "Every user-settable parameter of xregulatord, by the table it lives in in\n"
-       "`/etc/xregulator/xregulator.toml`. Names are the seeds' names. The same names are\n"
+       "`/etc/xregulator/xregulator.toml`. Names are the specification's names. The same names are\n"
        "used by the HTTP API (`GET`/`PATCH /api/params`) and by a scenario's `[config]`\n"
        "table. Booleans accept `true`/`false` or `1`/`0`. RPM tables hold "
     << RPM_TABLE_SIZE

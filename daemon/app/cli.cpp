@@ -136,7 +136,7 @@ Valued textOptions(CliResult& r) {
   return v;
 }
 
-// The simulation's pace, length, output rate and seed.
+// The simulation's pace, length, output rate and random seed.
 void addRunOptions(CliOptions& o, Valued& v) {
   v["--speed"] = [&o](const std::string& text) {
     o.speedGiven = true;

@@ -60,8 +60,8 @@ class WebApi final : public web::DaemonApi {
   std::set<std::string> profileOwned() override;
   Params effectiveDefaults() override;
   SetupState setupState() override;
-  web::PatchResult patchParams(const std::vector<web::ParamChange>& changes,
-                               const std::string& source) override;
+  web::PatchResult patchParams(const std::vector<web::ParamChange>& changes, const std::string& source,
+                               const web::PatchOptions& opts = {}) override;
   web::CommandResult command(const Command& cmd) override;
   web::CommandResult dvccLimits(const web::DvccRequest& req) override;  // web_api_dvcc.cpp
   void securityEvent(const std::string& text) override;

@@ -95,7 +95,7 @@ std::string weatherMissingText(WeatherMissing w, double httpStatus) {
   return "?";
 }
 
-// Reason as the seeds' console lines print it: "TEMP_CRITICAL", not "REASON_TEMP_CRITICAL".
+// Reason as the specification's console lines print it: "TEMP_CRITICAL", not "REASON_TEMP_CRITICAL".
 std::string shortReason(Reason r) {
   std::string s{toString(r)};
   constexpr std::string_view prefix = "REASON_";
@@ -157,7 +157,7 @@ std::string tripText(const Event& e, char* buf, std::size_t n) {
 }
 
 const char* alarmRowText(int row) {
-  // Order of protection/alarm_rows.h (the seed's buzzer table).
+  // Order of protection/alarm_rows.h (the specification's buzzer table).
   static constexpr const char* kRows[] = {"High alternator temperature",
                                           "Low alternator temperature",
                                           "High battery voltage",

@@ -1,7 +1,7 @@
 #pragma once
 // Events the core emits (trips, clears, lockouts, cuts, stage changes...).
 // The RT thread only copies these plain structs into a ring; a non-RT thread
-// formats them with the seeds' console wording (describe()) for the journal,
+// formats them with the specification's console wording (describe()) for the journal,
 // the store and the dashboard.
 #include <array>
 #include <cstddef>
@@ -124,7 +124,7 @@ inline Event makeEvent(TimeNs t, EventLevel level, EventCode code, Reason reason
 
 std::string_view toString(EventLevel l);
 std::string_view toString(EventCode c);
-// Human text with the seeds' console wording. Allocates: never call on the RT thread.
+// Human text with the specification's console wording. Allocates: never call on the RT thread.
 std::string describe(const Event& e);
 
 }  // namespace xr

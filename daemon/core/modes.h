@@ -1,5 +1,5 @@
 #pragma once
-// The seeds' enumerations, spelled as the seeds spell them so telemetry,
+// The specification's enumerations, spelled as the specification spells them so telemetry,
 // journal lines and spec grep together.
 #include <optional>
 #include <string_view>

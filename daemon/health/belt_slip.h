@@ -69,7 +69,6 @@ class BeltSlipDetector {
   // C: the current target's ceiling while a probe runs (+infinity otherwise).
   double probeCapA() const noexcept { return probe_ == Probe::Holding ? probeCap_ : 1e300; }
   bool probing() const noexcept { return probe_ != Probe::Idle; }
-  double learnedRatio() const noexcept { return ratio_; }
 
  private:
   struct Second {

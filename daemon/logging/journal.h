@@ -21,7 +21,7 @@ int journalPriority(EventLevel level);
 // spdlog level number (trace=0 ... critical=5) -> syslog priority.
 int journalPriorityForSpdlog(int spdlogLevel);
 
-// The structured entry for an event: MESSAGE=describe(e) with the seeds'
+// The structured entry for an event: MESSAGE=describe(e) with the specification's
 // wording, PRIORITY=, SYSLOG_IDENTIFIER=xregulatord, XREG_EVENT=,
 // XREG_REASON= (when a reason is acting), XREG_MODE=, XREG_T_S=.
 JournalRecord eventRecord(const Event& e);

@@ -94,7 +94,7 @@ void logEvent(const Event& e) {
     logging::sendToJournal(logging::eventRecord(e));
     return;
   }
-  // Console: the seeds' wording first (grep-able), the structured fields after.
+  // Console: the specification's wording first (grep-able), the structured fields after.
   if (e.reason != Reason::NONE)
     logger->log(lvl, "{} [event={} reason={} mode={}]", describe(e), toString(e.code), toString(e.reason),
                 toString(e.mode));

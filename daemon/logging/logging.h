@@ -28,7 +28,7 @@ std::string initLogging(const LogSettings& settings, std::optional<std::string_v
 // True when the logger writes to the journal.
 bool loggingToJournal();
 
-// One event, one line: describe(e) with the seeds' console wording, at the
+// One event, one line: describe(e) with the specification's console wording, at the
 // priority of e.level, with the structured fields above on the journal.
 void logEvent(const Event& e);
 

@@ -1,5 +1,5 @@
 #pragma once
-// The seeds' hard-coded constants, each named as in the seed that defines it.
+// The specification's hard-coded constants, each named as in the specification that defines it.
 // Not user-settable by design: changing one changes the safety case.
 #include <cstdint>
 
@@ -52,10 +52,10 @@ inline constexpr double CV_E_NEEDED_MIN_V = 0.02;
 inline constexpr double CV_OVERSHOOT_RELEASE_V = 0.02;  // GOV bypass latch release
 // "Absorption": tail exit suppressed while thermally constrained.
 inline constexpr double TAIL_THERMAL_PENALTY_A = 2.0;
-// Ours (docs/deviations.md "Tail current"): the tail counts only while IBV is
+// Added here (docs/deviations.md "Tail current"): the tail counts only while IBV is
 // within this of the absorption target (the voltage loop holds it).
 inline constexpr double TAIL_HOLD_BAND_V = 0.05;
-// Ours ("Full bank"): after a field rest ends, the RPM gate keeps trusting the
+// Added here ("Full bank"): after a field rest ends, the RPM gate keeps trusting the
 // pre-rest RPM this long while the tach signal comes back (LM2907 ~2 s).
 inline constexpr std::int64_t RPM_REST_GRACE_MS = 3000;
 // "Temperature PID": slope ring buffer.
@@ -66,7 +66,7 @@ inline constexpr double CV_LOW_GRACE_SEC = 1.0;
 inline constexpr double CV_LOW_RAMP_SEC = 10.0;
 inline constexpr double CV_SETTLE_V_THRESH = 0.05;
 inline constexpr int TUNING_LOG_SIZE = 50;
-// Ours: CVTuningMode's HIGH target stays this far under AlternatorHardShutdownV.
+// Added here: CVTuningMode's HIGH target stays this far under AlternatorHardShutdownV.
 inline constexpr double CV_TUNING_TRIP_MARGIN_V = 0.2;
 // "TuningMode": base of the square wave.
 inline constexpr double TUNING_BASE_A = 5.0;
@@ -93,7 +93,7 @@ inline constexpr double PEUKERT_FACTOR_MIN = 0.5;
 inline constexpr double PEUKERT_FACTOR_MAX = 2.0;
 inline constexpr std::int64_t CRITICAL_ZONE_MS = 5000;  // field-off edge + 5 s checkpoint
 
-// Ours (docs/batteries.md): battery temperature. A sample older than
+// Added here (docs/batteries.md): battery temperature. A sample older than
 // this is stale (the DS18B20 posts every second, a BMS about as often).
 inline constexpr std::int64_t BATTERY_TEMP_STALE_MS = 20000;
 // After start, a configured source has this long to post its first sample;

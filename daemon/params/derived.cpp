@@ -28,7 +28,7 @@ bool isDerivedWhenZero(std::string_view name) {
 
 double bankScale(const Params& p) { return nominalVoltage(systemClass(p)) / 12.0; }
 
-// The 12 V figures are the seeds' / catalogue's former defaults
+// The 12 V figures are the specification's / catalogue's former defaults
 // (docs/parameters.md), scaled with the bank like the battery profiles.
 double voltageAlarmHighV(const Params& p) {
   if (p.VoltageAlarmHigh > 0.0) return p.VoltageAlarmHigh;
@@ -83,7 +83,7 @@ Params withBankClass(const Params& in, SystemClass c) {
 }
 
 VoltageRange plausibleVoltageRange(const Params& p) {
-  // docs/protections.md "Protections": the seed's table, which
+  // docs/protections.md "Protections": the specification's table, which
   // already includes its 0.5 V buffer.
   switch (systemClass(p)) {
     case SystemClass::V12:

@@ -83,7 +83,7 @@ double chargedVoltageV(const Params& p);
 double rebulkVoltageV(const Params& p);
 // TargetVoltageSetpoint: 13.6 V per 12 V, at most BulkVoltage.
 double targetVoltageSetpointV(const Params& p);
-// TempAlarm: TemperatureLimitF + 40 degF (the seed's 150 / 190 degF gap), so
+// TempAlarm: TemperatureLimitF + 40 degF (the specification's 150 / 190 degF gap), so
 // the buzzer follows a raised alternator limit.
 double tempAlarmF(const Params& p);
 inline constexpr double kTempAlarmDerivedMarginF = 40.0;

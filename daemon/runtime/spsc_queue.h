@@ -45,15 +45,6 @@ class SpscQueue {
     return true;
   }
 
-  // Consumer side: true when pop() would find nothing now (the same check
-  // pop() makes, without touching a slot).
-  bool emptyForConsumer() noexcept {
-    const std::size_t tail = tail_.load(std::memory_order_relaxed);
-    if (tail != headCache_) return false;
-    headCache_ = head_.load(std::memory_order_acquire);
-    return tail == headCache_;
-  }
-
   // Approximate (exact when called from either endpoint with the other idle).
   std::size_t size() const noexcept {
     return head_.load(std::memory_order_acquire) - tail_.load(std::memory_order_acquire);

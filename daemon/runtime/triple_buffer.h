@@ -36,10 +36,6 @@ class TripleBuffer {
     return true;
   }
 
-  // Reader: a value was published that update() has not taken yet (a
-  // relaxed peek; update() does the acquiring exchange).
-  bool pending() const noexcept { return (middle_.load(std::memory_order_relaxed) & kFresh) != 0; }
-
   // Reader: the current value (valid until the next update()).
   const T& current() const noexcept { return slots_[front_]; }
 

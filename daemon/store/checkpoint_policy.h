@@ -1,6 +1,6 @@
 #pragma once
 // CheckpointPolicy: when the store thread saves the ledger (pure; time
-// injected). The seeds save only at safe moments ("Critical Zone — Why NVS
+// injected). The original firmware saves only at safe moments ("Critical Zone — Why NVS
 // Saves Aren't Periodic"); SQLite on a non-RT thread cannot stall the control
 // loop, so a periodic save is added as the bound on what a power cut loses:
 //   - every [store] checkpoint_interval_s since the last checkpoint;

@@ -72,10 +72,10 @@ constexpr long adcCycleUs(std::uint16_t cfg) {
 
 // Fast mode (field on, `inaFastModeActive`): 540 µs bus and shunt, 50 µs die
 // temperature, 4 averages -> a result (and a SLOWALERT comparison) every
-// ~4.5 ms, close to the seeds' "~4.3 ms cycle".
+// ~4.5 ms, close to the specification's "~4.3 ms cycle".
 inline constexpr std::uint16_t kAdcConfigFast = adcConfig(MODE_CONT_BUS_SHUNT_TEMP, 4, 4, 0, 1);
 // Slow mode (field off): 4120 µs bus and shunt, 50 µs temp, 128 averages ->
-// ~1.06 s, the seeds' "~1054 ms" noise-free averaging while nothing drives the field.
+// ~1.06 s, the specification's "~1054 ms" noise-free averaging while nothing drives the field.
 inline constexpr std::uint16_t kAdcConfigSlow = adcConfig(MODE_CONT_BUS_SHUNT_TEMP, 7, 7, 0, 4);
 
 // 20-bit two's complement in bits 23:4 of a 24-bit register -> signed code.
@@ -124,7 +124,7 @@ constexpr std::uint16_t bovlCode(double volts) {
 constexpr double bovlVolts(std::uint16_t code) { return (code & 0x7FFF) * kBovlLsbV; }
 
 // DIAG_ALRT value we program: transparent (ALATCH=0) so the ALERT pin follows
-// the condition as the seeds describe; SLOWALERT (compare the averaged value);
+// the condition as the specification describes; SLOWALERT (compare the averaged value);
 // APOL=0 (active low, open drain, pulls GPIO4 low).
 inline constexpr std::uint16_t kDiagAlrtConfig = DIAG_SLOWALERT;
 

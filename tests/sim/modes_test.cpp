@@ -155,7 +155,7 @@ TEST(ClosedLoopDeterminism, SameSeedGivesByteIdenticalTelemetry) {
   const std::string a = csvOf(5), b = csvOf(5), c = csvOf(6);
   EXPECT_GT(a.size(), 1000u);
   EXPECT_EQ(a, b);
-  EXPECT_NE(a, c);  // the seed really drives the noise
+  EXPECT_NE(a, c);  // the random seed really drives the noise
   EXPECT_EQ(a.substr(0, a.find('\n')).find("t_s,mode,stage,reason"), 0u);
   EXPECT_NE(a.find("sim_battery_v,sim_alt_a,sim_alt_temp_f,sim_soc_pct,sim_bms_connected,sim_field_on"),
             std::string::npos);

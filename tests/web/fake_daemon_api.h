@@ -100,10 +100,13 @@ class FakeDaemonApi : public DaemonApi {
     return file_;
   }
   // Cross-field rule (like the real validation): FloatVoltage <= BulkVoltage.
-  PatchResult patchParams(const std::vector<ParamChange>& changes, const std::string& source) override {
+  // A dry run answers the set and keeps nothing.
+  PatchResult patchParams(const std::vector<ParamChange>& changes, const std::string& source,
+                          const PatchOptions& opts = {}) override {
     std::lock_guard lock(m_);
     ++patchCalls_;
     lastPatchSource_ = source;
+    lastPatchOptions_ = opts;
     Params next = current_;
     for (const auto& c : changes)
       c.spec->set(next, c.index < 0 ? 0 : static_cast<std::size_t>(c.index),
@@ -111,7 +114,8 @@ class FakeDaemonApi : public DaemonApi {
     PatchResult r;
     if (next.FloatVoltage > next.BulkVoltage)
       r.errors.push_back({"FloatVoltage", "must not exceed BulkVoltage"});
-    if (r.errors.empty()) current_ = next;
+    r.values = next;
+    if (r.errors.empty() && !opts.dryRun) current_ = next;
     return r;
   }
   void securityEvent(const std::string& text) override {
@@ -241,6 +245,10 @@ class FakeDaemonApi : public DaemonApi {
     std::lock_guard lock(m_);
     return lastPatchSource_;
   }
+  PatchOptions lastPatchOptions() {
+    std::lock_guard lock(m_);
+    return lastPatchOptions_;
+  }
   HistoryQuery lastHistory() {
     std::lock_guard lock(m_);
     return lastHistory_;
@@ -258,6 +266,7 @@ class FakeDaemonApi : public DaemonApi {
   TrendAsk lastTrends_;
   int patchCalls_ = 0;
   std::string lastPatchSource_;
+  PatchOptions lastPatchOptions_;
   std::vector<std::string> securityEvents_;
   bool healthy_ = true;
   CanState can_;

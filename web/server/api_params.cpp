@@ -1,8 +1,13 @@
-// PATCH and GET /api/params: every value is checked against the catalogue
-// before any is applied; one bad field rejects the whole patch.
+// PATCH and GET /api/params. The server only PARSES a PATCH: a JSON object
+// of known parameter names, each a number, a switch, a named choice or a
+// table's array. Every check of the values (the catalogue's ranges, the
+// whole set, the bank measured) is the daemon's, once (app/web_api_params.cpp);
+// one bad field rejects the whole patch. ?dry_run=1 answers the checked set
+// without applying or storing it; ?bank=12|24|48 is the set-up page's bank
+// choice, which the daemon turns into values (docs/dashboard.md "Set-up").
 #include <boost/json.hpp>
 #include <cmath>
-#include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -16,17 +21,6 @@ namespace xr::web {
 using namespace api;
 
 namespace {
-
-std::string plain(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
-
-std::string rangeText(const ParamSpec& spec) {
-  return "must be between " + plain(spec.min) + " and " + plain(spec.max) +
-         (spec.unit.empty() ? "" : " " + std::string(spec.unit));
-}
 
 // One scalar value for spec, or an error message.
 std::optional<double> scalarFor(const ParamSpec& spec, const json::value& v, std::string& err) {
@@ -52,33 +46,7 @@ std::optional<double> scalarFor(const ParamSpec& spec, const json::value& v, std
     err = "expected a finite number";
     return std::nullopt;
   }
-  if ((spec.kind == ParamKind::Int || spec.kind == ParamKind::Bool) && std::trunc(*d) != *d) {
-    err = "expected a whole number";
-    return std::nullopt;
-  }
-  if (!valueFits(spec, *d)) {
-    err = spec.kind == ParamKind::Bool ? "expected true/false (or 0/1)" : rangeText(spec);
-    return std::nullopt;
-  }
   return d;
-}
-
-// The bank's class (12/24/48 V) as measured (params/derived.h
-// bankClassOfVoltage); 0 when no battery voltage is measured.
-int measuredClass(double batteryV) {
-  if (!std::isfinite(batteryV) || batteryV < 4.5) return 0;
-  return nominalVoltage(bankClassOfVoltage(batteryV));
-}
-
-// An absolute battery voltage (a set-point or alarm, catalogue minimum 8 V)
-// must belong to the measured bank: BulkVoltage = 28.8 on a 12 V bank is
-// refused.
-std::string voltageClassError(const ParamSpec& spec, double v, int bank) {
-  if (!isBankVoltage(spec, v) || bank == 0) return "";
-  const int cls = nominalVoltage(bankClassOfVoltage(v));
-  if (cls == bank) return "";
-  return plain(v) + " V is for a " + std::to_string(cls) + " V battery; this battery measures as a " +
-         std::to_string(bank) + " V bank";
 }
 
 Response patchErrors(const Request& req, const std::vector<FieldError>& errors) {
@@ -94,8 +62,11 @@ Response patchErrors(const Request& req, const std::vector<FieldError>& errors) 
 }  // namespace
 
 Response ApiHandler::getParams(const Request& req) {
-  json::object o =
-      paramsToJson(api_.currentParams(), api_.fileParams(), api_.paramSources(), api_.profileOwned());
+  const Params current = api_.currentParams();
+  json::object o = paramsToJson(current, api_.fileParams(), api_.paramSources(), api_.profileOwned());
+  // The bank these settings are for (params/derived.h, the one rule), so the
+  // set-up page shows it without knowing the rule.
+  o["bank_v"] = nominalVoltage(systemClass(current));
   // "Default" as the owner means it: the value the battery profile gives
   // where the profile sets the parameter, else the catalogue's
   // (docs/dashboard.md "Settings"). Same catalogue order in both lists.
@@ -113,16 +84,11 @@ Response ApiHandler::getParams(const Request& req) {
   return jsonReply(req, http::status::ok, o);
 }
 
-Response ApiHandler::patchParams(const Request& req) {
-  std::string err;
-  auto body = parseBody(req, err);
-  if (!body) return error(req, http::status::bad_request, err);
-  if (!body->is_object())
-    return error(req, http::status::bad_request, "expected a JSON object of parameter name -> value");
-  const auto& obj = body->get_object();
-  if (obj.empty()) return error(req, http::status::bad_request, "no parameters given");
+namespace {
 
-  std::vector<FieldError> errors;
+// The body as changes (names known, values of the right JSON type), or the
+// errors naming each field that is not.
+std::vector<ParamChange> parseChanges(const json::object& obj, std::vector<FieldError>& errors) {
   std::vector<ParamChange> changes;
   for (const auto& kv : obj) {
     const std::string name(kv.key());
@@ -158,18 +124,69 @@ Response ApiHandler::patchParams(const Request& req) {
     else
       errors.push_back({name, e});
   }
-  if (!errors.empty()) return patchErrors(req, errors);
-  StatusSnapshot snap;
-  if (api_.latestStatus(snap)) {
-    const int bank = measuredClass(snap.telemetry.battery_v);
-    for (const auto& c : changes)
-      if (c.index < 0 && !c.drop)
-        if (auto e = voltageClassError(*c.spec, c.value, bank); !e.empty())
-          errors.push_back({std::string(c.spec->name), e});
-    if (!errors.empty()) return patchErrors(req, errors);
-  }
+  return changes;
+}
 
-  PatchResult result = api_.patchParams(changes, writerName(req[http::field::authorization]));
+// ?dry_run=1 and ?bank=N; false with *err when the query is malformed.
+bool parseOptions(std::string_view target, PatchOptions& opts, std::string& err) {
+  const auto q = target.find('?');
+  const std::string_view query = q == std::string_view::npos ? std::string_view{} : target.substr(q + 1);
+  if (auto dry = queryParam(query, "dry_run")) {
+    if (*dry != "1" && *dry != "true" && *dry != "0" && *dry != "false") {
+      err = "dry_run: expected 1 or 0";
+      return false;
+    }
+    opts.dryRun = *dry == "1" || *dry == "true";
+  }
+  if (auto bank = queryParam(query, "bank")) {
+    char* end = nullptr;
+    const long v = std::strtol(bank->c_str(), &end, 10);
+    if (bank->empty() || *end != '\0' || v < 0 || v > 1000) {
+      err = "bank: expected the bank's nominal voltage in V (12, 24 or 48)";
+      return false;
+    }
+    opts.bankV = static_cast<int>(v);
+  }
+  return true;
+}
+
+// A dry run's answer: the set as the daemon checked it (every value, by
+// name), its bank and the errors; 200 whether or not the set passes.
+Response dryRunReply(const Request& req, const PatchResult& result) {
+  json::object errs;
+  for (const auto& e : result.errors) errs[e.name] = e.message;
+  json::object o;
+  o["ok"] = result.errors.empty();
+  o["dry_run"] = true;
+  o["errors"] = std::move(errs);
+  if (result.values) {
+    json::object values;
+    const json::object all = paramsToJson(*result.values, *result.values);  // outlives the loop
+    for (const auto& p : all.at("params").as_array()) values[p.at("name").as_string()] = p.at("value");
+    o["values"] = std::move(values);
+    o["bank_v"] = nominalVoltage(systemClass(*result.values));
+  }
+  return jsonReply(req, http::status::ok, o);
+}
+
+}  // namespace
+
+Response ApiHandler::patchParams(const Request& req) {
+  std::string err;
+  PatchOptions opts;
+  if (!parseOptions(req.target(), opts, err)) return error(req, http::status::bad_request, err);
+  auto body = parseBody(req, err);
+  if (!body) return error(req, http::status::bad_request, err);
+  if (!body->is_object())
+    return error(req, http::status::bad_request, "expected a JSON object of parameter name -> value");
+  const auto& obj = body->get_object();
+  if (obj.empty() && opts.bankV == 0) return error(req, http::status::bad_request, "no parameters given");
+
+  std::vector<FieldError> errors;
+  const std::vector<ParamChange> changes = parseChanges(obj, errors);
+  if (!errors.empty()) return patchErrors(req, errors);
+  PatchResult result = api_.patchParams(changes, writerName(req[http::field::authorization]), opts);
+  if (opts.dryRun) return dryRunReply(req, result);
   if (!result.errors.empty()) return patchErrors(req, result.errors);
   json::array applied;
   for (const auto& kv : obj) applied.push_back(json::string(kv.key()));

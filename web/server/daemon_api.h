@@ -113,9 +113,21 @@ struct FieldError {
 };
 
 // Result of patchParams: empty errors = every change applied (and persisted as
-// overrides); otherwise NOTHING was applied.
+// overrides); otherwise NOTHING was applied. values: the whole set as the
+// daemon checked it (a dry run answers it; empty when a value was malformed).
 struct PatchResult {
   std::vector<FieldError> errors;
+  std::optional<Params> values;
+};
+
+// How a PATCH is taken (docs/dashboard.md "Set-up"). dryRun: check the whole
+// set and answer it, applying and storing nothing. bankV: the set-up's bank
+// choice (12, 24 or 48 V; 0 = none), which the daemon turns into values (the
+// chemistry's cell count, or a custom set's voltages moved to that bank):
+// the dashboard knows no rule of the catalogue or the profiles.
+struct PatchOptions {
+  bool dryRun = false;
+  int bankV = 0;
 };
 
 // A Victron GX's DVCC limits (POST /api/dvcc, core/dvcc_limits.h): NaN = the
@@ -273,11 +285,13 @@ class DaemonApi {
   // Apply a set of changes atomically: validate them TOGETHER against the
   // current set (cross-field rules), then hand the whole new Params to the
   // control thread between ticks and persist the overrides; or reject them
-  // all. The server has already checked names, kinds and catalogue ranges.
+  // all. The server has only parsed the body (names, JSON types): every
+  // check of the values, ranges included, is the daemon's, once.
   // source: who asked (a paired device's name, "the installer token"); the
   // daemon records an applied change as an event naming each value's old and
   // new value and the source (docs/dashboard.md).
-  virtual PatchResult patchParams(const std::vector<ParamChange>& changes, const std::string& source) = 0;
+  virtual PatchResult patchParams(const std::vector<ParamChange>& changes, const std::string& source,
+                                  const PatchOptions& opts = {}) = 0;
 
   // A security action (pairing, revocation, a pairing lock-out): an event in
   // the list and a journal line, naming the device (docs/security.md).

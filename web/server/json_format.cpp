@@ -20,7 +20,7 @@ json::value number(double v) {
 namespace {
 
 // One field of a telemetry struct for /api/status: snake_case name, flags as
-// booleans, the seeds' enums by name, numbers rounded (json_status.h).
+// booleans, the specification's enums by name, numbers rounded (json_status.h).
 struct FieldToJson {
   json::object& o;
   template <typename V>

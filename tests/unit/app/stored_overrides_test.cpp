@@ -27,9 +27,9 @@ OverrideRow row(std::string name, std::string value, std::int64_t at = kT0) {
   return OverrideRow{std::move(name), std::move(value), "", at};
 }
 
-TEST(StoredOverrides, TheIssuesReproducerDropsFloatAndRunsConsistent) {
+TEST(StoredOverrides, AStoredFloatAboveALoweredFileAbsorptionIsDroppedAndTheSetRunsConsistent) {
   // PATCH FloatVoltage 14.3 was accepted; then the file lowered
-  // AbsorptionVoltage to 14.0. Before: Float 14.3 > Absorption 14.0 ran silently.
+  // AbsorptionVoltage to 14.0: Float 14.3 > Absorption 14.0 must not run.
   Params file;
   file.AbsorptionVoltage = 14.0;
   const NameSet fileNames{"AbsorptionVoltage"};  // the file wrote it

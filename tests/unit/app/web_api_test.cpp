@@ -1,7 +1,6 @@
 // Hardening (docs/security.md) through the daemon's side of the web API (app/web_api.cpp):
-// items 6 (history bounds), 7 (a change that cannot be saved is refused;
-// the store's state is shown), 10 (events of earlier runs), 12 (bare error
-// keys).
+// history bounds, a change that cannot be saved is refused (the store's
+// state is shown), events of earlier runs, bare error keys.
 #include "app/web_api.h"
 
 #include <gmock/gmock.h>

@@ -1,5 +1,5 @@
-// config robustness (item 8), [web] listen checked by the loader
-// (item 3), the token's rules (item 9).
+// Config robustness (docs/security.md): a hostile or broken file, [web]
+// listen checked by the loader, the token's rules.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <sys/stat.h>

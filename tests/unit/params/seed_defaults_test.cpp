@@ -1,9 +1,9 @@
-// Every default in the seeds' quick-reference tables is the catalogue's default
-// (docs/parameters.md). One row per seed entry: name, seed value in the
-// catalogue's unit, and where the seed states it. Newer seeds win over
+// Every default in the specification's quick-reference tables is the catalogue's default
+// (docs/parameters.md). One row per entry of the specification: name, its value in the
+// catalogue's unit, and where the specification states it. Newer specification documents win over
 // the original firmware's description where they disagree (docs/architecture.md); the legacy "Key
 // Parameters Reference" column is labelled "Example Default" and its rows that
-// newer seeds replaced are listed in SupersededLegacyExamples below.
+// newer specification documents replaced are listed in SupersededLegacyExamples below.
 #include <gtest/gtest.h>
 
 #include <string_view>
@@ -61,11 +61,12 @@ constexpr SeedDefault kScalarDefaults[] = {
     {"TempCritExcess", 10, "S&P quick ref (legacy example 30 superseded)"},
     {"TempSustainedTimeout", 120, "S&P quick ref: 120 s; legacy 120000 ms"},
     {"TempAlarmLow", 32, "S&P quick ref"},
-    {"ThermalLookaheadSec", 450, "ours; seed S&P quick ref and the field-control specification quick ref 90"},
-    // Ours (docs/deviations.md "Thermal loop"): the seed's 3 and 0.025
+    {"ThermalLookaheadSec", 450,
+     "changed here; the specification's S&P quick ref and the field-control specification quick ref 90"},
+    // Added here (docs/deviations.md "Thermal loop"): the specification's 3 and 0.025
     // (S&P quick ref) overshot the limit on an idle-to-cruise step.
-    {"TempPIDKp", 5.0, "ours; seed S&P quick ref 3"},
-    {"TempPIDKi", 0.06, "ours; seed S&P quick ref 0.025"},
+    {"TempPIDKp", 5.0, "changed here; the specification's S&P quick ref 3"},
+    {"TempPIDKi", 0.06, "changed here; the specification's S&P quick ref 0.025"},
     {"TempPIDFilterAlpha", 0.2, "S&P quick ref; the field-control specification quick ref"},
     {"TempPIDIntervalMs", 5000, "S&P quick ref; the field-control specification quick ref"},
     {"ThermalPenaltyRiseRate", 60, "S&P quick ref; the field-control specification quick ref"},
@@ -73,9 +74,9 @@ constexpr SeedDefault kScalarDefaults[] = {
     {"IgnoreTemperature", 0, "S&P quick ref"},
     // Overcurrent / RPM
     {"HardOCDebounceMs", 20, "S&P quick ref"},
-    // Ours (docs/deviations.md "CurrentAlarmHigh follows the cap"): 0 = 10 %
-    // above the commandable current; the seed's S&P quick ref has 100 A.
-    {"CurrentAlarmHigh", 0, "ours; seed S&P quick ref 100"},
+    // Added here (docs/deviations.md "CurrentAlarmHigh follows the cap"): 0 = 10 %
+    // above the commandable current; the specification's S&P quick ref has 100 A.
+    {"CurrentAlarmHigh", 0, "added here; the specification's S&P quick ref 100"},
     {"MaximumAllowedBatteryAmps", 150, "S&P quick ref"},
     {"MinRPMForField", 200, "S&P quick ref"},
     {"IgnoreRPM", 0, "S&P quick ref"},
@@ -94,7 +95,7 @@ constexpr SeedDefault kScalarDefaults[] = {
     {"rebulkDebounceTime", 60000, "FC FLOAT: default 60 s"},
     // the battery specification
     {"SOCUpdateInterval", 2000, "BM: every 2 s (SOCUpdateInterval)"},
-    // the seeds imply BulkVoltage = 14.5 V (hard shutdown 14.8 V = Bulk + 0.3)
+    // the specification implies BulkVoltage = 14.5 V (hard shutdown 14.8 V = Bulk + 0.3)
     {"BulkVoltage", 14.5, "S&P Cascade (Default 12 V Settings)"},
 };
 
@@ -126,7 +127,7 @@ TEST_P(SeedScalarDefault, IsTheCatalogueDefault) {
   EXPECT_DOUBLE_EQ(spec->get(Params{}, 0), d.value) << d.name << ": Params{} disagrees with the catalogue";
 }
 
-INSTANTIATE_TEST_SUITE_P(Seeds, SeedScalarDefault, ::testing::ValuesIn(kScalarDefaults),
+INSTANTIATE_TEST_SUITE_P(Specification, SeedScalarDefault, ::testing::ValuesIn(kScalarDefaults),
                          [](const auto& info) { return std::string(info.param.name); });
 
 class SeedTableDefault : public ::testing::TestWithParam<SeedTable> {};
@@ -142,16 +143,16 @@ TEST_P(SeedTableDefault, IsTheCatalogueDefault) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Seeds, SeedTableDefault, ::testing::ValuesIn(kTableDefaults),
+INSTANTIATE_TEST_SUITE_P(Specification, SeedTableDefault, ::testing::ValuesIn(kTableDefaults),
                          [](const auto& info) { return std::string(info.param.name); });
 
-// Derived defaults stated in the seeds' quick-reference tables.
+// Derived defaults stated in the specification's quick-reference tables.
 TEST(SeedDerivedDefaults, FirstBootHardShutdownIsBulkPlus0_3) {
   EXPECT_DOUBLE_EQ(Params{}.AlternatorHardShutdownV, 0.0);  // 0 = "not yet saved"
   EXPECT_DOUBLE_EQ(alternatorHardShutdownV(Params{}), 14.8);
 }
 
-// The seed's 190 degF buzzer beside its 150 degF limit: TempAlarm's 0 derives
+// The specification's 190 degF buzzer beside its 150 degF limit: TempAlarm's 0 derives
 // exactly that, and follows a raised limit by the same 40 degF
 // (docs/deviations.md "Alarms follow their limits").
 TEST(SeedDerivedDefaults, TempAlarmIs190AtTheSeedLimitAndFollowsARaisedOne) {
@@ -164,7 +165,7 @@ TEST(SeedDerivedDefaults, TempAlarmIs190AtTheSeedLimitAndFollowsARaisedOne) {
   EXPECT_DOUBLE_EQ(tempAlarmF(p), 250.0);
 }
 
-// The seed's 12 V alarm voltages (15 / 11 V) and the catalogue's former
+// The specification's 12 V alarm voltages (15 / 11 V) and the catalogue's former
 // 12 V values scale with the bank of BulkVoltage.
 TEST(SeedDerivedDefaults, BankVoltagesFollowTheBankOfBulkVoltage) {
   Params p;
@@ -196,7 +197,7 @@ TEST(SeedDerivedDefaults, HardwareLimitAndHardOcTrip) {
   EXPECT_DOUBLE_EQ(criticalDisagreementThreshold(p), 1.0);
 }
 
-// Legacy "Key Parameters Reference" names that newer seeds replaced: they
+// Legacy "Key Parameters Reference" names that newer specification documents replaced: they
 // must NOT come back as separate parameters (one name per behaviour).
 TEST(SupersededLegacyExamples, AreNotInTheCatalogue) {
   for (std::string_view legacy : {"PidSampleTime", "SetpointRampRate", "bulkCompleteTime",

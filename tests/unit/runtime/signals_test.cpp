@@ -92,7 +92,7 @@ TEST(Signals, EverySignalThatWouldEndOrPauseTheProcessIsHandled) {
   EXPECT_GE(checked, 31 + 30);  // the standard signals and at least 30 real-time ones
 }
 
-TEST(Signals, TheIssuesListStopsThroughTheRampAndTheFaultsAreFatal) {
+TEST(Signals, UnexpectedSignalsStopThroughTheRampTermAndIntStopAndFaultsAreFatal) {
   for (int sig : {SIGQUIT, SIGUSR1, SIGUSR2, SIGALRM, SIGXCPU, SIGXFSZ, SIGPWR, SIGVTALRM, SIGPROF, SIGSTKFLT,
                   SIGIO, SIGRTMIN, SIGRTMAX})
     EXPECT_EQ(signals::handlingOf(sig), Handling::UnexpectedStop) << signals::name(sig);

@@ -53,6 +53,19 @@ await runDaemonBrowserTest({ args, token, scenario, shipped: true, prefix: "xr-s
   console.log("ok - before the set-up the page says the settings are for another bank size; field off");
 
   await page.goto(server.base + "/#setup");
+  // The page asks the daemon what a choice charges at (a dry run): a 12 V
+  // LiFePO4 on this 24 V bank is refused in its words, the 24 V one answers
+  // the profile's 28.4 V; nothing of it is saved.
+  await page.waitForSelector("#page-setup:not([hidden]) #su-profile");
+  await page.selectOption("#su-profile", { label: "lifepo4" });
+  await page.selectOption("#su-bank", "12");
+  await page.waitForFunction(() => /measures as a 24 V bank/.test(document.getElementById("su-charge").textContent));
+  assert.match(await page.getAttribute("#su-charge", "class"), /bad/);
+  await page.selectOption("#su-bank", "24");
+  await page.waitForFunction(() => /absorption 28\.4 V/.test(document.getElementById("su-charge").textContent));
+  assert.match(await page.textContent("#su-charge"), /^Charges at: bulk 28\.4 V, absorption 28\.4 V, no float/);
+  assert.equal((await params()).BatteryProfile.value_name !== "lifepo4", true, "a dry run saved the profile");
+  console.log("ok - the set-up shows the daemon's answer for a choice: refused for 12 V on this bank, 28.4 V for 24 V LiFePO4");
   const msg = await saveSetup(page, { profile: "lifepo4", bank: "24", capacity: 400, rating: 120, belt: 100 });
   assert.match(msg, /^Saved\./, `saved with no error: ${msg}`);
   const shown = await page.textContent("#setup-result");

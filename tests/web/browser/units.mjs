@@ -198,13 +198,15 @@ await test("choices come from the help text; sources from the API", () => {
 });
 
 await test("help texts lose the specification's jargon", () => {
-  assert.equal(S.plainHelp("Nameplate capacity. No seed default: 200 Ah is a common house bank."),
+  assert.equal(S.plainHelp("Nameplate capacity. No default in the specification: 200 Ah is a common house bank."),
     "Nameplate capacity. 200 Ah is a common house bank.");
-  assert.equal(S.plainHelp("Ours: a resting field wakes."), "a resting field wakes.");
-  assert.equal(S.plainHelp("Cap (seed section 4.2) in amps."), "Cap in amps.");
+  assert.equal(S.plainHelp("Added here: a resting field wakes."), "a resting field wakes.");
+  assert.equal(S.plainHelp("Gain. Changed here: 5 (was 3)."), "Gain. 5 (was 3).");
+  assert.equal(S.plainHelp("Buzzer (the original firmware: 190 degF; docs/deviations.md)."), "Buzzer.");
+  assert.equal(S.plainHelp("Cap (the specification's section 4.2) in amps."), "Cap in amps.");
   assert.equal(S.plainHelp("Rate above which the bleed drains cv_I."), "Rate above which the bleed drains the voltage loop's integral.");
   assert.equal(S.plainHelp("No charging below this (REASON_BATTERY_COLD)."), `No charging below this (“${N.REASONS.REASON_BATTERY_COLD.title}”).`);
-  assert.equal(S.plainHelp("Not in the seeds: 500 ms is 100 ticks. 0 = always BULK, as the seed."), "500 ms is 100 ticks. 0 = always BULK.");
+  assert.equal(S.plainHelp("Not in the specification: 500 ms is 100 ticks. 0 = always BULK, as the original firmware."), "500 ms is 100 ticks. 0 = always BULK.");
 });
 
 await test("event texts in plain words: no GPIO4, no reason codes, no nan", () => {

@@ -65,6 +65,16 @@ export async function quietRequest(method, path) {
   return { ok: res.ok, status: res.status, body };
 }
 
+// A question to the server with this device's credential that never asks
+// to pair (the set-up page's dry run as the owner picks a battery): the
+// answer's body, or null when there is no credential or it is refused.
+export async function quietAsk(method, path, payload) {
+  const token = getToken();
+  if (!token) return null;
+  const { res, body } = await send(method, path, payload, token);
+  return res.ok ? body : null;
+}
+
 // POST /api/pair: no credential needed. Resolves with {token, id, name}, or
 // throws with the server's message (wrong code, locked, full).
 export async function pair(code, name) {

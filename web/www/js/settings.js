@@ -21,7 +21,7 @@ export const BASIC = ["BatteryProfile", "BatteryCells", "BatteryCapacity_Ah", "B
   "MinRPMForField", "TemperatureLimitF", "TempSource", "BatteryCurrentSource", "VoltageAlarmHigh", "VoltageAlarmLow",
   "OnOff", "weatherModeEnabled", "rpmCapCurrentTable", "rpmTableRPMPoints"];
 
-// Plain words first; the parameter's own name (the seeds', which the file,
+// Plain words first; the parameter's own name (the specification's, which the file,
 // the docs and the journal use) under it. A name without a label shows as is.
 export const LABELS = {
   BatteryProfile: "Battery type", BatteryCells: "Cells in series", BatteryCapacity_Ah: "Battery capacity",
@@ -73,11 +73,12 @@ export function sourceOf(p) {
   return "default";
 }
 
-// Help texts cite the firmware's specification ("No seed default: ...",
-// "Ours: ...") and its variable names (cv_I, REASON_*): the owner needs only
+// Help texts cite the firmware's specification ("No default in the specification: ...",
+// "Added here: ...") and its variable names (cv_I, REASON_*): the owner needs only
 // the sentence itself, in words (docs/parameters.md keeps the engineer's text).
-export const plainHelp = (h) => String(h || "").replace(/(No seed default|Not in the seeds)[:.]?\s*/gi, "")
-  .replace(/\bOurs:\s*/g, "").replace(/\s*\([^)]*\bseeds?\b[^)]*\)/gi, "").replace(/,\s*as the seeds?\b/gi, "")
+export const plainHelp = (h) => String(h || "").replace(/(No default in the specification|Not in the specification)[:.]?\s*/gi, "")
+  .replace(/\b(Added|Changed) here:\s*/g, "").replace(/\s*\([^)]*\b(specification|original firmware)\b[^)]*\)/gi, "")
+  .replace(/,\s*as the original firmware\b/gi, "")
   .replace(/\bCV seed\b/g, "voltage-loop restart").replace(/\bcv_I_aw_cap\b/g, "the voltage loop's integral cap")
   .replace(/\bcv_I\b/g, "the voltage loop's integral")
   .replace(/\bREASON_[A-Z0-9_]+\b/g, (c) => (REASONS[c] ? `“${REASONS[c].title}”` : c)).trim();

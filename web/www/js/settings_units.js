@@ -1,5 +1,5 @@
 // The Settings page in the owner's units (docs/dashboard.md "Units"): the
-// regulator keeps alternator temperatures in °F (the seeds' parameters);
+// regulator keeps alternator temperatures in °F (the specification's parameters);
 // with °C chosen on the System page each is shown, typed and checked in °C
 // and sent back in °F. A temperature limit converts with the offset, a
 // margin ("2 °F above the limit") only with the scale.

@@ -1,7 +1,11 @@
 // First-run set-up (battery, alternator and belt, temperature, then "start
 // charging") and the configuration's export / import as TOML. Every step
-// is sent as ONE change: the server checks it all or applies nothing.
-import { getJson, toast, write } from "./api.js";
+// is sent as ONE change: the server checks it all or applies nothing. The
+// page knows no rule of the catalogue or the battery profiles: the bank
+// voltage goes to the daemon as the set-up's bank choice (?bank=), and the
+// voltages a chemistry and bank give are the daemon's answer to a dry run
+// (PATCH /api/params?dry_run=1, docs/dashboard.md "Set-up").
+import { getJson, quietAsk, toast, write } from "./api.js";
 import { fToC, html, parseDecimal, setHtml } from "./format.js";
 import { latestStatus, limitText, renderSetupState, tempUnit } from "./live.js";
 import { choicesOf, loadSettings } from "./settings.js";
@@ -12,17 +16,13 @@ const $ = (id) => document.getElementById(id);
 let params = [];
 let hardware = null;  // GET /api/setup/hardware
 let rpmNow = null;  // the engine speed read when the page opened
+let bankNow = 12;  // the bank the settings in force are for (GET's bank_v)
 const find = (n) => params.find((p) => p.name === n);
-
-// Charge voltages per bank size for the "custom" profile (no chemistry):
-// lead-acid/AGM values, scaled from 12 V.
-const BANK = { 12: { BulkVoltage: 14.4, AbsorptionVoltage: 14.4, FloatVoltage: 13.5 },
-  24: { BulkVoltage: 28.8, AbsorptionVoltage: 28.8, FloatVoltage: 27.0 },
-  48: { BulkVoltage: 57.6, AbsorptionVoltage: 57.6, FloatVoltage: 54.0 } };
-// Cells per 12 V of each chemistry (3.2 V LiFePO4, 2 V lead-acid cells;
-// docs/batteries.md): the bank voltage chosen here becomes BatteryCells.
-const CELLS_PER_12V = { lifepo4: 4, agm: 6, flooded: 6, gel: 6 };
-const bankOf = (bulk) => (bulk < 18 ? 12 : bulk <= 36 ? 24 : 48);
+// The set-up's fields by the parameter each sets, so the daemon's refusal
+// marks the field it is about.
+const FIELD_OF = { BatteryCapacity_Ah: ["su-capacity", "Capacity"], MaxTableValue: ["su-rating", "Alternator rating"],
+  rpmCapCurrentTable: ["su-belt", "Belt limit"], MinRPMForField: ["su-minrpm", "Lowest engine speed"],
+  TemperatureLimitF: ["su-templimit", "Temperature limit"] };
 
 function field(label, id, value, unit, help) {
   return html`<label class="field"><span>${label}</span><span class="row"><input id="${id}" inputmode="decimal" value="${value}">
@@ -41,10 +41,10 @@ function renderSteps() {
     steps.push(html`<h3>1 · Battery type</h3><label class="field"><span>Battery profile</span><select id="su-profile">${opts}</select>
       <small>Sets the charge voltages, currents and temperature limits for the chemistry and the bank voltage; custom keeps the values in Settings.</small></label>`);
   }
-  const bank = bankOf(find("BulkVoltage").value);
-  const banks = [12, 24, 48].map((b) => html`<option ${b === bank ? "selected" : ""}>${b}</option>`);
+  const banks = [12, 24, 48].map((b) => html`<option ${b === bankNow ? "selected" : ""}>${b}</option>`);
   steps.push(html`<h3>${steps.length + 1} · Battery bank</h3>
     <label class="field"><span>Bank voltage</span><select id="su-bank">${banks}</select></label>
+    <p class="msg" id="su-charge" aria-live="polite"></p>
     ${field("Capacity", "su-capacity", find("BatteryCapacity_Ah").value, "Ah", "The nameplate capacity of the whole bank.")}`);
   const table = find("rpmCapCurrentTable").value;
   const cap = Math.max(...table);
@@ -59,60 +59,69 @@ function renderSteps() {
       "Current is reduced above it; charging stops well above it.")}`);
   if (hardware) steps.push(renderHardwareStep(hardware, steps.length + 1, rpmNow));
   setHtml($("setup-steps"), html`${steps}`);
+  for (const id of ["su-profile", "su-bank"]) if ($(id)) $(id).addEventListener("change", () => showCharge());
+  showCharge();
   const pulley = $("su-pulley");
   if (pulley) pulley.addEventListener("input", () => { $("su-pulley-hint").textContent = rpmHint(hardware, rpmNow, pulley.value); });
 }
 
-function read(id, label, min, max) {
+// A number as typed (ranges are the daemon's to check, with the
+// catalogue's; the hardware step passes its own, which are not parameters).
+function read(id, label, min = -Infinity, max = Infinity) {
   const el = $(id);
   const v = parseDecimal(el.value);
   const bad = v === null || v < min || v > max;
   el.classList.toggle("bad", bad);
-  if (bad) throw new Error(`${label}: enter a number from ${min} to ${max}`);
+  if (bad) throw new Error(Number.isFinite(min) ? `${label}: enter a number from ${min} to ${max}` : `${label}: enter a number`);
   return v;
 }
 
-// The battery's part: a chemistry sets BatteryCells from the bank voltage
-// and drops the dashboard values the profile would set (null in the PATCH),
-// so the chemistry's values apply; "custom" scales the voltages instead.
+// The battery's part: the profile and the capacity; the bank voltage goes
+// as the query (?bank=), which the daemon turns into the chemistry's cells
+// (its values again where the dashboard had set them), or a custom set's
+// voltages moved to that bank.
 function collectBattery(body) {
-  const bank = Number($("su-bank").value);
   const sel = $("su-profile");
-  const name = sel ? (choicesOf(find("BatteryProfile")) || []).find(([v]) => String(v) === sel.value)?.[1] : null;
   if (sel) body.BatteryProfile = Number(sel.value);
-  if (name && CELLS_PER_12V[name]) {
-    body.BatteryCells = (CELLS_PER_12V[name] * bank) / 12;
-    for (const p of params)
-      if (p.profile_owned && p.source === "dashboard" && !(p.name in body)) body[p.name] = null;
-  } else {
-    const was = bankOf(find("BulkVoltage").value);
-    if (bank !== was) {
-      // A different bank: its charge voltages, and the other absolute voltages scaled.
-      Object.assign(body, BANK[bank]);
-      for (const n of ["RebulkVoltage", "TargetVoltageSetpoint", "ChargedVoltage", "VoltageAlarmHigh", "VoltageAlarmLow"])
-        if (find(n) && find(n).value > 0) body[n] = Math.round((find(n).value * bank) / was * 100) / 100;
-    }
-  }
-  body.BatteryCapacity_Ah = read("su-capacity", "Capacity", 1, 100000);
+  body.BatteryCapacity_Ah = read("su-capacity", "Capacity");
+}
+const paramsPath = (dryRun) => `/api/params?bank=${Number($("su-bank").value)}${dryRun ? "&dry_run=1" : ""}`;
+
+// What the chosen chemistry and bank charge at, as the daemon answers a dry
+// run (nothing saved); its refusal when the choice does not fit the bank it
+// measures. Only the answer to the latest choice is shown.
+let chargeAsked = 0;
+async function showCharge() {
+  const out = $("su-charge");
+  if (!out) return;
+  const body = {};
+  if ($("su-profile")) body.BatteryProfile = Number($("su-profile").value);
+  const n = ++chargeAsked;
+  const r = await quietAsk("PATCH", paramsPath(true), body).catch(() => null);
+  if (n !== chargeAsked) return;
+  if (!r || !r.values) { out.textContent = ""; return; }
+  const v = r.values;
+  out.textContent = `Charges at: bulk ${v.BulkVoltage} V, absorption ${v.AbsorptionVoltage} V, ` +
+    (v.UseFloat ? `float ${v.FloatVoltage} V` : "no float (rests after absorption)") +
+    (r.ok ? "" : ` — ${Object.values(r.errors).join("; ")}`);
+  out.className = r.ok ? "msg" : "msg bad";
 }
 
 // The alternator's part: the rating is MaxTableValue; the cap table is the
 // belt limit (never above the rating) at every running speed, half and
 // three quarters of it at the two lowest for a small alternator; the low
-// charge-rate table keeps its quarter; the current alarm moves clear above.
+// charge-rate table keeps its quarter. The current alarm is the daemon's to
+// check (alarmFollowsCap).
 function collectAlternator(body) {
-  const rating = read("su-rating", "Alternator rating", 1, 1000);
-  const cap = Math.min(read("su-belt", "Belt limit", 1, 1000), rating);
+  const rating = read("su-rating", "Alternator rating");
+  const cap = Math.min(read("su-belt", "Belt limit"), rating);
   const small = $("su-small").checked;
   const table = find("rpmCapCurrentTable").value.map((_, i) =>
     i === 0 ? 0 : Math.round(cap * (small && i === 1 ? 0.5 : small && i === 2 ? 0.75 : 1) * 10) / 10);
   body.MaxTableValue = rating;
   body.rpmCapCurrentTable = table;
   body.rpmCapCurrentTableLo = table.map((a) => Math.round(a * 2.5) / 10);
-  // 0 (the default) follows the cap by itself; a value set must clear it.
-  const alarm = find("CurrentAlarmHigh").value;
-  if (alarm > 0 && alarm < cap * 1.05) body.CurrentAlarmHigh = Math.ceil(cap * 1.1);
-  body.MinRPMForField = read("su-minrpm", "Lowest engine speed", 0, 10000);
+  body.MinRPMForField = read("su-minrpm", "Lowest engine speed");
 }
 
 // The set-up's values as one PATCH body.
@@ -120,7 +129,7 @@ function collect() {
   const body = {};
   collectBattery(body);
   collectAlternator(body);
-  const t = read("su-templimit", "Temperature limit", tempUnit() === "F" ? 50 : 10, tempUnit() === "F" ? 400 : 204);
+  const t = read("su-templimit", "Temperature limit");
   body.TemperatureLimitF = Math.round((tempUnit() === "F" ? t : (t * 9) / 5 + 32) * 10) / 10;
   return body;
 }
@@ -160,27 +169,49 @@ function renderResult() {
   renderSetupOwner(latestStatus());
 }
 
+// The daemon's refusal in the set-up's words: each error under the label of
+// the field it is about (marked), else under the parameter's name.
+function showRefusal(msg, e) {
+  const errs = (e.body && e.body.errors) || {};
+  for (const [, [id]] of Object.entries(FIELD_OF)) if ($(id)) $(id).classList.remove("bad");
+  const words = Object.entries(errs).map(([k, v]) => {
+    const f = FIELD_OF[k];
+    if (f && $(f[0])) $(f[0]).classList.add("bad");
+    return `${f ? f[1] : k}: ${v}`;
+  });
+  msg.textContent = `${e.message}${words.length ? ": " + words.join("; ") : ""}`;
+  msg.className = "msg bad";
+}
+
+// A current alarm the owner set below the new belt limit would sound in
+// every charge: when the daemon's dry run refuses it, it follows the limit
+// (0) instead, and the page says so.
+async function alarmFollowsCap(body) {
+  if (!(find("CurrentAlarmHigh")?.value > 0)) return "";
+  const r = await write("PATCH", paramsPath(true), body);
+  if (!r.errors || !("CurrentAlarmHigh" in r.errors)) return "";
+  body.CurrentAlarmHigh = 0;
+  return " The alternator current alarm now follows the new limit.";
+}
+
 async function saveSetup(runCommand) {
   const msg = $("setup-msg");
-  let body, hwBody;
+  let body, hwBody, note;
   try {
     body = collect();
     hwBody = hardware ? collectHardware(hardware, read) : {};
   } catch (e) { msg.textContent = e.message; msg.className = "msg bad"; return; }
   try {
-    await write("PATCH", "/api/params", body);
+    note = await alarmFollowsCap(body);
+    await write("PATCH", paramsPath(false), body);
     if (Object.keys(hwBody).length) hardware = await write("PUT", "/api/setup/hardware", hwBody);
-  } catch (e) {
-    const errs = (e.body && e.body.errors) || {};
-    msg.textContent = `${e.message}${Object.keys(errs).length ? ": " + Object.entries(errs).map(([k, v]) => `${k} ${v}`).join("; ") : ""}`;
-    msg.className = "msg bad";
-    return;
-  }
+  } catch (e) { showRefusal(msg, e); return; }
   const after = await getJson("/api/params");
   params = after.params;
+  bankNow = after.bank_v;
   renderResult();
   renderSetupState(after);
-  msg.textContent = "Saved. Press “Start charging” when the engine runs." +
+  msg.textContent = "Saved. Press “Start charging” when the engine runs." + note +
     (hardware && restartNeeded(hardware) ? " The probe and BMS choices are used from the regulator’s next start (switch it off and on)." : "");
   msg.className = "msg ok";
   $("setup-start").hidden = false;
@@ -188,7 +219,9 @@ async function saveSetup(runCommand) {
 }
 
 export async function loadSetup() {
-  params = (await getJson("/api/params")).params;
+  const body = await getJson("/api/params");
+  params = body.params;
+  bankNow = body.bank_v;
   hardware = await getJson("/api/setup/hardware").catch(() => null);
   rpmNow = (await getJson("/api/status").catch(() => ({}))).rpm ?? null;
   renderSteps();
