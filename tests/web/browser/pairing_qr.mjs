@@ -63,6 +63,10 @@ await runDaemonBrowserTest({ args, token, scenario, speed: 2, extraConfig: "[pai
   const url = decoded.data;
   assert.match(url, new RegExp(`^${server.base.replace(/\./g, "\\.")}/#pair=[0-9a-f]{32}$`));
   assert.equal(await owner.textContent("#pair-qr-url"), url);
+  if (args.shot) {  // --shot FILE: the page as docs/dashboard.md shows it
+    await owner.locator("#pair-qr").scrollIntoViewIfNeeded();
+    await owner.screenshot({ path: args.shot });
+  }
   console.log("ok - the paired phone shows a QR code of its address and a one-time code");
 
   // A second phone opens it and pairs, with a name and one press.
