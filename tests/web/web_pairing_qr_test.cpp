@@ -39,7 +39,7 @@ struct QrFixture : ::testing::Test {
     EXPECT_EQ(r.result_int(), 200) << r.body();
     return std::string(json::parse(r.body()).at("token").as_string());
   }
-  bool anyEvent(const std::string& text) const {
+  bool anyEvent(const std::string& text) {
     for (const auto& e : api.securityEvents())
       if (e.find(text) != std::string::npos) return true;
     return false;

@@ -1,7 +1,8 @@
 // The pairing button (app/pairing_button.h): a press held 50 ms opens the
 // 2-minute pairing window once, with a security event; a contact's bounce or
 // a glitch of a few ms does not; holding it counts once; without a
-// [pairing] button_line nothing opens, and the simulator has no line either.
+// [pairing] button_line nothing opens, and the simulator has no line either;
+// a line another [hardware] key uses is refused at start.
 #include "app/pairing_button.h"
 
 #include <gtest/gtest.h>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "app/sim_wiring.h"
+#include "config/config.h"
 #include "drivers/sim/scenario.h"
 #include "drivers/sim/sim_button.h"
 #include "web/server/web_server.h"
@@ -131,6 +133,24 @@ pairing_button = "released"
   settings.pairing.button_line = 17;
   SimWiring wired(sc, settings, cli, nullptr);
   EXPECT_NE(wired.pairingButton(), nullptr);
+}
+
+TEST(PairingButtonConfig, ALineOfItsOwnIsTakenAndALineInUseIsRefusedWithWhy) {
+  const auto ok = loadConfigString("[pairing]\nbutton_line = 17\n", "ok.toml");
+  ASSERT_TRUE(ok.ok()) << (ok.errors.empty() ? "" : ok.errors[0].toString());
+  EXPECT_EQ(ok.config->settings.pairing.button_line, 17);
+  const auto none = loadConfigString("", "none.toml");
+  ASSERT_TRUE(none.ok());
+  EXPECT_EQ(none.config->settings.pairing.button_line, -1);
+  const auto clash =
+      loadConfigString("[hardware]\nfield_enable_line = 4\n[pairing]\nbutton_line = 4\n", "x.toml");
+  ASSERT_EQ(clash.errors.size(), 1u);
+  EXPECT_EQ(clash.errors[0].key, "pairing.button_line");
+  EXPECT_NE(clash.errors[0].message.find("already [hardware] field_enable_line"), std::string::npos)
+      << clash.errors[0].message;
+  EXPECT_FALSE(loadConfigString("[pairing]\nbutton_line = 21\n", "buzzer.toml").errors.empty())
+      << "21 is the buzzer's by default";
+  EXPECT_FALSE(loadConfigString("[pairing]\nbutton_line = -2\n", "low.toml").errors.empty());
 }
 
 TEST(PairingButtonScenario, AnUnknownLevelIsRefusedWithItsLine) {
