@@ -63,6 +63,11 @@ BoardRig::BoardRig(const Settings& settings) {
     }
   }
   sensors_ = std::make_unique<DriverSensors>(bus_, hw, clock_, readyEdges);
+  if (settings.pairing.button_line >= 0) {
+    pairingButtonOpen_ = pairingButton_.open(hw.gpio_chip, settings.pairing.button_line);
+    if (!pairingButtonOpen_)
+      pairingButtonWarning_ = pairingButton_.error() + ": the pairing button is ignored";
+  }
   if (!watchdog_.open(hw.watchdog_device, hw.watchdog_timeout_s)) {
     watchdogWarning_ = "watchdog " + hw.watchdog_device + " not available: " + watchdog_.error();
   } else if (!watchdog_.warning().empty()) {

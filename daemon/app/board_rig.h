@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "config/settings.h"
+#include "drivers/gpio/gpio_button.h"
 #include "drivers/gpio/gpio_libgpiod.h"
 #include "drivers/i2c/linux_i2c_bus.h"
 #include "drivers/onewire/ds18b20_reader.h"
@@ -34,6 +35,10 @@ class BoardRig final {
   void registerFatalActions();
   const std::string& watchdogWarning() const { return watchdogWarning_; }
   const std::string& readyLineWarning() const { return readyLineWarning_; }
+  // [pairing] button_line, when set and requested; null otherwise (and
+  // pairingButtonWarning() says why: a missing button never stops charging).
+  ButtonInput* pairingButton() { return pairingButtonOpen_ ? &pairingButton_ : nullptr; }
+  const std::string& pairingButtonWarning() const { return pairingButtonWarning_; }
 
  private:
   rt::MonotonicClock clock_;
@@ -47,6 +52,9 @@ class BoardRig final {
   LinuxWatchdog watchdog_;
   std::string watchdogWarning_;
   std::string readyLineWarning_;
+  GpioButtonLine pairingButton_;
+  bool pairingButtonOpen_ = false;
+  std::string pairingButtonWarning_;
   std::unique_ptr<Ds18b20Reader> ds18b20_;
   std::unique_ptr<Ds18b20Reader> batteryDs18b20_;  // [hardware] battery_temp_sensor (docs/batteries.md)
   std::unique_ptr<VeDirectReader> vedirect_;

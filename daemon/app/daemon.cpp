@@ -122,7 +122,9 @@ int Daemon::run() {
 
   int exitCode = 0;
   try {
-    exitCode = Supervisor(cli_, settings, loop, control, *handoffs, services, start.store.get()).run();
+    exitCode = Supervisor(cli_, settings, loop, control, *handoffs, services, start.store.get(),
+                          rig->pairingButton())
+                   .run();
   } catch (const std::exception& e) {
     // Safe state first, then tell; the watchdog stays armed (an unclean stop).
     rt::fatal::driveSafeNow();

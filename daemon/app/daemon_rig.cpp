@@ -25,6 +25,8 @@ std::unique_ptr<DaemonRig> DaemonRig::open(const StartState& start, const Settin
       rig->board_->registerFatalActions();
       if (!rig->board_->watchdogWarning().empty()) spdlog::warn("{}", rig->board_->watchdogWarning());
       if (!rig->board_->readyLineWarning().empty()) spdlog::warn("{}", rig->board_->readyLineWarning());
+      if (!rig->board_->pairingButtonWarning().empty())
+        spdlog::warn("{}", rig->board_->pairingButtonWarning());
     }
   } catch (const std::exception& e) {
     rt::fatal::driveSafeNow();

@@ -37,6 +37,8 @@ class DaemonRig {
   // The 1-Wire folder the set-up page lists probes from.
   std::string w1Root(const Settings& settings) const;
   BoardRig* board() { return board_.get(); }
+  // [pairing] button_line: the GPIO line, or the simulated one; null: none.
+  ButtonInput* pairingButton() { return sim_ ? sim_->pairingButton() : board_->pairingButton(); }
 
   // The control thread has ended with the field LOW: only now may the
   // watchdog be disarmed, and the --sim-outputs mirror says "stopped".

@@ -48,7 +48,8 @@ SimWiring::SimWiring(const sim::Scenario& scenario, const Settings& settings, co
                      std::unique_ptr<std::ofstream> canLog, std::optional<double> tachPulleyRatio)
     : cli_(cli),
       canLog_(std::move(canLog)),
-      rig_(scenario, settings, rigOptions(cli, canLog_.get(), tachPulleyRatio)) {
+      rig_(scenario, settings, rigOptions(cli, canLog_.get(), tachPulleyRatio)),
+      buttonWired_(settings.pairing.button_line >= 0) {
   rig_.onCanReport([](const std::string& what) { spdlog::warn("{}", what); });
   rig_.onScenarioProblem(
       [](int line, const std::string& what) { spdlog::error("scenario line {}: {}", line, what); });

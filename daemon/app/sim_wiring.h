@@ -47,6 +47,8 @@ class SimWiring final : public rt::TickHook {
   void attach(rt::Handoffs& h) { rig_.attach(h); }
   std::string w1Root() const { return rig_.w1Root(); }
   rt::OutputMirror* mirror() { return mirror_.get(); }
+  // The simulated pairing button, only with [pairing] button_line set (as on the board).
+  ButtonInput* pairingButton() { return buttonWired_ ? &rig_.world().pairingButton() : nullptr; }
 
   // TickHook: the test faults (--test-fault), at their simulated time.
   void beforeTick(TimeNs now) override;
@@ -61,6 +63,7 @@ class SimWiring final : public rt::TickHook {
   std::unique_ptr<rt::MirroredPwm> mPwm_;
   std::unique_ptr<rt::MirroredDigitalOutput> mEnable_, mBuzzer_;
   bool faultFired_ = false;
+  bool buttonWired_ = false;
 };
 
 }  // namespace xr::app

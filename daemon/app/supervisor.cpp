@@ -26,6 +26,7 @@ int Supervisor::run() {
     if (sig > 0) handleSignal(sig, loop_, stopRequested, exitCode);
     const auto now = std::chrono::steady_clock::now();
     presence_.poll(handoffs_, services_.server(), services_.api());
+    pollPairingButton();
     feedWatchdog();
     throwTestFault();
     if (now - lastHousekeeping >= std::chrono::seconds(1)) {
@@ -46,6 +47,15 @@ int Supervisor::run() {
     }
   }
   return exitCode;
+}
+
+// The button's edges carry the loop clock's time (drivers/hal/button.h): the
+// latest tick's time is "now" on the board and in --sim alike.
+void Supervisor::pollPairingButton() {
+  if (!pairingButton_) return;
+  const rt::RuntimeSnapshot s = handoffs_.latest();
+  if (s.tick == 0) return;
+  button_.poll(pairingButton_, s.telemetry.now, services_.server(), services_.api());
 }
 
 void Supervisor::feedWatchdog() {

@@ -272,11 +272,29 @@ class Loader {
                      "uses GPIO line " + std::to_string(line) + ", which is already the field_enable_line");
       }
     }
+    pairingButtonLine();
     webSettings();
     for (auto& [key, message] : checkIntegrations(config_.settings.integrations, config_.settings.can))
       settingError(key, message);
     for (auto& [key, message] : checkCan(config_.settings.can)) settingError(key, message);
     for (auto& [key, message] : checkBatteryProbe(config_.settings.hardware)) settingError(key, message);
+  }
+
+  // The pairing button needs a line of its own: libgpiod grants a line once,
+  // and the field enable must never be an input.
+  void pairingButtonLine() {
+    const auto& h = config_.settings.hardware;
+    const int button = config_.settings.pairing.button_line;
+    if (button < 0) return;
+    const std::pair<const char*, int> lines[] = {{"field_enable_line", h.field_enable_line},
+                                                 {"buzzer_line", h.buzzer_line},
+                                                 {"bms_line", h.bms_line},
+                                                 {"ignition_line", h.ignition_line},
+                                                 {"ads_alert_rdy_line", h.ads_alert_rdy_line}};
+    for (const auto& [name, line] : lines)
+      if (line == button)
+        settingError("pairing.button_line",
+                     "uses GPIO line " + std::to_string(line) + ", which is already [hardware] " + name);
   }
 
   void settingError(const std::string& key, std::string message) {

@@ -74,6 +74,11 @@ struct WebSettings {
   std::string www_root;  // dashboard assets; empty = built-in default path
 };
 
+// [pairing] (docs/security.md "Pairing without a terminal").
+struct PairingSettings {
+  int button_line = -1;  // GPIO line of a push button to GND that opens pairing; -1: none
+};
+
 struct StoreSettings {
   std::string path = "/var/lib/xregulator/xregulator.db";
   int checkpoint_interval_s = 300;
@@ -163,6 +168,7 @@ struct Settings {
   StoreSettings store;
   LogSettings log;
   IntegrationsSettings integrations;
+  PairingSettings pairing;
 };
 
 // The whole configuration: settings plus the parameter set.

@@ -242,6 +242,10 @@ const SettingSpec kSchema[] = {
              "The regulator's name in each message; empty = the board's host name."),
     XR_S_INT("notify", integrations.notify.timeout_s, "timeout_s", "s", 2, 120, false,
              "Seconds one delivery may take (connect, send, answer) before it is retried."),
+    // [pairing] (docs/security.md "Pairing without a terminal")
+    XR_S_INT("pairing", pairing.button_line, "button_line", "", -1, 1023, false,
+             "GPIO line of a push button to GND (internal pull-up) on [hardware] gpio_chip: a press opens "
+             "pairing without a code for 2 minutes, for one phone (-1 = no button)."),
 };
 
 #undef XR_S_STR
@@ -249,7 +253,7 @@ const SettingSpec kSchema[] = {
 #undef XR_S_FLT
 #undef XR_S_BOOL
 
-constexpr std::array<std::string_view, 11> kTables{"hardware",
+constexpr std::array<std::string_view, 12> kTables{"hardware",
                                                    "hardware.frontend",
                                                    "runtime",
                                                    "web",
@@ -259,7 +263,8 @@ constexpr std::array<std::string_view, 11> kTables{"hardware",
                                                    "integrations.mqtt",
                                                    "integrations.victron",
                                                    "integrations.weather",
-                                                   "notify"};
+                                                   "notify",
+                                                   "pairing"};
 
 std::string rangeText(const SettingSpec& spec) {
   std::string r = "allowed " + formatNumber(spec.min) + " to " + formatNumber(spec.max);

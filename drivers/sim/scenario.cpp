@@ -87,6 +87,31 @@ void checkEventFault(const Ctx& c, const ScenarioEvent& e, bool haveValue) {
     c.fail(e.line, "temp_value must be within [-60, 400] degF");
 }
 
+// The events that move a line or a switch, each to one of two words.
+bool parseLevelEventKey(const Ctx& c, const toml::key& k, const toml::node& v, ScenarioEvent& e) {
+  struct Level {
+    std::string_view key, yes, no;
+    std::optional<bool> ScenarioEvent::*field;
+  };
+  static constexpr Level kLevels[] = {
+      {"ignition", "on", "off", &ScenarioEvent::ignition},
+      {"pairing_button", "pressed", "released", &ScenarioEvent::pairing_button},
+      {"bms", "connect", "disconnect", &ScenarioEvent::bms_connected},
+      {"bms_input", "charge_enabled", "charge_disabled", &ScenarioEvent::bms_charge_enabled},
+      {"charger", "on", "off", &ScenarioEvent::charger_on},
+  };
+  for (const auto& l : kLevels) {
+    if (k.str() != l.key) continue;
+    const auto s = text(c, k, v);
+    if (s != l.yes && s != l.no)
+      c.fail(lineOf(v),
+             std::string(l.key) + " must be \"" + std::string(l.yes) + "\" or \"" + std::string(l.no) + "\"");
+    e.*l.field = s == l.yes;
+    return true;
+  }
+  return false;
+}
+
 ScenarioEvent parseEvent(const Ctx& c, const toml::table& t, double duration) {
   ScenarioEvent e;
   e.line = lineOf(t);
@@ -117,23 +142,7 @@ ScenarioEvent parseEvent(const Ctx& c, const toml::table& t, double duration) {
       e.ambient_f = number(c, k, v, -40.0, 200.0);
     } else if (n == "battery_temp_c") {
       e.battery_temp_c = number(c, k, v, -40.0, 80.0);
-    } else if (n == "ignition") {
-      const auto s = text(c, k, v);
-      if (s != "on" && s != "off") c.fail(lineOf(v), "ignition must be \"on\" or \"off\"");
-      e.ignition = s == "on";
-    } else if (n == "bms") {
-      const auto s = text(c, k, v);
-      if (s != "connect" && s != "disconnect") c.fail(lineOf(v), "bms must be \"connect\" or \"disconnect\"");
-      e.bms_connected = s == "connect";
-    } else if (n == "bms_input") {
-      const auto s = text(c, k, v);
-      if (s != "charge_enabled" && s != "charge_disabled")
-        c.fail(lineOf(v), "bms_input must be \"charge_enabled\" or \"charge_disabled\"");
-      e.bms_charge_enabled = s == "charge_enabled";
-    } else if (n == "charger") {
-      const auto s = text(c, k, v);
-      if (s != "on" && s != "off") c.fail(lineOf(v), "charger must be \"on\" or \"off\"");
-      e.charger_on = s == "on";
+    } else if (parseLevelEventKey(c, k, v, e)) {
     } else if (parseBmsEventKey(c, k, v, e)) {
     } else if (n == "command") {
       // handled above
@@ -158,9 +167,9 @@ ScenarioEvent parseEvent(const Ctx& c, const toml::table& t, double duration) {
   if (!haveAt) c.fail(e.line, "event without at_s");
   checkEventFault(c, e, haveValue);
   if (cmd) e.command = eventCommand(c, *cmd, cmdArgName, cmdArg, cmdLine);
-  const bool any = e.rpm || e.house_a || e.ambient_f || e.battery_temp_c || e.ignition || e.bms_connected ||
-                   e.bms_charge_enabled || e.charger_on || e.touchesSimCan() || e.command || !e.set.empty() ||
-                   e.fault || e.clear;
+  const bool any = e.rpm || e.house_a || e.ambient_f || e.battery_temp_c || e.ignition || e.pairing_button ||
+                   e.bms_connected || e.bms_charge_enabled || e.charger_on || e.touchesSimCan() ||
+                   e.command || !e.set.empty() || e.fault || e.clear;
   if (!any) c.fail(e.line, "event does nothing");
   return e;
 }
@@ -312,6 +321,7 @@ void ScenarioPlayer::applyToWorld(const ScenarioEvent& e, SimWorld& w) {
   if (e.ambient_f) w.plant().setAmbientF(*e.ambient_f);
   if (e.battery_temp_c) w.plant().setBatteryTempC(*e.battery_temp_c);
   if (e.ignition) w.setIgnition(*e.ignition);
+  if (e.pairing_button) w.setPairingButton(*e.pairing_button);
   if (e.bms_connected) w.plant().setBmsConnected(*e.bms_connected);
   if (e.bms_charge_enabled) w.setBmsChargeEnabled(*e.bms_charge_enabled);
   if (e.charger_on) w.plant().setChargerOn(*e.charger_on);

@@ -54,6 +54,7 @@ struct ScenarioEvent {
   int line = 0;
   std::optional<double> rpm, house_a, ambient_f, battery_temp_c;
   std::optional<bool> ignition;            // ignition = "on" | "off"
+  std::optional<bool> pairing_button;      // pairing_button = "pressed" | "released"
   std::optional<bool> bms_connected;       // bms = "connect" | "disconnect"
   std::optional<bool> bms_charge_enabled;  // bms_input = "charge_enabled" | "charge_disabled"
   std::optional<bool> charger_on;          // charger = "on" | "off" (shore power; needs [charger])

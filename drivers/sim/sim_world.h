@@ -22,6 +22,7 @@
 #include "drivers/sim/ina228_model.h"
 #include "drivers/sim/plant/plant.h"
 #include "drivers/sim/prng.h"
+#include "drivers/sim/sim_button.h"
 #include "drivers/sim/sim_i2c_bus.h"
 #include "drivers/sim/sim_onewire.h"
 #include "drivers/sim/sim_outputs.h"
@@ -101,6 +102,8 @@ class SimWorld {
   DigitalInput& ignition() noexcept { return ignition_; }
   // BMS signal line (cycle_devices.h): 1 = the BMS asserts "charge disabled".
   DigitalInput& bmsLine() noexcept { return bmsLine_; }
+  // The pairing button (sim_button.h); the daemon reads it only with [pairing] button_line set.
+  SimButtonInput& pairingButton() noexcept { return pairingButton_; }
   Watchdog& watchdog() noexcept { return watchdog_; }
   const std::filesystem::path& w1Root() const noexcept { return cfg_.w1Root; }
 
@@ -118,6 +121,7 @@ class SimWorld {
 
   // Scenario controls.
   void setIgnition(bool on) noexcept { ignition_.setLevel(on); }
+  void setPairingButton(bool pressed) { pairingButton_.setPressed(pressed, now_); }
   void setBmsChargeEnabled(bool en) noexcept;
   void setFault(Fault f, bool active, double value = 0.0);
   bool faultActive(Fault f) const noexcept { return faults_[int(f)]; }
@@ -160,6 +164,7 @@ class SimWorld {
   SimDigitalOutput buzzer_;
   SimDigitalInput ignition_;
   SimDigitalInput bmsLine_{false};
+  SimButtonInput pairingButton_;
   SimWatchdog watchdog_;
   std::array<bool, kFaultCount> faults_{};
   std::array<double, kFaultCount> faultValues_{};

@@ -45,10 +45,12 @@ else
   echo "building the package from the committed tree (git HEAD; this takes minutes)"
   mkdir -p "$work/src"
   (cd "$repo" && git archive HEAD) | tar -xf - -C "$work/src"
-  # The dashboard's pinned uPlot comes from npm (`make deps`), not from git.
-  if [ -d "$repo/web/node_modules/uplot" ]; then
-    mkdir -p "$work/src/web/node_modules" && cp -a "$repo/web/node_modules/uplot" "$work/src/web/node_modules/"
-  fi
+  # The dashboard's pinned uPlot and qrcode-generator come from npm (`make deps`), not from git.
+  for pkg in uplot qrcode-generator; do
+    if [ -d "$repo/web/node_modules/$pkg" ]; then
+      mkdir -p "$work/src/web/node_modules" && cp -a "$repo/web/node_modules/$pkg" "$work/src/web/node_modules/"
+    fi
+  done
   start=$(date +%s)
   if ! (cd "$work/src" && dpkg-buildpackage -us -uc -b >"$work/build.log" 2>&1); then
     tail -40 "$work/build.log"; echo "FAIL: dpkg-buildpackage"; exit 1

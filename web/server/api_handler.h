@@ -71,6 +71,7 @@ class ApiHandler {
   std::string writerName(std::string_view authorization) const;
   Pairing::Caller callerOf(std::string_view authorization) const;
   Response postPair(const Request& req, const Peer& peer);
+  Response postQrCode(const Request& req);
   // A code-less pairing from off the boat's networks: the reason, "" when on board.
   std::string offBoardRefusal(const Peer& peer);
   Response listDevices(const Request& req);

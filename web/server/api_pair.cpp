@@ -1,5 +1,5 @@
 // Pairing routes (pairing.h): POST /api/pair for a code, and for a device
-// that may write already: POST /api/pair/code, GET /api/pair/devices,
+// that may write already: POST /api/pair/code, POST /api/pair/qr, GET /api/pair/devices,
 // DELETE /api/pair/devices[/<id>].
 #include <boost/json.hpp>
 #include <optional>
@@ -68,7 +68,7 @@ Response ApiHandler::postPair(const Request& req, const Peer& peer) {
   // No code at all: the first device of a new regulator, in its first-start
   // window (pairing.h); a code that is there must be a string.
   const bool windowed = o && (!code || code->is_null());
-  if (!o || (!windowed && (!code->is_string() || code->get_string().size() > 16)))
+  if (!o || (!windowed && (!code->is_string() || code->get_string().size() > kQrCodeLength)))
     return error(req, http::status::bad_request, "expected {\"code\": \"123456\", \"name\": \"...\"}");
   std::string name;
   if (const auto* n = o->if_contains("name"); n && n->is_string()) name = std::string(n->get_string());
@@ -96,9 +96,11 @@ Response ApiHandler::postPair(const Request& req, const Peer& peer) {
       out["claimed_by"] = r.claimedBy;
       return jsonReply(req, http::status::forbidden, out);
     case Pairing::Outcome::Paired:
-      api_.securityEvent(
-          "Paired " + deviceText(r.device) + (pairing_.ownerId() == r.device.id ? " as the owner" : "") +
-          (windowed ? " without a code, in a pairing window" : "") + (from.empty() ? "" : " from " + from));
+      api_.securityEvent("Paired " + deviceText(r.device) +
+                         (pairing_.ownerId() == r.device.id ? " as the owner" : "") +
+                         (windowed ? " without a code, in a pairing window" : "") +
+                         (r.qrMadeBy.empty() ? "" : " with a QR code made by " + r.qrMadeBy) +
+                         (from.empty() ? "" : " from " + from));
       out["token"] = r.token;
       out["id"] = r.device.id;
       out["name"] = r.device.name;
@@ -154,6 +156,10 @@ Response ApiHandler::pairRoutes(const Request& req, std::string_view path, const
     out["expires_in_s"] = kCodeLifetimeMs / 1000;
     return jsonReply(req, http::status::ok, out);
   }
+  if (path == "/api/pair/qr") {
+    if (method != http::verb::post) return error(req, http::status::method_not_allowed, "method not allowed");
+    return postQrCode(req);
+  }
   if (path == "/api/pair/devices") {
     if (method == http::verb::get || method == http::verb::head) return listDevices(req);
     if (method == http::verb::delete_) return revokeAllDevices(req);
@@ -163,6 +169,22 @@ Response ApiHandler::pairRoutes(const Request& req, std::string_view path, const
   if (path.starts_with(kDevice) && method == http::verb::delete_)
     return revokeDevice(req, std::string(path.substr(kDevice.size())));
   return error(req, http::status::not_found, "no such endpoint");
+}
+
+// A paired phone's QR code for the next phone (pairing.h): the phone draws
+// it from the code; the code, not the URL, is what pairs, so the phone puts
+// its own address in front (the one the next phone can reach too).
+Response ApiHandler::postQrCode(const Request& req) {
+  const auto auth = req[http::field::authorization];
+  std::string by = writerName(auth);
+  if (auto d = pairing_.deviceFor(bearerToken(auth))) by = deviceText(*d);
+  const auto c = pairing_.newQrCode(by);
+  api_.securityEvent("QR code for pairing another device made by " + by + " (" +
+                     std::to_string(kCodeLifetimeMs / 60000) + " min, once)");
+  json::object out;
+  out["code"] = c.code;
+  out["expires_in_s"] = kCodeLifetimeMs / 1000;
+  return jsonReply(req, http::status::ok, out);
 }
 
 Response ApiHandler::listDevices(const Request& req) {

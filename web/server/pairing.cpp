@@ -97,6 +97,18 @@ Pairing::Code Pairing::newCode() {
   return c;
 }
 
+Pairing::Code Pairing::newQrCode(std::string_view by) {
+  Code c{generateToken().substr(0, kQrCodeLength), now() + kCodeLifetimeMs};
+  const std::int64_t t = elapsed();
+  std::lock_guard lock(m_);
+  qrHash_ = sha256Hex(c.code);
+  qrExpiresMs_ = t + kCodeLifetimeMs;
+  qrMadeBy_ = by;
+  wrongTries_ = 0;
+  lockedUntilMs_ = 0;
+  return c;
+}
+
 Pairing::Outcome Pairing::pair(std::string_view code, std::string_view name) {
   Outcome out;
   const std::int64_t t = elapsed();
@@ -107,12 +119,16 @@ Pairing::Outcome Pairing::pair(std::string_view code, std::string_view name) {
     out.retryAfterMs = lockedUntilMs_ - t;
     return out;
   }
-  const bool valid = !codeHash_.empty() && t < codeExpiresMs_;
-  if (!valid || !constantTimeEquals(sha256Hex(code), codeHash_)) {
+  // Which code this is by its length: 6 digits typed, or the QR code's 32.
+  const bool qr = code.size() == kQrCodeLength;
+  const std::string& hash = qr ? qrHash_ : codeHash_;
+  const bool valid = !hash.empty() && t < (qr ? qrExpiresMs_ : codeExpiresMs_);
+  if (!valid || !constantTimeEquals(sha256Hex(code), hash)) {
     // An expired or absent code counts too: otherwise a guesser could probe
     // freely while no code is in force and learn nothing, but still load us.
     if (++wrongTries_ >= kMaxWrongTries) {
       codeHash_.clear();  // burnt: the owner makes a new one
+      qrHash_.clear();
       wrongTries_ = 0;
       lockedUntilMs_ = t + kLockoutMs;
       out.kind = Outcome::LockedOut;
@@ -125,7 +141,8 @@ Pairing::Outcome Pairing::pair(std::string_view code, std::string_view name) {
   }
   addDeviceLocked(name, wallNow, out);
   if (out.kind == Outcome::Paired) {
-    codeHash_.clear();  // single use
+    (qr ? qrHash_ : codeHash_).clear();  // single use
+    if (qr) out.qrMadeBy = qrMadeBy_;
     wrongTries_ = 0;
   }
   return out;

@@ -36,6 +36,10 @@ inline constexpr int kMaxWrongTries = 5;
 inline constexpr std::int64_t kLockoutMs = 5 * 60 * 1000;
 inline constexpr std::size_t kMaxPairedDevices = 32;
 inline constexpr std::size_t kMaxDeviceNameLength = 40;
+// The QR code a paired phone shows for the next one (docs/security.md
+// "Pairing without a terminal"): 128 random bits as 32 hex digits, too many
+// to guess, so the URL alone pairs; valid for kCodeLifetimeMs, single use.
+inline constexpr std::size_t kQrCodeLength = 32;
 
 // SHA-256 of text as 64 lowercase hex digits (OpenSSL).
 std::string sha256Hex(std::string_view text);
@@ -87,6 +91,10 @@ class Pairing {
   };
   // A fresh code; replaces the previous one and ends a lock-out.
   Code newCode();
+  // A fresh QR code (kQrCodeLength hex digits), for a paired device only;
+  // `by` names who made it (the pairing's event says so). Replaces the
+  // previous QR code, not the 6-digit one, and ends a lock-out.
+  Code newQrCode(std::string_view by);
 
   struct Outcome {
     enum Kind { Paired, WrongCode, LockedOut, NotSaved, Full, NoWindow, WindowClaimed } kind = WrongCode;
@@ -95,6 +103,7 @@ class Pairing {
     int triesLeft = 0;              // WrongCode
     std::int64_t retryAfterMs = 0;  // LockedOut
     std::string claimedBy;          // WindowClaimed: who paired in this window
+    std::string qrMadeBy;           // Paired with a QR code: who made it
   };
   Outcome pair(std::string_view code, std::string_view name);
 
@@ -155,6 +164,9 @@ class Pairing {
   mutable std::mutex m_;
   std::string codeHash_;            // empty: no code in force
   std::int64_t codeExpiresMs_ = 0;  // on the elapsed clock, like lockedUntilMs_
+  std::string qrHash_;              // the QR code's; empty: none in force
+  std::int64_t qrExpiresMs_ = 0;
+  std::string qrMadeBy_;
   int wrongTries_ = 0;
   std::int64_t lockedUntilMs_ = 0;
   std::int64_t windowUntilMs_ = 0;       // elapsed clock; 0: never opened

@@ -25,6 +25,7 @@ const D = await mod("web/tools/reasons-doc.mjs");
 const P = await mod("web/www/js/pages.js");
 const A = await mod("web/www/js/pairing.js");
 const L = await mod("web/www/js/live.js");
+const Q = await mod("web/www/js/pair_qr.js");
 let n = 0;
 const test = async (name, fn) => { await fn(); n++; console.log("ok - " + name); };
 
@@ -250,6 +251,18 @@ await test("pairing refusals in words the owner can act on (item 15)", () => {
   assert.match(A.pairingError(403, { error: "a pairing code is needed: no pairing window is open" }), /15 minutes/);
   assert.equal(A.guessDeviceName("Mozilla/5.0 (iPhone; CPU iPhone OS 17_0 like Mac OS X)"), "iPhone");
   assert.equal(A.guessDeviceName("Mozilla/5.0 (Linux; Android 14; Pixel 8) Mobile Safari"), "Android phone");
+});
+
+await test("a paired phone's QR code: its address carries the code in the fragment, read back exactly", () => {
+  const code = "0123456789abcdef0123456789abcdef";
+  const url = Q.pairingUrl(code, { origin: "http://192.168.4.1:8080", pathname: "/" });
+  assert.equal(url, "http://192.168.4.1:8080/#pair=" + code);
+  assert.equal(Q.qrCodeFromAddress(new URL(url).hash), code);
+  for (const bad of ["", "#system", "#pair=", "#pair=123456", `#pair=${code}0`, `#pair=${code.toUpperCase()}`, `#pair=${code}&x=1`])
+    assert.equal(Q.qrCodeFromAddress(bad), "", bad);
+  // A used or expired QR code is told as such, not as 6 digits to check.
+  assert.match(A.pairingError(403, { tries_left: 3 }, true), /QR code was used already or has expired/);
+  assert.match(A.pairingError(429, { retry_after_s: 300 }, true), /locked for 5 min/);
 });
 
 await test("the Settings notice is one line; which values fold out in plain labels and the display unit", () => {

@@ -6,6 +6,7 @@
 import { forgetToken, getDevice, getToken, pair, quietRequest, saveCredential, setAuthoriser, toast, tokenWorks, write } from "./api.js";
 import { confirmAction } from "./confirm.js";
 import { clock } from "./format.js";
+import { qrCodeFromAddress, showPairingQr } from "./pair_qr.js";
 
 const $ = (id) => document.getElementById(id);
 
@@ -21,7 +22,9 @@ export function guessDeviceName(ua = navigator.userAgent) {
 }
 
 // The server's refusal in words the owner can act on.
-export function pairingError(status, body = {}) {
+export function pairingError(status, body = {}, qr = false) {
+  if (qr && status === 403 && typeof body.tries_left === "number")
+    return "This QR code was used already or has expired (a QR code works once, for 10 minutes): show a new one on the paired phone.";
   // The window was used by another device, or this one is not on the boat's
   // own network: the server's words say which (docs/security.md).
   if (status === 403 && (body.claimed_by || /own network/.test(body.error || "")))
@@ -44,10 +47,32 @@ export function pairingError(status, body = {}) {
   return body.error || `The regulator answered ${status}.`;
 }
 
+// What the dialog says before anything is typed: a QR code brought this
+// device (no code to type), or a pairing window is open (the first
+// 15 minutes of a new regulator, the ignition turned off-on-off-on, the
+// pairing button; docs/security.md "Pairing without a terminal").
+function explainDialog(msg, qrCode) {
+  const state = { windowOpen: false };
+  msg.className = "msg";
+  $("pair-code").placeholder = qrCode ? "from the QR code" : "6 digits";
+  $("pair-code").disabled = !!qrCode;
+  if (qrCode) {
+    msg.textContent = "A paired phone's QR code brought this device here: press Pair (the code works once, for 10 min).";
+    return state;
+  }
+  quietRequest("GET", "/api/pair/window").then((r) => {
+    if (!r.ok || !r.body.open) return;
+    state.windowOpen = true;
+    msg.textContent = `No code needed: a pairing window is open. Press Pair within ${Math.max(1, Math.floor(r.body.closes_in_s / 60))} min — the first device to pair gets in (on a new regulator, it becomes the owner).`;
+    $("pair-code").placeholder = "not needed now";
+  }).catch(() => {});
+  return state;
+}
+
 // Shows the dialog; resolves with the new token, or "" when cancelled. The
 // dialog stays open on a wrong code, with the reason, until the owner pairs
-// or cancels.
-export function askPairing(why = "") {
+// or cancels. qrCode: the one-time code of a paired phone's QR code.
+export function askPairing(why = "", qrCode = "") {
   const dlg = $("pair-dialog");
   const msg = $("pair-msg");
   $("pair-why").textContent = why;
@@ -55,17 +80,7 @@ export function askPairing(why = "") {
   $("token-input").value = "";
   $("pair-name").value = (getDevice() && getDevice().name) || guessDeviceName();
   msg.textContent = "";
-  // A new regulator with nothing paired: no code needed for its first
-  // 15 minutes (docs/security.md "Pairing without a terminal").
-  let windowOpen = false;
-  $("pair-code").placeholder = "6 digits";
-  quietRequest("GET", "/api/pair/window").then((r) => {
-    if (!r.ok || !r.body.open) return;
-    windowOpen = true;
-    msg.className = "msg";
-    msg.textContent = `No code needed: this regulator is new and nothing is paired yet. Press Pair within ${Math.max(1, Math.floor(r.body.closes_in_s / 60))} min — this device becomes its owner.`;
-    $("pair-code").placeholder = "not needed now";
-  }).catch(() => {});
+  const state = explainDialog(msg, qrCode);
   return new Promise((resolve) => {
     let done = false;
     const finish = (token) => { if (done) return; done = true; form.removeEventListener("submit", onSubmit); resolve(token); };
@@ -87,14 +102,23 @@ export function askPairing(why = "") {
           toast("This device uses the installer's token");
           return;
         }
+        if (qrCode) {
+          msg.textContent = "Pairing…";
+          const r = await pair(qrCode, $("pair-name").value.trim());
+          saveCredential(r.token, { id: r.id, name: r.name });
+          finish(r.token);
+          dlg.close("ok");
+          toast(`Paired as “${r.name}” with the QR code`);
+          return;
+        }
         const code = $("pair-code").value.replace(/\D/g, "");
-        if (!code && windowOpen) {
+        if (!code && state.windowOpen) {
           msg.textContent = "Pairing…";
           const r = await pair(null, $("pair-name").value.trim());
           saveCredential(r.token, { id: r.id, name: r.name });
           finish(r.token);
           dlg.close("ok");
-          toast(`Paired as “${r.name}”, the owner`);
+          toast(`Paired as “${r.name}”`);
           return;
         }
         if (code.length !== 6) { msg.className = "msg bad"; msg.textContent = "Enter the 6 digits of the pairing code."; return; }
@@ -106,7 +130,7 @@ export function askPairing(why = "") {
         toast(`Paired as “${r.name}”`);
       } catch (e) {
         msg.className = "msg bad";
-        msg.textContent = e.status ? pairingError(e.status, e.body) : "The regulator cannot be reached: " + e.message;
+        msg.textContent = e.status ? pairingError(e.status, e.body, !!qrCode) : "The regulator cannot be reached: " + e.message;
         $("pair-code").select();
       } finally {
         ok.disabled = false;
@@ -115,7 +139,7 @@ export function askPairing(why = "") {
     form.addEventListener("submit", onSubmit);
     dlg.addEventListener("close", () => finish(""), { once: true });
     dlg.showModal();
-    $("pair-code").focus();
+    $(qrCode ? "pair-name" : "pair-code").focus();
   });
 }
 
@@ -184,6 +208,14 @@ async function newCode() {
 
 export function initPairing() {
   setAuthoriser(askPairing);
+  $("pair-qr-new").addEventListener("click", () => showPairingQr().catch((e) => toast(e.message, true)));
+  // Opened from a paired phone's QR code: the code leaves the address bar
+  // (and the history) at once, and the dialog asks only for a name.
+  const qrCode = qrCodeFromAddress(location.hash);
+  if (qrCode) {
+    history.replaceState(null, "", location.pathname + "#system");
+    askPairing("", qrCode).then(() => loadDevices()).catch((e) => toast(e.message, true));
+  }
   // Enter in a box pairs (the form's first button is Cancel, which a bare
   // implicit submit would press).
   for (const id of ["pair-code", "pair-name", "token-input"])
