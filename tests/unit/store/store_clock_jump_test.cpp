@@ -83,8 +83,7 @@ INSTANTIATE_TEST_SUITE_P(ForwardAndBack, ClockJump,
                          ::testing::Values(3 * kHourMs, -3 * kHourMs, 720 * kHourMs, -720 * kHourMs),
                          [](const ::testing::TestParamInfo<std::int64_t>& i) {
                            const std::int64_t h = i.param / kHourMs;
-                           return std::string(h > 0 ? "Forward" : "Back") + std::to_string(h > 0 ? h : -h) +
-                                  "h";
+                           return std::string(h > 0 ? "Forward" : "Back") + std::to_string(h > 0 ? h : -h) + "h";
                          });
 
 }  // namespace
