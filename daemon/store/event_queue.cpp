@@ -30,8 +30,7 @@ void EventQueue::summarise(Window& w) {
   s.id = 0;
   const std::int64_t minutes = std::max<std::int64_t>(1, (w.last.tMs - w.firstRepeatMs + 59'999) / 60'000);
   s.message += " [and " + std::to_string(w.repeats) + " more like it within " + std::to_string(minutes) +
-               " min, counted here, not stored one by one: the first " + std::to_string(w.kept) +
-               " of the window are]";
+               " min: counted, not stored one by one]";
   pending_.push_back(std::move(s));
   w.repeats = 0;
 }
