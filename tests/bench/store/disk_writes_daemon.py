@@ -86,13 +86,12 @@ class Telemetry(threading.Thread):
                     pass
 
 
-def measure(build, base_db, kind, speed, hours, work):
+def measure(build, base_db, kind, speed, hours, work, warm):
     d = tempfile.mkdtemp(prefix=f"xr-disk-{kind}-", dir=work)
     db = os.path.join(d, "state.db")
     for suffix in ("", ".bak"):
         if os.path.exists(base_db + suffix):
             shutil.copy2(base_db + suffix, db + suffix)
-    warm = 900  # the start's backup, the first history flush and checkpoint
     total = warm + int(hours * 3600) + 120
     scen = os.path.join(d, "scenario.toml")
     with open(scen, "w") as f:
@@ -154,6 +153,8 @@ def main():
     ap.add_argument("--hours", type=float, default=2.0)
     ap.add_argument("--days", type=int, default=365, help="history filled before (days)")
     ap.add_argument("--only", default="", help="one condition")
+    ap.add_argument("--warm", type=int, default=900,
+                    help="simulated seconds before the window (the start's backup, the first flushes)")
     a = ap.parse_args()
     if a.speed > 60:
         raise SystemExit("--speed above 60 leaves minutes without a history row: not the real write pattern")
@@ -165,7 +166,7 @@ def main():
         subprocess.run([os.path.join(a.build, "daemon/app/xr_history_fill"), "--state-db", base, "--days",
                         str(a.days), "--fine-days", "2"], check=True, stdout=subprocess.DEVNULL)
         kinds = [a.only] if a.only else ["cruising", "anchor", "fault_storm"]
-        results = [measure(a.build, base, k, a.speed, a.hours, work) for k in kinds]
+        results = [measure(a.build, base, k, a.speed, a.hours, work, a.warm) for k in kinds]
     finally:
         shutil.rmtree(work, ignore_errors=True)
     over = False
