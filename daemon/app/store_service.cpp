@@ -150,14 +150,14 @@ void StoreService::appendEvent(const Event& e) {
   Event clean = e;  // the events table wants numbers: NaN/inf values (e.g. a stale reading) become 0
   if (!std::isfinite(clean.a)) clean.a = 0.0;
   if (!std::isfinite(clean.b)) clean.b = 0.0;
-  const EventRecord r = toEventRecord(clean, nowMs());
-  const StoreStatus st = store_.appendEvents(std::span<const EventRecord>(&r, 1));
+  const std::int64_t now = nowMs();
+  const StoreStatus st = store_.queueEvent(toEventRecord(clean, now), now);
   if (!st) spdlog::warn("store: event not saved: {}", st.error);
 }
 
 void StoreService::appendRecord(const EventRecord& r) {
   std::lock_guard lock(m_);
-  const StoreStatus st = store_.appendEvents(std::span<const EventRecord>(&r, 1));
+  const StoreStatus st = store_.queueEvent(r, nowMs());
   if (!st) spdlog::warn("store: event not saved: {}", st.error);
 }
 
@@ -186,6 +186,8 @@ void StoreService::housekeeping(const rt::RuntimeSnapshot& s, const BatteryLedge
     const StoreStatus st = store_.appendHistory(now, values);
     if (!st) spdlog::warn("store: history not saved: {}", st.error);
   }
+  if (const StoreStatus st = store_.flushEventsIfDue(now); !st)
+    spdlog::warn("store: events not saved: {}", st.error);
   tallySummaries(s, now);
   tallyTrends(s, now);
   const CheckpointReason why =

@@ -5,11 +5,13 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstring>
 #include <filesystem>
 #include <system_error>
+#include <vector>
 
 namespace xr::store {
 
@@ -64,7 +66,80 @@ int copyInto(sql::Db& dst, const std::string& fromPath, const char* uriFlags) {
   return SQLITE_OK;
 }
 
-std::string writeVerifiedBackup(sql::Db& src, const std::string& path, unsigned mode) {
+namespace {
+
+// A page-for-page copy through SQLite's online backup API.
+std::string copyWhole(sql::Db& src, sql::Db& dst) {
+  sqlite3_backup* b = sqlite3_backup_init(dst.handle(), "main", src.handle(), "main");
+  if (!b) return "backup: " + std::string(sqlite3_errmsg(dst.handle()));
+  const int step = sqlite3_backup_step(b, -1);
+  const int fin = sqlite3_backup_finish(b);
+  if (step != SQLITE_DONE || fin != SQLITE_OK) {
+    dst.setError(step != SQLITE_DONE ? step : fin, "backup");
+    return dst.lastError();
+  }
+  return {};
+}
+
+std::string quoted(const std::string& name) {
+  std::string q = "\"";
+  for (const char c : name) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+struct SchemaObject {
+  std::string type, name, sql;
+};
+
+// The schema of every table, index, view and trigger, tables first (an
+// index needs its table), in the order they were made.
+std::vector<SchemaObject> schemaOf(sql::Db& dst) {
+  std::vector<SchemaObject> out;
+  sql::Stmt q(dst,
+              "SELECT type, name, sql FROM src.sqlite_master WHERE sql IS NOT NULL AND name NOT LIKE "
+              "'sqlite_%' ORDER BY type <> 'table', rowid");
+  while (q.ok() && q.step() == SQLITE_ROW) out.push_back({q.colText(0), q.colText(1), q.colText(2)});
+  return out;
+}
+
+// The schema and the rows of every table but those left out, read from the
+// source file (attached to dst) in one read transaction: a consistent
+// snapshot, as the backup API gives, while the daemon's connection is idle.
+std::string copySelected(sql::Db& src, sql::Db& dst, std::span<const std::string> leftOut) {
+  const char* file = sqlite3_db_filename(src.handle(), "main");
+  if (!file || !*file) return "the database has no file to copy from";
+  {
+    sql::Stmt at(dst, "ATTACH DATABASE ?1 AS src");
+    if (at.bind(1, std::string_view(file)).step() != SQLITE_DONE) return dst.lastError();
+  }
+  int rc = dst.exec("PRAGMA busy_timeout = 2000");
+  if (rc == SQLITE_OK) rc = dst.exec("BEGIN");  // deferred: only a read lock on the source
+  if (rc == SQLITE_OK) {
+    const auto objects = schemaOf(dst);
+    for (const auto& o : objects) {
+      if (rc == SQLITE_OK) rc = dst.exec(o.sql);  // unqualified: made in main, the copy
+      const bool copyRows =
+          o.type == "table" && std::find(leftOut.begin(), leftOut.end(), o.name) == leftOut.end();
+      if (rc == SQLITE_OK && copyRows)
+        rc = dst.exec("INSERT INTO main." + quoted(o.name) + " SELECT * FROM src." + quoted(o.name));
+    }
+    if (rc == SQLITE_OK && objects.empty()) rc = dst.setError(SQLITE_EMPTY, "the source has no tables");
+  }
+  if (rc == SQLITE_OK) {
+    const std::int64_t v = dst.queryInt("PRAGMA src.user_version", &rc);
+    if (sql::isOk(rc)) rc = dst.exec("PRAGMA main.user_version = " + std::to_string(v));
+  }
+  if (rc == SQLITE_OK) rc = dst.exec("COMMIT");
+  std::string why = rc == SQLITE_OK ? "" : dst.lastError();
+  if (rc != SQLITE_OK) dst.exec("ROLLBACK");
+  if (dst.exec("DETACH DATABASE src") != SQLITE_OK && why.empty()) why = dst.lastError();
+  return why;
+}
+
+}  // namespace
+
+std::string writeVerifiedBackup(sql::Db& src, const std::string& path, unsigned mode,
+                                std::span<const std::string> rowsLeftOut) {
   if (!src.isOpen()) return "no database open";
   const std::string tmp = path + ".tmp";
   std::error_code ec;
@@ -82,23 +157,15 @@ std::string writeVerifiedBackup(sql::Db& src, const std::string& path, unsigned 
   std::string why;
   {
     sql::Db dst;
-    if (dst.open(tmp) != SQLITE_OK) {
+    if (dst.open(tmp) != SQLITE_OK)
       why = dst.lastError();
-    } else if (sqlite3_backup* b = sqlite3_backup_init(dst.handle(), "main", src.handle(), "main")) {
-      const int step = sqlite3_backup_step(b, -1);
-      const int fin = sqlite3_backup_finish(b);
-      if (step != SQLITE_DONE || fin != SQLITE_OK) {
-        dst.setError(step != SQLITE_DONE ? step : fin, "backup");
-        why = dst.lastError();
-      }
-      // The copy carries the source's WAL flag in its header: make it one
-      // self-contained file, readable without a -wal beside it.
-      int rc = 0;
-      if (why.empty() && dst.queryText("PRAGMA journal_mode = DELETE", &rc) != "delete")
-        why = "journal_mode DELETE refused: " + dst.lastError();
-    } else {
-      why = "backup: " + std::string(sqlite3_errmsg(dst.handle()));
-    }
+    else
+      why = rowsLeftOut.empty() ? copyWhole(src, dst) : copySelected(src, dst, rowsLeftOut);
+    // The copy carries the source's WAL flag in its header: make it one
+    // self-contained file, readable without a -wal beside it.
+    int rc = 0;
+    if (why.empty() && dst.queryText("PRAGMA journal_mode = DELETE", &rc) != "delete")
+      why = "journal_mode DELETE refused: " + dst.lastError();
   }
   if (why.empty()) {
     // Verify what is on disk, through a connection that never saw the pages.

@@ -7,6 +7,7 @@
 // previous copy (temp name, fsync, rename, fsync of the directory): a power
 // cut during a backup leaves the old copy in place.
 #include <cstdint>
+#include <span>
 #include <string>
 
 #include "store/sqlite_db.h"
@@ -17,7 +18,12 @@ namespace xr::store {
 // there only when the copy checks out. The copy is a single self-contained
 // file (rollback journal, not WAL) with the permission bits `mode` (it holds
 // the web token: never readable by other users). Empty on success, else why.
-std::string writeVerifiedBackup(sql::Db& src, const std::string& path, unsigned mode);
+// Tables named in rowsLeftOut are copied empty (their schema only): the
+// daily copy leaves out what running rebuilds (chart history, hourly trends),
+// so that it costs the SD card a few hundred KB a day instead of the whole
+// file (docs/performance.md "Storage writes"). Empty: a page-for-page copy.
+std::string writeVerifiedBackup(sql::Db& src, const std::string& path, unsigned mode,
+                                std::span<const std::string> rowsLeftOut = {});
 
 struct BackupCheck {
   bool usable = false;       // integrity_check "ok" and a schema we can read

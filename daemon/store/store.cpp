@@ -22,15 +22,24 @@ unsigned backupMode(const std::string& dbPath) {
   return (static_cast<unsigned>(st.st_mode) & 0040u) | 0600u;
 }
 
+// What the daily copy leaves out: the chart history (48 h of 1 s points, a
+// year of minutes) and the hourly trend rows are most of the file and are
+// made again by running; copying them daily would cost the SD card more
+// than everything else the daemon writes (docs/performance.md "Storage
+// writes"). Settings, the ledger, the token, events, the History page's
+// days and charges and the daily trend rows are all in it.
+const std::string kNotBackedUp[] = {"history_1s", "history_1m", "trends_hourly"};
+
 }  // namespace
 
-Store::Store(StoreOptions options) : opt_(std::move(options)) {}
+Store::Store(StoreOptions options) : opt_(std::move(options)), eventQueue_(opt_.eventQueue) {}
 
 Store::~Store() { close(); }
 
 void Store::close() {
   const std::lock_guard<std::recursive_mutex> lock(mu_);
   if (db_.isOpen()) {
+    flushEvents(eventNowMs_, true);
     closeMinute();
     flushHistory();
     db_.exec("PRAGMA wal_checkpoint(TRUNCATE)");
@@ -112,8 +121,8 @@ StoreStatus Store::backup(std::int64_t nowUnixMs) {
                             : "the backup " + backupPath() + " is kept as it is (see the start-up message)";
     return s;
   }
-  flushHistory();  // the copy holds the charts up to now
-  const std::string why = store::writeVerifiedBackup(db_, backupPath(), backupMode(path_));
+  flushEvents(nowUnixMs, false);  // the copy holds the events up to now
+  const std::string why = store::writeVerifiedBackup(db_, backupPath(), backupMode(path_), kNotBackedUp);
   if (!why.empty()) {
     s.ok = false;
     s.code = SQLITE_IOERR;

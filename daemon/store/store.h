@@ -32,6 +32,8 @@
 #include "core/events.h"
 #include "core/trend_rows.h"
 #include "store/charge_tally.h"
+#include "store/event_queue.h"
+#include "store/event_record.h"
 #include "store/sqlite_db.h"
 
 namespace xr {
@@ -71,6 +73,9 @@ struct StoreOptions {
   // (docs/operations.md "The daemon's own backup").
   std::int64_t backupIntervalS = 24 * 3600;
   std::int64_t settingsBackupS = 10;
+  // queueEvent(): at most one commit of events a second, repeats of one kind
+  // thinned (store/event_queue.h).
+  EventQueueOptions eventQueue;
 };
 
 struct OpenResult {
@@ -101,15 +106,6 @@ struct OverrideRow {
   std::int64_t changedAtMs = 0;
 };
 
-struct EventRecord {
-  std::int64_t id = 0;   // assigned by the store
-  std::int64_t tMs = 0;  // UTC ms
-  std::string level;     // toString(EventLevel)
-  std::string code;      // toString(EventCode)
-  std::string reason;    // toString(Reason)
-  std::string message;   // describe(e)
-  double a = 0.0, b = 0.0;
-};
 // Formats a core event for the store (allocates: non-RT only).
 EventRecord toEventRecord(const Event& e, std::int64_t tUnixMs);
 
@@ -167,7 +163,14 @@ class Store {
   StoreStatus inTransaction(const std::function<StoreStatus()>& fn);
 
   // ---- events ----------------------------------------------------------------
+  // Written now, in one transaction.
   StoreStatus appendEvents(std::span<const EventRecord> events);
+  // The running daemon's path (store/event_queue.h): queued, written at once
+  // when no event was written in the last second, else by flushEventsIfDue()
+  // (once a second), a query, a backup or close(). nowMs: the store's clock.
+  // The status of a write made now (ok when only queued).
+  StoreStatus queueEvent(const EventRecord& e, std::int64_t nowMs);
+  StoreStatus flushEventsIfDue(std::int64_t nowMs);
   // Newest first; only events strictly before `beforeMs` when given.
   std::vector<EventRecord> queryEvents(std::size_t limit, std::optional<std::int64_t> beforeMs = {});
   // Newest first by insertion order, only ids < beforeId (stable paging even
@@ -234,6 +237,7 @@ class Store {
   int writeBuckets(std::string_view table, std::map<std::int64_t, Bucket>& pending, std::int64_t bucketSpanS);
   void closeMinute();
   StoreStatus flushPending(bool all);
+  StoreStatus flushEvents(std::int64_t nowMs, bool all);
 
   mutable std::recursive_mutex mu_;
   StoreOptions opt_;
@@ -252,6 +256,8 @@ class Store {
   std::vector<int> aggCount_;
   std::int64_t lastFlushS_ = -1;
   std::int64_t lastCompactS_ = -1;
+  EventQueue eventQueue_;
+  std::int64_t eventNowMs_ = 0;  // the latest time queueEvent/flushEventsIfDue saw
 };
 
 }  // namespace xr

@@ -59,6 +59,26 @@ StoreStatus Store::appendEvents(std::span<const EventRecord> events) {
   return status(rc, "appendEvents");
 }
 
+StoreStatus Store::queueEvent(const EventRecord& e, std::int64_t nowMs) {
+  const std::lock_guard<std::recursive_mutex> lock(mu_);
+  eventNowMs_ = nowMs;
+  eventQueue_.push(e);
+  return eventQueue_.due(nowMs) ? flushEvents(nowMs, false) : StoreStatus{};
+}
+
+StoreStatus Store::flushEventsIfDue(std::int64_t nowMs) {
+  const std::lock_guard<std::recursive_mutex> lock(mu_);
+  eventNowMs_ = nowMs;
+  return eventQueue_.due(nowMs) ? flushEvents(nowMs, false) : StoreStatus{};
+}
+
+StoreStatus Store::flushEvents(std::int64_t nowMs, bool all) {
+  const std::vector<EventRecord> rows = eventQueue_.take(nowMs, all);
+  if (rows.empty()) return {};
+  eventQueue_.written(nowMs);
+  return appendEvents(rows);
+}
+
 namespace {
 std::vector<EventRecord> readEvents(sql::Stmt& st) {
   std::vector<EventRecord> out;
@@ -80,6 +100,7 @@ std::vector<EventRecord> readEvents(sql::Stmt& st) {
 
 std::vector<EventRecord> Store::queryEvents(std::size_t limit, std::optional<std::int64_t> beforeMs) {
   const std::lock_guard<std::recursive_mutex> lock(mu_);
+  if (eventQueue_.pending() > 0) flushEvents(eventNowMs_, false);  // what was queued is shown
   sql::Stmt st(db_,
                "SELECT id, t_ms, level, code, reason, message, a, b FROM events WHERE t_ms < ?1 "
                "ORDER BY t_ms DESC, id DESC LIMIT ?2");
@@ -89,6 +110,7 @@ std::vector<EventRecord> Store::queryEvents(std::size_t limit, std::optional<std
 
 std::vector<EventRecord> Store::queryEventsBeforeId(std::size_t limit, std::int64_t beforeId) {
   const std::lock_guard<std::recursive_mutex> lock(mu_);
+  if (eventQueue_.pending() > 0) flushEvents(eventNowMs_, false);
   sql::Stmt st(db_,
                "SELECT id, t_ms, level, code, reason, message, a, b FROM events WHERE id < ?1 "
                "ORDER BY id DESC LIMIT ?2");

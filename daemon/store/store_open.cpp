@@ -55,7 +55,7 @@ struct Store::BackupProbe {
   }
   std::string restoredText() {
     return "restored from the verified backup " + path + " of " + utcMinute(check().mtimeMs) +
-           " (changes after it are lost)";
+           " (changes after it are lost; the charts and hourly trends, not in the copy, start again)";
   }
   std::string path;
   std::optional<store::BackupCheck> checked;

@@ -9,8 +9,9 @@
 //                (ten events each: ~1 200 events an hour)
 // write_bytes (/proc/self/io: what reached the block layer, the card's
 // wear) and wchar (every byte passed to write()) per simulated hour. Exits 1
-// when an hour of steady running (cruising, anchor) sends >= 1 MB to the
-// disk; the daily backup's share is reported beside it.
+// when an hour of steady running (cruising, anchor) with the daily backup's
+// share sends >= 1 MB to the disk. The whole daemon's figure (the same store
+// plus everything else it writes) is run-disk-writes.sh's.
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 
@@ -122,11 +123,13 @@ void BM_DiskWritesPerHour(benchmark::State& state) {
   state.counters["backup_share_per_h"] = backupPerH;
   state.counters["db_bytes"] = dbBytes;
   state.counters["with_backup_per_h"] = wbPerH + backupPerH;
-  // The gate: what an hour of steady running writes. The daily backup is
-  // reported beside it (with_backup_per_h): it grows with the database.
-  if (c != Condition::FaultStorm && wbPerH >= kLimitPerHour) {
+  // The gate: what an hour of steady running writes, with the daily backup's
+  // share (the copy leaves the chart history out, so it no longer grows with
+  // the database's age).
+  if (c != Condition::FaultStorm && wbPerH + backupPerH >= kLimitPerHour) {
     overLimit = true;
-    std::fprintf(stderr, "steady running writes %.0f B/h (>= 1 MB/h, docs/performance.md)\n", wbPerH);
+    std::fprintf(stderr, "steady running writes %.0f B/h with the backup (>= 1 MB/h, docs/performance.md)\n",
+                 wbPerH + backupPerH);
   }
 }
 BENCHMARK(BM_DiskWritesPerHour)
