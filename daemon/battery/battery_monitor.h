@@ -116,11 +116,6 @@ class BatteryMonitor {
   void chargeCompletedOnTail(TimeNs now, EventBatch& ev) noexcept;
   double chargedEnergyLifetimeWh() const noexcept { return energy_.charged().lifetime(); }
   double alternatorChargedEnergyLifetimeWh() const noexcept { return energy_.alternator().lifetime(); }
-  // The bank's measured capacity (NaN until measured) and resistance at 25 degC
-  // (NaN until enough steps were seen).
-  double capacityMeasuredAh() const noexcept { return health_.capacity().measuredAh(); }
-  int capacityCycles() const noexcept { return health_.capacity().cycles(); }
-  double batteryResistanceMohm() const noexcept { return health_.resistance().medianMohm(); }
   // Last shunt-gain correction outcome (tests, diagnostics).
   GainGuard lastGainGuard() const noexcept { return gain_.lastGuard(); }
 

@@ -116,7 +116,6 @@ class ControlLaw {
   const SystemId& systemId() const noexcept { return sysId_; }
   bool bulkVoltageLimitActive() const noexcept { return targets_.bulkVoltageLimitActive(); }
   GovMode govMode() const noexcept { return inner_.govMode(); }
-  double dutyRequest() const noexcept { return inner_.dutyRequest(); }
   double setpointCommand() const noexcept { return slew_.setpointCommand(); }
   void fillTelemetry(ControlTelemetry& t) const noexcept;
   // This tick's alternator-side caps (the command path's, computed only in AUTO).
