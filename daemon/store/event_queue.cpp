@@ -1,11 +1,31 @@
 #include "store/event_queue.h"
 
 #include <algorithm>
+#include <array>
+#include <string_view>
 
 namespace xr {
 
+namespace {
+// The rows a fault storm repeats: what the regulator's protections, sensors
+// and buses raise by themselves. What a person did (a command, a settings
+// change, a pairing, the set-up) and the store's own alarms are never
+// thinned: each is kept as its own row (docs/performance.md "Storage writes").
+constexpr std::array<std::string_view, 27> kThinned = {
+    "ModeChanged",     "ProtectionTrip",  "ProtectionClear",     "ImmediateCut",    "CutAfterSettle",
+    "LockoutStarted",  "LockoutExpired",  "StageChanged",        "FieldOn",         "FieldOff",
+    "InaLatchSet",     "InaLatchCleared", "VoltageDisagreement", "TempSensorStale", "TempTaskHung",
+    "AlarmOn",         "AlarmOff",        "LimpHomeActive",      "AlarmCondition",  "BatteryTempMissing",
+    "BatteryTempBack", "BmsBadFrames",    "CanBusDown",          "CanBusBack",      "CanErrorFrames",
+    "BmsMismatch",     "ChargingHeld"};
+
+bool thinned(const EventRecord& e) {
+  return std::find(kThinned.begin(), kThinned.end(), e.code) != kThinned.end();
+}
+}  // namespace
+
 void EventQueue::push(const EventRecord& e) {
-  if (opt_.repeatKept <= 0) {
+  if (opt_.repeatKept <= 0 || !thinned(e)) {
     pending_.push_back(e);
     return;
   }

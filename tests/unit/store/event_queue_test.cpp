@@ -91,6 +91,16 @@ TEST(EventQueue, AtTheLimitNothingIsCountedAndOtherKindsAreNotThinned) {
   EXPECT_EQ(q.take(kT0 + 10, true).size(), 11u) << "5 trips (the limit: no summary) + 5 clears + 1 summary";
 }
 
+TEST(EventQueue, WhatAPersonDidIsNeverThinned) {
+  EventQueue q;
+  // An owner at the dashboard: many commands and settings changes in a minute.
+  for (int i = 0; i < 8; ++i) q.push(ev(kT0 + i * 1000LL, "CommandApplied", "info"));
+  for (int i = 0; i < 8; ++i) q.push(ev(kT0 + i * 1000LL + 1, "SettingsChanged", "info"));
+  const auto rows = q.take(kT0 + 60'000, true);
+  EXPECT_EQ(rows.size(), 16u) << "every command and change its own row, no summary";
+  for (const auto& r : rows) EXPECT_EQ(r.message.find("more like it"), std::string::npos) << r.message;
+}
+
 TEST(EventQueue, ClosingWritesTheCountOfAWindowStillOpen) {
   EventQueue q;
   for (int i = 0; i < 9; ++i) q.push(ev(kT0 + i * 1000LL));

@@ -254,7 +254,7 @@ export async function daemonChecks(t) {
   await page.waitForSelector('.param[data-name="BulkVoltage"]');
   await page.locator('.param[data-name="BulkVoltage"] input').fill("28.8");
   await page.click("#param-apply");
-  await page.waitForFunction(() => /24 V battery/.test(document.querySelector('.param[data-name="BulkVoltage"] .err').textContent));
+  await page.waitForFunction(() => /for a 24 V bank.*measures as a 12 V bank/.test(document.querySelector('.param[data-name="BulkVoltage"] .err').textContent));
   assert.equal(await param("BulkVoltage"), 14.5);
   // An emptied box is never sent.
   await page.click("#param-discard");
