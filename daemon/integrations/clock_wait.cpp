@@ -10,6 +10,11 @@ namespace asio = boost::asio;
 
 asio::awaitable<void> waitOnClock(const rt::WallClock& clock, ClockDuration d, const bool& stopping) {
   asio::steady_timer timer(co_await asio::this_coro::executor);
+  co_await waitOnClock(clock, timer, d, stopping);
+}
+
+asio::awaitable<void> waitOnClock(const rt::WallClock& clock, asio::steady_timer& timer, ClockDuration d,
+                                  const bool& stopping) {
   const auto due = clock.steadyNow() + d;
   while (!stopping) {
     const auto left = due - clock.steadyNow();

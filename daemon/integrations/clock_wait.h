@@ -19,6 +19,10 @@ using ClockDuration = std::chrono::steady_clock::duration;
 // Returns once `d` of `clock` has passed, as soon as `stopping` is true, or
 // when the wait is cancelled (the other side of an `||` finished first).
 boost::asio::awaitable<void> waitOnClock(const rt::WallClock& clock, ClockDuration d, const bool& stopping);
+// The same on a timer of the caller's, so that cancelling it (a new job to
+// do, or stop) ends the wait early.
+boost::asio::awaitable<void> waitOnClock(const rt::WallClock& clock, boost::asio::steady_timer& timer,
+                                         ClockDuration d, const bool& stopping);
 
 // Calls `then` on the timer's executor once `d` of `clock` has passed;
 // never when the timer is cancelled (stop) first.

@@ -45,21 +45,6 @@ asio::awaitable<int> exchange(Stream& stream, http::request<http::string_body>& 
   co_await http::async_read(stream, buf, parser, use_awaitable);
   co_return parser.get().result_int();
 }
-
-// Waits `d` of the clock (clock_wait.h) on `timer`, so notify() and stop(),
-// which cancel it, end the wait early.
-asio::awaitable<void> backoffOnClock(const rt::WallClock& clock, asio::steady_timer& timer, ClockDuration d,
-                                     const bool& stopping) {
-  const auto due = clock.steadyNow() + d;
-  while (!stopping) {
-    const auto left = due - clock.steadyNow();
-    if (left <= ClockDuration::zero()) co_return;
-    timer.expires_after(clock.realWait(left));
-    beast::error_code ec;
-    co_await timer.async_wait(asio::redirect_error(use_awaitable, ec));
-    if (ec == asio::error::operation_aborted) co_return;
-  }
-}
 }  // namespace
 
 std::string boardName() {
@@ -156,7 +141,7 @@ asio::awaitable<void> PushNotifier::run() {
     const auto wait = backoff_.next();
     health_.failed((error.empty() ? "receiver answered HTTP " + std::to_string(status) : error) +
                    "; next try in " + std::to_string(wait.count() / 1000) + " s");
-    co_await backoffOnClock(clock_, wake_, wait, stopping_);  // a new edge (notify) ends it early
+    co_await waitOnClock(clock_, wake_, wait, stopping_);  // a new edge (notify) ends it early
   }
 }
 
