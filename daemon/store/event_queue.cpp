@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <array>
-#include <string_view>
+
+#include "core/events.h"
 
 namespace xr {
 
@@ -11,16 +12,37 @@ namespace {
 // and buses raise by themselves. What a person did (a command, a settings
 // change, a pairing, the set-up) and the store's own alarms are never
 // thinned: each is kept as its own row (docs/performance.md "Storage writes").
-constexpr std::array<std::string_view, 27> kThinned = {
-    "ModeChanged",     "ProtectionTrip",  "ProtectionClear",     "ImmediateCut",    "CutAfterSettle",
-    "LockoutStarted",  "LockoutExpired",  "StageChanged",        "FieldOn",         "FieldOff",
-    "InaLatchSet",     "InaLatchCleared", "VoltageDisagreement", "TempSensorStale", "TempTaskHung",
-    "AlarmOn",         "AlarmOff",        "LimpHomeActive",      "AlarmCondition",  "BatteryTempMissing",
-    "BatteryTempBack", "BmsBadFrames",    "CanBusDown",          "CanBusBack",      "CanErrorFrames",
-    "BmsMismatch",     "ChargingHeld"};
+constexpr std::array kThinned = {EventCode::ModeChanged,
+                                 EventCode::ProtectionTrip,
+                                 EventCode::ProtectionClear,
+                                 EventCode::ImmediateCut,
+                                 EventCode::CutAfterSettle,
+                                 EventCode::LockoutStarted,
+                                 EventCode::LockoutExpired,
+                                 EventCode::StageChanged,
+                                 EventCode::FieldOn,
+                                 EventCode::FieldOff,
+                                 EventCode::InaLatchSet,
+                                 EventCode::InaLatchCleared,
+                                 EventCode::VoltageDisagreement,
+                                 EventCode::TempSensorStale,
+                                 EventCode::TempTaskHung,
+                                 EventCode::AlarmOn,
+                                 EventCode::AlarmOff,
+                                 EventCode::LimpHomeActive,
+                                 EventCode::AlarmCondition,
+                                 EventCode::BatteryTempMissing,
+                                 EventCode::BatteryTempBack,
+                                 EventCode::BmsBadFrames,
+                                 EventCode::CanBusDown,
+                                 EventCode::CanBusBack,
+                                 EventCode::CanErrorFrames,
+                                 EventCode::BmsMismatch,
+                                 EventCode::ChargingHeld};
 
+// The stored code is the event's name (core/events.h toString).
 bool thinned(const EventRecord& e) {
-  return std::find(kThinned.begin(), kThinned.end(), e.code) != kThinned.end();
+  return std::any_of(kThinned.begin(), kThinned.end(), [&](EventCode c) { return toString(c) == e.code; });
 }
 }  // namespace
 
