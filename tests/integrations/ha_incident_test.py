@@ -51,7 +51,11 @@ node_id = "{NODE}"
         wait_until("mqtt connected", lambda: h.integration("mqtt")["connected"], 20)
         t_connected = h.status()["t_s"]
         c.check(t_connected < FAULT_AT_S, f"connected at {t_connected:.1f} s, before the fault (simulated time)")
-        configs = dict(h.sub(f"homeassistant/+/xregulator_{NODE}/incident/config", 2, timeout=10, retained_only=True))
+        # The discovery documents follow the connection (later on a loaded machine): wait for both.
+        topic = f"homeassistant/+/xregulator_{NODE}/incident/config"
+        wait_until("the incident discovery documents",
+                   lambda: len(dict(h.sub(topic, 2, timeout=2, retained_only=True))) == 2, 20)
+        configs = dict(h.sub(topic, 2, timeout=10, retained_only=True))
         sensor = json.loads(configs.get(f"homeassistant/binary_sensor/xregulator_{NODE}/incident/config", "{}"))
         c.check(sensor.get("device_class") == "problem" and sensor.get("payload_on") == "ON",
                 f"the Incident binary sensor: {sensor}")
