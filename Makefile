@@ -1,7 +1,7 @@
 # xregulator — one command each: `make run`, `make test`.
-# deps installs every Debian 12 package the build, tests, benchmarks and
-# packaging need; it is idempotent and only calls apt-get when something is
-# missing.
+# deps installs every Debian 12 package the build, `make run` and the tests
+# need, deps-tools what the benchmarks, packaging and plots add; both are
+# idempotent and only call apt-get when something is missing.
 
 BUILD   ?= build
 JOBS    ?= $(shell nproc)
@@ -13,14 +13,20 @@ DEB_PACKAGES := build-essential cmake pkg-config ninja-build \
   libboost1.81-dev libboost-json1.81-dev \
   libgpiod-dev gpiod libsqlite3-dev sqlite3 libssl-dev \
   libspdlog-dev libfmt-dev libtomlplusplus-dev \
-  libgtest-dev libgmock-dev googletest libbenchmark-dev \
+  libgtest-dev libgmock-dev googletest \
   libsystemd-dev systemd \
   mosquitto mosquitto-clients libmosquitto-dev \
-  chromium wrk curl python3 python3-matplotlib clang libclang-rt-14-dev valgrind clang-format graphviz \
+  chromium curl python3 clang libclang-rt-14-dev clang-format \
+  dbus python3-dbus python3-gi gnupg
+# What only packaging, the update test, the benchmarks and the plots need
+# (deps-tools): not installed by `make test` and `make run`, which saves a
+# fresh machine's first `make test` the download and unpacking of these.
+TOOL_PACKAGES := libbenchmark-dev wrk valgrind python3-matplotlib graphviz \
   debhelper devscripts lintian fakeroot dpkg-dev \
-  dbus python3-dbus python3-gi \
-  reprepro gnupg unattended-upgrades
+  reprepro unattended-upgrades
 
+# The packages split in two: DEB_PACKAGES for the build, `make run` and
+# `make test`; TOOL_PACKAGES (deps-tools) for the rest.
 .PHONY: all deps build run test bench deb clean format deps-cross test-arm64 scenarios dashboard-screenshots soak
 
 all: build
@@ -31,25 +37,40 @@ all: build
 APT_UPDATE = for try in 1 2 3; do $$SUDO apt-get update && break; \
   echo "apt-get update failed (try $$try of 3; a mirror may be syncing)"; [ $$try = 3 ] || sleep 30; done
 
-deps:
-	@missing=""; \
-	for p in $(DEB_PACKAGES); do \
+# APT_INSTALL(list, label): installs the packages of the list not yet installed.
+APT_INSTALL = missing=""; \
+	for p in $(1); do \
 	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "ok installed" || missing="$$missing $$p"; \
 	done; \
-	if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then missing="$$missing nodejs npm"; fi; \
+	if [ "$(2)" = deps ] && { ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; }; then missing="$$missing nodejs npm"; fi; \
 	if [ -n "$$missing" ]; then \
-	  echo "deps: installing$$missing"; \
+	  echo "$(2): installing$$missing"; \
 	  SUDO=""; [ "$$(id -u)" = 0 ] || SUDO=sudo; \
 	  $(APT_UPDATE); DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y --no-install-recommends $$missing; \
-	else echo "deps: all present"; fi
+	else echo "$(2): all present"; fi
+
+deps:
+	@$(call APT_INSTALL,$(DEB_PACKAGES),deps)
 	@if [ -f web/package.json ]; then $(MAKE) --no-print-directory -C web deps; fi
 	@$(MAKE) --no-print-directory -C tests/integrations/signalk deps
 	@$(MAKE) --no-print-directory -C tests/integrations/n2k deps
 
+.PHONY: deps-tools
+deps-tools: deps
+	@$(call APT_INSTALL,$(TOOL_PACKAGES),deps-tools)
+
 # The development tree builds what the tests need; the benchmarks have their
 # own optimised tree (make bench, below), so they are not linked here too.
+# It is built for build time, not for speed: no link-time optimisation and
+# -g1 (line tables and function names, enough for a backtrace) took 43 % less
+# CPU for a cold build than LTO with full debug information; the daemon runs
+# the simulations about 25 % slower without LTO, which costs the tests far
+# less than it saves (docs/development.md "make test's time"). The Debian
+# package keeps LTO (CMakeLists.txt's default).
+DEV_FLAGS := -DCMAKE_BUILD_TYPE=RelWithDebInfo -DXR_BUILD_BENCH=OFF -DXR_LTO=OFF \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG"
 $(BUILD)/CMakeCache.txt:
-	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DXR_BUILD_BENCH=OFF
+	cmake -S . -B $(BUILD) -G Ninja $(DEV_FLAGS)
 
 build: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS)
@@ -67,7 +88,7 @@ test: build
 # Debian's interpreter, where python3-matplotlib is installed (a python3
 # earlier on PATH, e.g. a pyenv one, has no matplotlib).
 PLOT_PYTHON ?= /usr/bin/python3
-scenarios: build
+scenarios: build deps-tools
 	$(PLOT_PYTHON) tests/sim/cruising/suite.py --daemon $(BUILD)/daemon/app/xregulatord --out $(BUILD)/scenarios
 
 # The soak test: the daemon in --sim at speed 20 through a simulated
@@ -104,7 +125,7 @@ dashboard-screenshots: build
 # code can do, not what a debug-info build happens to do; results in
 # $(BENCH_BUILD)/bench-results.
 BENCH_BUILD ?= build-bench
-bench: deps
+bench: deps-tools
 	tests/bench/build-pgo.sh $(BENCH_BUILD) $(JOBS)
 	tests/bench/run.sh $(BENCH_BUILD)
 
@@ -118,7 +139,7 @@ bench: deps
 DEB_VERSION = $(shell dpkg-parsechangelog -S Version 2>/dev/null)
 HOST_ARCH := $(shell dpkg --print-architecture)
 ARCH ?= $(HOST_ARCH)
-DEB_DEPS := deps $(if $(filter-out $(HOST_ARCH),$(ARCH)),deps-cross)
+DEB_DEPS := deps-tools $(if $(filter-out $(HOST_ARCH),$(ARCH)),deps-cross)
 # nocheck on a cross build: the package runs no tests (override_dh_auto_test
 # is empty), and without it dh warns that tests cannot run cross.
 DEB_CROSS_OPTS := $(if $(filter-out $(HOST_ARCH),$(ARCH)),nocheck)
@@ -132,7 +153,7 @@ deb: $(DEB_DEPS)
 	  $(BUILD)/deb/xregulator_$(DEB_VERSION)_$(ARCH).changes
 
 .PHONY: package-test
-package-test: deps
+package-test: deps-tools
 	tests/package/run.sh
 
 # The signed apt repository (docs/release.md): reprepro, channels stable and
@@ -151,7 +172,7 @@ repo:
 
 # The owner's update path end to end, as root on this machine (about two
 # minutes; tests/update/run.sh says what it covers): CI runs it after `make test`.
-update-test: $(BUILD)/CMakeCache.txt
+update-test: deps-tools $(BUILD)/CMakeCache.txt
 	tests/update/run.sh $(BUILD)
 
 # Cross-building for the Pi (docs/install.md): Debian 12's cross compilers,
@@ -177,15 +198,8 @@ deps-cross: deps
 	@SUDO=""; [ "$$(id -u)" = 0 ] || SUDO=sudo; \
 	for a in $(CROSS_ARCHES); do \
 	  dpkg --print-foreign-architectures | grep -qx $$a || { $$SUDO dpkg --add-architecture $$a; echo "deps-cross: added $$a"; }; \
-	done; \
-	missing=""; \
-	for p in $(CROSS_PACKAGES); do \
-	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "ok installed" || missing="$$missing $$p"; \
-	done; \
-	if [ -n "$$missing" ]; then \
-	  echo "deps-cross: installing$$missing"; \
-	  $(APT_UPDATE); DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y --no-install-recommends $$missing; \
-	else echo "deps-cross: all present"; fi
+	done
+	@$(call APT_INSTALL,$(CROSS_PACKAGES),deps-cross)
 
 # The arm64 build under qemu-user (docs/install.md): its own tree (no LTO,
 # -O2: GCC 12's -O3 aarch64 -Wrestrict false positive), with the tests. ctest
@@ -292,10 +306,7 @@ KERNEL_PACKAGES := qemu-system-arm cpio
 KERNEL_WORK ?= $(ARM64_BUILD)/kernel-rig
 .PHONY: test-kernel
 test-kernel: deps-cross
-	@missing=""; for p in $(KERNEL_PACKAGES); do \
-	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "ok installed" || missing="$$missing $$p"; done; \
-	if [ -n "$$missing" ]; then SUDO=""; [ "$$(id -u)" = 0 ] || SUDO=sudo; \
-	  $(APT_UPDATE); DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y --no-install-recommends $$missing; fi
+	@$(call APT_INSTALL,$(KERNEL_PACKAGES),test-kernel)
 	cmake -S . -B $(ARM64_BUILD) -G Ninja \
 	  -DCMAKE_TOOLCHAIN_FILE=cmake/toolchain-aarch64.cmake -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -DNDEBUG" -DXR_LTO=OFF -DXR_BUILD_TESTS=ON -DXR_BUILD_BENCH=OFF \
