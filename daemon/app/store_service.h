@@ -106,6 +106,9 @@ class StoreService {
   // (nullptr: a normal start).
   static const char* alarmCode(const OpenResult& o);
 
+  // For the write-breakdown bench (tests/bench/store/): the store's connection.
+  sqlite3* sqliteHandleForBench() { return store_.sqliteHandle(); }
+
  private:
   std::string unwritable() const;  // caller holds m_
   std::int64_t nowMs() const { return clock_ ? clock_->unixMs() : rt::WallClock::systemUnixMs(); }

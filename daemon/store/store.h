@@ -214,6 +214,9 @@ class Store {
 
   // ---- diagnostics -----------------------------------------------------------
   std::string integrityCheck();  // "ok" when healthy
+  // The connection, for the write-breakdown bench's SQLite hooks only
+  // (tests/bench/store/disk_writes_breakdown.cpp); the daemon never uses it.
+  sqlite3* sqliteHandle() const { return db_.handle(); }
   const std::string& lastError() const { return db_.lastError(); }
 
  private:
