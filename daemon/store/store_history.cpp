@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "store/floor_div.h"
+#include "store/history_encoding.h"
 #include "store/schema.h"
 #include "store/store.h"
 
@@ -17,7 +18,7 @@ using store::floorDiv;
 
 namespace {
 
-constexpr int kSlots = 60;  // samples per bucket: 60 s per 1 s-row, 60 min per 1 min-row
+constexpr int kSlots = store::kHistorySlots;  // samples per bucket: 60 s per 1 s-row, 60 min per 1 min-row
 
 }  // namespace
 
@@ -83,10 +84,17 @@ StoreStatus Store::appendHistory(std::int64_t tUnixMs, std::span<const double> v
     lastCompactS_ = std::min(lastCompactS_, sec);
     return flushPending(false);
   }
-  if (sec - lastFlushS_ >= opt_.historyFlushS) {
+  // The flush and the hourly trim happen as the wall clock enters a new
+  // historyFlushS period (at :00, :10, ...), not historyFlushS after the
+  // start: the day rows, the trend hour and the ledger's interval checkpoint
+  // are written on the same boundaries, so their commits share the -shm
+  // index pages and the WAL's last page that each lone commit dirties again
+  // (docs/performance.md "Storage writes").
+  const std::int64_t period = std::max<std::int64_t>(1, opt_.historyFlushS);
+  if (floorDiv(sec, period) != floorDiv(lastFlushS_, period)) {
     lastFlushS_ = sec;
     StoreStatus st = flushPending(false);
-    if (st && sec - lastCompactS_ >= 3600) {
+    if (st && floorDiv(sec, 3600) != floorDiv(lastCompactS_, 3600)) {
       lastCompactS_ = sec;
       st = compact(tUnixMs);
     }
@@ -109,17 +117,14 @@ int Store::writeBuckets(std::string_view table, std::map<std::int64_t, Bucket>& 
       if (std::none_of(src, src + kSlots, [](float v) { return !std::isnan(v); })) continue;
       std::fill(row.begin(), row.end(), NAN);
       const std::int64_t key = bucket * store::kSeriesSlots + seriesIds_[s];
+      const double step = store::historyStep(opt_.historySeries[s]);
       sel.reset();
-      if (sel.bind(1, key).step() == SQLITE_ROW) {
-        const auto blob = sel.colBlob(0);
-        if (blob.size() == kSlots * sizeof(float)) std::memcpy(row.data(), blob.data(), blob.size());
-      }
+      if (sel.bind(1, key).step() == SQLITE_ROW) store::decodeHistoryRow(sel.colBlob(0), step, row);
       for (int i = 0; i < kSlots; ++i)
         if (!std::isnan(src[i])) row[i] = src[i];
       ins.reset();
-      const auto* bytes = reinterpret_cast<const std::uint8_t*>(row.data());
-      const int rc =
-          ins.bind(1, key).bindBlob(2, std::span<const std::uint8_t>(bytes, kSlots * sizeof(float))).step();
+      const std::vector<std::uint8_t> blob = store::encodeHistoryRow(row, step);
+      const int rc = ins.bind(1, key).bindBlob(2, blob).step();
       if (rc != SQLITE_DONE) return rc;
     }
   }
@@ -219,10 +224,9 @@ std::vector<HistoryPoint> Store::queryHistory(std::string_view series, std::int6
         .bind(3, store::kSeriesSlots)
         .bind(4, seriesIds_[s]);
     std::vector<float> row(kSlots);
+    const double step = store::historyStep(series);
     while (st.ok() && st.step() == SQLITE_ROW) {
-      const auto blob = st.colBlob(1);
-      if (blob.size() != kSlots * sizeof(float)) continue;
-      std::memcpy(row.data(), blob.data(), blob.size());
+      if (!store::decodeHistoryRow(st.colBlob(1), step, row)) continue;
       take(floorDiv(st.colInt(0), store::kSeriesSlots), row.data());
     }
   }
