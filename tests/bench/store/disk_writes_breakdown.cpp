@@ -72,8 +72,8 @@ const char* writerOf(const std::string& sqlText) {
     const char* name;
   };
   static constexpr Rule kRules[] = {
-      {"DELETE FROM history_1s", "hourly trim (old chart rows, trends, events)"},
-      {"INTO history_1s", "1 s chart flush"},
+      {"DELETE FROM history_1m", "hourly trim (1 min chart rows, trends, events)"},
+      {"INTO history_1s_ring", "1 s chart flush"},
       {"INTO history_1m", "1 min chart rows"},
       {"INTO ledger", "ledger checkpoint"},
       {"INTO history_days", "day and charge rows"},

@@ -81,37 +81,38 @@ TEST(HistoryEncoding, StepsPerSeries) {
   EXPECT_DOUBLE_EQ(store::historyStep("no_such_series"), 0.1);
 }
 
-// A database written before the int16 rows: its float32 rows read exactly,
-// and a flush into the same minute keeps them (quantised) beside the new
-// samples, the row now in the int16 form.
-TEST(HistoryEncoding, OldFloatRowsAreReadAndMerged) {
+// A v5 database (written before the ring and the int16 rows): the
+// migration moves its float32 rows into the ring, where they read exactly; a
+// flush into the same minute keeps them (quantised) beside the new samples,
+// the row now in the int16 form; the old table is left empty.
+TEST(HistoryEncoding, TheMigrationKeepsOldFloatRowsAndTheyMergeWithNewOnes) {
   TempDir d;
   StoreOptions opt;
   opt.historyFlushS = 60;
   const std::int64_t minuteS = (kT0 / 1000 / 60) * 60;
   {
-    Store s(opt);
-    ASSERT_TRUE(s.open(d.file("x.db"), kT0).ok);
-    s.close();
-  }
-  {
     sql::Db db;
     ASSERT_EQ(db.open(d.file("x.db")), 0);
-    const std::int64_t id = db.queryInt("SELECT id FROM series WHERE name = 'ibv_v'");
+    ASSERT_EQ(store::createAtVersion(db, 5), SQLITE_OK);
+    ASSERT_EQ(db.exec("INSERT INTO series(id, name) VALUES(0, 'ibv_v')"), SQLITE_OK);
     std::vector<float> old(store::kHistorySlots, NAN);
     for (int i = 0; i < 30; ++i) old[i] = 12.3456f + static_cast<float>(i);
     sql::Stmt ins(db, "INSERT INTO history_1s(key, data) VALUES(?1, ?2)");
     const auto* bytes = reinterpret_cast<const std::uint8_t*>(old.data());
-    ASSERT_EQ(ins.bind(1, minuteS * store::kSeriesSlots + id)
-                  .bindBlob(2, std::span<const std::uint8_t>(bytes, store::kFloatRowBytes))
-                  .step(),
-              SQLITE_DONE);
+    for (std::int64_t m : {minuteS - 60, minuteS}) {  // two minutes in a row
+      ins.reset();
+      ASSERT_EQ(ins.bind(1, m * store::kSeriesSlots)
+                    .bindBlob(2, std::span<const std::uint8_t>(bytes, store::kFloatRowBytes))
+                    .step(),
+                SQLITE_DONE);
+    }
   }
   Store s(opt);
   ASSERT_TRUE(s.open(d.file("x.db"), kT0).ok);
-  auto before = s.queryHistory("ibv_v", minuteS * 1000, minuteS * 1000 + 59000, 0);
-  ASSERT_EQ(before.size(), 30u);
+  auto before = s.queryHistory("ibv_v", (minuteS - 60) * 1000, minuteS * 1000 + 59000, 0);
+  ASSERT_EQ(before.size(), 60u);
   EXPECT_DOUBLE_EQ(before[0].value, static_cast<double>(12.3456f));  // the float row, exactly
+  EXPECT_EQ(before[30].tMs, minuteS * 1000);
   std::vector<double> v(opt.historySeries.size(), 13.0);
   for (int sec = 30; sec < 60; ++sec) ASSERT_TRUE(s.appendHistory((minuteS + sec) * 1000, v).ok);
   ASSERT_TRUE(s.flushHistory().ok);
@@ -123,8 +124,38 @@ TEST(HistoryEncoding, OldFloatRowsAreReadAndMerged) {
   s.close();
   sql::Db db;
   ASSERT_EQ(db.open(d.file("x.db")), 0);
-  EXPECT_EQ(db.queryInt("SELECT max(length(data)) FROM history_1s"),
+  EXPECT_EQ(db.queryInt("PRAGMA user_version"), store::kSchemaVersion);
+  EXPECT_EQ(db.queryInt("SELECT count(*) FROM history_1s"), 0);
+  EXPECT_EQ(db.queryInt("SELECT length(data) FROM history_1s_ring WHERE t_s = " + std::to_string(minuteS)),
             static_cast<std::int64_t>(store::kInt16RowBytes));
+  EXPECT_EQ(
+      db.queryInt("SELECT length(data) FROM history_1s_ring WHERE t_s = " + std::to_string(minuteS - 60)),
+      static_cast<std::int64_t>(store::kFloatRowBytes));
+}
+
+// A minute's slot comes round after kRingMinutes: the new minute replaces
+// the old one in place, and a query for the old minute finds nothing.
+TEST(HistoryEncoding, TheRingRewritesASlotAfterKRingMinutes) {
+  TempDir d;
+  StoreOptions opt;
+  Store s(opt);
+  ASSERT_TRUE(s.open(d.file("x.db"), kT0).ok);
+  const std::int64_t minuteS = (kT0 / 1000 / 60) * 60;
+  const std::int64_t laterS = minuteS + store::kRingMinutes * 60;
+  std::vector<double> v(opt.historySeries.size(), 12.0);
+  ASSERT_TRUE(s.appendHistory(minuteS * 1000, v).ok);
+  ASSERT_TRUE(s.flushHistory().ok);
+  v.assign(v.size(), 13.0);
+  ASSERT_TRUE(s.appendHistory(laterS * 1000, v).ok);
+  ASSERT_TRUE(s.flushHistory().ok);
+  EXPECT_TRUE(s.queryHistory("ibv_v", minuteS * 1000, minuteS * 1000 + 59000, 0).empty());
+  const auto now = s.queryHistory("ibv_v", laterS * 1000, laterS * 1000 + 59000, 0);
+  ASSERT_EQ(now.size(), 1u);
+  EXPECT_NEAR(now[0].value, 13.0, 1e-4);
+  s.close();
+  sql::Db db;
+  ASSERT_EQ(db.open(d.file("x.db")), 0);
+  EXPECT_EQ(db.queryInt("SELECT count(*) FROM history_1s_ring"), static_cast<std::int64_t>(v.size()));
 }
 
 }  // namespace
