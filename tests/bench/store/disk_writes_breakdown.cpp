@@ -72,8 +72,8 @@ const char* writerOf(const std::string& sqlText) {
     const char* name;
   };
   static constexpr Rule kRules[] = {
-      {"DELETE FROM history_1m", "hourly trim (1 min chart rows, trends, events)"},
-      {"INTO history_1s_ring", "1 s chart flush"},
+      {"DELETE FROM history_1", "hourly trim (chart rows, trends, events)"},
+      {"INTO history_1s", "1 s chart flush"},
       {"INTO history_1m", "1 min chart rows"},
       {"INTO ledger", "ledger checkpoint"},
       {"INTO history_days", "day and charge rows"},
@@ -99,7 +99,10 @@ int onTrace(unsigned type, void* ctx, void*, void* x) {
     acc.lines["between commits"].bytes += now - acc.lastBytes;
     acc.lastBytes = now;
   }
-  if (sqlText.rfind("BEGIN", 0) == 0) acc.inTx = true;
+  if (sqlText.rfind("BEGIN", 0) == 0) {
+    acc.inTx = true;
+    acc.label.clear();  // a transaction before that wrote nothing (no WAL hook) is nobody's
+  }
   if (const char* w = writerOf(sqlText)) {
     if (acc.label.find(w) == std::string::npos)
       acc.label += (acc.label.empty() ? "" : " + ") + std::string(w);
