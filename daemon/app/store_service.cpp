@@ -205,6 +205,13 @@ void StoreService::housekeeping(const rt::RuntimeSnapshot& s, const BatteryLedge
     if (checkpointSlot_ >= 0 && why == CheckpointReason::None) why = CheckpointReason::Interval;
     checkpointSlot_ = slot;
   }
+  // A wall clock that stood still would never enter a new interval: the
+  // monotonic time still saves once an interval and a minute have passed.
+  if (lastLedgerSaveNs_ < 0) lastLedgerSaveNs_ = s.telemetry.now;
+  if (why == CheckpointReason::None &&
+      s.telemetry.now - lastLedgerSaveNs_ >= fromMs(checkpointIntervalMs_ + 60'000))
+    why = CheckpointReason::Interval;
+  if (why != CheckpointReason::None) lastLedgerSaveNs_ = s.telemetry.now;
   if (why != CheckpointReason::None && ledgerValid) {
     const StoreStatus st = store_.checkpoint(ledger, toString(why), now);
     if (!st) spdlog::error("store: checkpoint ({}) failed: {}", toString(why), st.error);

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <set>
+#include <string>
 
 #include "app/store_service.h"
 #include "runtime/wall_clock.h"
@@ -95,6 +96,23 @@ TEST(StoreWriteWindows, AStageChangeSavesTheLedgerAtOnceBetweenMarks) {
   ASSERT_TRUE(l.has_value());
   EXPECT_EQ(l->reason, "stage");
   EXPECT_EQ(l->savedAtMs, changedAt);
+  r.svc.stop(r.ledger, true);
+}
+
+// A wall clock that stands still (the intervals never change) still saves
+// the ledger once an interval and a minute of monotonic time have passed.
+TEST(StoreWriteWindows, AWallClockThatStandsStillStillSavesTheLedger) {
+  Rig r;
+  r.second();
+  r.simulated -= fromSec(1.0);  // the wall clock stops here
+  std::set<std::string> reasons;
+  for (int i = 0; i < 7 * 60; ++i) {
+    r.s.telemetry.now += fromSec(1.0);
+    r.ledger.CoulombCount_Ah += 0.001;
+    r.svc.housekeeping(r.s, r.ledger, true);
+    if (auto l = r.svc.loadLedger()) reasons.insert(l->reason);
+  }
+  EXPECT_EQ(reasons.count("interval"), 1u);
   r.svc.stop(r.ledger, true);
 }
 
