@@ -106,6 +106,9 @@ class StoreService {
   // (nullptr: a normal start).
   static const char* alarmCode(const OpenResult& o);
 
+  // For the write-breakdown bench (tests/bench/store/): the store's connection.
+  sqlite3* sqliteHandleForBench() { return store_.sqliteHandle(); }
+
  private:
   std::string unwritable() const;  // caller holds m_
   std::int64_t nowMs() const { return clock_ ? clock_->unixMs() : rt::WallClock::systemUnixMs(); }
@@ -122,6 +125,9 @@ class StoreService {
   Store store_;
   OpenResult open_;
   CheckpointPolicy policy_;
+  std::int64_t checkpointIntervalMs_;  // the ledger's interval checkpoint, on the wall clock's multiples
+  std::int64_t checkpointSlot_ = -1;   // now / checkpointIntervalMs_ at the last look (-1: none yet)
+  TimeNs lastLedgerSaveNs_ = -1;       // monotonic time of the last checkpoint (the stalled-clock net)
   std::vector<std::string> series_;
   std::int64_t lastHistoryS_ = -1;
   ChargeTally tally_;  // the History page's day and charge summaries

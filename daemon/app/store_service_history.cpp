@@ -42,10 +42,10 @@ std::int64_t localMidnightS(std::int64_t unixMs) {
   return midnightS(tm.tm_year + 1900, tm.tm_mon + 1, tm.tm_mday);
 }
 
-// How often today's running totals and the open charge are saved: a power
-// cut loses at most this much of them, as the chart history loses at most one
-// flush (StoreOptions::historyFlushS); a day or a charge that ends is saved
-// at once (docs/performance.md "Storage writes").
+// How often today's running totals and the open charge are saved (at each
+// multiple of it on the wall clock): a power cut loses at most this much of them, as the chart history loses
+// at most one flush (StoreOptions::historyFlushS); a day or a charge that ends is saved at once
+// (docs/performance.md "Storage writes").
 constexpr std::int64_t kSummarySaveMs = 600'000;
 
 }  // namespace
@@ -133,7 +133,11 @@ void StoreService::tallySummaries(const rt::RuntimeSnapshot& s, std::int64_t now
   x.engineRunning = fresh::engineTurning(t.rpm);
   x.reason = t.reason;
   ChargeTally::Ended ended = tally_.add(x);
-  const bool due = nowMs - lastSummarySaveMs_ >= kSummarySaveMs || nowMs < lastSummarySaveMs_;
+  // On the wall clock's 10-minute boundaries, with the chart's flush
+  // (Store::appendHistory): commits in the same second share the pages of
+  // the WAL index that each lone commit would dirty again.
+  const bool due =
+      nowMs / kSummarySaveMs != lastSummarySaveMs_ / kSummarySaveMs || nowMs < lastSummarySaveMs_;
   if (!due && !ended.day && !ended.charge) return;
   lastSummarySaveMs_ = nowMs;
   // One transaction for the day's and the charge's rows: one commit (a few

@@ -83,6 +83,26 @@ CREATE TABLE trends_daily(t_s INTEGER PRIMARY KEY, day_s INTEGER NOT NULL, sampl
   TREND_COLUMNS);
 )sql";
 
+// v5 -> v6: the 1 s chart in a ring rewritten in place (kRingMinutes): the
+// hourly DELETE of the rows 48 h old wrote every page it emptied into the WAL
+// (a page freed in WAL mode is still written), and each flush's new pages
+// touched the freelist and the file's header page (docs/performance.md
+// "Storage writes"). The later of two minutes that share a slot wins.
+// history_1s is emptied, not dropped: a release before this one still finds
+// the tables it reads (missingForReading) and runs on the newer file.
+constexpr const char* kV6 = R"sql(
+CREATE TABLE history_1s_ring(slot INTEGER PRIMARY KEY, t_s INTEGER NOT NULL, data BLOB NOT NULL);
+INSERT OR REPLACE INTO history_1s_ring(slot, t_s, data)
+  SELECT ((key / 64 / 60) % RING_MINUTES) * 64 + key % 64, key / 64, data FROM history_1s WHERE key >= 0
+  ORDER BY key;
+DELETE FROM history_1s;
+)sql";
+
+std::string withRingMinutes(std::string sqlText) {
+  const auto at = sqlText.find("RING_MINUTES");
+  return sqlText.replace(at, 12, std::to_string(kRingMinutes));
+}
+
 // The min/mean/max columns of every trended value (core/trend_rows.h).
 std::string withTrendColumns(std::string sqlText) {
   std::string cols;
@@ -122,6 +142,10 @@ int migrateStep(sql::Db& db, int from) {
       int rc = db.exec(withTrendColumns(kV5));
       return rc == SQLITE_OK ? setVersion(db, 5) : rc;
     }
+    case 5: {
+      int rc = db.exec(withRingMinutes(kV6));
+      return rc == SQLITE_OK ? setVersion(db, 6) : rc;
+    }
     default:
       return db.setError(SQLITE_MISMATCH, "no migration from version " + std::to_string(from));
   }
@@ -155,7 +179,7 @@ std::string missingForReading(sql::Db& db) {
       "SELECT id, t_ms, level, code, reason, message, a, b FROM events",
       "SELECT key, value FROM kv",
       "SELECT id, name FROM series",
-      "SELECT key, data FROM history_1s",
+      "SELECT slot, t_s, data FROM history_1s_ring",
       "SELECT key, data FROM history_1m",
       "SELECT day, alt_ah, alt_wh, batt_ah_in, batt_ah_out, bulk_s, absorption_s, float_s, idle_s, "
       "field_on_s, "

@@ -13,15 +13,24 @@
 //       history_charges (the History page's summaries)
 //   v5  history_days gain batt_wh_in, v_min, v_max, soc_start, soc_end, engine_s;
 //       trends_hourly / trends_daily (min/mean/max per hour and per local day)
+//   v6  history_1s_ring: the 1 s chart as a ring of kRingMinutes minutes, each
+//       row rewritten in place as its slot comes round (no trim); the rows of
+//       history_1s move into it and that table is left empty (an older
+//       release still finds it)
+#include <cstdint>
 #include <string>
 
 #include "store/sqlite_db.h"
 
 namespace xr::store {
 
-inline constexpr int kSchemaVersion = 5;
+inline constexpr int kSchemaVersion = 6;
 // History rows: rowid = bucket start (s) * kSeriesSlots + series id.
 inline constexpr int kSeriesSlots = 64;
+// The 1 s chart's ring (v6): slot = (minute index mod kRingMinutes) *
+// kSeriesSlots + series id. 48 h and an hour to spare, so the oldest minute a
+// chart may ask for is never the one being rewritten.
+inline constexpr std::int64_t kRingMinutes = 48 * 60 + 60;
 
 // Creates the v1 schema on an empty database (user_version 0 -> 1).
 int createV1(sql::Db& db);

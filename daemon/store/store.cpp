@@ -28,7 +28,7 @@ unsigned backupMode(const std::string& dbPath) {
 // than everything else the daemon writes (docs/performance.md "Storage
 // writes"). Settings, the ledger, the token, events, the History page's
 // days and charges and the daily trend rows are all in it.
-const std::string kNotBackedUp[] = {"history_1s", "history_1m", "trends_hourly"};
+const std::string kNotBackedUp[] = {"history_1s", "history_1s_ring", "history_1m", "trends_hourly"};
 
 }  // namespace
 

@@ -214,6 +214,9 @@ class Store {
 
   // ---- diagnostics -----------------------------------------------------------
   std::string integrityCheck();  // "ok" when healthy
+  // The connection, for the write-breakdown bench's SQLite hooks only
+  // (tests/bench/store/disk_writes_breakdown.cpp); the daemon never uses it.
+  sqlite3* sqliteHandle() const { return db_.handle(); }
   const std::string& lastError() const { return db_.lastError(); }
 
  private:
@@ -235,6 +238,10 @@ class Store {
   void openInMemory(OpenResult& r, bool existed);
   int seriesId(std::string_view name);
   int writeBuckets(std::string_view table, std::map<std::int64_t, Bucket>& pending, std::int64_t bucketSpanS);
+  int writeRing(std::map<std::int64_t, Bucket>& pending);  // the 1 s chart (schema v6)
+  static std::int64_t ringSlot(std::int64_t minuteS, int seriesId);
+  void readHistoryRows(bool fine, int seriesId, double step, std::int64_t fromS, std::int64_t toS,
+                       const std::function<void(std::int64_t bucketS, const float* row)>& take);
   void closeMinute();
   StoreStatus flushPending(bool all);
   StoreStatus flushEvents(std::int64_t nowMs, bool all);

@@ -175,31 +175,35 @@ TEST(Store, HistoryOneSecondAndOneMinute) {
   EXPECT_EQ(s2.queryHistory("ibv_v", t0, t0 + 599000, 0).size(), 600u);
 }
 
+// The 1 s chart is a ring of kRingMinutes minutes (48 h and one to spare):
+// after 50 h it holds no more rows than that, the oldest 49 h old, and the
+// newest 48 h still read back; the 1 min table is trimmed to its keep.
 TEST(Store, HistoryRetentionIsBounded) {
   TempDir d;
   StoreOptions opt;
-  opt.history1sKeepS = 600;  // shortened retention, same mechanism
-  opt.history1mKeepS = 7200;
-  opt.historyFlushS = 60;
+  opt.history1mKeepS = 7200;  // shortened, same mechanism
   Store s(opt);
   ASSERT_TRUE(s.open(d.file("x.db"), kT0).ok);
   const std::size_t n = opt.historySeries.size();
   const std::int64_t t0 = (kT0 / 3600000) * 3600000;
+  const int hours = 50;
   std::vector<double> v(n, 1.0);
-  for (int sec = 0; sec < 4 * 3600; sec += 1) ASSERT_TRUE(s.appendHistory(t0 + sec * 1000LL, v).ok);
+  for (int sec = 0; sec < hours * 3600; sec += 30) ASSERT_TRUE(s.appendHistory(t0 + sec * 1000LL, v).ok);
   ASSERT_TRUE(s.flushHistory().ok);
-  ASSERT_TRUE(s.compact(t0 + 4 * 3600 * 1000LL).ok);
+  ASSERT_TRUE(s.compact(t0 + hours * 3600 * 1000LL).ok);
+  const std::int64_t endS = t0 / 1000 + hours * 3600;
+  EXPECT_EQ(s.queryHistory("ibv_v", (endS - 47 * 3600) * 1000, endS * 1000, 0).size(), 47u * 120u);
   s.close();
   sql::Db db;
   ASSERT_EQ(db.open(d.file("x.db")), 0);
-  const std::int64_t rows1s = db.queryInt("SELECT count(*) FROM history_1s");
-  const std::int64_t oldest1s = db.queryInt("SELECT min(key) FROM history_1s") / store::kSeriesSlots;
+  const std::int64_t rows1s = db.queryInt("SELECT count(*) FROM history_1s_ring");
+  const std::int64_t oldest1s = db.queryInt("SELECT min(t_s) FROM history_1s_ring");
   const std::int64_t oldest1m = db.queryInt("SELECT min(key) FROM history_1m") / store::kSeriesSlots;
-  ASSERT_GT(oldest1s, 0);
   ASSERT_GT(oldest1m, 0);
-  EXPECT_LE(rows1s, static_cast<std::int64_t>(n) * (600 / 60 + 2));
-  EXPECT_GE(oldest1s, (t0 / 1000) + 4 * 3600 - 600 - 60);
-  EXPECT_GE(oldest1m, (t0 / 1000) + 4 * 3600 - 7200 - 3600);
+  EXPECT_EQ(rows1s, static_cast<std::int64_t>(n) * store::kRingMinutes);
+  EXPECT_EQ(oldest1s, endS - store::kRingMinutes * 60);
+  EXPECT_GE(oldest1m, endS - 7200 - 3600);
+  EXPECT_EQ(db.queryInt("SELECT count(*) FROM history_1s"), 0);
 }
 
 TEST(Store, EventsBounded) {

@@ -27,8 +27,8 @@ constexpr std::int64_t kHourMs = 3600LL * 1000;
 std::int64_t rowsOnDisk(const std::string& file, std::int64_t fromMs, std::int64_t toMs) {
   sql::Db db;
   EXPECT_EQ(db.open(file), 0);
-  sql::Stmt st(db, "SELECT count(*) FROM history_1s WHERE key >= ?1 AND key < ?2");
-  st.bind(1, (fromMs / 1000 - 60) * store::kSeriesSlots).bind(2, (toMs / 1000) * store::kSeriesSlots);
+  sql::Stmt st(db, "SELECT count(*) FROM history_1s_ring WHERE t_s >= ?1 AND t_s < ?2");
+  st.bind(1, fromMs / 1000 - 60).bind(2, toMs / 1000);
   return st.step() == SQLITE_ROW ? st.colInt(0) : -1;
 }
 
@@ -83,7 +83,8 @@ INSTANTIATE_TEST_SUITE_P(ForwardAndBack, ClockJump,
                          ::testing::Values(3 * kHourMs, -3 * kHourMs, 720 * kHourMs, -720 * kHourMs),
                          [](const ::testing::TestParamInfo<std::int64_t>& i) {
                            const std::int64_t h = i.param / kHourMs;
-                           return std::string(h > 0 ? "Forward" : "Back") + std::to_string(h > 0 ? h : -h) + "h";
+                           return std::string(h > 0 ? "Forward" : "Back") + std::to_string(h > 0 ? h : -h) +
+                                  "h";
                          });
 
 }  // namespace

@@ -1,0 +1,120 @@
+// The store's write windows (docs/performance.md "Storage writes"): the
+// ledger's interval checkpoint falls on the wall clock's 5-minute marks, and
+// at each 10-minute mark the chart flush, the day rows and the ledger are
+// written in the same second (their commits share the WAL index pages); a
+// stage change still saves the ledger at once.
+#include <gtest/gtest.h>
+
+#include <set>
+#include <string>
+
+#include "app/store_service.h"
+#include "runtime/wall_clock.h"
+#include "store/sqlite_db.h"
+#include "store_test_util.h"
+
+namespace xr::app {
+namespace {
+
+using xr::test::TempDir;
+
+struct Rig {
+  TempDir d;
+  StoreService svc{d.file("x.db"), 300};
+  TimeNs simulated = 0;
+  rt::WallClock clock;
+  rt::RuntimeSnapshot s;
+  BatteryLedger ledger;
+  Rig() {
+    clock.followSimulation([this] { return simulated; });
+    svc.useClock(clock, 1.0);
+    s.tick = 1000;
+    s.telemetry.field_enable = true;
+    s.telemetry.stage = ChargeStage::FLOAT;
+    s.telemetry.alt_a = 10.0;
+    s.telemetry.battery_v = 13.5;
+    s.telemetry.bcur_a = 4.0;
+    s.telemetry.rpm = 1700.0;
+  }
+  // One housekeeping second; returns the clock's ms of it.
+  std::int64_t second() {
+    s.telemetry.now = simulated;
+    ledger.CoulombCount_Ah += 0.001;
+    const std::int64_t now = svc.clockMs();
+    svc.housekeeping(s, ledger, true);
+    simulated += fromSec(1.0);
+    return now;
+  }
+};
+
+TEST(StoreWriteWindows, TheIntervalCheckpointFallsOnTheFiveMinuteMarks) {
+  Rig r;
+  std::set<std::int64_t> saves;
+  for (int i = 0; i < 21 * 60; ++i) {
+    r.second();
+    if (auto l = r.svc.loadLedger(); l && l->reason == "interval") saves.insert(l->savedAtMs);
+  }
+  ASSERT_GE(saves.size(), 4u);  // 21 minutes: four marks at least
+  std::int64_t prev = -1;
+  for (std::int64_t t : saves) {
+    EXPECT_LT(t % 300'000, 1000) << t;  // the first second of a 5-minute mark
+    if (prev >= 0) {
+      EXPECT_EQ(t - prev, 300'000);
+    }
+    prev = t;
+  }
+  r.svc.stop(r.ledger, true);
+}
+
+TEST(StoreWriteWindows, AtATenMinuteMarkTheChartDayRowsAndLedgerAreWrittenInTheSameSecond) {
+  Rig r;
+  // Up to the first second of the next 10-minute mark (and one more minute,
+  // so the first mark is not the start's own save of the day rows).
+  std::int64_t now = r.second();
+  while (now % 600'000 >= 1000 || r.svc.loadLedger() == std::nullopt) now = r.second();
+  const std::int64_t mark = now;
+  sql::Db db;
+  ASSERT_EQ(db.open(r.d.file("x.db")), 0);
+  EXPECT_EQ(db.queryInt("SELECT saved_at_ms FROM ledger_meta"), mark);
+  // The minute before the mark is in the chart's ring already.
+  EXPECT_GT(
+      db.queryInt("SELECT count(*) FROM history_1s_ring WHERE t_s = " + std::to_string(mark / 1000 - 60)), 0);
+  // And the day row holds the seconds up to the mark.
+  const double fieldOnS =
+      static_cast<double>(db.queryInt("SELECT CAST(field_on_s AS INTEGER) FROM history_days"));
+  EXPECT_GE(fieldOnS, 60.0);
+  r.svc.stop(r.ledger, true);
+}
+
+TEST(StoreWriteWindows, AStageChangeSavesTheLedgerAtOnceBetweenMarks) {
+  Rig r;
+  std::int64_t now = r.second();
+  while (now % 300'000 < 60'000 || now % 300'000 > 200'000) now = r.second();  // between two marks
+  r.s.telemetry.stage = ChargeStage::ABSORPTION;
+  const std::int64_t changedAt = r.second();
+  const auto l = r.svc.loadLedger();
+  ASSERT_TRUE(l.has_value());
+  EXPECT_EQ(l->reason, "stage");
+  EXPECT_EQ(l->savedAtMs, changedAt);
+  r.svc.stop(r.ledger, true);
+}
+
+// A wall clock that stands still (the intervals never change) still saves
+// the ledger once an interval and a minute of monotonic time have passed.
+TEST(StoreWriteWindows, AWallClockThatStandsStillStillSavesTheLedger) {
+  Rig r;
+  r.second();
+  r.simulated -= fromSec(1.0);  // the wall clock stops here
+  std::set<std::string> reasons;
+  for (int i = 0; i < 7 * 60; ++i) {
+    r.s.telemetry.now += fromSec(1.0);
+    r.ledger.CoulombCount_Ah += 0.001;
+    r.svc.housekeeping(r.s, r.ledger, true);
+    if (auto l = r.svc.loadLedger()) reasons.insert(l->reason);
+  }
+  EXPECT_EQ(reasons.count("interval"), 1u);
+  r.svc.stop(r.ledger, true);
+}
+
+}  // namespace
+}  // namespace xr::app
