@@ -84,7 +84,7 @@ elif command -v lintian >/dev/null; then
   out=$(lintian --fail-on none "${changes:-$deb}" 2>&1 | grep -E '^[EW]: ' || true)
   [ -z "$out" ] && ok "lintian: no errors or warnings" || { printf '%s\n' "$out"; fail "lintian reports errors or warnings"; }
 else
-  fail "lintian not installed (make deps)"
+  fail "lintian not installed (make deps-tools)"
 fi
 
 echo "cross package check ($arch, $(basename "$deb")): $fails failure(s)"
