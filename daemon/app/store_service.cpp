@@ -17,10 +17,7 @@ namespace xr::app {
 std::int64_t unixMsNow() { return rt::WallClock::systemUnixMs(); }
 
 StoreService::StoreService(const std::string& path, int checkpointIntervalS, StoreOptions options)
-    : store_(std::move(options)),
-      policy_(checkpointIntervalS),
-      checkpointIntervalMs_(1000LL * (checkpointIntervalS > 0 ? checkpointIntervalS : 300)),
-      series_(defaultHistorySeries()) {
+    : store_(std::move(options)), policy_(checkpointIntervalS), series_(defaultHistorySeries()) {
   // The database holds the web token: never readable by other users, with or
   // without systemd's UMask (docs/security.md). umask is process-wide, but
   // this runs before any other thread of the daemon exists; SQLite gives the
@@ -193,25 +190,10 @@ void StoreService::housekeeping(const rt::RuntimeSnapshot& s, const BatteryLedge
     spdlog::warn("store: events not saved: {}", st.error);
   tallySummaries(s, now);
   tallyTrends(s, now);
-  CheckpointReason why = policy_.poll(s.telemetry.now, s.telemetry.field_enable, s.telemetry.stage, false);
-  // The interval checkpoint is made as the wall clock enters a new interval
-  // (:00, :05, ... for 300 s), the second the chart flush and the day rows
-  // are written too, so the commits share the WAL index pages each lone
-  // commit dirties (docs/performance.md "Storage writes"). The loss bound
-  // stays one interval. Field off, a stage change and the stop save at once.
-  if (why == CheckpointReason::Interval) why = CheckpointReason::None;
-  const std::int64_t slot = now / checkpointIntervalMs_;
-  if (slot != checkpointSlot_) {
-    if (checkpointSlot_ >= 0 && why == CheckpointReason::None) why = CheckpointReason::Interval;
-    checkpointSlot_ = slot;
-  }
-  // A wall clock that stood still would never enter a new interval: the
-  // monotonic time still saves once an interval and a minute have passed.
-  if (lastLedgerSaveNs_ < 0) lastLedgerSaveNs_ = s.telemetry.now;
-  if (why == CheckpointReason::None &&
-      s.telemetry.now - lastLedgerSaveNs_ >= fromMs(checkpointIntervalMs_ + 60'000))
-    why = CheckpointReason::Interval;
-  if (why != CheckpointReason::None) lastLedgerSaveNs_ = s.telemetry.now;
+  // On the wall clock's interval marks, with the chart flush and the day
+  // rows (store/checkpoint_policy.h).
+  const CheckpointReason why =
+      policy_.poll(s.telemetry.now, now, s.telemetry.field_enable, s.telemetry.stage, false);
   if (why != CheckpointReason::None && ledgerValid) {
     const StoreStatus st = store_.checkpoint(ledger, toString(why), now);
     if (!st) spdlog::error("store: checkpoint ({}) failed: {}", toString(why), st.error);

@@ -125,9 +125,6 @@ class StoreService {
   Store store_;
   OpenResult open_;
   CheckpointPolicy policy_;
-  std::int64_t checkpointIntervalMs_;  // the ledger's interval checkpoint, on the wall clock's multiples
-  std::int64_t checkpointSlot_ = -1;   // now / checkpointIntervalMs_ at the last look (-1: none yet)
-  TimeNs lastLedgerSaveNs_ = -1;       // monotonic time of the last checkpoint (the stalled-clock net)
   std::vector<std::string> series_;
   std::int64_t lastHistoryS_ = -1;
   ChargeTally tally_;  // the History page's day and charge summaries

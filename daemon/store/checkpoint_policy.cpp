@@ -1,6 +1,7 @@
 #include "store/checkpoint_policy.h"
 
 #include "params/constants.h"
+#include "store/floor_div.h"
 
 namespace xr {
 
@@ -23,11 +24,13 @@ std::string_view toString(CheckpointReason r) {
 }
 
 CheckpointPolicy::CheckpointPolicy(std::int64_t intervalS)
-    : interval_(fromSec(intervalS > 0 ? intervalS : 300)) {}
+    : intervalMs_(1000 * (intervalS > 0 ? intervalS : 300)), interval_(fromMs(intervalMs_)) {}
 
-CheckpointReason CheckpointPolicy::poll(TimeNs now, bool fieldEnable, ChargeStage stage, bool stopping) {
+CheckpointReason CheckpointPolicy::poll(TimeNs now, std::int64_t wallMs, bool fieldEnable, ChargeStage stage,
+                                        bool stopping) {
   if (stopped_) return CheckpointReason::None;
   CheckpointReason r = CheckpointReason::None;
+  const std::int64_t slot = store::floorDiv(wallMs, intervalMs_);
   if (!started_) {
     // First sight: remember the state; the timer starts now. The runtime
     // has just restored the ledger, so there is nothing new to save.
@@ -35,10 +38,13 @@ CheckpointReason CheckpointPolicy::poll(TimeNs now, bool fieldEnable, ChargeStag
     last_ = now;
     lastField_ = fieldEnable;
     lastStage_ = stage;
+    wallSlot_ = slot;
   }
   if (lastField_ && !fieldEnable) fieldOffAt_ = now + fromMs(k::CRITICAL_ZONE_MS);
   if (fieldEnable) fieldOffAt_ = -1;  // back on: the interval covers it
   const bool stageChanged = stage != lastStage_;
+  const bool newWallInterval = slot != wallSlot_;
+  wallSlot_ = slot;
   lastField_ = fieldEnable;
   lastStage_ = stage;
 
@@ -49,7 +55,7 @@ CheckpointReason CheckpointPolicy::poll(TimeNs now, bool fieldEnable, ChargeStag
     r = CheckpointReason::Stage;
   } else if (fieldOffAt_ >= 0 && now >= fieldOffAt_) {
     r = CheckpointReason::FieldOff;
-  } else if (now - last_ >= interval_) {
+  } else if (newWallInterval || now - last_ >= interval_ + fromSec(60)) {
     r = CheckpointReason::Interval;
   }
   if (r != CheckpointReason::None) {

@@ -3,7 +3,12 @@
 // injected). The original firmware saves only at safe moments ("Critical Zone — Why NVS
 // Saves Aren't Periodic"); SQLite on a non-RT thread cannot stall the control
 // loop, so a periodic save is added as the bound on what a power cut loses:
-//   - every [store] checkpoint_interval_s since the last checkpoint;
+//   - each time the wall clock enters a new [store] checkpoint_interval_s
+//     (:00, :05, ... for 300 s), the second the chart flush and the day rows
+//     are written too, so the commits share the WAL index pages each lone
+//     commit dirties (docs/performance.md "Storage writes"); and, for a wall
+//     clock that stands still, once an interval and a minute of monotonic
+//     time have passed since the last checkpoint;
 //   - at the field-off edge + 5 s (CRITICAL_ZONE_MS), if the field is still off;
 //   - at every charging-stage transition;
 //   - on stop.
@@ -23,10 +28,13 @@ std::string_view toString(CheckpointReason r);  // "interval", "field_off", ...
 class CheckpointPolicy {
  public:
   explicit CheckpointPolicy(std::int64_t intervalS);
-  CheckpointReason poll(TimeNs now, bool fieldEnable, ChargeStage stage, bool stopping);
+  // now: monotonic time; wallMs: the store's wall clock (UTC ms).
+  CheckpointReason poll(TimeNs now, std::int64_t wallMs, bool fieldEnable, ChargeStage stage, bool stopping);
 
  private:
+  std::int64_t intervalMs_;
   TimeNs interval_;
+  std::int64_t wallSlot_ = 0;  // floor(wallMs / interval) at the last poll
   bool started_ = false;
   bool stopped_ = false;
   TimeNs last_ = 0;

@@ -60,7 +60,7 @@ void simulate(xr::Store& s, xr::CheckpointPolicy& policy, xr::BatteryLedger& l, 
       xr::EventRecord e{0, now, "info", "StageChanged", "NONE", "CHARGING: bulk -> absorption", 0, 1};
       s.appendEvents(std::span<const xr::EventRecord>(&e, 1));
     }
-    const auto r = policy.poll(xr::fromSec(sec), field, stage, false);
+    const auto r = policy.poll(xr::fromSec(sec), now, field, stage, false);
     if (r != xr::CheckpointReason::None) s.checkpoint(l, xr::toString(r), now);
   }
 }
