@@ -25,8 +25,6 @@ TOOL_PACKAGES := libbenchmark-dev wrk valgrind python3-matplotlib graphviz \
   debhelper devscripts lintian fakeroot dpkg-dev \
   reprepro unattended-upgrades
 
-# The packages split in two: DEB_PACKAGES for the build, `make run` and
-# `make test`; TOOL_PACKAGES (deps-tools) for the rest.
 .PHONY: all deps build run test bench deb clean format deps-cross test-arm64 scenarios dashboard-screenshots soak
 
 all: build
