@@ -25,8 +25,12 @@ struct Rig {
   rt::WallClock clock;
   rt::RuntimeSnapshot s;
   BatteryLedger ledger;
-  Rig() {
+  // phaseMs: where in a 10-minute window of the wall clock the first second
+  // falls, so a test does not depend on the time of day it runs at.
+  explicit Rig(std::int64_t phaseMs = 0) {
     clock.followSimulation([this] { return simulated; });
+    const std::int64_t behind = (phaseMs - clock.unixMs() % 600'000 + 600'000) % 600'000;
+    simulated = fromSec(static_cast<double>(behind) / 1000.0);
     svc.useClock(clock, 1.0);
     s.tick = 1000;
     s.telemetry.field_enable = true;
@@ -66,24 +70,30 @@ TEST(StoreWriteWindows, TheIntervalCheckpointFallsOnTheFiveMinuteMarks) {
   r.svc.stop(r.ledger, true);
 }
 
+// Whatever the time of day the service starts at (every 10 s of a 10-minute
+// window, both sides of a mark), the first 10-minute mark a minute or more
+// after the start writes the ledger, the chart's minute and the day row.
 TEST(StoreWriteWindows, AtATenMinuteMarkTheChartDayRowsAndLedgerAreWrittenInTheSameSecond) {
-  Rig r;
-  // Up to the first second of the next 10-minute mark (and one more minute,
-  // so the first mark is not the start's own save of the day rows).
-  std::int64_t now = r.second();
-  while (now % 600'000 >= 1000 || r.svc.loadLedger() == std::nullopt) now = r.second();
-  const std::int64_t mark = now;
-  sql::Db db;
-  ASSERT_EQ(db.open(r.d.file("x.db")), 0);
-  EXPECT_EQ(db.queryInt("SELECT saved_at_ms FROM ledger_meta"), mark);
-  // The minute before the mark is in the chart's ring already.
-  EXPECT_GT(
-      db.queryInt("SELECT count(*) FROM history_1s_ring WHERE t_s = " + std::to_string(mark / 1000 - 60)), 0);
-  // And the day row holds the seconds up to the mark.
-  const double fieldOnS =
-      static_cast<double>(db.queryInt("SELECT CAST(field_on_s AS INTEGER) FROM history_days"));
-  EXPECT_GE(fieldOnS, 60.0);
-  r.svc.stop(r.ledger, true);
+  for (std::int64_t phase = 0; phase < 600'000; phase += 10'000) {
+    SCOPED_TRACE("start at " + std::to_string(phase / 1000) + " s into the window");
+    Rig r(phase);
+    // A minute after the start, so the mark is not the start's own save of
+    // the day rows and the chart holds the minute before it.
+    const std::int64_t start = r.second();
+    std::int64_t now = start;
+    while (now % 600'000 >= 1000 || now - start < 61'000) now = r.second();
+    const std::int64_t mark = now;
+    sql::Db db;
+    ASSERT_EQ(db.open(r.d.file("x.db")), 0);
+    EXPECT_EQ(db.queryInt("SELECT saved_at_ms FROM ledger_meta"), mark);
+    EXPECT_GT(
+        db.queryInt("SELECT count(*) FROM history_1s_ring WHERE t_s = " + std::to_string(mark / 1000 - 60)), 0);
+    // And the day row holds the seconds up to the mark.
+    const double fieldOnS =
+        static_cast<double>(db.queryInt("SELECT CAST(field_on_s AS INTEGER) FROM history_days"));
+    EXPECT_GE(fieldOnS, 60.0);
+    r.svc.stop(r.ledger, true);
+  }
 }
 
 TEST(StoreWriteWindows, AStageChangeSavesTheLedgerAtOnceBetweenMarks) {
