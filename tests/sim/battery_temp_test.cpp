@@ -3,6 +3,8 @@
 // scenarios/ drive its temperature.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "closed_loop.h"
 
 namespace xr::sim::test {
@@ -10,7 +12,7 @@ namespace {
 
 SimRunResult runFile(const char* name) {
   SimRunOptions o;
-  o.scenario = loadScenario(std::string(XR_SOURCE_DIR) + "/scenarios/" + name);
+  o.scenario = loadScenario(std::filesystem::path(XR_SOURCE_DIR) / "scenarios" / name);
   o.telemetryRateHz = 2.0;
   SimRunner r(o);
   SimRunResult res = r.run();

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -69,7 +70,7 @@ TEST(TomlTextGuard, ColumnsCountCharactersNotBytes) {
 }
 
 TEST(TomlTextGuard, TheConfigLoaderRefusesTheFuzzFindingWithFileLineColumn) {
-  std::ifstream f(std::string(XR_SOURCE_DIR) + "/tests/fuzz/regressions/non-ascii-after-bare-key.toml",
+  std::ifstream f(std::filesystem::path(XR_SOURCE_DIR) / "tests/fuzz/regressions/non-ascii-after-bare-key.toml",
                   std::ios::binary);
   ASSERT_TRUE(f) << "the kept regression input";
   std::stringstream ss;
