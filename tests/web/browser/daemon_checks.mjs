@@ -348,7 +348,8 @@ export async function daemonChecks(t) {
   // fault: charging, then the banner with what to do; earlier events kept.
   const scenario = `name = "browser fault"\nduration_s = 3600\nseed = 3\n[battery]\nchemistry = "agm"\ncapacity_ah = 280\n` +
     `soc_pct = 50\n[engine]\nrpm = 1700\n[[events]]\nat_s = 25\nfault = "ina228_nack"\n`;
-  server = await startServer({ mode: "daemon", args, token, stateDir, scenario });
+  // At --speed 3: the ramp and the 25 s before the fault are simulated time.
+  server = await startServer({ mode: "daemon", args, token, stateDir, scenario, speed: 3 });
   servers.push(server);
   await page.emulateMedia({ colorScheme: "light" });  // the docs show the sunlight theme
   const loadedAt = Date.now() / 1000;

@@ -51,7 +51,10 @@ await runDaemonBrowserTest({ args, token, scenario, prefix: "xr-shots-", speed: 
       await page.goto(`${server.base}/#${name}`);
       await page.reload();
       await page.waitForSelector(`#page-${name}:not([hidden])`);
-      await page.waitForTimeout(1500);  // the page's first fetch and a status frame
+      // The page's first fetch answered, then one status frame drawn after it.
+      await page.waitForLoadState("networkidle");
+      const seq = Number(await page.getAttribute("body", "data-seq") ?? -1);
+      await page.waitForFunction((s) => Number(document.body.dataset.seq ?? -1) > s, seq);
       assert.equal(await page.evaluate(() => document.documentElement.dataset.theme), theme);
       const text = (await page.textContent(`#page-${name}`)).replace(/\s+/g, " ").trim();
       assert.ok(text.length > 40, `${name} (${theme}) shows almost nothing: "${text}"`);
