@@ -25,7 +25,7 @@ ControlThread::~ControlThread() {
 }
 
 void ControlThread::body(const RuntimeSettings& runtime, bool realtime) {
-  report_ = rt::setupRealtimeThread(runtime, "xr-control", realtime);
+  report_ = rt::setupRealtimeThread(runtime, "xr-control", /*lockMemory=*/realtime, /*fifo=*/realtime);
   ready_ = true;
   rt::fatal::installAltStackForThisThread();
   try {

@@ -29,7 +29,7 @@ void prefaultStack(std::size_t bytes) noexcept {
   for (std::size_t i = 0; i < bytes; i += kChunk) p[i] = 0;
 }
 
-RtSetupReport setupRealtimeThread(const RuntimeSettings& settings, const char* name, bool lockMemory) {
+RtSetupReport setupRealtimeThread(const RuntimeSettings& settings, const char* name, bool lockMemory, bool fifo) {
   RtSetupReport r;
   r.named = setThreadName(name);
 
@@ -54,6 +54,7 @@ RtSetupReport setupRealtimeThread(const RuntimeSettings& settings, const char* n
     else r.warnings.push_back("CPU affinity to cpu " + std::to_string(settings.cpu) + " refused (" + errnoText(e) + ")");
   }
 
+  if (!fifo) return r;
   const int lo = sched_get_priority_min(SCHED_FIFO);
   const int hi = sched_get_priority_max(SCHED_FIFO);
   sched_param sp{};

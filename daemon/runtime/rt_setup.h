@@ -26,8 +26,13 @@ struct RtSetupReport {
 bool setThreadName(const char* name) noexcept;
 
 // Apply the settings to the calling thread. lockMemory=false skips
-// mlockall (the simulator at --speed max has no use for it).
-RtSetupReport setupRealtimeThread(const RuntimeSettings& settings, const char* name, bool lockMemory = true);
+// mlockall; fifo=false keeps normal scheduling. The simulator at --speed max
+// wants neither: it has no deadlines, and a SCHED_FIFO thread that waits for
+// its CSV writer with sched_yield() never lets that (normal) thread run on its
+// core, so a full-speed run crawled and starved the machine
+// (docs/performance.md "Simulator speed").
+RtSetupReport setupRealtimeThread(const RuntimeSettings& settings, const char* name, bool lockMemory = true,
+                                  bool fifo = true);
 
 // Touch `bytes` of stack so later growth never page-faults in the loop.
 void prefaultStack(std::size_t bytes) noexcept;

@@ -36,6 +36,28 @@ TEST(RtSetup, NamesTheThreadAndReportsEveryRefusal) {
   }
 }
 
+// The simulator at --speed max: named and pre-faulted, but normal
+// scheduling, and nothing refused because nothing was asked.
+TEST(RtSetup, WithoutFifoTheThreadKeepsNormalScheduling) {
+  RtSetupReport r;
+  int policy = -1;
+  std::thread t([&] {
+    RuntimeSettings s;
+    s.rt_priority = 80;
+    r = setupRealtimeThread(s, "xr-control-test", /*lockMemory=*/false, /*fifo=*/false);
+    sched_param sp{};
+    pthread_getschedparam(pthread_self(), &policy, &sp);
+  });
+  t.join();
+  EXPECT_TRUE(r.named);
+  EXPECT_TRUE(r.stackPrefaulted);
+  EXPECT_FALSE(r.fifo);
+  EXPECT_FALSE(r.memoryLocked);
+  EXPECT_EQ(policy, SCHED_OTHER);
+  EXPECT_TRUE(r.warnings.empty());
+  EXPECT_NE(r.summary().find("normal scheduling"), std::string::npos);
+}
+
 TEST(RtSetup, DetectsPreemptRtFromTheSysfsFlag) {
   const std::string path = ::testing::TempDir() + "xr_realtime_flag";
   {
