@@ -29,7 +29,8 @@ void prefaultStack(std::size_t bytes) noexcept {
   for (std::size_t i = 0; i < bytes; i += kChunk) p[i] = 0;
 }
 
-RtSetupReport setupRealtimeThread(const RuntimeSettings& settings, const char* name, bool lockMemory, bool fifo) {
+RtSetupReport setupRealtimeThread(const RuntimeSettings& settings, const char* name, bool lockMemory,
+                                  bool fifo) {
   RtSetupReport r;
   r.named = setThreadName(name);
 
@@ -50,8 +51,11 @@ RtSetupReport setupRealtimeThread(const RuntimeSettings& settings, const char* n
     CPU_ZERO(&set);
     CPU_SET(settings.cpu, &set);
     const int e = pthread_setaffinity_np(pthread_self(), sizeof(set), &set);
-    if (e == 0) r.pinned = true;
-    else r.warnings.push_back("CPU affinity to cpu " + std::to_string(settings.cpu) + " refused (" + errnoText(e) + ")");
+    if (e == 0)
+      r.pinned = true;
+    else
+      r.warnings.push_back("CPU affinity to cpu " + std::to_string(settings.cpu) + " refused (" +
+                           errnoText(e) + ")");
   }
 
   if (!fifo) return r;
@@ -64,7 +68,8 @@ RtSetupReport setupRealtimeThread(const RuntimeSettings& settings, const char* n
     r.fifo = true;
     r.priority = sp.sched_priority;
   } else {
-    r.warnings.push_back("SCHED_FIFO priority " + std::to_string(sp.sched_priority) + " refused (" + errnoText(e) +
+    r.warnings.push_back("SCHED_FIFO priority " + std::to_string(sp.sched_priority) + " refused (" +
+                         errnoText(e) +
                          "): the control thread runs with normal scheduling (grant CAP_SYS_NICE or "
                          "LimitRTPRIO in the service unit)");
   }

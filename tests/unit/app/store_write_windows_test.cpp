@@ -87,7 +87,8 @@ TEST(StoreWriteWindows, AtATenMinuteMarkTheChartDayRowsAndLedgerAreWrittenInTheS
     ASSERT_EQ(db.open(r.d.file("x.db")), 0);
     EXPECT_EQ(db.queryInt("SELECT saved_at_ms FROM ledger_meta"), mark);
     EXPECT_GT(
-        db.queryInt("SELECT count(*) FROM history_1s_ring WHERE t_s = " + std::to_string(mark / 1000 - 60)), 0);
+        db.queryInt("SELECT count(*) FROM history_1s_ring WHERE t_s = " + std::to_string(mark / 1000 - 60)),
+        0);
     // And the day row holds the seconds up to the mark.
     const double fieldOnS =
         static_cast<double>(db.queryInt("SELECT CAST(field_on_s AS INTEGER) FROM history_days"));

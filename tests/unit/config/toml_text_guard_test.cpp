@@ -70,8 +70,9 @@ TEST(TomlTextGuard, ColumnsCountCharactersNotBytes) {
 }
 
 TEST(TomlTextGuard, TheConfigLoaderRefusesTheFuzzFindingWithFileLineColumn) {
-  std::ifstream f(std::filesystem::path(XR_SOURCE_DIR) / "tests/fuzz/regressions/non-ascii-after-bare-key.toml",
-                  std::ios::binary);
+  std::ifstream f(
+      std::filesystem::path(XR_SOURCE_DIR) / "tests/fuzz/regressions/non-ascii-after-bare-key.toml",
+      std::ios::binary);
   ASSERT_TRUE(f) << "the kept regression input";
   std::stringstream ss;
   ss << f.rdbuf();

@@ -60,15 +60,11 @@ TEST(RtSetup, WithoutFifoTheThreadKeepsNormalScheduling) {
 
 TEST(RtSetup, DetectsPreemptRtFromTheSysfsFlag) {
   const std::string path = ::testing::TempDir() + "xr_realtime_flag";
-  {
-    std::ofstream(path) << "1\n";
-  }
+  { std::ofstream(path) << "1\n"; }
   auto info = detectPreemptRt(path);
   EXPECT_TRUE(info.preemptRt);
   EXPECT_NE(info.how.find(path), std::string::npos);
-  {
-    std::ofstream(path) << "0\n";
-  }
+  { std::ofstream(path) << "0\n"; }
   EXPECT_FALSE(detectPreemptRt(path).preemptRt);
   std::remove(path.c_str());
 }
