@@ -24,7 +24,7 @@ std::string_view toString(CheckpointReason r) {
 }
 
 CheckpointPolicy::CheckpointPolicy(std::int64_t intervalS)
-    : intervalMs_(1000 * (intervalS > 0 ? intervalS : 300)), interval_(fromMs(intervalMs_)) {}
+    : intervalMs_(1000 * (intervalS > 0 ? intervalS : 300)) {}
 
 CheckpointReason CheckpointPolicy::poll(TimeNs now, std::int64_t wallMs, bool fieldEnable, ChargeStage stage,
                                         bool stopping) {
@@ -55,7 +55,7 @@ CheckpointReason CheckpointPolicy::poll(TimeNs now, std::int64_t wallMs, bool fi
     r = CheckpointReason::Stage;
   } else if (fieldOffAt_ >= 0 && now >= fieldOffAt_) {
     r = CheckpointReason::FieldOff;
-  } else if (newWallInterval || now - last_ >= interval_ + fromSec(60)) {
+  } else if (newWallInterval || now - last_ >= fromMs(intervalMs_) + fromSec(60)) {
     r = CheckpointReason::Interval;
   }
   if (r != CheckpointReason::None) {

@@ -32,8 +32,7 @@ class CheckpointPolicy {
   CheckpointReason poll(TimeNs now, std::int64_t wallMs, bool fieldEnable, ChargeStage stage, bool stopping);
 
  private:
-  std::int64_t intervalMs_;
-  TimeNs interval_;
+  std::int64_t intervalMs_;    // [store] checkpoint_interval_s, in ms
   std::int64_t wallSlot_ = 0;  // floor(wallMs / interval) at the last poll
   bool started_ = false;
   bool stopped_ = false;
