@@ -38,7 +38,7 @@ pairing_button = "released"
 `;
 const buttonEvents = (log) => (log.match(/Pairing window opened for 2 min by the pairing button/g) || []).length;
 
-await runDaemonBrowserTest({ args, token, scenario: noEngine, speed: 2, extraConfig: buttonConfig,
+await runDaemonBrowserTest({ args, token, scenario: noEngine, extraConfig: buttonConfig,
   prefix: "xr-pairqr-" }, async ({ server, browser, stateDir }) => {
   const phone = async (url) => {
     const ctx = await browser.newContext({ viewport: { width: 390, height: 844 }, locale: "en-GB" });
