@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "app/update_watch.h"
 #include "config/config.h"
 #include "config/web_checks.h"
 
@@ -72,7 +73,7 @@ std::string usageText() {
          "                         exit 75) once the engine is stopped, so systemd starts the new one\n"
          "  --release-file FILE    the package's release record (default /var/lib/xregulator/release)\n"
          "  --run-dir DIR          where the quiet state file for the update gate is written, if the\n"
-         "                         directory exists (default /run/xregulator)\n";
+         "                         directory exists (default /run/xregulator; none in --sim)\n";
 }
 
 namespace {
@@ -106,7 +107,7 @@ Flags flagOptions(CliOptions& o) {
 }
 
 // Files, addresses and the log level.
-Valued textOptions(CliResult& r) {
+Valued textOptions(CliResult& r, bool& runDirGiven) {
   CliOptions& o = r.options;
   Valued v = {{"--config", textInto(o.config)},
               {"--scenario", textInto(o.scenario)},
@@ -119,8 +120,9 @@ Valued textOptions(CliResult& r) {
     o.releaseFile = t;
     return std::string();
   };
-  v["--run-dir"] = [&o](const std::string& t) {
-    o.runDir = t;
+  v["--run-dir"] = [&r, &runDirGiven](const std::string& t) {
+    r.options.runDir = t;
+    runDirGiven = true;
     return std::string();
   };
   v["--http"] = [&r](const std::string& text) {
@@ -248,12 +250,15 @@ std::string combinationError(const CliOptions& o, bool faultAtGiven) {
 
 CliResult parseCommandLine(const std::vector<std::string>& args) {
   CliResult r;
-  bool faultAtGiven = false;
-  Valued valued = textOptions(r);
+  bool faultAtGiven = false, runDirGiven = false;
+  Valued valued = textOptions(r, runDirGiven);
   addRunOptions(r.options, valued);
   addTestFaultOptions(r.options, faultAtGiven, valued);
   readArguments(args, flagOptions(r.options), valued, r);
   if (r.error.empty()) r.error = combinationError(r.options, faultAtGiven);
+  // The update gate reads this directory's state file as the running
+  // regulator's word (docs/operations.md "Updates and the way back").
+  if (!runDirGiven && !r.options.sim) r.options.runDir = kDefaultRunDir;
   return r;
 }
 

@@ -50,7 +50,10 @@ struct CliOptions {
   // Updates (app/update_watch.h): the package's release record, the quiet
   // state file's directory, and whether a pending update restarts when quiet.
   std::string releaseFile = "/var/lib/xregulator/release";
-  std::string runDir = "/run/xregulator";
+  // Empty: no state file. parseCommandLine() sets the board's default,
+  // /run/xregulator, unless --run-dir is given or the daemon runs --sim: a
+  // simulated engine must never speak for the real one to the update gate.
+  std::string runDir;
   bool updateWatch = false;
   TestFault testFault = TestFault::None;
   double testFaultAtS = 1.0;

@@ -125,12 +125,13 @@ else
 fi
 
 # The daemon as systemd would run it (--update-watch), the engine stopping at $1 s.
+# --run-dir: in --sim the daemon writes the gate's state file only when told where.
 db=/var/lib/xregulator/xregulator.db
 mkdir -p /run/xregulator
 start_daemon() {  # ENGINE_STOP_S LOG
   sed "s/ENGINE_STOP_S/$1/" "$here/engine_then_stop.toml" >"$work/scenario.toml"
   /usr/sbin/xregulatord --sim --speed 1 --scenario "$work/scenario.toml" --config /etc/xregulator/xregulator.toml \
-    --state-db "$db" --http 127.0.0.1:0 --update-watch --sim-outputs "$work/outputs" >"$2" 2>&1 &
+    --state-db "$db" --http 127.0.0.1:0 --update-watch --run-dir /run/xregulator --sim-outputs "$work/outputs" >"$2" 2>&1 &
   daemon_pid=$!
   api=""
   for _ in $(seq 100); do

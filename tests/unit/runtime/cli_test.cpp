@@ -149,6 +149,20 @@ TEST(Cli, UpdateOptionsDefaultToThePackagePathsAndAreOff) {
   EXPECT_FALSE(parse({"--release-file"}).ok());
 }
 
+// The update gate takes /run/xregulator/state as the running regulator's
+// word: a --sim daemon on the same board (an installer trying the dashboard)
+// must not write it, or its stopped simulated engine would let an update
+// through under a running one.
+TEST(Cli, ASimulationWritesNoGateStateFileUnlessToldWhere) {
+  const CliResult sim = parse({"--sim"});
+  ASSERT_TRUE(sim.ok()) << sim.error;
+  EXPECT_EQ(sim.options.runDir, "");
+  const CliResult told = parse({"--sim", "--run-dir", "/run/xregulator"});
+  ASSERT_TRUE(told.ok()) << told.error;
+  EXPECT_EQ(told.options.runDir, "/run/xregulator");
+  EXPECT_EQ(parse({"--run-dir", "/tmp/run", "--sim"}).options.runDir, "/tmp/run");
+}
+
 TEST(Cli, UsageListsTheDesignOptions) {
   const std::string u = usageText();
   for (const char* o :
