@@ -267,10 +267,11 @@ test-arm64-ci: deps-cross-arm64 $(BUILD)/CMakeCache.txt
 	cmake --build $(ARM64_BUILD) -j $(JOBS) --target xregulatord xregulator-field-off
 	cmake --build $(BUILD) -j $(JOBS) --target xregulatord
 	@echo "the daemon checks (log at the end) beside the test binaries' build and run: the 8 h run under qemu is one thread"
+	@echo "and the longest step, so the build and the tests beside it run at nice 10"
 	@$(MAKE) --no-print-directory arm-daemon-checks ARM_BUILD=$(ARM64_BUILD) QEMU_ARM=$(QEMU_AARCH64) \
 	  ARM_TRIPLET=aarch64-linux-gnu > $(ARM64_BUILD)/daemon-checks.log 2>&1 & checks=$$!; \
-	cmake --build $(ARM64_BUILD) -j $(JOBS) --target $(ARM64_CI_TESTS) && \
-	  GTEST_FILTER='$(ARM64_CI_FILTER)' tests/arm/run_gtests.sh $(QEMU_AARCH64) / $(JOBS) \
+	nice -n 10 cmake --build $(ARM64_BUILD) -j $(JOBS) --target $(ARM64_CI_TESTS) && \
+	  GTEST_FILTER='$(ARM64_CI_FILTER)' nice -n 10 tests/arm/run_gtests.sh $(QEMU_AARCH64) / $(JOBS) \
 	    $(addprefix $(ARM64_BUILD)/,$(ARM64_CI_BINS)); tests=$$?; \
 	wait $$checks; checks_rc=$$?; cat $(ARM64_BUILD)/daemon-checks.log; \
 	[ $$tests = 0 ] && [ $$checks_rc = 0 ]
