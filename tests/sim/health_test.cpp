@@ -37,13 +37,10 @@ SimRunResult runWith(const std::string& toml, double rateHz, const std::string& 
   return run(optionsFor(toml, rateHz, n2k, rpmSource));
 }
 
-// Days of a bank at a 100 Hz loop (control_period_us 10000) instead of the
-// shipped 400 Hz: capacity and resistance work on one-second means, and came
-// out the same at both (docs/development.md "make test's time"), in about a
-// third of the time, as in health_ordinary_test.cpp.
+// Days of a bank, at the health days' 100 Hz loop.
 SimRunResult runDays(const std::string& toml, double rateHz, std::optional<std::uint64_t> seed = {}) {
   SimRunOptions o = optionsFor(toml, rateHz, "", "tach", seed);
-  o.settings.runtime.control_period_us = 10000;
+  o.settings.runtime.control_period_us = kHealthDaysControlPeriodUs;
   return run(o);
 }
 
