@@ -55,18 +55,18 @@ double ControlLaw::computeUTarget(const ControlSensors& s, const Params& p) noex
   return command_.update(ci, p);
 }
 
-void ControlLaw::updateGovMode(const ControlSensors& s, const Params& p, const FastOvApply& fa) noexcept {
+void ControlLaw::updateGovMode(const ControlSensors& s, const Params& p, const FastOvVerdict& ov) noexcept {
   const bool majorOV = finite(s.IBV) && s.IBV > alternatorHardShutdownV(p) + k::HARD_SHUTDOWN_BYPASS_OFFSET_V;
   const bool overshoot =
       fastOv_.updateOvershootLatch(targets_.voltageControlActive(), s.IBV, targets_.ChargingVoltageTarget());
   const bool bypass =
-      majorOV || fa.sensorFailureBypass || overshoot || fa.forceBypassSlew || sysId_.systemIdRunning();
+      majorOV || s.sensorFailureBypass || overshoot || ov.forceBypassSlew || sysId_.systemIdRunning();
   inner_.setGovMode(bypass ? GovMode::GOV_BYPASS_SLEW : GovMode::GOV_NORMAL_SLEW);
 }
 
-double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const FastOvApply& fa,
+double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const FastOvVerdict& ov,
                               EventBatch& ev) noexcept {
-  applyFastOv(s, p, fa);
+  applyFastOv(s, p, ov);
   if (sysId_.systemIdRunning()) return runSystemIdTick(s, p, ev);
   // CH1 not fresh: the protections above already acted on the state; the
   // PID and the duty hold until the next sample (<= one ADS cycle).
@@ -81,7 +81,7 @@ double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const Fa
   if (p.CVTuningMode && finite(s.IBV)) targets_.scoreCvTuning(s.IBV, dt, p);
   CeilingInputs ce;
   ce.zeroHold = holdsZeroBatteryCurrent(p);
-  ce.fastOvCapA = fa.fastOvCurrentCap;
+  ce.fastOvCapA = ov.fastOvCurrentCap;
   ce.voltageControlActive = targets_.voltageControlActive();
   ce.Icv = Icv;
   ce.fullField = duty >= p.MaxDuty - kFullFieldDutyBand && filters_.input().primed();
@@ -93,9 +93,9 @@ double ControlLaw::finishAuto(const ControlSensors& s, const Params& p, const Fa
 
 // The fast over-voltage supervisors' verdict on this tick: their current cap,
 // cv_I and setpoint actions, and what their clearing restarts.
-void ControlLaw::applyFastOv(const ControlSensors& s, const Params& p, const FastOvApply& fa) noexcept {
+void ControlLaw::applyFastOv(const ControlSensors& s, const Params& p, const FastOvVerdict& ov) noexcept {
   EpisodeInputs ei;
-  ei.fa = fa;
+  ei.ov = ov;
   ei.bcurSlowPrimed = filters_.bcurSlow().primed();
   ei.bcurSlowA = filters_.bcurSlow().value();
   ei.Bcur = s.Bcur;
@@ -106,10 +106,10 @@ void ControlLaw::applyFastOv(const ControlSensors& s, const Params& p, const Fas
     cv_.requestReseedAt(o.reseedAtA);
   else if (o.reseed)
     cv_.requestReseed();
-  command_.applyFastOvCap(fa.fastOvCurrentCap);
-  if (fa.setCvI) cv_.setCvI(fa.cv_I);
-  if (fa.zeroSetpointLimited) slew_.setLimited(0.0);
-  updateGovMode(s, p, fa);
+  command_.applyFastOvCap(ov.fastOvCurrentCap);
+  if (ov.cvIAction != CvIAction::None) cv_.setCvI(ov.cv_I);
+  if (ov.zeroSetpointLimited) slew_.setLimited(0.0);
+  updateGovMode(s, p, ov);
   // The field-on edge after a rest restarts the startup ramp.
   if (rest_.resting() && s.ch1Fresh && rest_.endDue(restInputs(s, p), p)) cv_.requestReseed();
 }

@@ -2,8 +2,8 @@
 // ControlLaw: the cascaded loops of docs/control.md as owned parts, and the
 // coordinator that runs them in the command path's order. Regulator::step
 // drives it; tests drive it directly. No protection or battery types here:
-// the fast-OV supervisors' actions come in as a FastOvApply, so the law is
-// testable on its own.
+// the fast-OV supervisors' actions come in as a FastOvVerdict (core/), so the
+// law is testable on its own.
 //
 // One AUTO tick, in the command path's order (docs/architecture.md "Control
 // law and the step"):
@@ -59,7 +59,8 @@ class ControlLaw {
   double computeUTarget(const ControlSensors& s, const Params& p) noexcept;  // returns uTargetRaw
   // Returns the applied duty (after governor). Holds the PID and the duty when
   // CH1 is not fresh (the protections' state actions still apply).
-  double finishAuto(const ControlSensors& s, const Params& p, const FastOvApply& fa, EventBatch& ev) noexcept;
+  double finishAuto(const ControlSensors& s, const Params& p, const FastOvVerdict& ov,
+                    EventBatch& ev) noexcept;
 
   // ---- MANUAL / Limp Home / shutdown --------------------------------------
   double runManual(const ControlSensors& s, const Params& p, double manualDuty) noexcept;
@@ -133,9 +134,9 @@ class ControlLaw {
   bool tuningActive(const Params& p) const noexcept;
   RestInputs restInputs(const ControlSensors& s, const Params& p) const noexcept;
   double holdAtRest() noexcept;
-  void updateGovMode(const ControlSensors& s, const Params& p, const FastOvApply& fa) noexcept;
+  void updateGovMode(const ControlSensors& s, const Params& p, const FastOvVerdict& ov) noexcept;
   // finishAuto's steps (control_law.cpp).
-  void applyFastOv(const ControlSensors& s, const Params& p, const FastOvApply& fa) noexcept;
+  void applyFastOv(const ControlSensors& s, const Params& p, const FastOvVerdict& ov) noexcept;
   double runSystemIdTick(const ControlSensors& s, const Params& p, EventBatch& ev) noexcept;
   double slewSetpoint(const ControlSensors& s, const Params& p, double dt) noexcept;
   double runInnerLoop(const ControlSensors& s, const Params& p, double dt) noexcept;

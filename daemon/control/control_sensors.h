@@ -1,7 +1,8 @@
 #pragma once
-// What the control law's parts read each tick: the corrected sensors, and
-// what the fast over-voltage supervisors decided (so the law is testable
-// without protection types).
+// What the control law's parts read each tick: the corrected sensors. What
+// the fast over-voltage supervisors decided comes in beside them, as the
+// FastOvVerdict of core/fast_ov_verdict.h.
+#include "core/fast_ov_verdict.h"
 #include "core/inputs.h"
 
 namespace xr {
@@ -21,17 +22,9 @@ struct ControlSensors {
   bool socKnown = true;  // false while the battery monitor's SoC is only a guess (no SOC gating then)
   // Battery temperature current cap (cold ramp, no temperature).
   double batteryChargeCapA = 1e300;
-};
-
-// What the fast-OV supervisors (Groups 1/2/3, load dump) decided this tick.
-struct FastOvApply {
-  double fastOvCurrentCap = 1e300;  // clamp on uTargetAmps
-  bool fastOvClampActive = false;
-  bool setCvI = false;  // Snap / Bleed / Reseed
-  double cv_I = 0.0;
-  bool zeroSetpointLimited = false;  // load dump
-  bool forceBypassSlew = false;
-  bool sensorFailureBypass = false;  // !voltagePlausible || voltageDisagreementCritical
+  // The bus voltage is implausible or the two voltages disagree critically:
+  // the governor bypasses its slew (docs/control.md "Governor").
+  bool sensorFailureBypass = false;
 };
 
 }  // namespace xr

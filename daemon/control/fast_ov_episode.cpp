@@ -9,13 +9,13 @@
 namespace xr {
 
 EpisodeOutcome FastOvEpisode::update(const EpisodeInputs& in) noexcept {
-  const FastOvApply& fa = in.fa;
+  const FastOvVerdict& ov = in.ov;
   EpisodeOutcome out;
-  clampActive_ = fa.fastOvClampActive;
-  capA_ = fa.fastOvCurrentCap;
-  if (fa.zeroSetpointLimited && !loadDumpInEpisode_)
+  clampActive_ = ov.fastOvClampActive;
+  capA_ = ov.fastOvCurrentCap;
+  if (ov.zeroSetpointLimited && !loadDumpInEpisode_)
     dumpAcceptA_ = in.bcurSlowPrimed ? in.bcurSlowA : kNoValue;
-  if (fa.zeroSetpointLimited) loadDumpInEpisode_ = true;
+  if (ov.zeroSetpointLimited) loadDumpInEpisode_ = true;
   if (wasActive_ && !clampActive_) {
     out.cleared = true;
     // After the original firmware: a load dump snapped cv_I to 0 and bled

@@ -10,7 +10,7 @@ namespace xr {
 
 // What the episode reads each tick (AUTO).
 struct EpisodeInputs {
-  FastOvApply fa;                  // the supervisors' verdict
+  FastOvVerdict ov;                // the supervisors' verdict
   bool bcurSlowPrimed = false;     // the slow battery-current filter has a value
   double bcurSlowA = 0.0;          // battery current over seconds (before the dump)
   double Bcur = kNoValue;          // battery current now

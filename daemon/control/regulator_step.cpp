@@ -93,6 +93,8 @@ void Regulator::runProtections(Tick& t) noexcept {
   // A resting field (last tick) quiets the tach: the RPM gate must know it is not a stopped engine.
   s.prot.setFieldResting(s.law.fieldResting());
   s.prot.updateDetectors(in, t.cs.MeasuredAmps, ev);
+  const ProtectionFlags& f = s.prot.flags();
+  t.cs.sensorFailureBypass = f.voltageImplausible || f.voltageDisagreeCritical;
   // Battery temperature (docs/batteries.md): cold/hot orders, current cap, and the
   // compensated targets the stage machine and the voltage loop see.
   const BatteryTempDecision& bt = s.batTemp.update(in, p, ev);
@@ -219,19 +221,13 @@ DutyDecision Regulator::runAuto(const Tick& t) noexcept {
   fi.MeasuredAmps_filtered = s.law.MeasuredAmps_filtered();
   fi.altCurrentFresh = t.in.altCurrentRaw.fresh;
   const FastOvAction fa = s.prot.runFastOvSupervisors(fi);
-  FastOvApply apply;
+  FastOvVerdict ov = fa.verdict;
   // A belt-slip probe holds the target low for a few seconds (docs/operations.md "Belt slip").
-  apply.fastOvCurrentCap = std::min(fa.fastOvCurrentCap, s.belt.probeCapA());
-  apply.fastOvClampActive = fa.fastOvClampActive;
-  apply.setCvI = fa.cvIAction != CvIAction::None;
-  apply.cv_I = fa.cv_I;
-  apply.zeroSetpointLimited = fa.zeroSetpointLimited;
-  apply.forceBypassSlew = fa.forceBypassSlew;
-  apply.sensorFailureBypass = t.snap.prot.voltageImplausible || t.snap.prot.voltageDisagreeCritical;
+  ov.fastOvCurrentCap = std::min(ov.fastOvCurrentCap, s.belt.probeCapA());
   DutyDecision a;
-  a.duty = s.law.finishAuto(t.cs, p, apply, s.out.events);
+  a.duty = s.law.finishAuto(t.cs, p, ov, s.out.events);
   a.field = !s.law.fieldResting();  // a full bank at the RPM floor rests the field
-  a.fastOvActive = fa.fastOvClampActive;
+  a.fastOvActive = ov.fastOvClampActive;
   a.govMode = s.law.govMode();
   return a;
 }

@@ -29,12 +29,13 @@ const FastOvAction& FastOvSupervisor::update(const FastOvInputs& x, const Params
 
   FastOvAction& a = action_;
   a = FastOvAction{};
+  FastOvVerdict& v = a.verdict;
   const double target = x.ChargingVoltageTarget;
   // nearBulk = (ProtectionProxGateV <= 0) OR (target >= BulkVoltage - ProtectionProxGateV)
   a.nearBulk = p.ProtectionProxGateV <= 0.0 || target >= p.BulkVoltage - p.ProtectionProxGateV;
   const double base = std::max(0.0, x.uTargetAmps);  // fastOvBaseCap
-  a.fastOvCurrentCap = base;
-  a.cv_I = x.cv_I;
+  v.fastOvCurrentCap = base;
+  v.cv_I = x.cv_I;
 
   // FLOAT arms them too, whatever its distance from BulkVoltage: a load dump
   // or a surplus of field in float is as real as in absorption
@@ -56,15 +57,15 @@ const FastOvAction& FastOvSupervisor::update(const FastOvInputs& x, const Params
   cap = std::min(cap, g3.cap);
   a.group3 = g3.active;
   if (g3.cvIAction != CvIAction::None) {
-    a.cvIAction = g3.cvIAction;
-    a.cv_I = g3.cv_I;
+    v.cvIAction = g3.cvIAction;
+    v.cv_I = g3.cv_I;
   }
   // Load dump (gated on INA fast mode): everything to zero, AW bleed recovers.
   if (a.loadDump) {
     cap = 0.0;
-    a.zeroSetpointLimited = true;
-    a.cvIAction = CvIAction::Snap;
-    a.cv_I = 0.0;
+    v.zeroSetpointLimited = true;
+    v.cvIAction = CvIAction::Snap;
+    v.cv_I = 0.0;
   }
   finish(cap, base, target);
   return a;
@@ -96,15 +97,15 @@ void FastOvSupervisor::finish(double cap, double base, double target) noexcept {
   const bool any = a.group1 || a.group2 || a.group3 || a.loadDump;
   if (any) {
     cap_ = std::clamp(cap, 0.0, base);
-    a.fastOvCurrentCap = cap_;
-    a.fastOvClampActive = true;
+    a.verdict.fastOvCurrentCap = cap_;
+    a.verdict.fastOvClampActive = true;
     bypassLatched_ = true;
   } else {
     cap_ = base;
     if (IBV_ < target + k::CV_OVERSHOOT_RELEASE_V) bypassLatched_ = false;
   }
   wasActive_ = any;
-  a.forceBypassSlew = any || bypassLatched_;
+  a.verdict.forceBypassSlew = any || bypassLatched_;
 }
 
 }  // namespace xr

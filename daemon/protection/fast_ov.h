@@ -8,6 +8,7 @@
 //
 // One input struct in (FastOvInputs, filled by the control side), one action
 // out (FastOvAction, applied by the control side as it stands).
+#include "core/fast_ov_verdict.h"
 #include "core/inputs.h"
 #include "core/time.h"
 #include "params/params.h"
@@ -29,14 +30,11 @@ struct FastOvInputs {
   bool altCurrentFresh = false;        // a new CH1 sample this tick (feeds the MA window)
 };
 
+// The verdict the control law applies, and which supervisors gave it.
 struct FastOvAction {
-  bool nearBulk = false;
-  double fastOvCurrentCap = 0.0;  // clamp uTargetAmps to this (== uTargetAmps when idle)
-  bool fastOvClampActive = false;
-  CvIAction cvIAction = CvIAction::None;
-  double cv_I = 0.0;                 // new cv_I when cvIAction != None
-  bool forceBypassSlew = false;      // govMode = GOV_BYPASS_SLEW this tick
-  bool zeroSetpointLimited = false;  // load dump: setpointLimited = 0
+  // The cap reads 0 A until the first AUTO tick (telemetry); every update sets it.
+  FastOvVerdict verdict{.fastOvCurrentCap = 0.0};
+  bool nearBulk = false;  // the supervisors' gate: target within ProtectionProxGateV of BulkVoltage
   // Which supervisors acted (telemetry/tests).
   bool group1 = false, group2 = false, group3 = false, loadDump = false;
 };

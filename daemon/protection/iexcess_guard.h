@@ -7,13 +7,13 @@
 // fresh samples, the filtered or the raw current.
 #include <array>
 
+#include "core/fast_ov_verdict.h"
 #include "core/time.h"
 #include "params/params.h"
 
 namespace xr {
 
 struct FastOvInputs;
-enum class CvIAction { None, Snap, Bleed, Reseed };
 
 // What Group 3 decided this tick.
 struct IExcessResult {

@@ -114,8 +114,8 @@ void ProtectionSupervisor::fillTelemetry(ProtectionTelemetry& t) const noexcept 
   const ProtectionFlags& f = flags_;
   t.shutdownPhase = sequencer_.phase();
   t.nearBulk = fo.nearBulk;
-  t.fastOvCurrentCap = fo.fastOvCurrentCap;
-  t.fastOvClampActive = fo.fastOvClampActive;
+  t.fastOvCurrentCap = fo.verdict.fastOvCurrentCap;
+  t.fastOvClampActive = fo.verdict.fastOvClampActive;
   t.inaOvervoltageLatched = f.inaOvervoltageLatched;
   t.lockoutActive = f.lockoutActive;
   t.lockoutRemainingS = sequencer_.lockoutRemainingS(now_);

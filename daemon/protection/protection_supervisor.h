@@ -19,7 +19,7 @@
 //       phase rates: no governor on it); else the normal path runs.
 //   (d) AUTO path only, after the current request is known and before the
 //       CV loop / setpoint slew: runFastOvSupervisors(FastOvInputs) returns
-//       the FastOvAction the control law applies (cap on the request, cv_I
+//       the FastOvAction whose verdict the control law applies (cap, cv_I
 //       action, setpoint zero on a load dump, slew bypass). Other modes do
 //       not call it (a gap starts it clean).
 //   (e) checkAlarms(effAnomalyAlarmActive, events) -- every tick; the

@@ -84,8 +84,8 @@ TEST(CommandPath, FastOvCapClampsAndFallRateIsUnlimitedWhileActive) {
   rig.start();
   rig.run(20.0);
   ASSERT_DOUBLE_EQ(rig.law.setpointLimited(), 50.0);
-  rig.fa.fastOvClampActive = true;
-  rig.fa.fastOvCurrentCap = 10.0;
+  rig.ov.fastOvClampActive = true;
+  rig.ov.fastOvCurrentCap = 10.0;
   rig.tick();
   EXPECT_DOUBLE_EQ(rig.law.uTargetAmps(), 10.0);
   EXPECT_DOUBLE_EQ(rig.law.setpointLimited(), 10.0);  // one tick, not 50 A/s
@@ -95,11 +95,11 @@ TEST(CommandPath, FastSetpointRiseWindowAfterProtectionClears) {
   test::LawRig rig;
   rig.start();
   rig.run(20.0);
-  rig.fa.fastOvClampActive = true;
-  rig.fa.fastOvCurrentCap = 0.0;
+  rig.ov.fastOvClampActive = true;
+  rig.ov.fastOvCurrentCap = 0.0;
   rig.tick();
   ASSERT_DOUBLE_EQ(rig.law.setpointLimited(), 0.0);
-  rig.fa = FastOvApply{};  // protection clears; IBV is far below bulk target
+  rig.ov = FastOvVerdict{};  // protection clears; IBV is far below bulk target
   rig.run(0.2);
   // SetpointRiseRate x FastSetpointRiseRate = 90 A/s.
   EXPECT_NEAR(rig.law.setpointLimited(), 90.0 * 0.2, 0.5);
@@ -152,14 +152,29 @@ TEST(CommandPath, GovernorBypassWhileCvOvershootUntilBelowTargetPlus20mV) {
   rig.p.TargetVoltageSetpoint = 13.0;
   rig.plant.Vocv = 13.3;  // above target
   rig.start();
-  rig.fa.fastOvClampActive = true;
+  rig.ov.fastOvClampActive = true;
   rig.tick();
   EXPECT_EQ(rig.law.govMode(), GovMode::GOV_BYPASS_SLEW);
-  rig.fa = FastOvApply{};
+  rig.ov = FastOvVerdict{};
   rig.tick();
   EXPECT_EQ(rig.law.govMode(), GovMode::GOV_BYPASS_SLEW);  // latched: IBV still > target + 0.02
   rig.plant.Vocv = 12.9;
   rig.plant.VocvMax = 12.9;
+  rig.tick();
+  EXPECT_EQ(rig.law.govMode(), GovMode::GOV_NORMAL_SLEW);
+}
+
+// A voltage reading the detectors distrust bypasses the governor's slew on
+// that tick only, with no latch: far below the target nothing else asks it.
+TEST(CommandPath, GovernorBypassWhileTheVoltageSensorsFail) {
+  test::LawRig rig;
+  rig.start();
+  rig.tick();
+  EXPECT_EQ(rig.law.govMode(), GovMode::GOV_NORMAL_SLEW);
+  rig.sensorFailure = true;
+  rig.tick();
+  EXPECT_EQ(rig.law.govMode(), GovMode::GOV_BYPASS_SLEW);
+  rig.sensorFailure = false;
   rig.tick();
   EXPECT_EQ(rig.law.govMode(), GovMode::GOV_NORMAL_SLEW);
 }

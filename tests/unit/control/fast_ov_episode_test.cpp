@@ -13,9 +13,9 @@ namespace {
 
 EpisodeInputs clamp(bool active, bool dump) {
   EpisodeInputs in;
-  in.fa.fastOvClampActive = active;
-  in.fa.zeroSetpointLimited = dump;
-  in.fa.fastOvCurrentCap = active ? 0.0 : 1e300;
+  in.ov.fastOvClampActive = active;
+  in.ov.zeroSetpointLimited = dump;
+  in.ov.fastOvCurrentCap = active ? 0.0 : 1e300;
   in.bcurSlowPrimed = true;
   in.bcurSlowA = 12.0;  // the bank accepted 12 A before the dump
   in.Bcur = -3.0;

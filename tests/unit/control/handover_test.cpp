@@ -97,13 +97,13 @@ struct DumpRig : test::LawRig {
   }
   void dump() {
     plant.house = 0.0;
-    fa.zeroSetpointLimited = true;
-    fa.fastOvClampActive = true;
-    fa.fastOvCurrentCap = 0.0;
-    fa.setCvI = true;
-    fa.cv_I = 0.0;
+    ov.zeroSetpointLimited = true;
+    ov.fastOvClampActive = true;
+    ov.fastOvCurrentCap = 0.0;
+    ov.cvIAction = CvIAction::Snap;
+    ov.cv_I = 0.0;
     run(0.02);
-    fa = FastOvApply{};
+    ov = FastOvVerdict{};
   }
 };
 

@@ -17,9 +17,10 @@ struct LawRig {
   TimeNs tempStamp = 0;
   double soc = kNoValue;
   bool manual = false;
-  FastOvApply fa;
+  FastOvVerdict ov;  // what the fast-OV supervisors ask this tick (none by default)
   double duty = 0.0;
-  bool bcurKnown = true;  // false: no battery current sensor
+  bool bcurKnown = true;       // false: no battery current sensor
+  bool sensorFailure = false;  // the bus voltage implausible or disagreeing critically
 
   explicit LawRig(const Params& params = Params{}) : p(params), law(params) {}
 
@@ -35,6 +36,7 @@ struct LawRig {
     s.TempToUse = tempF;
     s.tempStamp = tempStamp;
     s.SOC_percent = soc;
+    s.sensorFailureBypass = sensorFailure;
     return s;
   }
 
@@ -58,7 +60,7 @@ struct LawRig {
       duty = law.runManual(s, p, p.ManualDutyTarget);
     } else {
       law.computeUTarget(s, p);
-      duty = law.finishAuto(s, p, fa, ev);
+      duty = law.finishAuto(s, p, ov, ev);
     }
     plant.advance(duty, true, dt);
     return duty;

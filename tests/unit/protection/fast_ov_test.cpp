@@ -25,12 +25,23 @@ struct FastRig : Rig {
     tick();
     x.MeasuredAmps = altAmps;
     a = sup.runFastOvSupervisors(x);
-    if (a.cvIAction != CvIAction::None) x.cv_I = a.cv_I;
+    if (a.verdict.cvIAction != CvIAction::None) x.cv_I = a.verdict.cv_I;
   }
   void steps(int n) {
     for (int i = 0; i < n; ++i) step();
   }
 };
+
+// Telemetry before the first AUTO tick reads a cap of 0 A, not the
+// verdict's "no clamp asked" (1e300); the first update sets the request.
+TEST(FastOvTelemetry, CapReadsZeroUntilTheFirstUpdate) {
+  FastRig r;
+  EXPECT_EQ(r.sup.telemetry().fastOvCurrentCap, 0.0);
+  EXPECT_EQ(FastOvVerdict{}.fastOvCurrentCap, 1e300);
+  r.altAmps = 40.0;
+  r.step();
+  EXPECT_EQ(r.sup.telemetry().fastOvCurrentCap, 50.0);  // idle: the request itself
+}
 
 TEST(NearBulk, ArmsOnlyWithinProtectionProxGateVOfBulk) {
   FastRig r;
@@ -45,7 +56,7 @@ TEST(NearBulk, ArmsOnlyWithinProtectionProxGateVOfBulk) {
   r.ibv = r.batteryV = 14.2;  // far above this target + margin: would be Group 2
   r.step();
   EXPECT_FALSE(r.a.group2);
-  EXPECT_FALSE(r.a.fastOvClampActive);
+  EXPECT_FALSE(r.a.verdict.fastOvClampActive);
   Params p;
   p.ProtectionProxGateV = 0.0;  // 0 = always armed
   r.setParams(p);
@@ -65,7 +76,7 @@ TEST(FastOv, ArmedInFloat) {
   r.steps(3);
   EXPECT_FALSE(r.a.nearBulk);
   EXPECT_TRUE(r.a.group2);
-  EXPECT_TRUE(r.a.fastOvClampActive);
+  EXPECT_TRUE(r.a.verdict.fastOvClampActive);
   r.ibv = r.batteryV = 13.59;  // just under: nothing
   r.steps(3);
   EXPECT_FALSE(r.a.group2);
@@ -73,7 +84,7 @@ TEST(FastOv, ArmedInFloat) {
   r.x.floatStage = false;  // the same target outside FLOAT: not armed
   r.steps(3);
   EXPECT_FALSE(r.a.group2);
-  EXPECT_FALSE(r.a.fastOvClampActive);
+  EXPECT_FALSE(r.a.verdict.fastOvClampActive);
 }
 
 TEST(Group2, FiresAboveTargetPlusMarginAndTrimsCap) {
@@ -88,9 +99,9 @@ TEST(Group2, FiresAboveTargetPlusMarginAndTrimsCap) {
   r.ibv = r.batteryV = 14.52;
   r.step();
   ASSERT_TRUE(r.a.group2);
-  EXPECT_TRUE(r.a.fastOvClampActive);
-  EXPECT_TRUE(r.a.forceBypassSlew);
-  EXPECT_NEAR(r.a.fastOvCurrentCap, 40.0 - 35.0 * (14.52 - 14.4 - 0.10), 1e-9);
+  EXPECT_TRUE(r.a.verdict.fastOvClampActive);
+  EXPECT_TRUE(r.a.verdict.forceBypassSlew);
+  EXPECT_NEAR(r.a.verdict.fastOvCurrentCap, 40.0 - 35.0 * (14.52 - 14.4 - 0.10), 1e-9);
 }
 
 TEST(Group2, InactiveWithoutVoltageControlAndWhenDisabled) {
@@ -117,11 +128,11 @@ TEST(GovBypass, LatchReleasesBelowTargetPlus20mV) {
   ASSERT_TRUE(r.a.group2);
   r.ibv = r.batteryV = 14.43;  // below group 2, above target + 0.02
   r.step();
-  EXPECT_FALSE(r.a.fastOvClampActive);
-  EXPECT_TRUE(r.a.forceBypassSlew);
+  EXPECT_FALSE(r.a.verdict.fastOvClampActive);
+  EXPECT_TRUE(r.a.verdict.forceBypassSlew);
   r.ibv = r.batteryV = 14.41;
   r.step();
-  EXPECT_FALSE(r.a.forceBypassSlew);
+  EXPECT_FALSE(r.a.verdict.forceBypassSlew);
 }
 
 TEST(Group1, PredictionFromDvdtEmaFiresBeforeMeasuredThreshold) {
@@ -142,7 +153,7 @@ TEST(Group1, PredictionFromDvdtEmaFiresBeforeMeasuredThreshold) {
   ASSERT_TRUE(fired);
   EXPECT_LT(ibvAtFire, 14.4 + 0.10);  // before Group 2 could see it
   EXPECT_GT(r.sup.telemetry().Vpred, 14.4 + 0.15);
-  EXPECT_TRUE(r.a.fastOvClampActive);
+  EXPECT_TRUE(r.a.verdict.fastOvClampActive);
 }
 
 TEST(Group1, FiresAtPredMarginNotJustBelowAndCapsBySlope) {
@@ -157,7 +168,7 @@ TEST(Group1, FiresAtPredMarginNotJustBelowAndCapsBySlope) {
   ASSERT_TRUE(r.a.group1);
   const double vpred = r.sup.telemetry().Vpred;
   EXPECT_GT(vpred, 14.56);  // the step itself raised dvdt
-  EXPECT_NEAR(r.a.fastOvCurrentCap, 40.0 - 35.0 * (vpred - 14.55), 1e-9);
+  EXPECT_NEAR(r.a.verdict.fastOvCurrentCap, 40.0 - 35.0 * (vpred - 14.55), 1e-9);
 }
 
 TEST(Group1, PredGuardBlocksFarBelowTarget) {
@@ -204,17 +215,17 @@ TEST(Group3, FiresAfterNTicksSnapsCvIAndReseedsOnReleaseWithHysteresis) {
   EXPECT_FALSE(r.a.group3);
   r.step();  // third consecutive tick
   ASSERT_TRUE(r.a.group3);
-  EXPECT_EQ(r.a.cvIAction, CvIAction::Snap);
-  EXPECT_EQ(r.a.cv_I, 0.0);
-  EXPECT_NEAR(r.a.fastOvCurrentCap, 50.0 - 1.0 * (45.5 - 40.0), 1e-9);
+  EXPECT_EQ(r.a.verdict.cvIAction, CvIAction::Snap);
+  EXPECT_EQ(r.a.verdict.cv_I, 0.0);
+  EXPECT_NEAR(r.a.verdict.fastOvCurrentCap, 50.0 - 1.0 * (45.5 - 40.0), 1e-9);
   r.altAmps = 43.5;  // inside the IEXCESS_HYST band (release below 43)
   r.step();
   EXPECT_TRUE(r.a.group3);
   r.altAmps = 42.9;
   r.step();
   EXPECT_FALSE(r.a.group3);
-  EXPECT_EQ(r.a.cvIAction, CvIAction::Reseed);
-  EXPECT_NEAR(r.a.cv_I, 30.0 * 0.5, 1e-9);  // preEventCvI x IExcessReseedFrac
+  EXPECT_EQ(r.a.verdict.cvIAction, CvIAction::Reseed);
+  EXPECT_NEAR(r.a.verdict.cv_I, 30.0 * 0.5, 1e-9);  // preEventCvI x IExcessReseedFrac
 }
 
 TEST(Group3, JustBelowThresholdNeverFires) {
@@ -236,10 +247,10 @@ TEST(Group3, ProportionalBleedWhenKBleedSet) {
   r.steps(3);
   ASSERT_TRUE(r.a.group3);
   r.step();
-  EXPECT_EQ(r.a.cvIAction, CvIAction::Bleed);
+  EXPECT_EQ(r.a.verdict.cvIAction, CvIAction::Bleed);
   // cv_I -= IExcessKBleed * excess * dt = 2 * 10 * 0.005 per tick.
-  EXPECT_LT(r.a.cv_I, 30.0);
-  EXPECT_GT(r.a.cv_I, 29.0);
+  EXPECT_LT(r.a.verdict.cv_I, 30.0);
+  EXPECT_GT(r.a.verdict.cv_I, 29.0);
 }
 
 TEST(Group3, VoltageSubGateBlocksFarBelowTarget) {
@@ -288,11 +299,11 @@ TEST(LoadDump, Tier1SingleSampleZeroesEverything) {
   r.bcur += 4000.0 * 0.005 + 1.0;  // > 4000 A/s over one 5 ms sample
   r.step();
   ASSERT_TRUE(r.a.loadDump);
-  EXPECT_EQ(r.a.fastOvCurrentCap, 0.0);
-  EXPECT_TRUE(r.a.zeroSetpointLimited);
-  EXPECT_EQ(r.a.cvIAction, CvIAction::Snap);
-  EXPECT_EQ(r.a.cv_I, 0.0);
-  EXPECT_TRUE(r.a.forceBypassSlew);
+  EXPECT_EQ(r.a.verdict.fastOvCurrentCap, 0.0);
+  EXPECT_TRUE(r.a.verdict.zeroSetpointLimited);
+  EXPECT_EQ(r.a.verdict.cvIAction, CvIAction::Snap);
+  EXPECT_EQ(r.a.verdict.cv_I, 0.0);
+  EXPECT_TRUE(r.a.verdict.forceBypassSlew);
 }
 
 TEST(LoadDump, Tier2NeedsTwoConsecutiveAndTier3Three) {
