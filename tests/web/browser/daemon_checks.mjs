@@ -151,12 +151,23 @@ export async function daemonChecks(t) {
   await page.goto(server.base + "/#battery");
   await page.click("#soc-set");
   assert.match(await page.textContent("#toast"), /Enter the state of charge/);
-  assert.equal((await status()).battery.soc_known, false);
+  const unset = await status();
+  assert.equal(unset.battery.soc_known, false);
+  // No count of the whole bank beside an SoC that is not the counted one
+  // (docs/dashboard.md "State of charge").
+  assert.notEqual(unset.owner.soc.source, "counted", "no SoC counted before Set SoC");
+  await page.waitForFunction(() => document.getElementById("batt-table").textContent.includes("charge counted (Ah)—"));
   await page.fill("#soc-input", "60");
   await page.click("#soc-set");
   await page.click("#confirm-ok");
   await until("SoC set", async () => Math.abs((await status()).soc_pct - 60) < 1);
   await page.waitForFunction(() => !document.getElementById("v-soc_pct").textContent.startsWith("≈"));
+  // The charge counted is the same SoC in Ah: 60 % of the bank set.
+  const capacityAh = await param("BatteryCapacity_Ah");
+  await page.waitForFunction((ah) => {
+    const m = document.getElementById("batt-table").textContent.match(/charge counted \(Ah\)([0-9.]+)/);
+    return m && Math.abs(Number(m[1]) - ah) <= 0.02 * ah;
+  }, 0.6 * capacityAh);
   console.log("ok - Set SoC asks first, never sends an empty box; the SoC is then shown as known");
 
   // ---- Item 9: every page reachable at 390 px, 44 px targets: the bottom

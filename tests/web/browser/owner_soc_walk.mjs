@@ -4,7 +4,8 @@
 // CAN and reports 40 %. Live's SoC tile, the Battery page, the System page's
 // BMS row and the set-up's "Now in effect" all show the regulator's owner
 // model: 40 % from the BMS, the BMS talking; no page shows another SoC
-// (the counted one's "unknown until the first full charge" or its averages).
+// (the counted one's "unknown until the first full charge", its averages or
+// its count in Ah).
 import assert from "node:assert/strict";
 import { parseArgs, runDaemonBrowserTest, saveSetup, until } from "./server.mjs";
 
@@ -58,6 +59,7 @@ await runDaemonBrowserTest({ args, token, scenario, shipped: true, prefix: "xr-s
   const battery = await page.textContent("#batt-table");
   assert.doesNotMatch(battery, /unknown until the first full charge/);
   assert.match(battery, /average SoC \(%\)—/, "no average of another SoC beside the BMS's");
+  assert.match(battery, /charge counted \(Ah\)—/, "no count of another SoC in Ah beside the BMS's");
   console.log("ok - Battery: the same SoC from the BMS, no other");
 
   await page.goto(server.base + "/#system");

@@ -63,13 +63,21 @@ function socRow(s) {
   return (s.battery || {}).soc_known === false ? `≈ ${plain(soc.pct, 0)} (estimate)` : plain(soc.pct, 1);
 }
 
+// The charge counted in Ah is the counted SoC in other units: shown only while
+// that SoC is the one shown, marked "≈" while it is a start-up guess
+// (docs/dashboard.md "State of charge").
+function countedAhRow(b, counted) {
+  if (!counted) return "—";
+  return b.soc_known === false ? `≈ ${plain(b.coulomb_count_ah, 0)}` : plain(b.coulomb_count_ah, 1);
+}
+
 export function renderBattery(s) {
   const b = s.battery || {};
   // Averages of the counted SoC mean something only while it is the SoC shown.
   const counted = s.owner && s.owner.soc && s.owner.soc.source === "counted";
   kvTable("batt-table", [
     ["state of charge (%)", socRow(s)],
-    ["charge counted (Ah)", plain(b.coulomb_count_ah, 1)], ["battery current (A)", plain(s.bcur_a, 1)],
+    ["charge counted (Ah)", countedAhRow(b, counted)], ["battery current (A)", plain(s.bcur_a, 1)],
     ["full charge seen", yes(b.full_charge_detected)],
     ["time to full", b.soc_known === false ? "unknown until the SoC is known" : hmin(b.time_to_full_charge_min)],
     ["time to empty", b.soc_known === false ? "unknown until the SoC is known" : hmin(b.time_to_full_discharge_min)],
