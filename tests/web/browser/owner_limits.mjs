@@ -72,6 +72,8 @@ await runDaemonBrowserTest({ args, token, scenario, shipped: true, prefix: "xr-o
   await page.goto(server.base + "/#protections");
   await page.waitForFunction((cap) => document.getElementById("prot-table").textContent.includes(cap), CAP);
   assert.doesNotMatch(await page.textContent("#prot-table"), /holding backnothing/);
+  // No fast over-voltage clamp acts, so it shows no current of its own beside the cap.
+  assert.match(await page.textContent("#prot-table"), /fast over-voltage clampnoclamp current \(A\)—/);
   console.log("ok - Protections lists the C/10 cap with its amps and cause");
   await ctx.close();
 });

@@ -36,7 +36,8 @@ export function renderProtections(s) {
     row("cooldown running", p.lockout_active, "warn"),
     ["cooldown left", p.lockout_active ? `${Math.ceil(p.lockout_remaining_s || 0)} s` : "—"],
     row("fast over-voltage clamp", p.fast_ov_clamp_active, "warn"),
-    ["clamp current (A)", p.fast_ov_current_cap],
+    // The supervisors' cap means something only while they clamp; idle it is the request itself.
+    ["clamp current (A)", yes(p.fast_ov_clamp_active) ? plain(p.fast_ov_current_cap, 1) : "—"],
     row("temperature reading stuck", p.temp_task_alarm),
     ["heat derate (A)", s.thermal_penalty_a],
     row("buzzer", p.buzzer),
