@@ -197,9 +197,14 @@ class FakeDaemonApi : public DaemonApi {
     for (double t = q.from_s; t < q.to_s; t += q.step_s) r.t.push_back(t);
     for (const auto& s : q.series) {
       std::vector<double> v;
+      // The newest bucket is still open and empty, as in the store; the
+      // temperature and RPM steady with a little noise, as when cruising.
       for (double t : r.t)
-        v.push_back(s == "battery_v" || s == "ibv_v" ? 13.0 + 0.5 * std::sin(t / 300.0)
-                                                     : 50.0 + 20.0 * std::sin(t / 200.0));
+        v.push_back(t + q.step_s >= q.to_s             ? std::nan("")
+                    : s == "battery_v" || s == "ibv_v" ? 13.0 + 0.5 * std::sin(t / 300.0)
+                    : s == "temp_f"                    ? 180.0 + 0.4 * std::sin(t / 20.0)
+                    : s == "rpm"                       ? 1800.0 + 5.0 * std::sin(t / 7.0)
+                                                       : 50.0 + 20.0 * std::sin(t / 200.0));
       r.series.emplace_back(s, std::move(v));
     }
     std::lock_guard lock(m_);

@@ -83,7 +83,19 @@ try {
   if (mode === "fake") {
     await page.waitForFunction(() => Number(document.getElementById("chart-history").dataset.points || 0) > 100 &&
       Number(document.getElementById("chart-env").dataset.points || 0) > 100);
-    console.log("ok - history charts draw volts/amps and temperature/SoC/RPM from /api/history");
+    // Their legends show the newest values with a number, though the newest
+    // bucket is still empty.
+    for (const id of ["chart-history", "chart-env"])
+      await page.waitForFunction((i) => {
+        const legend = [...document.querySelectorAll(`#${i} .u-legend .u-value`)].slice(1).map((e) => e.textContent);
+        return legend.length === 3 && legend.every((t) => /\d/.test(t));
+      }, id);
+    // A steady temperature and engine speed look steady: the temperature axis
+    // spans at least 10 degrees, the RPM line runs from 0 to at least 3000.
+    assert.ok(Number(await chartData("chart-env", "tspan")) >= 10, `temperature axis ${await chartData("chart-env", "tspan")}`);
+    const [rpmLo, rpmHi] = (await chartData("chart-env", "rpmAxis")).split("-").map(Number);
+    assert.ok(rpmLo === 0 && rpmHi >= 3000, `RPM axis ${rpmLo}-${rpmHi}`);
+    console.log("ok - history charts draw volts/amps and temperature/SoC/RPM from /api/history, newest values shown, steady lines flat");
   } else {
     await page.waitForFunction(() => document.getElementById("hist-msg").textContent !== "" ||
       Number(document.getElementById("chart-history").dataset.points || 0) > 0);

@@ -9,6 +9,8 @@ import { tempUnit } from "./live.js";
 const $ = (id) => document.getElementById(id);
 export const LIVE_WINDOW_S = 300;
 const MIN_VOLT_SPAN = 1.0;  // V: sensor noise must not look like swings
+const MIN_TEMP_SPAN = 10;   // °C or °F: a steady alternator's noise must not look like a rise
+const RPM_FLOOR = 3000;     // rpm: the line from 0 up, so idle and cruising read as heights, noise as flat
 
 const css = (name) => getComputedStyle(document.body).getPropertyValue(name).trim() || "#888";
 const width = (el) => Math.max(280, el.clientWidth - 8);
@@ -68,17 +70,20 @@ const vaScales = { x: { time: true }, V: { range: atLeast(MIN_VOLT_SPAN) }, A: {
 let liveChart = null, histChart = null, envChart = null;
 const live = { t: [], v: [], a: [], b: [] };
 
-// Newest values in the legend when nobody points at the chart.
+// Newest values in the legend when nobody points at the chart: the last
+// point with a value, since the store's newest bucket may still be empty.
 function showLatest(u) {
-  const n = u.data[0].length;
-  if (n && !(u.cursor.left >= 0)) u.setLegend({ idx: n - 1 });
+  let i = u.data[0].length - 1;
+  while (i > 0 && u.data.slice(1).every((s) => s[i] == null)) i--;
+  if (i >= 0 && !(u.cursor.left >= 0)) u.setLegend({ idx: i });
 }
 
 export function initCharts() {
   liveChart = make($("chart-live"), vaScales, [volts, amps], VA());
   histChart = make($("chart-history"), vaScales, [volts, amps], VA());
   const t = () => (tempUnit() === "F" ? "°F" : "°C");
-  envChart = make($("chart-env"), { x: { time: true }, T: { auto: true }, P: { range: [0, 100] }, R: { auto: true } },
+  const rpmRange = (u, lo, hi) => [0, Math.max(hi ?? 0, RPM_FLOOR) * 1.1];
+  envChart = make($("chart-env"), { x: { time: true }, T: { range: atLeast(MIN_TEMP_SPAN) }, P: { range: [0, 100] }, R: { range: rpmRange } },
     [{ scale: "T", size: 56, values: (u, v) => v.map((x) => x + t()) },
      { scale: "P", side: 1, size: 48, grid: { show: false }, values: (u, v) => v.map((x) => x + " %") }],
     [{ label: "Alternator temp", scale: "T", stroke: "#d81b60", width: 2, value: (u, v) => (v == null ? "—" : v.toFixed(0) + t()) },
@@ -140,8 +145,11 @@ export async function loadHistory() {
     const temps = (s.temp_f || []).map((f) => (f == null ? null : tempUnit() === "F" ? f : fToC(f)));
     if (histChart) { histChart.setData([h.t, s.ibv_v, s.alt_a, s.bcur_a]); showLatest(histChart); }
     if (envChart) { envChart.setData([h.t, temps, s.soc_pct || [], s.rpm || []]); showLatest(envChart); }
-    describe(histChart, $("chart-history"), "History, battery volts and amps");
-    describe(envChart, $("chart-env"), "History, alternator temperature, SoC and RPM");
+    // uPlot sets the new scales when it commits, after this task: describe them then.
+    requestAnimationFrame(() => {
+      describe(histChart, $("chart-history"), "History, battery volts and amps");
+      describe(envChart, $("chart-env"), "History, alternator temperature, SoC and RPM");
+    });
     $("hist-msg").textContent = h.t.length ? "" : "no history stored yet";
   } catch (e) {
     $("hist-msg").textContent = "history: " + e.message;
@@ -150,7 +158,7 @@ export async function loadHistory() {
 
 // What a chart shows, for a screen reader (role="img" with a label) and in
 // data-* attributes: how many points, from when (unix s), how many event
-// markers, and the voltage axis's span. The browser tests read the same.
+// markers, and the axes' spans (volts, temperature, RPM). The browser tests read the same.
 function describe(u, el, what) {
   if (!u) return;
   const t = u.data[0];
@@ -162,4 +170,6 @@ function describe(u, el, what) {
   el.dataset.first = t.length ? String(t[0]) : "";
   el.dataset.markers = String(u === liveChart ? 0 : marks.length);
   if (span !== null && isFinite(span)) el.dataset.vspan = span.toFixed(2);
+  if (u.scales.T && isFinite(u.scales.T.max - u.scales.T.min)) el.dataset.tspan = (u.scales.T.max - u.scales.T.min).toFixed(1);
+  if (u.scales.R && isFinite(u.scales.R.max)) el.dataset.rpmAxis = `${u.scales.R.min}-${Math.round(u.scales.R.max)}`;
 }
