@@ -8,7 +8,6 @@
 #include <string>
 #include <vector>
 
-#include "app/update_watch.h"
 #include "config/config.h"
 #include "config/web_checks.h"
 

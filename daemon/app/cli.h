@@ -18,6 +18,11 @@ inline constexpr int kExitSoftware = 70;     // EX_SOFTWARE: internal error (exc
 inline constexpr int kExitUnavailable = 69;  // EX_UNAVAILABLE: hardware missing
 inline constexpr int kExitTempFail = 75;     // EX_TEMPFAIL: another daemon holds the state database
 
+// The package's paths for updates (app/update_watch.h): its release record,
+// and the directory of the quiet state file the update gate reads.
+inline constexpr const char* kDefaultReleaseFile = "/var/lib/xregulator/release";
+inline constexpr const char* kDefaultRunDir = "/run/xregulator";
+
 // Test-only faults (hidden, accepted only with --sim): end the daemon by a
 // given path at a given simulated time so tests/e2e can prove each exit path
 // leaves the field off.
@@ -49,7 +54,7 @@ struct CliOptions {
   std::optional<std::string> canLog;  // candump log of every CAN frame (docs/integrations.md)
   // Updates (app/update_watch.h): the package's release record, the quiet
   // state file's directory, and whether a pending update restarts when quiet.
-  std::string releaseFile = "/var/lib/xregulator/release";
+  std::string releaseFile = kDefaultReleaseFile;
   // Empty: no state file. parseCommandLine() sets the board's default,
   // /run/xregulator, unless --run-dir is given or the daemon runs --sim: a
   // simulated engine must never speak for the real one to the update gate.

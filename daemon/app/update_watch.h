@@ -31,8 +31,6 @@ struct ReleaseInfo {
   std::string previous;
 };
 
-inline constexpr const char* kDefaultReleaseFile = "/var/lib/xregulator/release";
-inline constexpr const char* kDefaultRunDir = "/run/xregulator";
 // An engine below this speed is stopped (a tach's noise at rest is far lower).
 inline constexpr double kEngineTurningRpm = 50.0;
 // A boat must stay quiet this long before a pending update restarts the
