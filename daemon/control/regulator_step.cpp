@@ -220,8 +220,7 @@ DutyDecision Regulator::runAuto(const Tick& t) noexcept {
   fi.MeasuredAmps = t.cs.MeasuredAmps;
   fi.MeasuredAmps_filtered = s.law.MeasuredAmps_filtered();
   fi.altCurrentFresh = t.in.altCurrentRaw.fresh;
-  const FastOvAction fa = s.prot.runFastOvSupervisors(fi);
-  FastOvVerdict ov = fa.verdict;
+  FastOvVerdict ov = s.prot.runFastOvSupervisors(fi).verdict;
   // A belt-slip probe holds the target low for a few seconds (docs/operations.md "Belt slip").
   ov.fastOvCurrentCap = std::min(ov.fastOvCurrentCap, s.belt.probeCapA());
   DutyDecision a;

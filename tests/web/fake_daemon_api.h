@@ -195,16 +195,18 @@ class FakeDaemonApi : public DaemonApi {
         return r;
       }
     for (double t = q.from_s; t < q.to_s; t += q.step_s) r.t.push_back(t);
+    // The newest bucket is still open and empty, as in the store; the
+    // temperature and RPM steady with a little noise, as when cruising.
+    const auto sample = [&q](const std::string& s, double t) {
+      if (t + q.step_s >= q.to_s) return std::nan("");
+      if (s == "battery_v" || s == "ibv_v") return 13.0 + 0.5 * std::sin(t / 300.0);
+      if (s == "temp_f") return 180.0 + 0.4 * std::sin(t / 20.0);
+      if (s == "rpm") return 1800.0 + 5.0 * std::sin(t / 7.0);
+      return 50.0 + 20.0 * std::sin(t / 200.0);
+    };
     for (const auto& s : q.series) {
       std::vector<double> v;
-      // The newest bucket is still open and empty, as in the store; the
-      // temperature and RPM steady with a little noise, as when cruising.
-      for (double t : r.t)
-        v.push_back(t + q.step_s >= q.to_s             ? std::nan("")
-                    : s == "battery_v" || s == "ibv_v" ? 13.0 + 0.5 * std::sin(t / 300.0)
-                    : s == "temp_f"                    ? 180.0 + 0.4 * std::sin(t / 20.0)
-                    : s == "rpm"                       ? 1800.0 + 5.0 * std::sin(t / 7.0)
-                                                       : 50.0 + 20.0 * std::sin(t / 200.0));
+      for (double t : r.t) v.push_back(sample(s, t));
       r.series.emplace_back(s, std::move(v));
     }
     std::lock_guard lock(m_);
