@@ -90,6 +90,15 @@ try {
         const legend = [...document.querySelectorAll(`#${i} .u-legend .u-value`)].slice(1).map((e) => e.textContent);
         return legend.length === 3 && legend.every((t) => /\d/.test(t));
       }, id);
+    // A finger that touches the chart and leaves, or a turned phone: uPlot
+    // resets its legend to the cursor (none); the newest values come back.
+    await page.locator("#chart-history .u-over").hover({ position: { x: 40, y: 60 } });
+    await page.locator("#hist-range").hover();
+    const size = page.viewportSize();
+    await page.setViewportSize({ width: 700, height: size.height });
+    await page.setViewportSize(size);
+    for (const id of ["chart-history", "chart-env"])
+      await page.waitForFunction((i) => [...document.querySelectorAll(`#${i} .u-legend .u-value`)].every((e) => /\d/.test(e.textContent)), id);
     // A steady temperature and engine speed look steady: the temperature axis
     // spans at least 10 degrees, the RPM line runs from 0 to at least 3000.
     assert.ok(Number(await chartData("chart-env", "tspan")) >= 10, `temperature axis ${await chartData("chart-env", "tspan")}`);

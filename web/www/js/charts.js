@@ -47,6 +47,23 @@ function markerPlugin(getMarks) {
   };
 }
 
+// The newest values in the legend whenever nobody points at the chart: the
+// last point with a value (the store's newest bucket may still be empty).
+// uPlot sets its legend from the cursor (none) after new data, a resize or
+// the pointer leaving; this hook puts the newest point back each time.
+function newestInLegend() {
+  return {
+    hooks: {
+      setLegend: (u) => {
+        if (u.cursor.left >= 0) return;
+        let i = u.data[0].length - 1;
+        while (i > 0 && u.data.slice(1).every((s) => s[i] == null)) i--;
+        if (i >= 0 && u.legend.idx !== i) u.setLegend({ idx: i }, false);
+      },
+    },
+  };
+}
+
 let marks = [];
 function make(el, scales, axes, series) {
   if (!window.uPlot) { el.textContent = "charts unavailable (uPlot not installed: run make deps)"; return null; }
@@ -55,7 +72,7 @@ function make(el, scales, axes, series) {
     // One 24 h clock everywhere (the event list's too): the time axis and
     // the legend's time say "14:05", never uPlot's default "2:05pm".
     axes: [{ stroke: css("--dim"), grid: { stroke: css("--grid") }, values: (u, v) => v.map((t) => clock(t, t)) }, ...axes],
-    series: [{ value: (u, t) => (t == null ? "—" : clock(t)) }, ...series], plugins: [markerPlugin(() => marks)],
+    series: [{ value: (u, t) => (t == null ? "—" : clock(t)) }, ...series], plugins: [markerPlugin(() => marks), newestInLegend()],
   }, [[], ...series.map(() => [])], el);
 }
 const volts = { scale: "V", size: 60, grid: { stroke: "#8884" }, values: (u, v) => v.map((x) => x.toFixed(1) + " V") };
@@ -70,13 +87,6 @@ const vaScales = { x: { time: true }, V: { range: atLeast(MIN_VOLT_SPAN) }, A: {
 let liveChart = null, histChart = null, envChart = null;
 const live = { t: [], v: [], a: [], b: [] };
 
-// Newest values in the legend when nobody points at the chart: the last
-// point with a value, since the store's newest bucket may still be empty.
-function showLatest(u) {
-  let i = u.data[0].length - 1;
-  while (i > 0 && u.data.slice(1).every((s) => s[i] == null)) i--;
-  if (i >= 0 && !(u.cursor.left >= 0)) u.setLegend({ idx: i });
-}
 
 export function initCharts() {
   liveChart = make($("chart-live"), vaScales, [volts, amps], VA());
@@ -110,7 +120,6 @@ export function drawLive() {
   requestAnimationFrame(() => {
     pending = false;
     liveChart.setData([live.t, live.v, live.a, live.b]);
-    showLatest(liveChart);
     describe(liveChart, $("chart-live"), "Live chart, battery volts and amps");
   });
 }
@@ -143,8 +152,8 @@ export async function loadHistory() {
         .map((e) => ({ t: e.wall_time_s, fault: e.code === "ProtectionTrip" && e.reason !== "REASON_RPM_LOW" }));
     } catch { marks = []; }
     const temps = (s.temp_f || []).map((f) => (f == null ? null : tempUnit() === "F" ? f : fToC(f)));
-    if (histChart) { histChart.setData([h.t, s.ibv_v, s.alt_a, s.bcur_a]); showLatest(histChart); }
-    if (envChart) { envChart.setData([h.t, temps, s.soc_pct || [], s.rpm || []]); showLatest(envChart); }
+    if (histChart) histChart.setData([h.t, s.ibv_v, s.alt_a, s.bcur_a]);
+    if (envChart) envChart.setData([h.t, temps, s.soc_pct || [], s.rpm || []]);
     // uPlot sets the new scales when it commits, after this task: describe them then.
     requestAnimationFrame(() => {
       describe(histChart, $("chart-history"), "History, battery volts and amps");
